@@ -1,0 +1,2 @@
+//! `planlab`: command-line front end of planlab-core.
+fn main() {}

@@ -1,0 +1,451 @@
+//! Grid global planners (SPEC §2): shared types.
+//!
+//! Every planner searches a [`PlanGrid`] (the passability of an
+//! [`OccupancyGrid`], built once and reused across queries) and returns a
+//! [`Path`] with its cost in cells (moves of 1 and √2), the number of nodes
+//! expanded, or a typed [`PlanError`].
+
+use crate::map::{Cell, OccupancyGrid};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// A grid cell `(col, row)`, row 0 at the top.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub struct GridPos {
+    /// Column (x).
+    pub col: u32,
+    /// Row (y, downwards).
+    pub row: u32,
+}
+
+impl GridPos {
+    /// `GridPos { col, row }`.
+    #[inline]
+    pub const fn new(col: u32, row: u32) -> Self {
+        Self { col, row }
+    }
+}
+
+impl From<(u32, u32)> for GridPos {
+    fn from((col, row): (u32, u32)) -> Self {
+        Self { col, row }
+    }
+}
+
+/// Which diagonal moves are allowed (PathFinding.js names in brackets).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Diagonal {
+    /// 4-connected: no diagonal moves [Never].
+    Never,
+    /// 8-connected; a diagonal needs both orthogonal side cells free — the
+    /// Moving AI rule, so `.scen` optimal lengths hold [OnlyWhenNoObstacles].
+    #[default]
+    NoCornerCutting,
+    /// 8-connected; a diagonal needs at least one side cell free
+    /// [IfAtMostOneObstacle].
+    OneSideFree,
+    /// 8-connected; diagonals through any corner [Always].
+    Always,
+}
+
+impl Diagonal {
+    /// Whether a diagonal move is legal given whether its two orthogonal side
+    /// cells are free.
+    #[inline]
+    pub fn allows(self, side_a_free: bool, side_b_free: bool) -> bool {
+        match self {
+            Diagonal::Never => false,
+            Diagonal::NoCornerCutting => side_a_free && side_b_free,
+            Diagonal::OneSideFree => side_a_free || side_b_free,
+            Diagonal::Always => true,
+        }
+    }
+}
+
+/// Distance estimate from a cell to the goal, in cells.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Heuristic {
+    /// |dx| + |dy|: exact for 4-connected moves, inadmissible with diagonals.
+    Manhattan,
+    /// Straight-line distance.
+    Euclidean,
+    /// max + (√2 − 1)·min: exact on an empty 8-connected grid.
+    #[default]
+    Octile,
+    /// max(|dx|, |dy|).
+    Chebyshev,
+    /// Always 0: turns A* into Dijkstra.
+    Zero,
+}
+
+impl Heuristic {
+    /// The estimate for offsets `dx`, `dy` (in cells, any sign).
+    #[inline]
+    pub fn eval(self, dx: f64, dy: f64) -> f64 {
+        let (ax, ay) = (dx.abs(), dy.abs());
+        match self {
+            Heuristic::Manhattan => ax + ay,
+            Heuristic::Euclidean => (ax * ax + ay * ay).sqrt(),
+            Heuristic::Octile => {
+                let (lo, hi) = if ax < ay { (ax, ay) } else { (ay, ax) };
+                hi + (std::f64::consts::SQRT_2 - 1.0) * lo
+            }
+            Heuristic::Chebyshev => ax.max(ay),
+            Heuristic::Zero => 0.0,
+        }
+    }
+}
+
+/// Which end of a query an error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Endpoint {
+    /// The start cell.
+    Start,
+    /// The goal cell.
+    Goal,
+}
+
+impl std::fmt::Display for Endpoint {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Endpoint::Start => "start",
+            Endpoint::Goal => "goal",
+        })
+    }
+}
+
+/// Why a planner returned no path.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum PlanError {
+    /// Start or goal lies outside the map.
+    #[error("{which} ({col}, {row}) is off the {width}×{height} map")]
+    OffMap {
+        /// Start or goal.
+        which: Endpoint,
+        /// Column as given.
+        col: i64,
+        /// Row as given.
+        row: i64,
+        /// Map width.
+        width: usize,
+        /// Map height.
+        height: usize,
+    },
+    /// Start or goal is an obstacle (or unknown, when unknown is blocked).
+    #[error("{which} ({col}, {row}) is inside an obstacle")]
+    Blocked {
+        /// Start or goal.
+        which: Endpoint,
+        /// Column.
+        col: u32,
+        /// Row.
+        row: u32,
+    },
+    /// The search exhausted every reachable cell.
+    #[error("goal is unreachable from start ({expanded} cells expanded)")]
+    Unreachable {
+        /// Nodes expanded before giving up.
+        expanded: usize,
+    },
+    /// A configuration value is out of range.
+    #[error("invalid planner configuration: {0}")]
+    InvalidConfig(String),
+}
+
+/// A planned grid path.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Path {
+    /// Cells from start to goal inclusive.
+    pub cells: Vec<GridPos>,
+    /// Sum of move lengths in cells (1 straight, √2 diagonal, the Euclidean
+    /// length for longer moves). For safe A* this is the geometric length,
+    /// not the search's internal cost.
+    pub cost: f64,
+    /// Nodes taken off the open list and expanded.
+    pub expanded: usize,
+}
+
+impl Path {
+    /// Euclidean length of the polyline through `cells`, in cells.
+    pub fn polyline_length(cells: &[GridPos]) -> f64 {
+        cells
+            .windows(2)
+            .map(|w| {
+                let dx = w[1].col as f64 - w[0].col as f64;
+                let dy = w[1].row as f64 - w[0].row as f64;
+                (dx * dx + dy * dy).sqrt()
+            })
+            .sum()
+    }
+}
+
+/// Passability of a map as planners see it: a row-major bitmap with a
+/// one-cell blocked border, so neighbour lookups need no bounds checks.
+#[derive(Clone, Debug)]
+pub struct PlanGrid {
+    width: usize,
+    height: usize,
+    /// Padded width = width + 2.
+    stride: usize,
+    /// (width + 2) × (height + 2); `true` = passable.
+    free: Vec<bool>,
+}
+
+impl PlanGrid {
+    /// Passability of `grid`; unknown cells are passable only with
+    /// `allow_unknown`.
+    pub fn new(grid: &OccupancyGrid, allow_unknown: bool) -> Self {
+        Self::from_fn(grid.width(), grid.height(), |c, r| {
+            grid.cells()[r * grid.width() + c].passable(allow_unknown)
+        })
+    }
+
+    /// A grid whose cell `(c, r)` is passable when `f(c, r)`.
+    pub fn from_fn(width: usize, height: usize, mut f: impl FnMut(usize, usize) -> bool) -> Self {
+        let stride = width + 2;
+        let mut free = vec![false; stride * (height + 2)];
+        for r in 0..height {
+            for c in 0..width {
+                free[(r + 1) * stride + c + 1] = f(c, r);
+            }
+        }
+        Self {
+            width,
+            height,
+            stride,
+            free,
+        }
+    }
+
+    /// Width in cells.
+    #[inline]
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Height in cells.
+    #[inline]
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// Whether `(col, row)` is on the map and passable (`false` off the map).
+    #[inline]
+    pub fn is_free(&self, col: i64, row: i64) -> bool {
+        if col < -1 || row < -1 || col > self.width as i64 || row > self.height as i64 {
+            return false;
+        }
+        self.free[(row + 1) as usize * self.stride + (col + 1) as usize]
+    }
+
+    /// Marks a cell passable or blocked (no-op off the map).
+    pub fn set_free(&mut self, col: usize, row: usize, free: bool) {
+        if col < self.width && row < self.height {
+            self.free[(row + 1) * self.stride + col + 1] = free;
+        }
+    }
+
+    /// Padded width (width + 2), the step between rows in [`Self::padded`].
+    #[inline]
+    pub fn stride(&self) -> usize {
+        self.stride
+    }
+
+    /// The padded bitmap: index `(row + 1) * stride + col + 1`.
+    #[inline]
+    pub fn padded(&self) -> &[bool] {
+        &self.free
+    }
+
+    /// Padded index of an on-map cell.
+    #[inline]
+    pub fn padded_index(&self, p: GridPos) -> usize {
+        (p.row as usize + 1) * self.stride + p.col as usize + 1
+    }
+
+    /// On-map cell of a padded index.
+    #[inline]
+    pub fn pos_of(&self, idx: usize) -> GridPos {
+        GridPos::new(
+            (idx % self.stride - 1) as u32,
+            (idx / self.stride - 1) as u32,
+        )
+    }
+
+    /// Checks that start and goal are on the map and passable.
+    pub fn check_endpoints(&self, start: GridPos, goal: GridPos) -> Result<(), PlanError> {
+        for (which, p) in [(Endpoint::Start, start), (Endpoint::Goal, goal)] {
+            if p.col as usize >= self.width || p.row as usize >= self.height {
+                return Err(PlanError::OffMap {
+                    which,
+                    col: p.col as i64,
+                    row: p.row as i64,
+                    width: self.width,
+                    height: self.height,
+                });
+            }
+            if !self.is_free(p.col as i64, p.row as i64) {
+                return Err(PlanError::Blocked {
+                    which,
+                    col: p.col,
+                    row: p.row,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether every move of `cells` stays on passable cells, checking the
+    /// cells each straight segment passes through (supercover line) and,
+    /// for exact diagonal corner crossings, the `diagonal` rule.
+    pub fn path_is_free(&self, cells: &[GridPos], diagonal: Diagonal) -> bool {
+        cells
+            .iter()
+            .all(|p| self.is_free(p.col as i64, p.row as i64))
+            && cells
+                .windows(2)
+                .all(|w| self.segment_is_free(w[0], w[1], diagonal))
+    }
+
+    /// Whether the straight segment between the centres of `a` and `b`
+    /// crosses only passable cells. Where the segment passes exactly through
+    /// a cell corner, the two cells touching that corner are judged by
+    /// `diagonal` (as for a single diagonal move).
+    pub fn segment_is_free(&self, a: GridPos, b: GridPos, diagonal: Diagonal) -> bool {
+        let mut ok = true;
+        supercover(a, b, |c, r, corner| {
+            if !ok {
+                return;
+            }
+            match corner {
+                None => ok = self.is_free(c, r),
+                Some((ac, ar, bc, br)) => {
+                    ok = diagonal.allows(self.is_free(ac, ar), self.is_free(bc, br));
+                }
+            }
+        });
+        ok
+    }
+}
+
+/// Walks the cells crossed by the segment between cell centres `a` and `b`.
+///
+/// Calls `visit(col, row, None)` for each crossed cell and
+/// `visit(_, _, Some((c1, r1, c2, r2)))` whenever the segment passes exactly
+/// through a corner, naming the two side cells it squeezes between.
+pub fn supercover(
+    a: GridPos,
+    b: GridPos,
+    mut visit: impl FnMut(i64, i64, Option<(i64, i64, i64, i64)>),
+) {
+    let (mut x, mut y) = (a.col as i64, a.row as i64);
+    let (x1, y1) = (b.col as i64, b.row as i64);
+    let (dx, dy) = ((x1 - x).abs(), (y1 - y).abs());
+    let (sx, sy) = ((x1 - x).signum(), (y1 - y).signum());
+    visit(x, y, None);
+    // Integer walk in units of half-cells: error = dy·(2i+1) − dx·(2j+1)
+    // compares where the line crosses the next vertical vs horizontal edge.
+    let (mut ix, mut iy) = (0i64, 0i64);
+    while ix < dx || iy < dy {
+        let decision = (1 + 2 * ix) * dy - (1 + 2 * iy) * dx;
+        if decision == 0 {
+            visit(0, 0, Some((x + sx, y, x, y + sy)));
+            x += sx;
+            y += sy;
+            ix += 1;
+            iy += 1;
+        } else if decision < 0 {
+            x += sx;
+            ix += 1;
+        } else {
+            y += sy;
+            iy += 1;
+        }
+        visit(x, y, None);
+    }
+}
+
+/// Checks a heuristic weight: finite and ≥ 1.
+pub fn check_weight(weight: f64) -> Result<(), PlanError> {
+    if weight.is_finite() && weight >= 1.0 {
+        Ok(())
+    } else {
+        Err(PlanError::InvalidConfig(format!(
+            "heuristic weight {weight} must be a finite number ≥ 1"
+        )))
+    }
+}
+
+/// Builds a [`PlanGrid`] that treats `Cell::Unknown` as given and everything
+/// else by its kind; a convenience for callers holding only cells.
+pub fn plan_grid_from_cells(
+    width: usize,
+    height: usize,
+    cells: &[Cell],
+    allow_unknown: bool,
+) -> PlanGrid {
+    PlanGrid::from_fn(width, height, |c, r| {
+        cells[r * width + c].passable(allow_unknown)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cells_of(a: GridPos, b: GridPos) -> Vec<(i64, i64)> {
+        let mut v = Vec::new();
+        supercover(a, b, |c, r, corner| {
+            if corner.is_none() {
+                v.push((c, r))
+            }
+        });
+        v
+    }
+
+    #[test]
+    fn supercover_straight_diagonal_and_shallow() {
+        assert_eq!(
+            cells_of(GridPos::new(0, 0), GridPos::new(3, 0)),
+            vec![(0, 0), (1, 0), (2, 0), (3, 0)]
+        );
+        assert_eq!(
+            cells_of(GridPos::new(0, 0), GridPos::new(2, 2)),
+            vec![(0, 0), (1, 1), (2, 2)]
+        );
+        // A 2:1 slope from (0,0) to (2,1) crosses (1,0) and (1,1) exactly at
+        // their shared edge midpoint... it passes through the corner-free
+        // points (0.5,0.25) and (1.5,0.75): cells (0,0),(1,0),(1,1),(2,1).
+        assert_eq!(
+            cells_of(GridPos::new(0, 0), GridPos::new(2, 1)),
+            vec![(0, 0), (1, 0), (1, 1), (2, 1)]
+        );
+        assert_eq!(
+            cells_of(GridPos::new(2, 1), GridPos::new(0, 0)),
+            vec![(2, 1), (1, 1), (1, 0), (0, 0)]
+        );
+    }
+
+    #[test]
+    fn segment_respects_corner_rule() {
+        let g = OccupancyGrid::from_ascii(".#\n..\n").unwrap();
+        let pg = PlanGrid::new(&g, false);
+        let (a, b) = (GridPos::new(0, 0), GridPos::new(1, 1));
+        assert!(!pg.segment_is_free(a, b, Diagonal::NoCornerCutting));
+        assert!(pg.segment_is_free(a, b, Diagonal::OneSideFree));
+    }
+
+    #[test]
+    fn heuristics() {
+        assert_eq!(Heuristic::Manhattan.eval(3.0, -4.0), 7.0);
+        assert_eq!(Heuristic::Euclidean.eval(3.0, -4.0), 5.0);
+        assert_eq!(Heuristic::Chebyshev.eval(3.0, -4.0), 4.0);
+        assert!(
+            (Heuristic::Octile.eval(3.0, -4.0) - (4.0 + 3.0 * (2f64.sqrt() - 1.0))).abs() < 1e-12
+        );
+    }
+}

@@ -1,0 +1,16 @@
+//! planlab-core: the pure-Rust heart of planlab.
+//!
+//! No clock, no global randomness, no wasm bindings: the same inputs give the
+//! same outputs natively and in WebAssembly.
+//!
+//! # Algorithms (see `SPEC.md` for the equations)
+//! - [`map`]: occupancy grids with resolution and origin; readers for ROS
+//!   map_server YAML + PGM, Moving AI `.map` / `.scen`, planlab's scenario
+//!   JSON and ASCII art; inflation and a ROS-style decaying costmap (SPEC §1).
+//! - [`global`]: A* with four heuristics and a weight, Dijkstra, Jump Point
+//!   Search, safe A* of Ge & Li (2022) §1, key-point extraction of Wu (2022)
+//!   §3.2.1 and Bottom-Up segmentation of Ge & Li §4.1 (SPEC §2).
+#![warn(missing_docs)]
+
+pub mod global;
+pub mod map;

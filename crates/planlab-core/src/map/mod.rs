@@ -1,0 +1,522 @@
+//! Occupancy grids, their file formats, inflation and costmaps (SPEC §1).
+//!
+//! Cells are addressed `(col, row)` with row 0 at the **top** of the image, as
+//! in Moving AI files and in the PGM of a ROS map. The world frame is x right,
+//! y up; [`OccupancyGrid::origin`] is the world pose of the **bottom-left
+//! corner** of the image (the corner of cell `(0, height - 1)`), exactly what
+//! the `origin` field of a ROS map_server YAML means.
+
+pub mod io;
+
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// The largest map planlab accepts, in cells; larger maps are refused with
+/// [`MapError::TooLarge`] before anything is allocated.
+pub const MAX_CELLS: u64 = 100_000_000;
+
+/// State of one grid cell.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+#[repr(u8)]
+pub enum Cell {
+    /// Known to be free.
+    #[default]
+    Free = 0,
+    /// Known to be occupied.
+    Occupied = 1,
+    /// Never observed (ROS value -1).
+    Unknown = 2,
+}
+
+impl Cell {
+    /// Whether a planner may enter this cell; unknown cells only when
+    /// `allow_unknown` is set.
+    #[inline]
+    pub fn passable(self, allow_unknown: bool) -> bool {
+        match self {
+            Cell::Free => true,
+            Cell::Occupied => false,
+            Cell::Unknown => allow_unknown,
+        }
+    }
+}
+
+/// A planar pose: position in metres, yaw in radians.
+#[derive(Clone, Copy, Debug, PartialEq, Default, Serialize, Deserialize)]
+pub struct Pose2 {
+    /// x in metres.
+    pub x: f64,
+    /// y in metres.
+    pub y: f64,
+    /// Heading in radians, counter-clockwise from +x.
+    pub yaw: f64,
+}
+
+/// Errors from building, reading or editing maps.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum MapError {
+    /// A dimension is zero.
+    #[error("map is empty: {width}×{height} cells")]
+    Empty {
+        /// Width in cells.
+        width: u64,
+        /// Height in cells.
+        height: u64,
+    },
+    /// More than [`MAX_CELLS`] cells.
+    #[error("map too large: {width}×{height} = {cells} cells exceeds the limit of {max} cells")]
+    TooLarge {
+        /// Width in cells.
+        width: u64,
+        /// Height in cells.
+        height: u64,
+        /// width × height.
+        cells: u64,
+        /// The limit, [`MAX_CELLS`].
+        max: u64,
+    },
+    /// The cell vector does not match width × height.
+    #[error("map data has {got} cells, expected {width}×{height} = {expected}")]
+    SizeMismatch {
+        /// Width in cells.
+        width: u64,
+        /// Height in cells.
+        height: u64,
+        /// width × height.
+        expected: u64,
+        /// Cells actually given.
+        got: u64,
+    },
+    /// Resolution not finite and positive.
+    #[error("invalid resolution {0}: must be a finite number > 0 (metres per cell)")]
+    BadResolution(f64),
+    /// Origin not finite.
+    #[error("invalid origin ({x}, {y}, {yaw}): all components must be finite")]
+    BadOrigin {
+        /// x in metres.
+        x: f64,
+        /// y in metres.
+        y: f64,
+        /// yaw in radians.
+        yaw: f64,
+    },
+    /// A cell index outside the map.
+    #[error("cell ({col}, {row}) is outside the {width}×{height} map")]
+    OutOfBounds {
+        /// Column.
+        col: i64,
+        /// Row.
+        row: i64,
+        /// Width in cells.
+        width: usize,
+        /// Height in cells.
+        height: usize,
+    },
+    /// A file could not be parsed; `line` is 1-based, 0 when not applicable.
+    #[error("{format} parse error{}: {message}", if *line > 0 { format!(" at line {line}") } else { String::new() })]
+    Parse {
+        /// Which format ("Moving AI map", "ROS yaml", "PGM", …).
+        format: &'static str,
+        /// 1-based line, or 0.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A referenced file could not be read.
+    #[error("cannot read {path}: {message}")]
+    Io {
+        /// The path as given.
+        path: String,
+        /// The OS error.
+        message: String,
+    },
+}
+
+impl MapError {
+    /// Shorthand for a [`MapError::Parse`].
+    pub fn parse(format: &'static str, line: usize, message: impl Into<String>) -> Self {
+        MapError::Parse {
+            format,
+            line,
+            message: message.into(),
+        }
+    }
+}
+
+/// Checks that `width × height` is non-empty and at most [`MAX_CELLS`].
+///
+/// Readers call this on the header, before allocating anything.
+pub fn check_dimensions(width: u64, height: u64) -> Result<usize, MapError> {
+    if width == 0 || height == 0 {
+        return Err(MapError::Empty { width, height });
+    }
+    let cells = width.saturating_mul(height);
+    if cells > MAX_CELLS {
+        return Err(MapError::TooLarge {
+            width,
+            height,
+            cells,
+            max: MAX_CELLS,
+        });
+    }
+    Ok(cells as usize)
+}
+
+/// An occupancy grid with a metric frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OccupancyGrid {
+    width: usize,
+    height: usize,
+    resolution: f64,
+    origin: Pose2,
+    cells: Vec<Cell>,
+}
+
+impl OccupancyGrid {
+    /// An all-free grid, 1 m per cell, origin at (0, 0).
+    pub fn new(width: usize, height: usize) -> Result<Self, MapError> {
+        let n = check_dimensions(width as u64, height as u64)?;
+        Ok(Self {
+            width,
+            height,
+            resolution: 1.0,
+            origin: Pose2::default(),
+            cells: vec![Cell::Free; n],
+        })
+    }
+
+    /// A grid from row-major cells (row 0 at the top).
+    pub fn from_cells(width: usize, height: usize, cells: Vec<Cell>) -> Result<Self, MapError> {
+        let n = check_dimensions(width as u64, height as u64)?;
+        if cells.len() != n {
+            return Err(MapError::SizeMismatch {
+                width: width as u64,
+                height: height as u64,
+                expected: n as u64,
+                got: cells.len() as u64,
+            });
+        }
+        Ok(Self {
+            width,
+            height,
+            resolution: 1.0,
+            origin: Pose2::default(),
+            cells,
+        })
+    }
+
+    /// A grid from ASCII art, one text line per row, top row first.
+    ///
+    /// `.` ` ` `S` `G` are free, `#` `@` `T` `O` `W` occupied, `?` unknown.
+    /// Leading and trailing blank lines are ignored; every row must have the
+    /// same width. Handy for test fixtures:
+    ///
+    /// ```
+    /// use planlab_core::map::{Cell, OccupancyGrid};
+    /// let g = OccupancyGrid::from_ascii("
+    /// ..#
+    /// .?.
+    /// ").unwrap();
+    /// assert_eq!((g.width(), g.height()), (3, 2));
+    /// assert_eq!(g.get(2, 0), Some(Cell::Occupied));
+    /// assert_eq!(g.get(1, 1), Some(Cell::Unknown));
+    /// ```
+    pub fn from_ascii(text: &str) -> Result<Self, MapError> {
+        let lines: Vec<&str> = text
+            .lines()
+            .map(|l| l.trim_end_matches('\r'))
+            .skip_while(|l| l.trim().is_empty())
+            .collect();
+        let end = lines
+            .iter()
+            .rposition(|l| !l.trim().is_empty())
+            .map_or(0, |i| i + 1);
+        let lines = &lines[..end];
+        let height = lines.len();
+        let width = lines.first().map_or(0, |l| l.chars().count());
+        let n = check_dimensions(width as u64, height as u64)?;
+        let mut cells = Vec::with_capacity(n);
+        for (r, line) in lines.iter().enumerate() {
+            if line.chars().count() != width {
+                return Err(MapError::parse(
+                    "ASCII map",
+                    r + 1,
+                    format!(
+                        "row has {} characters, expected {width}",
+                        line.chars().count()
+                    ),
+                ));
+            }
+            for ch in line.chars() {
+                cells.push(match ch {
+                    '.' | ' ' | 'S' | 'G' => Cell::Free,
+                    '#' | '@' | 'T' | 'O' | 'W' => Cell::Occupied,
+                    '?' => Cell::Unknown,
+                    other => {
+                        return Err(MapError::parse(
+                            "ASCII map",
+                            r + 1,
+                            format!("unexpected character {other:?}"),
+                        ))
+                    }
+                });
+            }
+        }
+        Self::from_cells(width, height, cells)
+    }
+
+    /// Renders the grid as ASCII art (`.` free, `#` occupied, `?` unknown).
+    pub fn to_ascii(&self) -> String {
+        let mut s = String::with_capacity((self.width + 1) * self.height);
+        for row in self.cells.chunks(self.width) {
+            for c in row {
+                s.push(match c {
+                    Cell::Free => '.',
+                    Cell::Occupied => '#',
+                    Cell::Unknown => '?',
+                });
+            }
+            s.push('\n');
+        }
+        s
+    }
+
+    /// Sets the metric frame: metres per cell and the pose of the
+    /// bottom-left corner of the image.
+    pub fn with_frame(mut self, resolution: f64, origin: Pose2) -> Result<Self, MapError> {
+        if !(resolution.is_finite() && resolution > 0.0) {
+            return Err(MapError::BadResolution(resolution));
+        }
+        if !(origin.x.is_finite() && origin.y.is_finite() && origin.yaw.is_finite()) {
+            return Err(MapError::BadOrigin {
+                x: origin.x,
+                y: origin.y,
+                yaw: origin.yaw,
+            });
+        }
+        self.resolution = resolution;
+        self.origin = origin;
+        Ok(self)
+    }
+
+    /// Width in cells (columns).
+    #[inline]
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Height in cells (rows).
+    #[inline]
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// Metres per cell.
+    #[inline]
+    pub fn resolution(&self) -> f64 {
+        self.resolution
+    }
+
+    /// World pose of the bottom-left corner of the image.
+    #[inline]
+    pub fn origin(&self) -> Pose2 {
+        self.origin
+    }
+
+    /// Row-major cells, row 0 at the top.
+    #[inline]
+    pub fn cells(&self) -> &[Cell] {
+        &self.cells
+    }
+
+    /// Whether `(col, row)` lies on the map.
+    #[inline]
+    pub fn in_bounds(&self, col: i64, row: i64) -> bool {
+        col >= 0
+            && row >= 0
+            && (col as u64) < self.width as u64
+            && (row as u64) < self.height as u64
+    }
+
+    /// Row-major index of `(col, row)`; the caller checks bounds.
+    #[inline]
+    pub fn index(&self, col: usize, row: usize) -> usize {
+        row * self.width + col
+    }
+
+    /// The cell at `(col, row)`, or `None` off the map.
+    #[inline]
+    pub fn get(&self, col: usize, row: usize) -> Option<Cell> {
+        if col < self.width && row < self.height {
+            Some(self.cells[row * self.width + col])
+        } else {
+            None
+        }
+    }
+
+    /// Sets the cell at `(col, row)`.
+    pub fn set(&mut self, col: usize, row: usize, cell: Cell) -> Result<(), MapError> {
+        if col < self.width && row < self.height {
+            self.cells[row * self.width + col] = cell;
+            Ok(())
+        } else {
+            Err(MapError::OutOfBounds {
+                col: col as i64,
+                row: row as i64,
+                width: self.width,
+                height: self.height,
+            })
+        }
+    }
+
+    /// Number of cells of each kind: (free, occupied, unknown).
+    pub fn counts(&self) -> (usize, usize, usize) {
+        let mut c = (0, 0, 0);
+        for cell in &self.cells {
+            match cell {
+                Cell::Free => c.0 += 1,
+                Cell::Occupied => c.1 += 1,
+                Cell::Unknown => c.2 += 1,
+            }
+        }
+        c
+    }
+
+    /// World coordinates (metres) of the centre of cell `(col, row)`.
+    pub fn cell_to_world(&self, col: usize, row: usize) -> (f64, f64) {
+        let lx = (col as f64 + 0.5) * self.resolution;
+        let ly = ((self.height - 1 - row.min(self.height - 1)) as f64 + 0.5) * self.resolution;
+        let (s, c) = self.origin.yaw.sin_cos();
+        if self.origin.yaw == 0.0 {
+            (self.origin.x + lx, self.origin.y + ly)
+        } else {
+            (
+                self.origin.x + c * lx - s * ly,
+                self.origin.y + s * lx + c * ly,
+            )
+        }
+    }
+
+    /// The cell containing world point `(x, y)`, or `None` off the map.
+    pub fn world_to_cell(&self, x: f64, y: f64) -> Option<(usize, usize)> {
+        if !(x.is_finite() && y.is_finite()) {
+            return None;
+        }
+        let (dx, dy) = (x - self.origin.x, y - self.origin.y);
+        let (lx, ly) = if self.origin.yaw == 0.0 {
+            (dx, dy)
+        } else {
+            let (s, c) = self.origin.yaw.sin_cos();
+            (c * dx + s * dy, -s * dx + c * dy)
+        };
+        let col = (lx / self.resolution).floor();
+        let up = (ly / self.resolution).floor();
+        if col < 0.0 || up < 0.0 || col >= self.width as f64 || up >= self.height as f64 {
+            return None;
+        }
+        Some((col as usize, self.height - 1 - up as usize))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn world_cell_round_trip() {
+        let g = OccupancyGrid::new(10, 5)
+            .unwrap()
+            .with_frame(
+                0.05,
+                Pose2 {
+                    x: -1.0,
+                    y: 2.0,
+                    yaw: 0.0,
+                },
+            )
+            .unwrap();
+        // Bottom-left cell's centre is half a cell from the origin.
+        let (x, y) = g.cell_to_world(0, 4);
+        assert!((x - (-0.975)).abs() < 1e-12 && (y - 2.025).abs() < 1e-12);
+        for (c, r) in [(0, 0), (9, 4), (3, 2)] {
+            let (x, y) = g.cell_to_world(c, r);
+            assert_eq!(g.world_to_cell(x, y), Some((c, r)));
+        }
+        assert_eq!(g.world_to_cell(-1.01, 2.0), None);
+        assert_eq!(g.world_to_cell(f64::NAN, 2.0), None);
+    }
+
+    #[test]
+    fn rotated_frame_round_trip() {
+        let g = OccupancyGrid::new(7, 9)
+            .unwrap()
+            .with_frame(
+                0.1,
+                Pose2 {
+                    x: 1.0,
+                    y: -2.0,
+                    yaw: 0.7,
+                },
+            )
+            .unwrap();
+        for r in 0..9 {
+            for c in 0..7 {
+                let (x, y) = g.cell_to_world(c, r);
+                assert_eq!(g.world_to_cell(x, y), Some((c, r)));
+            }
+        }
+    }
+
+    #[test]
+    fn refuses_bad_sizes_and_frames() {
+        assert!(matches!(
+            OccupancyGrid::new(0, 3),
+            Err(MapError::Empty { .. })
+        ));
+        assert!(matches!(
+            OccupancyGrid::new(100_000, 100_001),
+            Err(MapError::TooLarge { .. })
+        ));
+        assert!(matches!(
+            OccupancyGrid::from_cells(2, 2, vec![Cell::Free; 3]),
+            Err(MapError::SizeMismatch { .. })
+        ));
+        let g = OccupancyGrid::new(2, 2).unwrap();
+        assert!(matches!(
+            g.clone().with_frame(f64::NAN, Pose2::default()),
+            Err(MapError::BadResolution(_))
+        ));
+        assert!(matches!(
+            g.with_frame(
+                0.1,
+                Pose2 {
+                    x: f64::INFINITY,
+                    y: 0.0,
+                    yaw: 0.0
+                }
+            ),
+            Err(MapError::BadOrigin { .. })
+        ));
+    }
+
+    #[test]
+    fn ascii_round_trip_and_errors() {
+        let g = OccupancyGrid::from_ascii("\n.#?\n#..\n\n").unwrap();
+        assert_eq!(g.to_ascii(), ".#?\n#..\n");
+        assert_eq!(g.counts(), (3, 2, 1));
+        assert!(matches!(
+            OccupancyGrid::from_ascii("..\n...\n"),
+            Err(MapError::Parse { line: 2, .. })
+        ));
+        assert!(matches!(
+            OccupancyGrid::from_ascii(".x\n"),
+            Err(MapError::Parse { .. })
+        ));
+        assert!(matches!(
+            OccupancyGrid::from_ascii("\n\n"),
+            Err(MapError::Empty { .. })
+        ));
+    }
+}
