@@ -183,6 +183,24 @@ impl Path {
     }
 }
 
+/// What every grid planner offers.
+pub trait GridPlanner {
+    /// A path from `start` to `goal`, or why there is none.
+    fn plan(&self, grid: &PlanGrid, start: GridPos, goal: GridPos) -> Result<Path, PlanError> {
+        self.plan_recording(grid, start, goal, None)
+    }
+
+    /// As [`GridPlanner::plan`], and when `expanded` is given, pushes every
+    /// expanded cell onto it in expansion order (for drawing the search).
+    fn plan_recording(
+        &self,
+        grid: &PlanGrid,
+        start: GridPos,
+        goal: GridPos,
+        expanded: Option<&mut Vec<GridPos>>,
+    ) -> Result<Path, PlanError>;
+}
+
 /// Passability of a map as planners see it: a row-major bitmap with a
 /// one-cell blocked border, so neighbour lookups need no bounds checks.
 #[derive(Clone, Debug)]
