@@ -1,0 +1,172 @@
+//! `planlab scen` and `planlab plan`.
+
+use crate::load;
+use planlab_core::global::plan::{build_planner, plan_on_map, Algorithm, GridPlanOptions};
+use planlab_core::global::{GridPos, PlanGrid};
+use planlab_core::map::io::movingai;
+use serde_json::json;
+use std::path::Path;
+use std::time::Instant;
+
+/// Parses `C,R` into a cell.
+pub fn parse_cell(s: &str) -> Result<GridPos, String> {
+    let bad = || format!("invalid cell {s:?}: expected COLUMN,ROW with non-negative integers, e.g. 12,7");
+    let (c, r) = s.split_once(',').ok_or_else(bad)?;
+    let col = c.trim().parse::<u32>().map_err(|_| bad())?;
+    let row = r.trim().parse::<u32>().map_err(|_| bad())?;
+    Ok(GridPos::new(col, row))
+}
+
+fn within_tolerance(cost: f64, optimal: f64) -> bool {
+    (cost - optimal).abs() <= 1e-3 * optimal.max(1.0)
+}
+
+/// Solves every row of a Moving AI scenario; returns the number of rows
+/// whose cost misses the optimum (the caller turns > 0 into a failure).
+pub fn scen(map_path: &Path, scen_path: &Path, algo: Algorithm, json: bool) -> Result<usize, String> {
+    let grid = load::load_movingai(map_path)?;
+    let rows = load::load_scen(scen_path)?;
+    movingai::check_scen_against_map(&rows, &grid)
+        .map_err(|e| format!("{} does not fit {}: {e}", scen_path.display(), map_path.display()))?;
+    if algo == Algorithm::SafeAStar {
+        return Err("safe-astar is not an optimal planner; scen checks optimal costs (use astar, dijkstra or jps)".into());
+    }
+    let options = GridPlanOptions {
+        algorithm: algo,
+        ..Default::default()
+    };
+    let planner = build_planner(&options).map_err(|e| e.to_string())?;
+    let plan_grid = PlanGrid::new(&grid, false);
+    let (mut mismatches, mut total_micros) = (0usize, 0f64);
+    for (i, row) in rows.iter().enumerate() {
+        let t = Instant::now();
+        let result = planner.plan(&plan_grid, row.start, row.goal);
+        let micros = t.elapsed().as_secs_f64() * 1e6;
+        total_micros += micros;
+        let (cost, expanded) = match &result {
+            Ok(p) => (Some(p.cost), p.expanded),
+            Err(_) => (None, 0),
+        };
+        let ok = cost.is_some_and(|c| within_tolerance(c, row.optimal));
+        if !ok {
+            mismatches += 1;
+        }
+        if json {
+            println!(
+                "{}",
+                json!({
+                    "row": i,
+                    "start": [row.start.col, row.start.row],
+                    "goal": [row.goal.col, row.goal.row],
+                    "optimal": row.optimal,
+                    "cost": cost,
+                    "expanded": expanded,
+                    "micros": (micros * 1000.0).round() / 1000.0,
+                })
+            );
+        } else if !ok {
+            let got = match &result {
+                Ok(p) => format!("{:.5}", p.cost),
+                Err(e) => e.to_string(),
+            };
+            println!(
+                "row {i}: ({},{}) -> ({},{}) optimal {:.5}, got {got}",
+                row.start.col, row.start.row, row.goal.col, row.goal.row, row.optimal
+            );
+        }
+    }
+    let mean = if rows.is_empty() { 0.0 } else { total_micros / rows.len() as f64 };
+    if json {
+        println!(
+            "{}",
+            json!({"rows": rows.len(), "mismatches": mismatches, "mean_micros": (mean * 1000.0).round() / 1000.0})
+        );
+    } else {
+        println!(
+            "{}: {} rows solved with {}, {} mismatches, mean {:.1} µs per query",
+            scen_path.display(),
+            rows.len(),
+            algo.name(),
+            mismatches,
+            mean
+        );
+    }
+    Ok(mismatches)
+}
+
+/// Options of `planlab plan` beyond the map and endpoints.
+pub struct PlanArgs {
+    /// Start cell.
+    pub start: GridPos,
+    /// Goal cell.
+    pub goal: GridPos,
+    /// Planner options.
+    pub options: GridPlanOptions,
+    /// JSON output.
+    pub json: bool,
+}
+
+/// Plans once on any supported map file and prints the result.
+pub fn plan(map_path: &Path, args: &PlanArgs) -> Result<(), String> {
+    let grid = crate::load_any_map(map_path)?;
+    let t = Instant::now();
+    let result = plan_on_map(&grid, args.start, args.goal, &args.options, false).map_err(|e| e.to_string())?;
+    let micros = t.elapsed().as_secs_f64() * 1e6;
+    let cells = |v: &[GridPos]| v.iter().map(|p| [p.col, p.row]).collect::<Vec<_>>();
+    if args.json {
+        let mut out = json!({
+            "cost": result.path.cost,
+            "length_m": result.length_m,
+            "expanded": result.path.expanded,
+            "path": cells(&result.path.cells),
+            "keypoints": cells(&result.keypoints),
+            "micros": (micros * 1000.0).round() / 1000.0,
+        });
+        if args.options.bottom_up_eps.is_some() {
+            out["feature_nodes"] = json!(cells(&result.feature_nodes));
+        }
+        if !result.safety.is_empty() {
+            out["safety"] = json!(result.safety);
+        }
+        println!("{out}");
+    } else {
+        println!(
+            "{} on {} ({}×{} cells, {} m/cell): cost {:.4} cells, length {:.3} m, {} nodes, {} expanded, {:.1} µs",
+            args.options.algorithm.name(),
+            map_path.display(),
+            grid.width(),
+            grid.height(),
+            grid.resolution(),
+            result.path.cost,
+            result.length_m,
+            result.path.cells.len(),
+            result.path.expanded,
+            micros
+        );
+        if args.options.keypoints {
+            println!("key points ({}): {:?}", result.keypoints.len(), cells(&result.keypoints));
+        }
+        if args.options.bottom_up_eps.is_some() {
+            println!(
+                "Bottom-Up feature nodes ({}): {:?}",
+                result.feature_nodes.len(),
+                cells(&result.feature_nodes)
+            );
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_cells() {
+        assert_eq!(parse_cell("3,4"), Ok(GridPos::new(3, 4)));
+        assert_eq!(parse_cell(" 3 , 4 "), Ok(GridPos::new(3, 4)));
+        for bad in ["3", "3,", "-1,2", "a,b", "1,2,3", "99999999999,1"] {
+            assert!(parse_cell(bad).is_err(), "{bad}");
+        }
+    }
+}

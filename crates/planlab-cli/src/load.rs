@@ -1,0 +1,67 @@
+//! Reading maps from disk for the CLI: the core parses bytes, this module
+//! finds and reads the files (the core never touches the file system).
+
+use planlab_core::map::io::{movingai, ros};
+use planlab_core::map::OccupancyGrid;
+use std::path::Path;
+
+/// Reads a whole text file, naming it in the error.
+pub fn read_text(path: &Path) -> Result<String, String> {
+    std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+}
+
+/// Reads a whole binary file, naming it in the error.
+pub fn read_bytes(path: &Path) -> Result<Vec<u8>, String> {
+    std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+}
+
+/// Loads a ROS map_server map: the YAML, then the image it names (relative
+/// to the YAML's folder).
+pub fn load_ros(yaml_path: &Path) -> Result<OccupancyGrid, String> {
+    let meta = ros::parse_yaml(&read_text(yaml_path)?)
+        .map_err(|e| format!("{}: {e}", yaml_path.display()))?;
+    let image = yaml_path
+        .parent()
+        .unwrap_or_else(|| Path::new("."))
+        .join(&meta.image);
+    let pgm = ros::parse_pgm(&read_bytes(&image)?).map_err(|e| format!("{}: {e}", image.display()))?;
+    ros::grid_from_pgm(&meta, &pgm).map_err(|e| format!("{}: {e}", yaml_path.display()))
+}
+
+/// Loads a Moving AI `.map`.
+pub fn load_movingai(path: &Path) -> Result<OccupancyGrid, String> {
+    movingai::parse_map(&read_text(path)?).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Loads the scenario rows of a Moving AI `.scen`.
+pub fn load_scen(path: &Path) -> Result<Vec<movingai::ScenRow>, String> {
+    movingai::parse_scen(&read_text(path)?).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// File kinds `planlab plan` accepts.
+pub enum MapKind {
+    /// ROS map_server YAML (+ image).
+    Ros,
+    /// Moving AI `.map`.
+    MovingAi,
+    /// planlab scenario JSON.
+    Scenario,
+}
+
+/// The kind of map file, by extension.
+pub fn kind_of(path: &Path) -> Result<MapKind, String> {
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+        .as_deref()
+    {
+        Some("yaml") | Some("yml") => Ok(MapKind::Ros),
+        Some("map") => Ok(MapKind::MovingAi),
+        Some("json") => Ok(MapKind::Scenario),
+        _ => Err(format!(
+            "{}: unknown map format; expected a ROS .yaml, a Moving AI .map or a scenario .json",
+            path.display()
+        )),
+    }
+}

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Installs whatever planlab's build and tests need and is missing. Idempotent:
+# every step checks first. Usage: scripts/setup.sh [--browser]
+#   --browser  also install Chromium + ChromeDriver (needed by the tests only).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+log() { printf '\033[1;34m[setup]\033[0m %s\n' "$*"; }
+SUDO=""
+if [ "$(id -u)" != 0 ] && command -v sudo >/dev/null 2>&1; then SUDO=sudo; fi
+
+if ! command -v cargo >/dev/null 2>&1; then
+  echo "cargo not found: install Rust with rustup first (https://rustup.rs)" >&2
+  exit 1
+fi
+if command -v rustup >/dev/null 2>&1; then
+  if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+    log "adding the wasm32-unknown-unknown target"
+    rustup target add wasm32-unknown-unknown
+  fi
+  for comp in clippy rustfmt; do
+    if ! rustup component list --installed | grep -q "^$comp"; then
+      log "adding rustup component $comp"
+      rustup component add "$comp"
+    fi
+  done
+fi
+
+if ! command -v wasm-pack >/dev/null 2>&1; then
+  log "installing wasm-pack (about 2 minutes)"
+  cargo install wasm-pack --locked
+fi
+
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  log "installing Node.js and npm"
+  $SUDO apt-get update -qq && $SUDO apt-get install -y -qq nodejs npm
+fi
+
+# npm ci only when the lock file changed since the last install.
+if [ ! -f web/node_modules/.package-lock.json ] || [ web/package-lock.json -nt web/node_modules/.package-lock.json ]; then
+  log "installing the page's npm packages"
+  (cd web && npm ci --no-audit --no-fund)
+fi
+
+if [ "${1:-}" = "--browser" ]; then
+  if ! command -v chromium >/dev/null 2>&1 || ! command -v chromedriver >/dev/null 2>&1; then
+    log "installing Chromium and ChromeDriver (Debian packages)"
+    $SUDO apt-get update -qq
+    $SUDO apt-get install -y -qq chromium chromium-driver
+  fi
+fi
+log "set-up complete"

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Runs every check planlab promises: formatting, clippy (native and wasm32),
+# native unit/integration/doc tests, benches once, docs, the wasm build,
+# wasm-pack browser tests and the browser end-to-end tests.
+# Installs what is missing first. Exits non-zero on the first failure.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+step() { printf '\n\033[1;32m==> %s\033[0m\n' "$*"; }
+
+step "set-up"
+bash scripts/setup.sh --browser
+export CHROMEDRIVER="${CHROMEDRIVER:-$(command -v chromedriver)}"
+export CHROME_BIN="${CHROME_BIN:-$(command -v chromium)}"
+
+step "cargo fmt --check"
+cargo fmt --all -- --check
+
+step "clippy (native, all targets)"
+cargo clippy --workspace --all-targets -- -D warnings
+
+step "clippy (wasm32)"
+cargo clippy --target wasm32-unknown-unknown -p planlab-core -p planlab-wasm -- -D warnings
+
+step "native tests (unit, integration, doc)"
+cargo test --workspace
+
+step "benches, once each"
+cargo test -p planlab-core --benches
+
+step "docs without warnings"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
+
+step "wasm package, site and release CLI"
+bash scripts/build.sh
+
+step "wasm-pack test --headless --chrome"
+wasm-pack test --headless --chrome crates/planlab-wasm
+
+step "browser end-to-end tests"
+(cd web && npm run e2e)
+
+step "all checks passed"
