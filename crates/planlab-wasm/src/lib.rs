@@ -1,1 +1,380 @@
-//! wasm-bindgen layer over planlab-core.
+//! wasm-bindgen layer over planlab-core for the browser playground.
+//!
+//! Converts at the boundary and forwards; no planning happens here
+//! (DESIGN.md conventions 3–4):
+//! - [`MapHandle`] owns one [`OccupancyGrid`]; maps are read by the core's
+//!   Moving AI, ROS and ASCII readers and edited cell by cell.
+//! - [`plan`] forwards to [`plan_on_map`] with a [`GridPlanOptions`] that
+//!   crosses as a plain JS object (serde); the [`PlanResult`] hands its bulk
+//!   data out as typed arrays (`Uint32Array` of `col, row` pairs).
+//! - Every core error becomes a `JsError` carrying the core's message.
+//! - [`ScenBatch`] solves a whole Moving AI `.scen` in one call so the page
+//!   can time it with `performance.now()` (core reads no clock) without
+//!   per-query boundary overhead; the same [`batch::Batch`] runs natively in
+//!   `examples/bench_native.rs` for the wasm-vs-native comparison.
+//!
+//! Cell kinds cross as bytes: 0 free, 1 occupied, 2 unknown
+//! ([`Cell`]'s `repr(u8)`).
+
+pub mod batch;
+
+use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};
+use planlab_core::global::{supercover, GridPos, PlanGrid};
+use planlab_core::map::io::{movingai, ros};
+use planlab_core::map::{Cell, OccupancyGrid};
+use wasm_bindgen::prelude::*;
+
+/// Installs the panic hook once, when the module is instantiated, so a bug
+/// shows up as a readable console message instead of `unreachable`.
+#[wasm_bindgen(start)]
+pub fn start() {
+    console_error_panic_hook::set_once();
+}
+
+/// The cell kind of a byte from JS.
+fn cell_of(kind: u8) -> Result<Cell, JsError> {
+    match kind {
+        0 => Ok(Cell::Free),
+        1 => Ok(Cell::Occupied),
+        2 => Ok(Cell::Unknown),
+        k => Err(JsError::new(&format!(
+            "cell kind {k} is not 0 (free), 1 (occupied) or 2 (unknown)"
+        ))),
+    }
+}
+
+/// Flattens cells into `col, row` pairs for a `Uint32Array`.
+fn flat(cells: &[GridPos]) -> Vec<u32> {
+    let mut out = Vec::with_capacity(cells.len() * 2);
+    for p in cells {
+        out.push(p.col);
+        out.push(p.row);
+    }
+    out
+}
+
+/// Plan options from a JS object; `undefined`/`null` mean the defaults and
+/// missing fields take their default (the core config is `serde(default)`).
+fn options_from_js(options: JsValue) -> Result<GridPlanOptions, JsError> {
+    if options.is_undefined() || options.is_null() {
+        return Ok(GridPlanOptions::default());
+    }
+    serde_wasm_bindgen::from_value(options)
+        .map_err(|e| JsError::new(&format!("invalid plan options: {e}")))
+}
+
+/// The default plan options (the papers' values) as a plain JS object, so
+/// the page builds its controls from the core's defaults.
+#[wasm_bindgen(js_name = defaultPlanOptions)]
+pub fn default_plan_options() -> Result<JsValue, JsError> {
+    serde_wasm_bindgen::to_value(&GridPlanOptions::default())
+        .map_err(|e| JsError::new(&e.to_string()))
+}
+
+/// The `image:` file name a ROS map YAML refers to, so the page can pick the
+/// matching `.pgm` among the files the user opened.
+#[wasm_bindgen(js_name = rosImageName)]
+pub fn ros_image_name(yaml: &str) -> Result<String, JsError> {
+    Ok(ros::parse_yaml(yaml)?.image)
+}
+
+/// One occupancy grid, owned on the wasm side.
+#[wasm_bindgen]
+#[derive(Clone, Debug)]
+pub struct MapHandle {
+    grid: OccupancyGrid,
+}
+
+impl MapHandle {
+    /// The wrapped grid (for Rust callers and tests).
+    pub fn grid(&self) -> &OccupancyGrid {
+        &self.grid
+    }
+}
+
+#[wasm_bindgen]
+impl MapHandle {
+    /// Reads a Moving AI `.map` (1 m per cell).
+    #[wasm_bindgen(js_name = fromMovingAi)]
+    pub fn from_movingai(text: &str) -> Result<MapHandle, JsError> {
+        Ok(MapHandle {
+            grid: movingai::parse_map(text)?,
+        })
+    }
+
+    /// Reads a ROS map_server map from its YAML text and PGM bytes.
+    #[wasm_bindgen(js_name = fromRos)]
+    pub fn from_ros(yaml: &str, pgm: &[u8]) -> Result<MapHandle, JsError> {
+        let meta = ros::parse_yaml(yaml)?;
+        let image = ros::parse_pgm(pgm)?;
+        Ok(MapHandle {
+            grid: ros::grid_from_pgm(&meta, &image)?,
+        })
+    }
+
+    /// Reads ASCII art (`.` free, `#` occupied, `?` unknown; 1 m per cell).
+    #[wasm_bindgen(js_name = fromAscii)]
+    pub fn from_ascii(text: &str) -> Result<MapHandle, JsError> {
+        Ok(MapHandle {
+            grid: OccupancyGrid::from_ascii(text)?,
+        })
+    }
+
+    /// Width in cells.
+    #[wasm_bindgen(getter)]
+    pub fn width(&self) -> u32 {
+        self.grid.width() as u32
+    }
+
+    /// Height in cells.
+    #[wasm_bindgen(getter)]
+    pub fn height(&self) -> u32 {
+        self.grid.height() as u32
+    }
+
+    /// Metres per cell.
+    #[wasm_bindgen(getter)]
+    pub fn resolution(&self) -> f64 {
+        self.grid.resolution()
+    }
+
+    /// World pose of the bottom-left image corner: `[x, y, yaw]`.
+    pub fn origin(&self) -> Vec<f64> {
+        let o = self.grid.origin();
+        vec![o.x, o.y, o.yaw]
+    }
+
+    /// Row-major cell kinds (row 0 at the top), one byte each.
+    pub fn cells(&self) -> Vec<u8> {
+        self.grid.cells().iter().map(|&c| c as u8).collect()
+    }
+
+    /// Number of `[free, occupied, unknown]` cells.
+    pub fn counts(&self) -> Vec<u32> {
+        let (f, o, u) = self.grid.counts();
+        vec![f as u32, o as u32, u as u32]
+    }
+
+    /// World coordinates `[x, y]` (metres) of the centre of a cell.
+    #[wasm_bindgen(js_name = cellToWorld)]
+    pub fn cell_to_world(&self, col: u32, row: u32) -> Result<Vec<f64>, JsError> {
+        self.check_on_map(col, row)?;
+        let (x, y) = self.grid.cell_to_world(col as usize, row as usize);
+        Ok(vec![x, y])
+    }
+
+    /// Sets one cell; errors off the map or for an unknown kind.
+    #[wasm_bindgen(js_name = setCell)]
+    pub fn set_cell(&mut self, col: u32, row: u32, kind: u8) -> Result<(), JsError> {
+        let cell = cell_of(kind)?;
+        Ok(self.grid.set(col as usize, row as usize, cell)?)
+    }
+
+    /// Sets every cell the straight segment between two cell centres crosses
+    /// (a brush stroke between two pointer samples); returns how many cells
+    /// changed. Both ends must be on the map.
+    #[wasm_bindgen(js_name = paintSegment)]
+    pub fn paint_segment(
+        &mut self,
+        col0: u32,
+        row0: u32,
+        col1: u32,
+        row1: u32,
+        kind: u8,
+    ) -> Result<u32, JsError> {
+        let cell = cell_of(kind)?;
+        self.check_on_map(col0, row0)?;
+        self.check_on_map(col1, row1)?;
+        let mut crossed = Vec::new();
+        supercover(GridPos::new(col0, row0), GridPos::new(col1, row1), |c, r, corner| {
+            if corner.is_none() {
+                crossed.push((c, r));
+            }
+        });
+        let mut changed = 0;
+        for (c, r) in crossed {
+            // Cells of the walk lie in the endpoints' bounding box, so on the map.
+            let (c, r) = (c as usize, r as usize);
+            if self.grid.get(c, r) != Some(cell) {
+                self.grid.set(c, r, cell)?;
+                changed += 1;
+            }
+        }
+        Ok(changed)
+    }
+
+    /// The map as a Moving AI `.map` (unknown written as blocked).
+    #[wasm_bindgen(js_name = toMovingAi)]
+    pub fn to_movingai(&self) -> String {
+        movingai::write_map(&self.grid)
+    }
+
+    /// The map as ASCII art.
+    #[wasm_bindgen(js_name = toAscii)]
+    pub fn to_ascii(&self) -> String {
+        self.grid.to_ascii()
+    }
+
+    /// An independent copy (the page keeps the loaded map for "reset").
+    #[wasm_bindgen(js_name = clone)]
+    pub fn duplicate(&self) -> MapHandle {
+        self.clone()
+    }
+}
+
+impl MapHandle {
+    fn check_on_map(&self, col: u32, row: u32) -> Result<(), JsError> {
+        if self.grid.in_bounds(i64::from(col), i64::from(row)) {
+            Ok(())
+        } else {
+            Err(JsError::new(&format!(
+                "cell ({col}, {row}) is outside the {}×{} map",
+                self.grid.width(),
+                self.grid.height()
+            )))
+        }
+    }
+}
+
+/// A finished plan; bulk data leaves as typed arrays.
+#[wasm_bindgen]
+#[derive(Clone, Debug)]
+pub struct PlanResult {
+    plan: GridPlan,
+}
+
+#[wasm_bindgen]
+impl PlanResult {
+    /// Path cells as `col, row` pairs, start to goal.
+    pub fn path(&self) -> Vec<u32> {
+        flat(&self.plan.path.cells)
+    }
+
+    /// Number of path cells.
+    #[wasm_bindgen(getter, js_name = pathLen)]
+    pub fn path_len(&self) -> u32 {
+        self.plan.path.cells.len() as u32
+    }
+
+    /// Expanded cells in expansion order as `col, row` pairs (empty unless
+    /// recording was asked for).
+    pub fn expanded(&self) -> Vec<u32> {
+        flat(&self.plan.expanded_cells)
+    }
+
+    /// Key points as `col, row` pairs (empty unless asked for).
+    #[wasm_bindgen(js_name = keyPoints)]
+    pub fn key_points(&self) -> Vec<u32> {
+        flat(&self.plan.keypoints)
+    }
+
+    /// Bottom-Up feature nodes as `col, row` pairs (empty unless asked for).
+    #[wasm_bindgen(js_name = featureNodes)]
+    pub fn feature_nodes(&self) -> Vec<u32> {
+        flat(&self.plan.feature_nodes)
+    }
+
+    /// Safety index per path node (safe A* only, else empty).
+    pub fn safety(&self) -> Vec<f64> {
+        self.plan.safety.clone()
+    }
+
+    /// Path length in cells (moves of 1 and √2).
+    #[wasm_bindgen(getter)]
+    pub fn cost(&self) -> f64 {
+        self.plan.path.cost
+    }
+
+    /// Path length in metres (cost × resolution).
+    #[wasm_bindgen(getter, js_name = lengthM)]
+    pub fn length_m(&self) -> f64 {
+        self.plan.length_m
+    }
+
+    /// Nodes the search expanded.
+    #[wasm_bindgen(getter, js_name = expandedCount)]
+    pub fn expanded_count(&self) -> u32 {
+        self.plan.path.expanded as u32
+    }
+}
+
+/// Plans from `(start_col, start_row)` to `(goal_col, goal_row)` on `map`.
+///
+/// `options` is a [`GridPlanOptions`] as a JS object (missing fields take
+/// their defaults), e.g. `{algorithm: "jps", diagonal: "no_corner_cutting"}`.
+/// With `record_expanded` the result also lists the expanded cells.
+#[wasm_bindgen]
+pub fn plan(
+    map: &MapHandle,
+    start_col: u32,
+    start_row: u32,
+    goal_col: u32,
+    goal_row: u32,
+    options: JsValue,
+    record_expanded: bool,
+) -> Result<PlanResult, JsError> {
+    let options = options_from_js(options)?;
+    let plan = plan_on_map(
+        &map.grid,
+        GridPos::new(start_col, start_row),
+        GridPos::new(goal_col, goal_row),
+        &options,
+        record_expanded,
+    )?;
+    Ok(PlanResult { plan })
+}
+
+/// Cells that are passable on `map` but blocked for the planner under
+/// `options` (grown obstacles from `inflate_m`): one byte per cell, 1 =
+/// blocked by inflation, row-major.
+#[wasm_bindgen(js_name = inflationMask)]
+pub fn inflation_mask(map: &MapHandle, options: JsValue) -> Result<Vec<u8>, JsError> {
+    let options = options_from_js(options)?;
+    let planned = plan_grid_for(&map.grid, &options)?;
+    let raw = PlanGrid::new(&map.grid, options.allow_unknown);
+    let (w, h) = (map.grid.width(), map.grid.height());
+    let mut mask = vec![0u8; w * h];
+    for (i, m) in mask.iter_mut().enumerate() {
+        let (c, r) = ((i % w) as i64, (i / w) as i64);
+        *m = u8::from(raw.is_free(c, r) && !planned.is_free(c, r));
+    }
+    Ok(mask)
+}
+
+/// Every query of a Moving AI `.scen` on one map, ready to be solved in a
+/// single call (for timing from JS).
+#[wasm_bindgen]
+pub struct ScenBatch {
+    inner: batch::Batch,
+}
+
+#[wasm_bindgen]
+impl ScenBatch {
+    /// Parses `scen_text`, checks its rows against `map`, builds the planner
+    /// from `options` (a [`GridPlanOptions`] object, `undefined` = A*).
+    #[wasm_bindgen(constructor)]
+    pub fn new(map: &MapHandle, scen_text: &str, options: JsValue) -> Result<ScenBatch, JsError> {
+        let options = options_from_js(options)?;
+        Ok(ScenBatch {
+            inner: batch::Batch::new(&map.grid, scen_text, &options)?,
+        })
+    }
+
+    /// Number of queries.
+    #[wasm_bindgen(getter)]
+    pub fn rows(&self) -> u32 {
+        self.inner.len() as u32
+    }
+
+    /// Sum of the `.scen` optimal lengths.
+    #[wasm_bindgen(getter, js_name = optimalSum)]
+    pub fn optimal_sum(&self) -> f64 {
+        self.inner.optimal_sum()
+    }
+
+    /// Solves every query once; returns the summed path cost.
+    #[wasm_bindgen(js_name = solveAll)]
+    pub fn solve_all(&self) -> Result<f64, JsError> {
+        Ok(self.inner.solve_all()?)
+    }
+}

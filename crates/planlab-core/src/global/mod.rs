@@ -5,6 +5,13 @@
 //! [`Path`] with its cost in cells (moves of 1 and √2), the number of nodes
 //! expanded, or a typed [`PlanError`].
 
+pub mod astar;
+pub mod bottom_up;
+pub mod jps;
+pub mod keypoints;
+pub mod safe_astar;
+mod search;
+
 use crate::map::{Cell, OccupancyGrid};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -211,6 +218,9 @@ pub struct PlanGrid {
     stride: usize,
     /// (width + 2) × (height + 2); `true` = passable.
     free: Vec<bool>,
+    /// The same bitmap packed 64 cells a word, by rows and by columns, for
+    /// Jump Point Search; kept in step with `free`.
+    lines: search::LineBits,
 }
 
 impl PlanGrid {
@@ -231,12 +241,23 @@ impl PlanGrid {
                 free[(r + 1) * stride + c + 1] = f(c, r);
             }
         }
+        let mut lines = search::LineBits::new(stride, height + 2);
+        for (i, _) in free.iter().enumerate().filter(|(_, &f)| f) {
+            lines.set(i % stride, i / stride, true);
+        }
         Self {
             width,
             height,
             stride,
             free,
+            lines,
         }
+    }
+
+    /// The bit-packed rows and columns (see [`search::LineBits`]).
+    #[inline]
+    pub(crate) fn lines(&self) -> &search::LineBits {
+        &self.lines
     }
 
     /// Width in cells.
@@ -264,6 +285,7 @@ impl PlanGrid {
     pub fn set_free(&mut self, col: usize, row: usize, free: bool) {
         if col < self.width && row < self.height {
             self.free[(row + 1) * self.stride + col + 1] = free;
+            self.lines.set(col + 1, row + 1, free);
         }
     }
 
@@ -334,19 +356,10 @@ impl PlanGrid {
     /// a cell corner, the two cells touching that corner are judged by
     /// `diagonal` (as for a single diagonal move).
     pub fn segment_is_free(&self, a: GridPos, b: GridPos, diagonal: Diagonal) -> bool {
-        let mut ok = true;
-        supercover(a, b, |c, r, corner| {
-            if !ok {
-                return;
-            }
-            match corner {
-                None => ok = self.is_free(c, r),
-                Some((ac, ar, bc, br)) => {
-                    ok = diagonal.allows(self.is_free(ac, ar), self.is_free(bc, br));
-                }
-            }
-        });
-        ok
+        supercover_while(a, b, |c, r, corner| match corner {
+            None => self.is_free(c, r),
+            Some((ac, ar, bc, br)) => diagonal.allows(self.is_free(ac, ar), self.is_free(bc, br)),
+        })
     }
 }
 
@@ -360,18 +373,35 @@ pub fn supercover(
     b: GridPos,
     mut visit: impl FnMut(i64, i64, Option<(i64, i64, i64, i64)>),
 ) {
+    supercover_while(a, b, |c, r, corner| {
+        visit(c, r, corner);
+        true
+    });
+}
+
+/// As [`supercover`], stopping as soon as `visit` returns `false`; returns
+/// whether the walk reached `b`.
+pub fn supercover_while(
+    a: GridPos,
+    b: GridPos,
+    mut visit: impl FnMut(i64, i64, Option<(i64, i64, i64, i64)>) -> bool,
+) -> bool {
     let (mut x, mut y) = (a.col as i64, a.row as i64);
     let (x1, y1) = (b.col as i64, b.row as i64);
     let (dx, dy) = ((x1 - x).abs(), (y1 - y).abs());
     let (sx, sy) = ((x1 - x).signum(), (y1 - y).signum());
-    visit(x, y, None);
+    if !visit(x, y, None) {
+        return false;
+    }
     // Integer walk in units of half-cells: error = dy·(2i+1) − dx·(2j+1)
     // compares where the line crosses the next vertical vs horizontal edge.
     let (mut ix, mut iy) = (0i64, 0i64);
     while ix < dx || iy < dy {
         let decision = (1 + 2 * ix) * dy - (1 + 2 * iy) * dx;
         if decision == 0 {
-            visit(0, 0, Some((x + sx, y, x, y + sy)));
+            if !visit(0, 0, Some((x + sx, y, x, y + sy))) {
+                return false;
+            }
             x += sx;
             y += sy;
             ix += 1;
@@ -383,8 +413,11 @@ pub fn supercover(
             y += sy;
             iy += 1;
         }
-        visit(x, y, None);
+        if !visit(x, y, None) {
+            return false;
+        }
     }
+    true
 }
 
 /// Checks a heuristic weight: finite and ≥ 1.

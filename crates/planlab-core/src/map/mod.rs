@@ -6,6 +6,7 @@
 //! corner** of the image (the corner of cell `(0, height - 1)`), exactly what
 //! the `origin` field of a ROS map_server YAML means.
 
+pub mod costmap;
 pub mod io;
 
 use serde::{Deserialize, Serialize};
@@ -124,6 +125,9 @@ pub enum MapError {
         /// What is wrong.
         message: String,
     },
+    /// A numeric parameter (a radius, a factor) is out of range.
+    #[error("invalid parameter: {0}")]
+    InvalidParameter(String),
     /// A referenced file could not be read.
     #[error("cannot read {path}: {message}")]
     Io {

@@ -1,0 +1,243 @@
+//! The `planlab` binary as other tools call it: output formats, exit codes
+//! and one-line errors.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn shared(rel: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data").join(rel)
+}
+
+fn repo(rel: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..").join(rel)
+}
+
+fn planlab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_planlab"))
+        .args(args)
+        .output()
+        .expect("run planlab")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Asserts a failure with exactly one `planlab: error:` line containing `needle`.
+fn assert_error(o: &Output, needle: &str) {
+    assert!(!o.status.success(), "expected failure, got stdout {}", stdout(o));
+    let err = stderr(o);
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 1, "one error line expected, got {err:?}");
+    assert!(lines[0].starts_with("planlab: error: "), "{err}");
+    assert!(
+        lines[0].to_lowercase().contains(&needle.to_lowercase()),
+        "{needle:?} not in {err:?}"
+    );
+}
+
+fn temp_file(name: &str, contents: &[u8]) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("planlab-cli-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, contents).unwrap();
+    p
+}
+
+fn s(p: &std::path::Path) -> &str {
+    p.to_str().unwrap()
+}
+
+#[test]
+fn plan_json_matches_moving_ai_optimum() {
+    // arena.map.scen row: 1 13 -> 4 12, optimal 3.41421
+    let map = shared("movingai/dao/arena.map");
+    for algo in ["astar", "dijkstra", "jps"] {
+        let o = planlab(&[
+            "plan",
+            s(&map),
+            "--start",
+            "1,13",
+            "--goal",
+            "4,12",
+            "--algo",
+            algo,
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+        assert!((v["cost"].as_f64().unwrap() - 3.41421).abs() < 1e-3, "{v}");
+        assert!((v["length_m"].as_f64().unwrap() - 3.41421).abs() < 1e-3);
+        assert!(v["expanded"].as_u64().unwrap() > 0);
+        let path = v["path"].as_array().unwrap();
+        assert_eq!(path.first().unwrap(), &serde_json::json!([1, 13]));
+        assert_eq!(path.last().unwrap(), &serde_json::json!([4, 12]));
+        assert!(v["keypoints"].as_array().unwrap().is_empty());
+    }
+}
+
+#[test]
+fn plan_on_ros_map_with_inflation_keypoints_and_bottom_up() {
+    let yaml = shared("rosmaps/turtlebot3/map.yaml");
+    // Two free cells in the TurtleBot3 world, far apart.
+    let o = planlab(&[
+        "plan",
+        s(&yaml),
+        "--start",
+        "167,218",
+        "--goal",
+        "230,180",
+        "--inflate",
+        "0.1",
+        "--keypoints",
+        "--bottom-up",
+        "1.0",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    let cost = v["cost"].as_f64().unwrap();
+    assert!((v["length_m"].as_f64().unwrap() - cost * 0.05).abs() < 1e-9);
+    let path = v["path"].as_array().unwrap().len();
+    let kp = v["keypoints"].as_array().unwrap();
+    let fnodes = v["feature_nodes"].as_array().unwrap();
+    assert_eq!(kp.first().unwrap(), &serde_json::json!([167, 218]));
+    assert_eq!(kp.last().unwrap(), &serde_json::json!([230, 180]));
+    assert!(kp.len() * 4 < path, "{} key points for {path} nodes", kp.len());
+    assert!(fnodes.len() * 4 < path);
+}
+
+#[test]
+fn scen_json_reports_every_row_and_no_mismatch() {
+    let o = planlab(&[
+        "scen",
+        s(&shared("movingai/dao/arena.map")),
+        s(&shared("movingai/dao/arena.map.scen")),
+        "--algo",
+        "jps",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let lines: Vec<Value> = out.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    let rows = lines.len() - 1;
+    let summary = lines.last().unwrap();
+    assert_eq!(summary["rows"].as_u64().unwrap() as usize, rows);
+    assert_eq!(summary["mismatches"], 0);
+    assert!(summary["mean_micros"].as_f64().unwrap() >= 0.0);
+    for (i, l) in lines[..rows].iter().enumerate() {
+        assert_eq!(l["row"].as_u64().unwrap() as usize, i);
+        let (opt, cost) = (l["optimal"].as_f64().unwrap(), l["cost"].as_f64().unwrap());
+        assert!((opt - cost).abs() <= 1e-3 * opt.max(1.0), "{l}");
+        for k in ["start", "goal", "expanded", "micros"] {
+            assert!(!l[k].is_null(), "{k} missing in {l}");
+        }
+    }
+}
+
+#[test]
+fn bench_grid_prints_ratios() {
+    let o = planlab(&[
+        "bench",
+        "grid",
+        s(&shared("movingai/dao/arena.map")),
+        s(&shared("movingai/dao/arena.map.scen")),
+        "--reps",
+        "1",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    for k in [
+        "rows",
+        "astar_ms",
+        "jps_ms",
+        "pathfinding_ms",
+        "astar_speedup",
+        "jps_speedup",
+    ] {
+        assert!(v[k].as_f64().is_some_and(|x| x > 0.0), "{k} in {v}");
+    }
+    let ratio = v["pathfinding_ms"].as_f64().unwrap() / v["astar_ms"].as_f64().unwrap();
+    assert!((ratio - v["astar_speedup"].as_f64().unwrap()).abs() < 1e-6 * ratio);
+}
+
+#[test]
+fn plan_accepts_a_scenario_json() {
+    let o = planlab(&[
+        "plan",
+        s(&repo("assets/scenarios/grid-demo.json")),
+        "--start",
+        "1,1",
+        "--goal",
+        "2,1",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    assert!((v["cost"].as_f64().unwrap() - 1.0).abs() < 1e-9, "{v}");
+}
+
+#[test]
+fn bad_input_gives_one_clear_error_line() {
+    let arena = shared("movingai/dao/arena.map");
+    let a = s(&arena);
+    // Unreachable: a free cell walled in on all sides.
+    let walled = temp_file(
+        "walled.map",
+        b"type octile\nheight 5\nwidth 5\nmap\n.....\n.@@@.\n.@.@.\n.@@@.\n.....\n",
+    );
+    let truncated = temp_file("trunc.map", b"type octile\nheight 5\nwidth 5\nmap\n.....\n..\n");
+    let huge = temp_file("huge.map", b"type octile\nheight 20000\nwidth 20000\nmap\n....\n");
+    let no_image = temp_file(
+        "noimg.yaml",
+        b"image: nothere.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    );
+    let bad_pgm_yaml = temp_file(
+        "badpgm.yaml",
+        b"image: bad.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    );
+    temp_file("bad.pgm", b"P5\n10 10\n255\nshort");
+    let bad_scen = temp_file("bad.scen", b"version 1\n0\tarena.map\t49\t49\t1\t11\tx\t12\t1\n");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["plan", "/nonexistent.map", "--start", "1,1", "--goal", "2,2"], "cannot read"),
+        (vec!["plan", a, "--start", "1,1", "--goal", "99,99"], "off the"),
+        (vec!["plan", a, "--start", "0,0", "--goal", "4,12"], "obstacle"),
+        (vec!["plan", s(&walled), "--start", "0,0", "--goal", "2,2"], "unreachable"),
+        (vec!["plan", s(&truncated), "--start", "0,0", "--goal", "1,0"], "line"),
+        (vec!["plan", s(&huge), "--start", "0,0", "--goal", "1,0"], "too large"),
+        (vec!["plan", s(&no_image), "--start", "0,0", "--goal", "1,0"], "nothere.pgm"),
+        (vec!["plan", s(&bad_pgm_yaml), "--start", "0,0", "--goal", "1,0"], "bad.pgm"),
+        (vec!["plan", a, "--start", "1;13", "--goal", "4,12"], "invalid cell"),
+        (vec!["plan", a, "--start", "1,13", "--goal", "4,12", "--weight", "NaN"], "weight"),
+        (vec!["plan", a, "--start", "1,13", "--goal", "4,12", "--inflate", "-1"], "inflate"),
+        (vec!["plan", a, "--start", "1,13", "--goal", "4,12", "--bottom-up", "inf"], "bottom-up"),
+        (vec!["plan", a, "--start", "1,13", "--goal", "4,12", "--algo", "jps", "--diagonal", "always"], "jps"),
+        (vec!["plan", s(&repo("README.md")), "--start", "1,1", "--goal", "2,2"], "unknown map format"),
+        (vec!["scen", a, s(&bad_scen)], "line 2"),
+    ];
+    for (args, needle) in cases {
+        let o = planlab(&args);
+        assert_error(&o, needle);
+    }
+}
+
+#[test]
+fn inflation_blocking_the_start_is_explained() {
+    // (1,11) in arena is free but hugs a wall: 2 m of inflation swallows it.
+    let o = planlab(&[
+        "plan",
+        s(&shared("movingai/dao/arena.map")),
+        "--start",
+        "1,11",
+        "--goal",
+        "24,24",
+        "--inflate",
+        "2",
+    ]);
+    assert_error(&o, "after inflation");
+}

@@ -1,0 +1,355 @@
+//! A* and Dijkstra on a [`PlanGrid`] (SPEC §2; Wu 2022 eq 3-6, f = g + w·h).
+//!
+//! 4- or 8-connected moves of cost 1 and √2 under a [`Diagonal`] rule, any
+//! [`Heuristic`] with a weight w ≥ 1 (cost ≤ w · optimum for a consistent
+//! heuristic), Dijkstra as the zero heuristic.
+//!
+//! The search runs over flat arrays indexed by padded cell, in fixed-point
+//! integer costs (exact ties, ties broken towards larger g), with a binary
+//! heap and lazy deletion. Its buffers live in a per-thread search space
+//! reused across queries and invalidated by a generation stamp, so a query
+//! costs nothing for the cells it never touches; [`AStar`] itself is a plain
+//! `Copy` value usable from `&self` on any thread.
+//!
+//! ```
+//! use planlab_core::global::{astar::AStar, GridPlanner, GridPos, PlanGrid};
+//! use planlab_core::map::OccupancyGrid;
+//! let map = OccupancyGrid::from_ascii("
+//! ....
+//! .##.
+//! ....
+//! ").unwrap();
+//! let grid = PlanGrid::new(&map, false);
+//! let path = AStar::default().plan(&grid, GridPos::new(0, 1), GridPos::new(3, 1)).unwrap();
+//! assert!((path.cost - (2.0 + 2.0 * 2f64.sqrt())).abs() < 1e-9);
+//! ```
+
+use super::search::{
+    check_size, trivial_path, unit_path_cost, with_space, xy, Entry, Estimate, FixedHeuristic,
+    Node, OctileEstimate, SearchSpace, ZeroEstimate, DIAG, STRAIGHT,
+};
+use super::{check_weight, Diagonal, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
+use serde::{Deserialize, Serialize};
+
+/// A* settings.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct AStarConfig {
+    /// Distance estimate to the goal (cells); octile by default.
+    pub heuristic: Heuristic,
+    /// Heuristic weight w in f = g + w·h (dimensionless, finite, ≥ 1; 1 =
+    /// optimal with an admissible heuristic).
+    pub weight: f64,
+    /// Which diagonal moves are allowed; no corner cutting by default.
+    pub diagonal: Diagonal,
+}
+
+impl Default for AStarConfig {
+    fn default() -> Self {
+        Self {
+            heuristic: Heuristic::Octile,
+            weight: 1.0,
+            diagonal: Diagonal::NoCornerCutting,
+        }
+    }
+}
+
+/// The A* grid planner (and Dijkstra, with [`Heuristic::Zero`]).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct AStar {
+    config: AStarConfig,
+}
+
+impl AStar {
+    /// An A* planner; refuses a weight that is NaN, infinite or below 1.
+    pub fn new(config: AStarConfig) -> Result<Self, PlanError> {
+        check_weight(config.weight)?;
+        Ok(Self { config })
+    }
+
+    /// Dijkstra's algorithm: A* with the zero heuristic.
+    pub fn dijkstra(diagonal: Diagonal) -> Self {
+        Self {
+            config: AStarConfig {
+                heuristic: Heuristic::Zero,
+                weight: 1.0,
+                diagonal,
+            },
+        }
+    }
+
+    /// The settings this planner was built with.
+    pub fn config(&self) -> &AStarConfig {
+        &self.config
+    }
+}
+
+impl GridPlanner for AStar {
+    fn plan_recording(
+        &self,
+        grid: &PlanGrid,
+        start: GridPos,
+        goal: GridPos,
+        expanded: Option<&mut Vec<GridPos>>,
+    ) -> Result<Path, PlanError> {
+        grid.check_endpoints(start, goal)?;
+        check_size(grid)?;
+        if start == goal {
+            return Ok(trivial_path(start));
+        }
+        let c = self.config;
+        with_space(|space| {
+            let q = Query {
+                grid,
+                start,
+                goal,
+                space,
+                record: expanded,
+            };
+            match (c.heuristic, c.weight == 1.0) {
+                (Heuristic::Octile, true) => by_rule(q, c.diagonal, OctileEstimate),
+                (Heuristic::Zero, _) => by_rule(q, c.diagonal, ZeroEstimate),
+                _ => by_rule(q, c.diagonal, FixedHeuristic::new(c.heuristic, c.weight)),
+            }
+        })
+    }
+}
+
+/// One search's inputs.
+struct Query<'a> {
+    grid: &'a PlanGrid,
+    start: GridPos,
+    goal: GridPos,
+    space: &'a mut SearchSpace,
+    record: Option<&'a mut Vec<GridPos>>,
+}
+
+const NEVER: u8 = 0;
+const NO_CORNER_CUTTING: u8 = 1;
+const ONE_SIDE_FREE: u8 = 2;
+const ALWAYS: u8 = 3;
+
+fn by_rule<E: Estimate>(q: Query<'_>, diagonal: Diagonal, est: E) -> Result<Path, PlanError> {
+    match diagonal {
+        Diagonal::Never => run::<E, NEVER>(q, est),
+        Diagonal::NoCornerCutting => run::<E, NO_CORNER_CUTTING>(q, est),
+        Diagonal::OneSideFree => run::<E, ONE_SIDE_FREE>(q, est),
+        Diagonal::Always => run::<E, ALWAYS>(q, est),
+    }
+}
+
+/// Whether a diagonal move is legal under `RULE`, given its side cells and
+/// its target cell.
+#[inline(always)]
+fn diagonal_ok<const RULE: u8>(side_a: bool, side_b: bool, target: bool) -> bool {
+    target
+        && match RULE {
+            NO_CORNER_CUTTING => side_a && side_b,
+            ONE_SIDE_FREE => side_a || side_b,
+            ALWAYS => true,
+            _ => false,
+        }
+}
+
+fn run<E: Estimate, const RULE: u8>(q: Query<'_>, est: E) -> Result<Path, PlanError> {
+    let Query {
+        grid,
+        start,
+        goal,
+        space,
+        mut record,
+    } = q;
+    let free = grid.padded();
+    let stride = grid.stride();
+    let s = grid.padded_index(start);
+    let t = grid.padded_index(goal);
+    let (gx, gy) = xy(t, stride);
+    space.reset(free.len());
+    let stamp = space.stamp;
+    let SearchSpace { nodes, open, .. } = space;
+    let nodes = nodes.as_mut_slice();
+    let is_free = |j: usize| free.get(j).copied().unwrap_or(false);
+
+    if let Some(n) = nodes.get_mut(s) {
+        *n = Node {
+            g: 0,
+            parent: s as u32,
+            stamp,
+        };
+    }
+    let (sx, sy) = xy(s, stride);
+    open.push(Entry {
+        f: est.h(sx.abs_diff(gx), sy.abs_diff(gy)),
+        g: 0,
+        idx: s as u32,
+    });
+
+    let mut expanded = 0usize;
+    while let Some(Entry { g, idx, .. }) = open.pop() {
+        let i = idx as usize;
+        match nodes.get(i) {
+            // A stale duplicate: the cell was reached more cheaply since.
+            Some(node) if g > node.g => continue,
+            Some(_) => {}
+            None => continue,
+        }
+        expanded += 1;
+        if let Some(r) = record.as_deref_mut() {
+            r.push(grid.pos_of(i));
+        }
+        if i == t {
+            let cells = reconstruct(grid, nodes, s, t);
+            return Ok(Path {
+                cost: unit_path_cost(&cells),
+                cells,
+                expanded,
+            });
+        }
+        let (x, y) = xy(i, stride);
+        // Free cells are interior, so these never wrap; a wrapped index
+        // would simply read as blocked.
+        let up = i.wrapping_sub(stride);
+        let down = i + stride;
+        let n = is_free(up);
+        let so = is_free(down);
+        let w = is_free(i.wrapping_sub(1));
+        let e = is_free(i + 1);
+
+        macro_rules! relax {
+            ($j:expr, $nx:expr, $ny:expr, $cost:expr) => {{
+                let j: usize = $j;
+                let ng = g + $cost;
+                if let Some(nd) = nodes.get_mut(j) {
+                    if nd.stamp != stamp || ng < nd.g {
+                        *nd = Node {
+                            g: ng,
+                            parent: idx,
+                            stamp,
+                        };
+                        open.push(Entry {
+                            f: ng.saturating_add(est.h(($nx).abs_diff(gx), ($ny).abs_diff(gy))),
+                            g: ng,
+                            idx: j as u32,
+                        });
+                    }
+                }
+            }};
+        }
+
+        if n {
+            relax!(up, x, y - 1, STRAIGHT);
+        }
+        if so {
+            relax!(down, x, y + 1, STRAIGHT);
+        }
+        if w {
+            relax!(i - 1, x - 1, y, STRAIGHT);
+        }
+        if e {
+            relax!(i + 1, x + 1, y, STRAIGHT);
+        }
+        if RULE != NEVER {
+            if diagonal_ok::<RULE>(n, w, is_free(up.wrapping_sub(1))) {
+                relax!(up - 1, x - 1, y - 1, DIAG);
+            }
+            if diagonal_ok::<RULE>(n, e, is_free(up.wrapping_add(1))) {
+                relax!(up + 1, x + 1, y - 1, DIAG);
+            }
+            if diagonal_ok::<RULE>(so, w, is_free(down - 1)) {
+                relax!(down - 1, x - 1, y + 1, DIAG);
+            }
+            if diagonal_ok::<RULE>(so, e, is_free(down + 1)) {
+                relax!(down + 1, x + 1, y + 1, DIAG);
+            }
+        }
+    }
+    Err(PlanError::Unreachable { expanded })
+}
+
+/// Follows parent links from `t` back to `s`; cells in start-to-goal order.
+fn reconstruct(grid: &PlanGrid, nodes: &[Node], s: usize, t: usize) -> Vec<GridPos> {
+    let mut cells = vec![grid.pos_of(t)];
+    let mut i = t;
+    // Each step strictly lowers g, so the walk ends; the bound guards
+    // against a corrupted chain all the same.
+    while i != s && cells.len() <= nodes.len() {
+        match nodes.get(i) {
+            Some(n) => i = n.parent as usize,
+            None => break,
+        }
+        cells.push(grid.pos_of(i));
+    }
+    cells.reverse();
+    cells
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::OccupancyGrid;
+
+    fn grid(text: &str) -> PlanGrid {
+        PlanGrid::new(&OccupancyGrid::from_ascii(text).unwrap(), false)
+    }
+
+    #[test]
+    fn detours_around_a_wall_without_cutting_corners() {
+        let g = grid(
+            "
+.....
+.###.
+.....
+",
+        );
+        let p = AStar::default()
+            .plan(&g, GridPos::new(0, 1), GridPos::new(4, 1))
+            .unwrap();
+        // The diagonal (0,1)→(1,0) would cut the wall's corner (1,1), so the
+        // path goes up, along and down: 6 straight moves.
+        assert!(g.path_is_free(&p.cells, Diagonal::NoCornerCutting));
+        assert!((p.cost - 6.0).abs() < 1e-9);
+        assert_eq!(p.cells.first(), Some(&GridPos::new(0, 1)));
+        assert_eq!(p.cells.last(), Some(&GridPos::new(4, 1)));
+    }
+
+    #[test]
+    fn corner_cutting_rules_change_the_cost() {
+        let g = grid(
+            "
+.#
+..
+",
+        );
+        let (a, b) = (GridPos::new(0, 0), GridPos::new(1, 1));
+        let strict = AStar::default().plan(&g, a, b).unwrap();
+        assert!((strict.cost - 2.0).abs() < 1e-12);
+        for rule in [Diagonal::OneSideFree, Diagonal::Always] {
+            let cfg = AStarConfig {
+                diagonal: rule,
+                ..AStarConfig::default()
+            };
+            let p = AStar::new(cfg).unwrap().plan(&g, a, b).unwrap();
+            assert!((p.cost - 2f64.sqrt()).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn dijkstra_expands_more_than_astar_for_the_same_cost() {
+        let text = (0..20)
+            .map(|_| ".".repeat(20))
+            .collect::<Vec<_>>()
+            .join("\n");
+        let g = grid(&text);
+        let (a, b) = (GridPos::new(0, 0), GridPos::new(19, 7));
+        let astar = AStar::default().plan(&g, a, b).unwrap();
+        let dijkstra = AStar::dijkstra(Diagonal::NoCornerCutting)
+            .plan(&g, a, b)
+            .unwrap();
+        assert!((astar.cost - dijkstra.cost).abs() < 1e-9);
+        assert!((astar.cost - (12.0 + 7.0 * 2f64.sqrt())).abs() < 1e-9);
+        assert!(astar.expanded < dijkstra.expanded);
+        // Octile is exact on an empty grid and ties go to the deepest node,
+        // so A* expands only the path.
+        assert_eq!(astar.expanded, astar.cells.len());
+    }
+}

@@ -1,0 +1,254 @@
+//! One call from a map and options to a planned path: inflation, the chosen
+//! planner, key points and Bottom-Up feature nodes. The CLI, the wasm layer
+//! and scenarios all go through [`plan_on_map`], so they agree exactly.
+
+use super::astar::{AStar, AStarConfig};
+use super::bottom_up::bottom_up;
+use super::jps::{Jps, JpsConfig};
+use super::keypoints::key_points;
+use super::safe_astar::{safety_index, SafeAStar, SafeAStarConfig};
+use super::{Diagonal, Endpoint, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
+use crate::map::costmap::inflate;
+use crate::map::{MapError, OccupancyGrid};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// Which grid planner to run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum Algorithm {
+    /// A* (SPEC §2), with the chosen heuristic and weight.
+    #[default]
+    #[serde(rename = "astar")]
+    AStar,
+    /// Dijkstra: A* with a zero heuristic.
+    #[serde(rename = "dijkstra")]
+    Dijkstra,
+    /// Jump Point Search (8-connected, no corner cutting).
+    #[serde(rename = "jps")]
+    Jps,
+    /// Safe A* of [S] §1 (24-neighbourhood, safety term).
+    #[serde(rename = "safe-astar")]
+    SafeAStar,
+}
+
+impl Algorithm {
+    /// Every algorithm with its command-line / JSON name.
+    pub const ALL: [(Algorithm, &'static str); 4] = [
+        (Algorithm::AStar, "astar"),
+        (Algorithm::Dijkstra, "dijkstra"),
+        (Algorithm::Jps, "jps"),
+        (Algorithm::SafeAStar, "safe-astar"),
+    ];
+
+    /// The command-line / JSON name.
+    pub fn name(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|(a, _)| *a == self)
+            .map_or("astar", |(_, n)| n)
+    }
+}
+
+impl std::str::FromStr for Algorithm {
+    type Err = PlanError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .iter()
+            .find(|(_, n)| n.eq_ignore_ascii_case(s))
+            .map(|(a, _)| *a)
+            .ok_or_else(|| {
+                PlanError::InvalidConfig(format!(
+                    "unknown algorithm {s:?}; expected one of astar, dijkstra, jps, safe-astar"
+                ))
+            })
+    }
+}
+
+/// Everything that shapes a grid plan besides the map and the endpoints.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct GridPlanOptions {
+    /// Planner to run.
+    pub algorithm: Algorithm,
+    /// A* / JPS heuristic (ignored by Dijkstra; safe A* has its own).
+    pub heuristic: Heuristic,
+    /// A* heuristic weight, ≥ 1 (1 = optimal).
+    pub weight: f64,
+    /// Diagonal move rule.
+    pub diagonal: Diagonal,
+    /// Treat unknown cells as free.
+    pub allow_unknown: bool,
+    /// Grow obstacles by this radius before planning, metres (0 = off).
+    pub inflate_m: f64,
+    /// Also extract key points ([T] §3.2.1) on the inflated map.
+    pub keypoints: bool,
+    /// Also run Bottom-Up segmentation ([S] §4.1) with this maximum error,
+    /// in cells; `None` = off.
+    pub bottom_up_eps: Option<f64>,
+    /// Safe A* parameters (used when `algorithm` is safe A*).
+    pub safe: SafeAStarConfig,
+}
+
+impl Default for GridPlanOptions {
+    fn default() -> Self {
+        Self {
+            algorithm: Algorithm::AStar,
+            heuristic: Heuristic::Octile,
+            weight: 1.0,
+            diagonal: Diagonal::NoCornerCutting,
+            allow_unknown: false,
+            inflate_m: 0.0,
+            keypoints: false,
+            bottom_up_eps: None,
+            safe: SafeAStarConfig::default(),
+        }
+    }
+}
+
+/// A plan with everything the CLI and the page show.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GridPlan {
+    /// The path; `cost` in cells.
+    pub path: Path,
+    /// Path length in metres (cost × resolution).
+    pub length_m: f64,
+    /// Key points, when asked for (else empty).
+    pub keypoints: Vec<GridPos>,
+    /// Bottom-Up feature nodes, when asked for (else empty).
+    pub feature_nodes: Vec<GridPos>,
+    /// Expanded cells in order, when recording was asked for (else empty).
+    pub expanded_cells: Vec<GridPos>,
+    /// Safety index per path node, for safe A* (else empty).
+    pub safety: Vec<f64>,
+}
+
+/// Why [`plan_on_map`] failed.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum GridPlanError {
+    /// The planner refused or found no path.
+    #[error(transparent)]
+    Plan(#[from] PlanError),
+    /// Inflation refused its radius.
+    #[error(transparent)]
+    Map(#[from] MapError),
+    /// The endpoint is free on the map but inside the inflated obstacles.
+    #[error("{which} ({col}, {row}) is within {inflate_m} m of an obstacle: blocked after inflation")]
+    BlockedByInflation {
+        /// Start or goal.
+        which: Endpoint,
+        /// Column.
+        col: u32,
+        /// Row.
+        row: u32,
+        /// The inflation radius, metres.
+        inflate_m: f64,
+    },
+}
+
+/// Builds the boxed planner `options` ask for.
+pub fn build_planner(options: &GridPlanOptions) -> Result<Box<dyn GridPlanner>, PlanError> {
+    Ok(match options.algorithm {
+        Algorithm::AStar => Box::new(AStar::new(AStarConfig {
+            heuristic: options.heuristic,
+            weight: options.weight,
+            diagonal: options.diagonal,
+        })?),
+        Algorithm::Dijkstra => Box::new(AStar::dijkstra(options.diagonal)),
+        Algorithm::Jps => Box::new(Jps::new(JpsConfig {
+            heuristic: options.heuristic,
+            diagonal: options.diagonal,
+        })?),
+        Algorithm::SafeAStar => Box::new(SafeAStar::new(options.safe)?),
+    })
+}
+
+/// The passability grid `options` imply: unknown cells per
+/// `allow_unknown`, obstacles grown by `inflate_m`.
+pub fn plan_grid_for(grid: &OccupancyGrid, options: &GridPlanOptions) -> Result<PlanGrid, GridPlanError> {
+    if options.inflate_m == 0.0 {
+        return Ok(PlanGrid::new(grid, options.allow_unknown));
+    }
+    let inflated = inflate(grid, options.inflate_m)?;
+    Ok(PlanGrid::new(&inflated, options.allow_unknown))
+}
+
+/// Plans from `start` to `goal` on `grid` as `options` say; when
+/// `record_expanded`, the expanded cells are returned for drawing.
+///
+/// ```
+/// use planlab_core::global::plan::{plan_on_map, Algorithm, GridPlanOptions};
+/// use planlab_core::global::GridPos;
+/// use planlab_core::map::OccupancyGrid;
+/// let map = OccupancyGrid::from_ascii("
+/// .....
+/// .###.
+/// .....
+/// ").unwrap();
+/// let opts = GridPlanOptions { algorithm: Algorithm::Jps, ..Default::default() };
+/// let plan = plan_on_map(&map, GridPos::new(0, 1), GridPos::new(4, 1), &opts, false).unwrap();
+/// assert!((plan.path.cost - (2.0 + 2.0 * 2f64.sqrt())).abs() < 1e-9);
+/// ```
+pub fn plan_on_map(
+    grid: &OccupancyGrid,
+    start: GridPos,
+    goal: GridPos,
+    options: &GridPlanOptions,
+    record_expanded: bool,
+) -> Result<GridPlan, GridPlanError> {
+    let planner = build_planner(options)?;
+    if let Some(eps) = options.bottom_up_eps {
+        if !(eps.is_finite() && eps >= 0.0) {
+            return Err(PlanError::InvalidConfig(format!(
+                "Bottom-Up maximum error {eps} must be a finite number ≥ 0 (cells)"
+            ))
+            .into());
+        }
+    }
+    let plan_grid = plan_grid_for(grid, options)?;
+    if options.inflate_m > 0.0 {
+        // Say "blocked after inflation" rather than a bare "inside an obstacle"
+        // when the raw map has the endpoint free.
+        let raw = PlanGrid::new(grid, options.allow_unknown);
+        raw.check_endpoints(start, goal)?;
+        for (which, p) in [(Endpoint::Start, start), (Endpoint::Goal, goal)] {
+            if !plan_grid.is_free(p.col as i64, p.row as i64) {
+                return Err(GridPlanError::BlockedByInflation {
+                    which,
+                    col: p.col,
+                    row: p.row,
+                    inflate_m: options.inflate_m,
+                });
+            }
+        }
+    }
+    let mut expanded = Vec::new();
+    let path = planner.plan_recording(
+        &plan_grid,
+        start,
+        goal,
+        record_expanded.then_some(&mut expanded),
+    )?;
+    let keypoints = if options.keypoints {
+        key_points(&plan_grid, &path.cells, options.diagonal)
+    } else {
+        Vec::new()
+    };
+    let feature_nodes = match options.bottom_up_eps {
+        Some(eps) => bottom_up(&plan_grid, &path.cells, eps, options.diagonal)?,
+        None => Vec::new(),
+    };
+    let safety = if options.algorithm == Algorithm::SafeAStar {
+        safety_index(&plan_grid, &path.cells, options.safe.window_radius)
+    } else {
+        Vec::new()
+    };
+    Ok(GridPlan {
+        length_m: path.cost * grid.resolution(),
+        path,
+        keypoints,
+        feature_nodes,
+        expanded_cells: expanded,
+        safety,
+    })
+}

@@ -1,0 +1,230 @@
+// End-to-end tests of the playground in headless Chromium: real mouse
+// clicks on the canvas, costs checked against the Moving AI optimum, errors
+// shown on the page without killing it, and no console errors anywhere.
+
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import path from 'node:path';
+import {
+  SHARED,
+  startSession,
+  openPage,
+  screenshot,
+  setEndpoints,
+  chooseTool,
+  clickCell,
+  dragCells,
+  afterReplan,
+  metric,
+  pathCells,
+  pixelAt,
+  errorText,
+  readScen,
+} from './harness.mjs';
+
+const ARENA_SCEN = path.join(SHARED, 'data/movingai/dao/arena.map.scen');
+const ROS_DIR = path.join(SHARED, 'data/rosmaps/turtlebot3');
+
+/** A long query of the arena scenario (the first with optimum > 55 cells). */
+const ROW = readScen(ARENA_SCEN).find((r) => r.optimal > 55);
+
+let session;
+before(async () => {
+  session = await startSession();
+});
+after(async () => {
+  await session?.close();
+});
+
+function near(actual, expected, tol, what) {
+  assert.ok(Math.abs(actual - expected) <= tol, `${what}: ${actual} not within ${tol} of ${expected}`);
+}
+
+test('preset map is drawn and a clicked query costs the Moving AI optimum', async () => {
+  assert.ok(ROW, 'arena.map.scen has a row with optimum > 55');
+  const { page, problems } = await openPage(session);
+  assert.match(await page.textContent('#map-size'), /^49\s*×\s*49$/);
+  assert.equal(await page.textContent('#map-name'), 'arena.map');
+  // The map is painted: a border wall cell is dark, an interior cell light.
+  const wall = await pixelAt(page, 0, 0);
+  assert.ok(wall[0] < 80 && wall[1] < 80 && wall[2] < 100, `wall pixel ${wall}`);
+
+  await setEndpoints(page, ROW.start, ROW.goal);
+  assert.equal(await errorText(page), null);
+  near(await metric(page, 'cost'), ROW.optimal, 1e-3, 'A* cost');
+  assert.ok((await metric(page, 'expanded')) > 0, 'expansions > 0');
+  const lengthM = await metric(page, 'length');
+  near(lengthM, ROW.optimal * 1.0, 1e-3, 'length in m (1 m cells)');
+  assert.ok((await metric(page, 'time')) >= 0);
+
+  const cells = await pathCells(page);
+  assert.deepEqual(cells[0], ROW.start);
+  assert.deepEqual(cells.at(-1), ROW.goal);
+  // The path is drawn in the path colour (#e11d48) over its middle cells.
+  for (const k of [0.3, 0.5, 0.7]) {
+    const [c, r] = cells[Math.floor(cells.length * k)];
+    const [R, G, B] = await pixelAt(page, c, r);
+    assert.ok(Math.abs(R - 225) < 30 && G < 70 && Math.abs(B - 72) < 40, `pixel at (${c}, ${r}) is ${R},${G},${B}`);
+  }
+  await screenshot(page, '01-arena-astar.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('JPS finds the same cost with fewer expansions', async () => {
+  const { page, problems } = await openPage(session);
+  await setEndpoints(page, ROW.start, ROW.goal);
+  const astarCost = await metric(page, 'cost');
+  const astarExpanded = await metric(page, 'expanded');
+  await afterReplan(page, () => page.selectOption('#algorithm', 'jps'));
+  assert.equal(await errorText(page), null);
+  near(await metric(page, 'cost'), astarCost, 1e-6, 'JPS cost');
+  near(await metric(page, 'cost'), ROW.optimal, 1e-3, 'JPS cost vs optimum');
+  const jpsExpanded = await metric(page, 'expanded');
+  assert.ok(jpsExpanded > 0 && jpsExpanded < astarExpanded, `JPS ${jpsExpanded} vs A* ${astarExpanded}`);
+  // Dijkstra: same cost, more expansions than A*.
+  await afterReplan(page, () => page.selectOption('#algorithm', 'dijkstra'));
+  near(await metric(page, 'cost'), astarCost, 1e-6, 'Dijkstra cost');
+  assert.ok((await metric(page, 'expanded')) > astarExpanded);
+  await afterReplan(page, () => page.selectOption('#algorithm', 'jps'));
+  await screenshot(page, '02-arena-jps.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('painting a wall across the path re-plans around it', async () => {
+  const { page, problems } = await openPage(session);
+  await setEndpoints(page, ROW.start, ROW.goal);
+  const before = await pathCells(page);
+  const beforeCost = await metric(page, 'cost');
+  const [mc, mr] = before[Math.floor(before.length / 2)];
+  // A vertical wall 21 cells tall through the middle of the path.
+  const top = Math.max(1, mr - 10);
+  const bottom = Math.min(47, mr + 10);
+  await chooseTool(page, 'wall');
+  await dragCells(page, [mc, top], [mc, bottom]);
+  assert.equal(await errorText(page), null);
+  const wall = await pixelAt(page, mc, top);
+  assert.ok(wall[0] < 80 && wall[1] < 80, `painted cell is dark: ${wall}`);
+  const after = await pathCells(page);
+  const afterCost = await metric(page, 'cost');
+  assert.notDeepEqual(after, before, 'path changed');
+  for (let r = top; r <= bottom; r++) {
+    assert.ok(!after.some(([c, rr]) => c === mc && rr === r), `path avoids the wall at (${mc}, ${r})`);
+  }
+  assert.ok(afterCost > beforeCost + 1e-6, `cost rose: ${beforeCost} → ${afterCost}`);
+  await screenshot(page, '03-arena-wall.png');
+
+  // Erasing the wall restores the optimum.
+  await chooseTool(page, 'erase');
+  await dragCells(page, [mc, top], [mc, bottom]);
+  near(await metric(page, 'cost'), beforeCost, 1e-9, 'cost after erase');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('errors are shown in the error box and the page recovers', async () => {
+  const { page, problems } = await openPage(session);
+  await setEndpoints(page, ROW.start, ROW.goal);
+  // (0, 0) is a border wall of the arena.
+  await chooseTool(page, 'start');
+  await clickCell(page, 0, 0);
+  assert.equal(await errorText(page), 'start (0, 0) is inside an obstacle');
+  assert.equal(await page.getAttribute('body', 'data-state'), 'error');
+  assert.equal(await page.textContent('#metric-cost'), '—');
+  await screenshot(page, '04-error-start-in-wall.png');
+  await clickCell(page, ...ROW.start);
+  assert.equal(await errorText(page), null);
+  near(await metric(page, 'cost'), ROW.optimal, 1e-3, 'cost after recovery');
+
+  // JPS only supports some diagonal rules: the core's refusal is shown.
+  await afterReplan(page, () => page.selectOption('#algorithm', 'jps'));
+  await afterReplan(page, () => page.selectOption('#diagonal', 'always'));
+  const jpsError = await errorText(page);
+  assert.ok(jpsError && /diagonal|corner|jps|jump/i.test(jpsError), `JPS error: ${jpsError}`);
+  await afterReplan(page, () => page.selectOption('#diagonal', 'no_corner_cutting'));
+  assert.equal(await errorText(page), null);
+
+  // Walling the goal in makes it unreachable.
+  await chooseTool(page, 'wall');
+  const [gc, gr] = ROW.goal;
+  await dragCells(page, [gc - 1, gr - 1], [gc + 1, gr - 1]);
+  await dragCells(page, [gc - 1, gr + 1], [gc + 1, gr + 1]);
+  await dragCells(page, [gc - 1, gr], [gc - 1, gr]);
+  await dragCells(page, [gc + 1, gr], [gc + 1, gr]);
+  const unreachable = await errorText(page);
+  assert.match(unreachable ?? '', /unreachable/);
+  await page.click('#reset-map');
+  await page.waitForFunction(() => document.getElementById('error').hidden);
+  near(await metric(page, 'cost'), ROW.optimal, 1e-3, 'cost after reset');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('ROS yaml+pgm opened from disk; malformed files show errors', async () => {
+  const { page, problems } = await openPage(session);
+  await afterReplan(page, () =>
+    page.setInputFiles('#file-input', [path.join(ROS_DIR, 'map.yaml'), path.join(ROS_DIR, 'map.pgm')]),
+  );
+  assert.equal(await errorText(page), null);
+  assert.match(await page.textContent('#map-size'), /^384\s*×\s*384$/);
+  assert.equal(await page.textContent('#map-resolution'), '0.05 m / cell');
+  await setEndpoints(page, [152, 182], [235, 215]);
+  assert.equal(await errorText(page), null);
+  const cost = await metric(page, 'cost');
+  assert.ok(cost >= Math.hypot(235 - 152, 215 - 182) - 1e-9, `cost ${cost} ≥ straight line`);
+  near(await metric(page, 'length'), cost * 0.05, 1e-9, 'length = cost × 0.05 m');
+  // Key points and inflation on the real map.
+  await afterReplan(page, () => page.check('#keypoints'));
+  await afterReplan(page, () => page.fill('#inflate', '0.1'));
+  assert.equal(await errorText(page), null);
+  assert.ok((await metric(page, 'keypoints')) >= 2);
+  await screenshot(page, '05-ros-turtlebot3.png');
+
+  // The yaml without its pgm.
+  await page.setInputFiles('#file-input', [path.join(ROS_DIR, 'map.yaml')]);
+  await page.waitForFunction(() => !document.getElementById('error').hidden);
+  assert.match(await errorText(page), /select the \.yaml and the \.pgm/);
+  // A malformed pgm.
+  await page.setInputFiles('#file-input', [
+    path.join(ROS_DIR, 'map.yaml'),
+    { name: 'map.pgm', mimeType: 'image/x-portable-graymap', buffer: Buffer.from('P5\n384 384\n255\n\x00\x00') },
+  ]);
+  await page.waitForFunction(() => /PGM/i.test(document.getElementById('error').textContent));
+  // A malformed Moving AI map: the error names the format, the old map stays.
+  await page.setInputFiles('#file-input', {
+    name: 'broken.map',
+    mimeType: 'text/plain',
+    buffer: Buffer.from('type octile\nheight 3\nwidth 3\nmap\n...\n.x.\n'),
+  });
+  await page.waitForFunction(() => /broken\.map/.test(document.getElementById('error').textContent));
+  assert.match(await errorText(page), /Moving AI map/);
+  await screenshot(page, '06-malformed-map.png');
+  assert.match(await page.textContent('#map-size'), /^384\s*×\s*384$/);
+  // Still alive: a new click plans again and clears the error.
+  await chooseTool(page, 'start');
+  await clickCell(page, 160, 182);
+  assert.equal(await errorText(page), null);
+  assert.ok((await metric(page, 'cost')) > 0);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('TurtleBot3 preset, safe A* and Bottom-Up run without console errors', async () => {
+  const { page, problems } = await openPage(session);
+  await afterReplan(page, () => page.selectOption('#preset', 'turtlebot3'));
+  assert.match(await page.textContent('#map-size'), /^384\s*×\s*384$/);
+  assert.equal(await errorText(page), null);
+  const astar = await metric(page, 'cost');
+  await afterReplan(page, () => page.selectOption('#algorithm', 'safe-astar'));
+  assert.equal(await errorText(page), null);
+  // Safe A* trades length for clearance: never shorter than the optimum.
+  assert.ok((await metric(page, 'cost')) >= astar - 1e-9);
+  await afterReplan(page, () => page.check('#bottom-up'));
+  await afterReplan(page, () => page.check('#keypoints'));
+  assert.equal(await errorText(page), null);
+  assert.match(await page.textContent('#metric-keypoints'), /\d+ · \d+ BU/);
+  await screenshot(page, '07-turtlebot3-safe-astar.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});

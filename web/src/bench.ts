@@ -1,0 +1,54 @@
+// Benchmark page: times ScenBatch.solveAll (one wasm call solving every
+// query of a .scen) with performance.now(), so the boundary is crossed once
+// per repetition and the figure is the planner's own speed in wasm.
+
+import init, { MapHandle, ScenBatch } from '../pkg/planlab_wasm.js';
+
+export interface BenchResult {
+  rows: number;
+  totalCost: number;
+  optimalSum: number;
+  timesMs: number[];
+}
+
+async function planlabBench(
+  mapText: string,
+  scenText: string,
+  reps: number,
+  options?: Record<string, unknown>,
+): Promise<BenchResult> {
+  const map = MapHandle.fromMovingAi(mapText);
+  const batch = new ScenBatch(map, scenText, options ?? { algorithm: 'astar' });
+  try {
+    // One untimed pass warms the JIT tier-up and caches, as the native side does.
+    const totalCost = batch.solveAll();
+    const timesMs: number[] = [];
+    for (let i = 0; i < reps; i++) {
+      const t0 = performance.now();
+      const t = batch.solveAll();
+      timesMs.push(performance.now() - t0);
+      if (Math.abs(t - totalCost) > 1e-9) throw new Error('non-deterministic total cost');
+    }
+    return { rows: batch.rows, totalCost, optimalSum: batch.optimalSum, timesMs };
+  } finally {
+    batch.free();
+    map.free();
+  }
+}
+
+declare global {
+  interface Window {
+    planlabBench: typeof planlabBench;
+  }
+}
+
+init()
+  .then(() => {
+    window.planlabBench = planlabBench;
+    document.body.dataset.state = 'ready';
+  })
+  .catch((e) => {
+    document.body.dataset.state = 'error';
+    const out = document.getElementById('out');
+    if (out) out.textContent = String(e);
+  });

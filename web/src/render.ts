@@ -1,0 +1,361 @@
+// Canvas painter for the playground: the map is drawn into an offscreen
+// canvas (one pixel per cell) once per edit, the search tint into a second
+// one per plan; each frame only scales those two images and strokes the
+// path on top, so 512×512 maps pan and zoom smoothly. Nothing here plans.
+
+export type Cell = [number, number];
+
+export interface Layers {
+  /** Path cells as col,row pairs. */
+  path: Uint32Array | null;
+  /** Expanded cells in expansion order, col,row pairs. */
+  expanded: Uint32Array | null;
+  keyPoints: Uint32Array | null;
+  featureNodes: Uint32Array | null;
+  /** 1 = free on the map but blocked after inflation. */
+  inflation: Uint8Array | null;
+}
+
+export const COLORS = {
+  free: [248, 250, 252],
+  occupied: [30, 41, 59],
+  unknown: [184, 194, 209],
+  inflated: [252, 217, 165],
+  path: '#e11d48',
+  start: '#16a34a',
+  goal: '#2563eb',
+  keypoint: '#7c3aed',
+  feature: '#f59e0b',
+} as const;
+
+interface View {
+  /** CSS pixels per cell. */
+  scale: number;
+  /** CSS-pixel position of the map's top-left corner in the canvas. */
+  ox: number;
+  oy: number;
+}
+
+function offscreen(w: number, h: number): [HTMLCanvasElement, CanvasRenderingContext2D] {
+  const c = document.createElement('canvas');
+  c.width = w;
+  c.height = h;
+  const ctx = c.getContext('2d');
+  if (!ctx) throw new Error('this browser cannot draw on a 2D canvas');
+  return [c, ctx];
+}
+
+export class MapView {
+  readonly canvas: HTMLCanvasElement;
+  private ctx: CanvasRenderingContext2D;
+  private w = 0;
+  private h = 0;
+  private base: HTMLCanvasElement | null = null;
+  private baseCtx: CanvasRenderingContext2D | null = null;
+  private tint: HTMLCanvasElement | null = null;
+  private tintCtx: CanvasRenderingContext2D | null = null;
+  private layers: Layers = { path: null, expanded: null, keyPoints: null, featureNodes: null, inflation: null };
+  private cells: Uint8Array | null = null;
+  private start: Cell | null = null;
+  private goal: Cell | null = null;
+  private view: View = { scale: 1, ox: 0, oy: 0 };
+  private pending = false;
+  private cssW = 0;
+  private cssH = 0;
+
+  constructor(canvas: HTMLCanvasElement) {
+    this.canvas = canvas;
+    const ctx = canvas.getContext('2d');
+    if (!ctx) throw new Error('this browser cannot draw on a 2D canvas');
+    this.ctx = ctx;
+    new ResizeObserver(() => this.resize()).observe(canvas);
+    this.resize();
+  }
+
+  get mapWidth(): number {
+    return this.w;
+  }
+
+  get mapHeight(): number {
+    return this.h;
+  }
+
+  /** A new map: rebuild the images and fit it into the view. */
+  setMap(w: number, h: number, cells: Uint8Array): void {
+    this.w = w;
+    this.h = h;
+    [this.base, this.baseCtx] = offscreen(w, h);
+    [this.tint, this.tintCtx] = offscreen(w, h);
+    this.layers = { path: null, expanded: null, keyPoints: null, featureNodes: null, inflation: null };
+    this.start = this.goal = null;
+    this.updateCells(cells);
+    this.fit();
+  }
+
+  /** Repaints the map image after an edit. */
+  updateCells(cells: Uint8Array): void {
+    this.cells = cells;
+    this.paintBase();
+    this.request();
+  }
+
+  setEndpoints(start: Cell | null, goal: Cell | null): void {
+    this.start = start;
+    this.goal = goal;
+    this.request();
+  }
+
+  setLayers(layers: Layers): void {
+    const inflationChanged = layers.inflation !== this.layers.inflation;
+    this.layers = layers;
+    if (inflationChanged) this.paintBase();
+    this.paintTint();
+    this.request();
+  }
+
+  /** Fits the whole map into the canvas with a small margin. */
+  fit(): void {
+    if (!this.w || !this.h || !this.cssW || !this.cssH) return;
+    const margin = 16;
+    const scale = Math.max(
+      0.05,
+      Math.min((this.cssW - 2 * margin) / this.w, (this.cssH - 2 * margin) / this.h),
+    );
+    this.view = {
+      scale,
+      ox: (this.cssW - this.w * scale) / 2,
+      oy: (this.cssH - this.h * scale) / 2,
+    };
+    this.publishView();
+    this.request();
+  }
+
+  /** Zooms by `factor` keeping the canvas point (x, y) fixed. */
+  zoomAt(x: number, y: number, factor: number): void {
+    const v = this.view;
+    const scale = Math.min(96, Math.max(0.05, v.scale * factor));
+    const f = scale / v.scale;
+    this.view = { scale, ox: x - (x - v.ox) * f, oy: y - (y - v.oy) * f };
+    this.publishView();
+    this.request();
+  }
+
+  panBy(dx: number, dy: number): void {
+    this.view = { ...this.view, ox: this.view.ox + dx, oy: this.view.oy + dy };
+    this.publishView();
+    this.request();
+  }
+
+  /** The cell under a canvas point (CSS pixels), or null off the map. */
+  cellAt(x: number, y: number): Cell | null {
+    const c = Math.floor((x - this.view.ox) / this.view.scale);
+    const r = Math.floor((y - this.view.oy) / this.view.scale);
+    if (c < 0 || r < 0 || c >= this.w || r >= this.h) return null;
+    return [c, r];
+  }
+
+  cellKind(c: number, r: number): number | null {
+    if (!this.cells || c < 0 || r < 0 || c >= this.w || r >= this.h) return null;
+    return this.cells[r * this.w + c];
+  }
+
+  /** Exposes the view so tests can click a given cell. */
+  private publishView(): void {
+    const d = this.canvas.dataset;
+    d.scale = String(this.view.scale);
+    d.offsetX = String(this.view.ox);
+    d.offsetY = String(this.view.oy);
+  }
+
+  private resize(): void {
+    const rect = this.canvas.getBoundingClientRect();
+    const dpr = window.devicePixelRatio || 1;
+    const first = this.cssW === 0;
+    this.cssW = rect.width;
+    this.cssH = rect.height;
+    this.canvas.width = Math.max(1, Math.round(rect.width * dpr));
+    this.canvas.height = Math.max(1, Math.round(rect.height * dpr));
+    if (first) this.fit();
+    this.request();
+  }
+
+  private paintBase(): void {
+    if (!this.baseCtx || !this.cells) return;
+    const img = this.baseCtx.createImageData(this.w, this.h);
+    const px = img.data;
+    const cells = this.cells;
+    const infl = this.layers.inflation;
+    const palette = [COLORS.free, COLORS.occupied, COLORS.unknown];
+    for (let i = 0; i < cells.length; i++) {
+      const col = infl && infl[i] ? COLORS.inflated : palette[cells[i]] ?? COLORS.unknown;
+      const o = i * 4;
+      px[o] = col[0];
+      px[o + 1] = col[1];
+      px[o + 2] = col[2];
+      px[o + 3] = 255;
+    }
+    this.baseCtx.putImageData(img, 0, 0);
+  }
+
+  /** Expanded cells, shaded from light (early) to deeper (late). */
+  private paintTint(): void {
+    if (!this.tintCtx) return;
+    const img = this.tintCtx.createImageData(this.w, this.h);
+    const ex = this.layers.expanded;
+    if (ex && ex.length) {
+      const px = img.data;
+      const n = ex.length / 2;
+      for (let k = 0; k < n; k++) {
+        const c = ex[2 * k];
+        const r = ex[2 * k + 1];
+        if (c >= this.w || r >= this.h) continue;
+        const t = n > 1 ? k / (n - 1) : 0;
+        const o = (r * this.w + c) * 4;
+        // sky-300 → indigo-400 by expansion order
+        px[o] = 125 + (129 - 125) * t;
+        px[o + 1] = 211 + (140 - 211) * t;
+        px[o + 2] = 252 + (248 - 252) * t;
+        px[o + 3] = 150;
+      }
+    }
+    this.tintCtx.putImageData(img, 0, 0);
+  }
+
+  request(): void {
+    if (this.pending) return;
+    this.pending = true;
+    requestAnimationFrame(() => {
+      this.pending = false;
+      this.draw();
+    });
+  }
+
+  /** Canvas (CSS px) centre of a cell. */
+  private centre(c: number, r: number): [number, number] {
+    return [this.view.ox + (c + 0.5) * this.view.scale, this.view.oy + (r + 0.5) * this.view.scale];
+  }
+
+  private polyline(pairs: Uint32Array, color: string, width: number, dash: number[] = []): void {
+    if (pairs.length < 4) return;
+    const ctx = this.ctx;
+    ctx.beginPath();
+    for (let k = 0; k < pairs.length; k += 2) {
+      const [x, y] = this.centre(pairs[k], pairs[k + 1]);
+      if (k === 0) ctx.moveTo(x, y);
+      else ctx.lineTo(x, y);
+    }
+    ctx.setLineDash(dash);
+    ctx.strokeStyle = color;
+    ctx.lineWidth = width;
+    ctx.lineJoin = 'round';
+    ctx.lineCap = 'round';
+    ctx.stroke();
+    ctx.setLineDash([]);
+  }
+
+  private draw(): void {
+    const ctx = this.ctx;
+    const dpr = window.devicePixelRatio || 1;
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.clearRect(0, 0, this.canvas.width, this.canvas.height);
+    if (!this.base || !this.tint) return;
+    ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+    const { scale, ox, oy } = this.view;
+    ctx.imageSmoothingEnabled = false;
+    // Soft drop shadow under the map sheet.
+    ctx.save();
+    ctx.shadowColor = 'rgba(15, 23, 42, 0.25)';
+    ctx.shadowBlur = 12;
+    ctx.fillStyle = '#fff';
+    ctx.fillRect(ox, oy, this.w * scale, this.h * scale);
+    ctx.restore();
+    ctx.drawImage(this.base, ox, oy, this.w * scale, this.h * scale);
+    ctx.drawImage(this.tint, ox, oy, this.w * scale, this.h * scale);
+
+    if (scale >= 9) this.gridLines();
+
+    const lw = Math.min(7, Math.max(2.5, scale * 0.4));
+    const L = this.layers;
+    if (L.path) {
+      // White casing keeps the path readable over dark walls and tints.
+      this.polyline(L.path, 'rgba(255,255,255,0.85)', lw + 2.5);
+      this.polyline(L.path, COLORS.path, lw);
+    }
+    if (L.featureNodes && L.featureNodes.length >= 4) {
+      this.polyline(L.featureNodes, COLORS.feature, Math.max(1.5, lw * 0.45), [6, 4]);
+      const s = Math.min(9, Math.max(4, scale * 0.5));
+      for (let k = 0; k < L.featureNodes.length; k += 2) {
+        const [x, y] = this.centre(L.featureNodes[k], L.featureNodes[k + 1]);
+        ctx.save();
+        ctx.translate(x, y);
+        ctx.rotate(Math.PI / 4);
+        ctx.fillStyle = COLORS.feature;
+        ctx.strokeStyle = '#fff';
+        ctx.lineWidth = 1.5;
+        ctx.fillRect(-s / 2, -s / 2, s, s);
+        ctx.strokeRect(-s / 2, -s / 2, s, s);
+        ctx.restore();
+      }
+    }
+    if (L.keyPoints && L.keyPoints.length >= 4) {
+      this.polyline(L.keyPoints, COLORS.keypoint, Math.max(1.5, lw * 0.45), [2, 4]);
+      const rad = Math.min(9, Math.max(4, scale * 0.55));
+      for (let k = 0; k < L.keyPoints.length; k += 2) {
+        const [x, y] = this.centre(L.keyPoints[k], L.keyPoints[k + 1]);
+        ctx.beginPath();
+        ctx.arc(x, y, rad, 0, Math.PI * 2);
+        ctx.fillStyle = '#fff';
+        ctx.fill();
+        ctx.lineWidth = 2.5;
+        ctx.strokeStyle = COLORS.keypoint;
+        ctx.stroke();
+      }
+    }
+    this.marker(this.start, COLORS.start, 'S');
+    this.marker(this.goal, COLORS.goal, 'G');
+  }
+
+  private gridLines(): void {
+    const ctx = this.ctx;
+    const { scale, ox, oy } = this.view;
+    const c0 = Math.max(0, Math.floor(-ox / scale));
+    const c1 = Math.min(this.w, Math.ceil((this.cssW - ox) / scale));
+    const r0 = Math.max(0, Math.floor(-oy / scale));
+    const r1 = Math.min(this.h, Math.ceil((this.cssH - oy) / scale));
+    ctx.beginPath();
+    for (let c = c0; c <= c1; c++) {
+      const x = Math.round(ox + c * scale) + 0.5;
+      ctx.moveTo(x, oy + r0 * scale);
+      ctx.lineTo(x, oy + r1 * scale);
+    }
+    for (let r = r0; r <= r1; r++) {
+      const y = Math.round(oy + r * scale) + 0.5;
+      ctx.moveTo(ox + c0 * scale, y);
+      ctx.lineTo(ox + c1 * scale, y);
+    }
+    ctx.strokeStyle = 'rgba(100, 116, 139, 0.18)';
+    ctx.lineWidth = 1;
+    ctx.stroke();
+  }
+
+  private marker(cell: Cell | null, color: string, label: string): void {
+    if (!cell) return;
+    const ctx = this.ctx;
+    const [x, y] = this.centre(cell[0], cell[1]);
+    const rad = Math.min(13, Math.max(6, this.view.scale * 0.6));
+    ctx.beginPath();
+    ctx.arc(x, y, rad, 0, Math.PI * 2);
+    ctx.fillStyle = color;
+    ctx.fill();
+    ctx.lineWidth = 2;
+    ctx.strokeStyle = '#fff';
+    ctx.stroke();
+    if (rad >= 8) {
+      ctx.fillStyle = '#fff';
+      ctx.font = `700 ${Math.round(rad * 1.1)}px system-ui, sans-serif`;
+      ctx.textAlign = 'center';
+      ctx.textBaseline = 'middle';
+      ctx.fillText(label, x, y + 0.5);
+    }
+  }
+}
