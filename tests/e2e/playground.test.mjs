@@ -4,6 +4,7 @@
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
+import fs from 'node:fs';
 import path from 'node:path';
 import {
   SHARED,
@@ -187,7 +188,7 @@ test('ROS yaml+pgm opened from disk; malformed files show errors', async () => {
   assert.match(await errorText(page), /select the \.yaml and the \.pgm/);
   // A malformed pgm.
   await page.setInputFiles('#file-input', [
-    path.join(ROS_DIR, 'map.yaml'),
+    { name: 'map.yaml', mimeType: 'application/x-yaml', buffer: fs.readFileSync(path.join(ROS_DIR, 'map.yaml')) },
     { name: 'map.pgm', mimeType: 'image/x-portable-graymap', buffer: Buffer.from('P5\n384 384\n255\n\x00\x00') },
   ]);
   await page.waitForFunction(() => /PGM/i.test(document.getElementById('error').textContent));
@@ -215,11 +216,13 @@ test('TurtleBot3 preset, safe A* and Bottom-Up run without console errors', asyn
   await afterReplan(page, () => page.selectOption('#preset', 'turtlebot3'));
   assert.match(await page.textContent('#map-size'), /^384\s*×\s*384$/);
   assert.equal(await errorText(page), null);
-  const astar = await metric(page, 'cost');
+  assert.ok((await metric(page, 'cost')) > 0);
   await afterReplan(page, () => page.selectOption('#algorithm', 'safe-astar'));
   assert.equal(await errorText(page), null);
-  // Safe A* trades length for clearance: never shorter than the optimum.
-  assert.ok((await metric(page, 'cost')) >= astar - 1e-9);
+  assert.ok((await metric(page, 'cost')) > 0);
+  // Safe A* reports the safety index of its path (10 = nothing in the window).
+  const safety = Number((await page.textContent('#status')).match(/safety index ([\d.]+)/)?.[1]);
+  assert.ok(safety > 0 && safety <= 10, `minimum safety index ${safety}`);
   await afterReplan(page, () => page.check('#bottom-up'));
   await afterReplan(page, () => page.check('#keypoints'));
   assert.equal(await errorText(page), null);

@@ -321,8 +321,8 @@ function replan(): void {
     setMetric(ui.metric.time, `${ms.toFixed(2)} ms`, ms);
     ui.canvas.dataset.pathLen = String(res.pathLen);
     ui.canvas.dataset.path = Array.from(path).join(',');
-    let status = `Path found: ${res.pathLen} cells.`;
-    if (safety.length) status += ` Minimum safety index ${Math.min(...safety).toFixed(2)} / 10.`;
+    let status = `Path found: ${res.pathLen} cells`;
+    if (safety.length) status += ` · min safety index ${safety.reduce((a, b) => Math.min(a, b), Infinity).toFixed(2)}/10`;
     ui.status.textContent = status;
   } finally {
     res.free();

@@ -45,6 +45,28 @@ function offscreen(w: number, h: number): [HTMLCanvasElement, CanvasRenderingCon
   return [c, ctx];
 }
 
+/** Known-cell bounding box padded by a few cells; the whole map if none. */
+function knownBox(w: number, h: number, cells: Uint8Array): [number, number, number, number] {
+  let c0 = w;
+  let r0 = h;
+  let c1 = -1;
+  let r1 = -1;
+  for (let r = 0; r < h; r++) {
+    const row = r * w;
+    for (let c = 0; c < w; c++) {
+      if (cells[row + c] !== 2) {
+        if (c < c0) c0 = c;
+        if (c > c1) c1 = c;
+        if (r < r0) r0 = r;
+        if (r > r1) r1 = r;
+      }
+    }
+  }
+  if (c1 < 0) return [0, 0, w, h];
+  const pad = Math.max(2, Math.round(0.04 * Math.max(c1 - c0, r1 - r0)));
+  return [Math.max(0, c0 - pad), Math.max(0, r0 - pad), Math.min(w, c1 + 1 + pad), Math.min(h, r1 + 1 + pad)];
+}
+
 export class MapView {
   readonly canvas: HTMLCanvasElement;
   private ctx: CanvasRenderingContext2D;
@@ -62,6 +84,8 @@ export class MapView {
   private pending = false;
   private cssW = 0;
   private cssH = 0;
+  /** Bounding box [c0, r0, c1, r1) of the known (not unknown) cells. */
+  private known: [number, number, number, number] = [0, 0, 0, 0];
 
   constructor(canvas: HTMLCanvasElement) {
     this.canvas = canvas;
@@ -89,6 +113,7 @@ export class MapView {
     this.layers = { path: null, expanded: null, keyPoints: null, featureNodes: null, inflation: null };
     this.start = this.goal = null;
     this.updateCells(cells);
+    this.known = knownBox(w, h, cells);
     this.fit();
   }
 
@@ -113,18 +138,21 @@ export class MapView {
     this.request();
   }
 
-  /** Fits the whole map into the canvas with a small margin. */
+  /**
+   * Fits the known part of the map into the canvas with a small margin
+   * (ROS maps are mostly unknown space around a small explored area).
+   */
   fit(): void {
     if (!this.w || !this.h || !this.cssW || !this.cssH) return;
     const margin = 16;
-    const scale = Math.max(
-      0.05,
-      Math.min((this.cssW - 2 * margin) / this.w, (this.cssH - 2 * margin) / this.h),
-    );
+    const [c0, r0, c1, r1] = this.known;
+    const bw = c1 - c0;
+    const bh = r1 - r0;
+    const scale = Math.max(0.05, Math.min((this.cssW - 2 * margin) / bw, (this.cssH - 2 * margin) / bh));
     this.view = {
       scale,
-      ox: (this.cssW - this.w * scale) / 2,
-      oy: (this.cssH - this.h * scale) / 2,
+      ox: (this.cssW - bw * scale) / 2 - c0 * scale,
+      oy: (this.cssH - bh * scale) / 2 - r0 * scale,
     };
     this.publishView();
     this.request();
@@ -276,14 +304,18 @@ export class MapView {
 
     const lw = Math.min(7, Math.max(2.5, scale * 0.4));
     const L = this.layers;
+    // Simplified polylines go under the path: where they leave it (the
+    // shortcuts) they show; markers are drawn on top afterwards.
+    const thin = Math.max(1.5, lw * 0.5);
+    if (L.featureNodes && L.featureNodes.length >= 4) this.polyline(L.featureNodes, COLORS.feature, thin, [6, 4]);
+    if (L.keyPoints && L.keyPoints.length >= 4) this.polyline(L.keyPoints, COLORS.keypoint, thin, [4, 4]);
     if (L.path) {
       // White casing keeps the path readable over dark walls and tints.
       this.polyline(L.path, 'rgba(255,255,255,0.85)', lw + 2.5);
       this.polyline(L.path, COLORS.path, lw);
     }
     if (L.featureNodes && L.featureNodes.length >= 4) {
-      this.polyline(L.featureNodes, COLORS.feature, Math.max(1.5, lw * 0.45), [6, 4]);
-      const s = Math.min(9, Math.max(4, scale * 0.5));
+      const s = Math.min(11, Math.max(7, scale * 0.6));
       for (let k = 0; k < L.featureNodes.length; k += 2) {
         const [x, y] = this.centre(L.featureNodes[k], L.featureNodes[k + 1]);
         ctx.save();
@@ -298,8 +330,7 @@ export class MapView {
       }
     }
     if (L.keyPoints && L.keyPoints.length >= 4) {
-      this.polyline(L.keyPoints, COLORS.keypoint, Math.max(1.5, lw * 0.45), [2, 4]);
-      const rad = Math.min(9, Math.max(4, scale * 0.55));
+      const rad = Math.min(9, Math.max(5, scale * 0.55));
       for (let k = 0; k < L.keyPoints.length; k += 2) {
         const [x, y] = this.centre(L.keyPoints[k], L.keyPoints[k + 1]);
         ctx.beginPath();

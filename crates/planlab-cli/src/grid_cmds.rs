@@ -4,13 +4,15 @@ use crate::load;
 use planlab_core::global::plan::{build_planner, plan_on_map, Algorithm, GridPlanOptions};
 use planlab_core::global::{GridPos, PlanGrid};
 use planlab_core::map::io::movingai;
+use planlab_core::map::OccupancyGrid;
 use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
 
 /// Parses `C,R` into a cell.
 pub fn parse_cell(s: &str) -> Result<GridPos, String> {
-    let bad = || format!("invalid cell {s:?}: expected COLUMN,ROW with non-negative integers, e.g. 12,7");
+    let bad =
+        || format!("invalid cell {s:?}: expected COLUMN,ROW with non-negative integers, e.g. 12,7");
     let (c, r) = s.split_once(',').ok_or_else(bad)?;
     let col = c.trim().parse::<u32>().map_err(|_| bad())?;
     let row = r.trim().parse::<u32>().map_err(|_| bad())?;
@@ -23,11 +25,21 @@ fn within_tolerance(cost: f64, optimal: f64) -> bool {
 
 /// Solves every row of a Moving AI scenario; returns the number of rows
 /// whose cost misses the optimum (the caller turns > 0 into a failure).
-pub fn scen(map_path: &Path, scen_path: &Path, algo: Algorithm, json: bool) -> Result<usize, String> {
+pub fn scen(
+    map_path: &Path,
+    scen_path: &Path,
+    algo: Algorithm,
+    json: bool,
+) -> Result<usize, String> {
     let grid = load::load_movingai(map_path)?;
     let rows = load::load_scen(scen_path)?;
-    movingai::check_scen_against_map(&rows, &grid)
-        .map_err(|e| format!("{} does not fit {}: {e}", scen_path.display(), map_path.display()))?;
+    movingai::check_scen_against_map(&rows, &grid).map_err(|e| {
+        format!(
+            "{} does not fit {}: {e}",
+            scen_path.display(),
+            map_path.display()
+        )
+    })?;
     if algo == Algorithm::SafeAStar {
         return Err("safe-astar is not an optimal planner; scen checks optimal costs (use astar, dijkstra or jps)".into());
     }
@@ -75,7 +87,11 @@ pub fn scen(map_path: &Path, scen_path: &Path, algo: Algorithm, json: bool) -> R
             );
         }
     }
-    let mean = if rows.is_empty() { 0.0 } else { total_micros / rows.len() as f64 };
+    let mean = if rows.is_empty() {
+        0.0
+    } else {
+        total_micros / rows.len() as f64
+    };
     if json {
         println!(
             "{}",
@@ -107,10 +123,10 @@ pub struct PlanArgs {
 }
 
 /// Plans once on any supported map file and prints the result.
-pub fn plan(map_path: &Path, args: &PlanArgs) -> Result<(), String> {
-    let grid = crate::load_any_map(map_path)?;
+pub fn plan(map_path: &Path, grid: &OccupancyGrid, args: &PlanArgs) -> Result<(), String> {
     let t = Instant::now();
-    let result = plan_on_map(&grid, args.start, args.goal, &args.options, false).map_err(|e| e.to_string())?;
+    let result = plan_on_map(grid, args.start, args.goal, &args.options, false)
+        .map_err(|e| e.to_string())?;
     let micros = t.elapsed().as_secs_f64() * 1e6;
     let cells = |v: &[GridPos]| v.iter().map(|p| [p.col, p.row]).collect::<Vec<_>>();
     if args.json {
@@ -144,7 +160,11 @@ pub fn plan(map_path: &Path, args: &PlanArgs) -> Result<(), String> {
             micros
         );
         if args.options.keypoints {
-            println!("key points ({}): {:?}", result.keypoints.len(), cells(&result.keypoints));
+            println!(
+                "key points ({}): {:?}",
+                result.keypoints.len(),
+                cells(&result.keypoints)
+            );
         }
         if args.options.bottom_up_eps.is_some() {
             println!(

@@ -1,6 +1,7 @@
 //! Reading maps from disk for the CLI: the core parses bytes, this module
 //! finds and reads the files (the core never touches the file system).
 
+use planlab_core::map::io::scenario::Scenario;
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::OccupancyGrid;
 use std::path::Path;
@@ -24,7 +25,8 @@ pub fn load_ros(yaml_path: &Path) -> Result<OccupancyGrid, String> {
         .parent()
         .unwrap_or_else(|| Path::new("."))
         .join(&meta.image);
-    let pgm = ros::parse_pgm(&read_bytes(&image)?).map_err(|e| format!("{}: {e}", image.display()))?;
+    let pgm =
+        ros::parse_pgm(&read_bytes(&image)?).map_err(|e| format!("{}: {e}", image.display()))?;
     ros::grid_from_pgm(&meta, &pgm).map_err(|e| format!("{}: {e}", yaml_path.display()))
 }
 
@@ -63,5 +65,26 @@ pub fn kind_of(path: &Path) -> Result<MapKind, String> {
             "{}: unknown map format; expected a ROS .yaml, a Moving AI .map or a scenario .json",
             path.display()
         )),
+    }
+}
+
+/// Loads a scenario JSON and its map (inline, or a file relative to it).
+pub fn load_scenario(path: &Path) -> Result<(OccupancyGrid, Scenario), String> {
+    let scenario =
+        Scenario::from_json(&read_text(path)?).map_err(|e| format!("{}: {e}", path.display()))?;
+    let dir = path.parent().unwrap_or_else(|| Path::new("."));
+    let mut read = |rel: &str| std::fs::read(dir.join(rel)).map_err(|e| e.to_string());
+    let grid = scenario
+        .load_grid(&mut read)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok((grid, scenario))
+}
+
+/// Loads a map of any supported kind; scenarios come with their scenario.
+pub fn load_any(path: &Path) -> Result<(OccupancyGrid, Option<Scenario>), String> {
+    match kind_of(path)? {
+        MapKind::Ros => Ok((load_ros(path)?, None)),
+        MapKind::MovingAi => Ok((load_movingai(path)?, None)),
+        MapKind::Scenario => load_scenario(path).map(|(g, s)| (g, Some(s))),
     }
 }

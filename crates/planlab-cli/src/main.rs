@@ -3,9 +3,13 @@
 //! Every failure prints one line `planlab: error: …` on stderr and exits
 //! non-zero; usage errors exit 2 (clap's convention).
 
+mod grid_cmds;
+mod load;
 mod serve;
 
-use clap::{Parser, Subcommand};
+use clap::{Parser, Subcommand, ValueEnum};
+use planlab_core::global::plan::{Algorithm, GridPlanOptions};
+use planlab_core::global::{Diagonal, GridPos, Heuristic};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -20,8 +24,147 @@ struct Cli {
     command: Command,
 }
 
+#[derive(Clone, Copy, ValueEnum)]
+enum AlgoArg {
+    Astar,
+    Dijkstra,
+    Jps,
+    #[value(name = "safe-astar")]
+    SafeAstar,
+}
+
+impl From<AlgoArg> for Algorithm {
+    fn from(a: AlgoArg) -> Self {
+        match a {
+            AlgoArg::Astar => Algorithm::AStar,
+            AlgoArg::Dijkstra => Algorithm::Dijkstra,
+            AlgoArg::Jps => Algorithm::Jps,
+            AlgoArg::SafeAstar => Algorithm::SafeAStar,
+        }
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum HeuristicArg {
+    Manhattan,
+    Euclidean,
+    Octile,
+    Chebyshev,
+}
+
+impl From<HeuristicArg> for Heuristic {
+    fn from(h: HeuristicArg) -> Self {
+        match h {
+            HeuristicArg::Manhattan => Heuristic::Manhattan,
+            HeuristicArg::Euclidean => Heuristic::Euclidean,
+            HeuristicArg::Octile => Heuristic::Octile,
+            HeuristicArg::Chebyshev => Heuristic::Chebyshev,
+        }
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum DiagonalArg {
+    /// 4-connected.
+    Never,
+    /// 8-connected, both side cells free (Moving AI rule).
+    #[value(name = "no-corner-cutting")]
+    NoCornerCutting,
+    /// 8-connected, at least one side cell free.
+    #[value(name = "one-side-free")]
+    OneSideFree,
+    /// 8-connected through any corner.
+    Always,
+}
+
+impl From<DiagonalArg> for Diagonal {
+    fn from(d: DiagonalArg) -> Self {
+        match d {
+            DiagonalArg::Never => Diagonal::Never,
+            DiagonalArg::NoCornerCutting => Diagonal::NoCornerCutting,
+            DiagonalArg::OneSideFree => Diagonal::OneSideFree,
+            DiagonalArg::Always => Diagonal::Always,
+        }
+    }
+}
+
+#[derive(Subcommand)]
+enum BenchKind {
+    /// Our A* and JPS against the `pathfinding` crate's astar on a Moving AI
+    /// scenario; prints one JSON line with ms per query and the ratios.
+    Grid {
+        /// Moving AI .map file.
+        map: PathBuf,
+        /// Its .scen file.
+        scen: PathBuf,
+        /// Repetitions of the whole row set per planner (best is kept).
+        #[arg(long, default_value_t = 3)]
+        reps: usize,
+    },
+}
+
 #[derive(Subcommand)]
 enum Command {
+    /// Solve every row of a Moving AI scenario and compare with the optimum.
+    Scen {
+        /// Moving AI .map file.
+        map: PathBuf,
+        /// Its .scen file.
+        scen: PathBuf,
+        /// Planner.
+        #[arg(long, value_enum, default_value = "astar")]
+        algo: AlgoArg,
+        /// One JSON line per row, then a summary line.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Plan one path on a ROS .yaml, Moving AI .map or scenario .json.
+    Plan {
+        /// Map file.
+        map: PathBuf,
+        /// Start cell COLUMN,ROW (row 0 at the top of the image); a scenario
+        /// .json supplies its own when omitted.
+        #[arg(long)]
+        start: Option<String>,
+        /// Goal cell COLUMN,ROW; a scenario .json supplies its own when omitted.
+        #[arg(long)]
+        goal: Option<String>,
+        /// Planner [default: astar, or the scenario's].
+        #[arg(long, value_enum)]
+        algo: Option<AlgoArg>,
+        /// A*/JPS heuristic [default: octile, or the scenario's].
+        #[arg(long, value_enum)]
+        heuristic: Option<HeuristicArg>,
+        /// A* heuristic weight, ≥ 1 [default: 1, or the scenario's].
+        #[arg(long, allow_hyphen_values = true)]
+        weight: Option<f64>,
+        /// Diagonal move rule [default: no-corner-cutting, or the scenario's].
+        #[arg(long, value_enum)]
+        diagonal: Option<DiagonalArg>,
+        /// Grow obstacles by this radius first, metres [default: 0, or the scenario's].
+        #[arg(long, allow_hyphen_values = true)]
+        inflate: Option<f64>,
+        /// Treat unknown cells as free.
+        #[arg(long)]
+        allow_unknown: bool,
+        /// Extract key points (Wu 2022 §3.2.1).
+        #[arg(long)]
+        keypoints: bool,
+        /// Bottom-Up feature nodes with this maximum error, cells (Ge & Li 2022 §4.1).
+        #[arg(long, value_name = "EPS", allow_hyphen_values = true)]
+        bottom_up: Option<f64>,
+        /// Safe A* safety weight ε.
+        #[arg(long, allow_hyphen_values = true)]
+        epsilon: Option<f64>,
+        /// JSON output.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Benchmarks.
+    Bench {
+        #[command(subcommand)]
+        kind: BenchKind,
+    },
     /// Serve the playground (a built site folder) over HTTP on loopback.
     Serve {
         /// Site folder to serve (must contain index.html).
@@ -39,6 +182,84 @@ enum Command {
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Serve { dir, host, port } => serve::serve(&dir, &host, port),
+        Command::Scen {
+            map,
+            scen,
+            algo,
+            json,
+        } => {
+            let mismatches = grid_cmds::scen(&map, &scen, algo.into(), json)?;
+            if mismatches > 0 {
+                return Err(format!("{mismatches} rows missed the optimal cost"));
+            }
+            Ok(())
+        }
+        Command::Plan {
+            map,
+            start,
+            goal,
+            algo,
+            heuristic,
+            weight,
+            diagonal,
+            inflate,
+            allow_unknown,
+            keypoints,
+            bottom_up,
+            epsilon,
+            json,
+        } => {
+            let (grid, scenario) = load::load_any(&map)?;
+            // Flags override the scenario's planner section, which overrides
+            // the defaults.
+            let mut options = scenario
+                .as_ref()
+                .map_or_else(GridPlanOptions::default, |s| s.grid_planner);
+            if let Some(a) = algo {
+                options.algorithm = a.into();
+            }
+            if let Some(h) = heuristic {
+                options.heuristic = h.into();
+            }
+            if let Some(w) = weight {
+                options.weight = w;
+            }
+            if let Some(d) = diagonal {
+                options.diagonal = d.into();
+            }
+            if let Some(r) = inflate {
+                if !(r.is_finite() && r >= 0.0) {
+                    return Err(format!(
+                        "--inflate {r}: must be a finite number ≥ 0 (metres)"
+                    ));
+                }
+                options.inflate_m = r;
+            }
+            options.allow_unknown |= allow_unknown;
+            options.keypoints |= keypoints;
+            if bottom_up.is_some() {
+                options.bottom_up_eps = bottom_up;
+            }
+            if let Some(eps) = epsilon {
+                options.safe.epsilon = eps;
+            }
+            let endpoint = |flag: Option<String>, name: &str, from_scenario: Option<GridPos>| match (
+                flag,
+                from_scenario,
+            ) {
+                (Some(s), _) => grid_cmds::parse_cell(&s),
+                (None, Some(p)) => Ok(p),
+                (None, None) => Err(format!("--{name} COLUMN,ROW is required for this map")),
+            };
+            let args = grid_cmds::PlanArgs {
+                start: endpoint(start, "start", scenario.as_ref().map(|s| s.start.pos()))?,
+                goal: endpoint(goal, "goal", scenario.as_ref().map(|s| s.goal.pos()))?,
+                options,
+                json,
+            };
+            grid_cmds::plan(&map, &grid, &args)
+        }
+        Command::Bench { .. } => Err("bench: being wired".into()),
     }
 }
 

@@ -6,11 +6,15 @@ use std::path::PathBuf;
 use std::process::{Command, Output};
 
 fn shared(rel: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data").join(rel)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data")
+        .join(rel)
 }
 
 fn repo(rel: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..").join(rel)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(rel)
 }
 
 fn planlab(args: &[&str]) -> Output {
@@ -30,7 +34,11 @@ fn stderr(o: &Output) -> String {
 
 /// Asserts a failure with exactly one `planlab: error:` line containing `needle`.
 fn assert_error(o: &Output, needle: &str) {
-    assert!(!o.status.success(), "expected failure, got stdout {}", stdout(o));
+    assert!(
+        !o.status.success(),
+        "expected failure, got stdout {}",
+        stdout(o)
+    );
     let err = stderr(o);
     let lines: Vec<&str> = err.lines().collect();
     assert_eq!(lines.len(), 1, "one error line expected, got {err:?}");
@@ -108,7 +116,11 @@ fn plan_on_ros_map_with_inflation_keypoints_and_bottom_up() {
     let fnodes = v["feature_nodes"].as_array().unwrap();
     assert_eq!(kp.first().unwrap(), &serde_json::json!([167, 218]));
     assert_eq!(kp.last().unwrap(), &serde_json::json!([230, 180]));
-    assert!(kp.len() * 4 < path, "{} key points for {path} nodes", kp.len());
+    assert!(
+        kp.len() * 4 < path,
+        "{} key points for {path} nodes",
+        kp.len()
+    );
     assert!(fnodes.len() * 4 < path);
 }
 
@@ -124,7 +136,10 @@ fn scen_json_reports_every_row_and_no_mismatch() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = stdout(&o);
-    let lines: Vec<Value> = out.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    let lines: Vec<Value> = out
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
     let rows = lines.len() - 1;
     let summary = lines.last().unwrap();
     assert_eq!(summary["rows"].as_u64().unwrap() as usize, rows);
@@ -167,19 +182,37 @@ fn bench_grid_prints_ratios() {
 }
 
 #[test]
-fn plan_accepts_a_scenario_json() {
-    let o = planlab(&[
-        "plan",
-        s(&repo("assets/scenarios/grid-demo.json")),
-        "--start",
-        "1,1",
-        "--goal",
-        "2,1",
-        "--json",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let v: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
-    assert!((v["cost"].as_f64().unwrap() - 1.0).abs() < 1e-9, "{v}");
+fn plan_uses_a_scenarios_endpoints_and_options_and_flags_override_them() {
+    let demo = repo("assets/scenarios/grid-demo.json");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["plan", s(&demo), "--json"];
+        args.extend_from_slice(extra);
+        let o = planlab(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        serde_json::from_str::<Value>(stdout(&o).trim()).unwrap()
+    };
+    let from_file = run(&[]);
+    let text = std::fs::read_to_string(&demo).unwrap();
+    let scenario: Value = serde_json::from_str(&text).unwrap();
+    let (st, gl) = (&scenario["start"], &scenario["goal"]);
+    let path = from_file["path"].as_array().unwrap();
+    assert_eq!(
+        path.first().unwrap(),
+        &serde_json::json!([st["col"], st["row"]])
+    );
+    assert_eq!(
+        path.last().unwrap(),
+        &serde_json::json!([gl["col"], gl["row"]])
+    );
+    // The scenario asks for key points and Bottom-Up.
+    assert!(from_file["keypoints"].as_array().unwrap().len() >= 2);
+    assert!(from_file["feature_nodes"].as_array().unwrap().len() >= 2);
+    // JPS is optimal too: same cost on the same (inflated) map.
+    let jps = run(&["--algo", "jps"]);
+    assert!((jps["cost"].as_f64().unwrap() - from_file["cost"].as_f64().unwrap()).abs() < 1e-9);
+    // Without inflation the wall gap is wider, so the path can only get shorter.
+    let raw = run(&["--inflate", "0"]);
+    assert!(raw["cost"].as_f64().unwrap() <= from_file["cost"].as_f64().unwrap() + 1e-9);
 }
 
 #[test]
@@ -191,8 +224,14 @@ fn bad_input_gives_one_clear_error_line() {
         "walled.map",
         b"type octile\nheight 5\nwidth 5\nmap\n.....\n.@@@.\n.@.@.\n.@@@.\n.....\n",
     );
-    let truncated = temp_file("trunc.map", b"type octile\nheight 5\nwidth 5\nmap\n.....\n..\n");
-    let huge = temp_file("huge.map", b"type octile\nheight 20000\nwidth 20000\nmap\n....\n");
+    let truncated = temp_file(
+        "trunc.map",
+        b"type octile\nheight 5\nwidth 5\nmap\n.....\n..\n",
+    );
+    let huge = temp_file(
+        "huge.map",
+        b"type octile\nheight 20000\nwidth 20000\nmap\n....\n",
+    );
     let no_image = temp_file(
         "noimg.yaml",
         b"image: nothere.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
@@ -202,22 +241,106 @@ fn bad_input_gives_one_clear_error_line() {
         b"image: bad.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
     );
     temp_file("bad.pgm", b"P5\n10 10\n255\nshort");
-    let bad_scen = temp_file("bad.scen", b"version 1\n0\tarena.map\t49\t49\t1\t11\tx\t12\t1\n");
+    let bad_scen = temp_file(
+        "bad.scen",
+        b"version 1\n0\tarena.map\t49\t49\t1\t11\tx\t12\t1\n",
+    );
+    let readme = repo("README.md");
     let cases: Vec<(Vec<&str>, &str)> = vec![
-        (vec!["plan", "/nonexistent.map", "--start", "1,1", "--goal", "2,2"], "cannot read"),
-        (vec!["plan", a, "--start", "1,1", "--goal", "99,99"], "off the"),
-        (vec!["plan", a, "--start", "0,0", "--goal", "4,12"], "obstacle"),
-        (vec!["plan", s(&walled), "--start", "0,0", "--goal", "2,2"], "unreachable"),
-        (vec!["plan", s(&truncated), "--start", "0,0", "--goal", "1,0"], "line"),
-        (vec!["plan", s(&huge), "--start", "0,0", "--goal", "1,0"], "too large"),
-        (vec!["plan", s(&no_image), "--start", "0,0", "--goal", "1,0"], "nothere.pgm"),
-        (vec!["plan", s(&bad_pgm_yaml), "--start", "0,0", "--goal", "1,0"], "bad.pgm"),
-        (vec!["plan", a, "--start", "1;13", "--goal", "4,12"], "invalid cell"),
-        (vec!["plan", a, "--start", "1,13", "--goal", "4,12", "--weight", "NaN"], "weight"),
-        (vec!["plan", a, "--start", "1,13", "--goal", "4,12", "--inflate", "-1"], "inflate"),
-        (vec!["plan", a, "--start", "1,13", "--goal", "4,12", "--bottom-up", "inf"], "bottom-up"),
-        (vec!["plan", a, "--start", "1,13", "--goal", "4,12", "--algo", "jps", "--diagonal", "always"], "jps"),
-        (vec!["plan", s(&repo("README.md")), "--start", "1,1", "--goal", "2,2"], "unknown map format"),
+        (
+            vec![
+                "plan",
+                "/nonexistent.map",
+                "--start",
+                "1,1",
+                "--goal",
+                "2,2",
+            ],
+            "cannot read",
+        ),
+        (
+            vec!["plan", a, "--start", "1,13", "--goal", "99,99"],
+            "off the",
+        ),
+        (
+            vec!["plan", a, "--start", "0,0", "--goal", "4,12"],
+            "obstacle",
+        ),
+        (
+            vec!["plan", s(&walled), "--start", "0,0", "--goal", "2,2"],
+            "unreachable",
+        ),
+        (
+            vec!["plan", s(&truncated), "--start", "0,0", "--goal", "1,0"],
+            "line",
+        ),
+        (
+            vec!["plan", s(&huge), "--start", "0,0", "--goal", "1,0"],
+            "too large",
+        ),
+        (
+            vec!["plan", s(&no_image), "--start", "0,0", "--goal", "1,0"],
+            "nothere.pgm",
+        ),
+        (
+            vec!["plan", s(&bad_pgm_yaml), "--start", "0,0", "--goal", "1,0"],
+            "bad.pgm",
+        ),
+        (
+            vec!["plan", a, "--start", "1;13", "--goal", "4,12"],
+            "invalid cell",
+        ),
+        (
+            vec![
+                "plan", a, "--start", "1,13", "--goal", "4,12", "--weight", "NaN",
+            ],
+            "weight",
+        ),
+        (
+            vec![
+                "plan",
+                a,
+                "--start",
+                "1,13",
+                "--goal",
+                "4,12",
+                "--inflate",
+                "-1",
+            ],
+            "inflate",
+        ),
+        (
+            vec![
+                "plan",
+                a,
+                "--start",
+                "1,13",
+                "--goal",
+                "4,12",
+                "--bottom-up",
+                "inf",
+            ],
+            "bottom-up",
+        ),
+        (
+            vec![
+                "plan",
+                a,
+                "--start",
+                "1,13",
+                "--goal",
+                "4,12",
+                "--algo",
+                "jps",
+                "--diagonal",
+                "always",
+            ],
+            "jump point search",
+        ),
+        (
+            vec!["plan", s(&readme), "--start", "1,1", "--goal", "2,2"],
+            "unknown map format",
+        ),
         (vec!["scen", a, s(&bad_scen)], "line 2"),
     ];
     for (args, needle) in cases {

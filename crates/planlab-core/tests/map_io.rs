@@ -560,3 +560,491 @@ proptest! {
         }
     }
 }
+
+// ----------------------------------------------------------------- Scenario
+
+use planlab_core::global::plan::{Algorithm, GridPlanOptions};
+use planlab_core::global::{Diagonal, Heuristic};
+use planlab_core::map::io::scenario::{
+    InlineMap, MapFileRef, MapSpec, RowEncoding, Scenario, ScenarioError, ScenarioPoint,
+    WorldPoint, SCENARIO_VERSION,
+};
+
+const DEMO: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../assets/scenarios/grid-demo.json"
+);
+
+#[test]
+fn grid_demo_asset_loads_and_is_what_the_docs_say() {
+    let text = std::fs::read_to_string(DEMO).unwrap();
+    let s = Scenario::from_json(&text).unwrap();
+    assert_eq!(s.version, SCENARIO_VERSION);
+    let g = s.inline_grid().unwrap().expect("inline map");
+    assert_eq!((g.width(), g.height()), (40, 30));
+    let (free, occ, unk) = g.counts();
+    assert!(occ > 40 && free > 600 && unk > 0, "{free} {occ} {unk}");
+    for p in [s.start, s.goal] {
+        assert_eq!(g.get(p.col as usize, p.row as usize), Some(Cell::Free));
+    }
+    // The start's world point is the centre of its cell.
+    let w = s.start.world.expect("start has a world point");
+    let (x, y) = g.cell_to_world(s.start.col as usize, s.start.row as usize);
+    assert!((w.x - x).abs() < 1e-9 && (w.y - y).abs() < 1e-9);
+    // Saving it again gives the same file.
+    assert_eq!(s.to_json_pretty().unwrap(), text);
+}
+
+#[test]
+fn grid_demo_is_solvable_with_its_own_settings() {
+    let s = Scenario::from_json(&std::fs::read_to_string(DEMO).unwrap()).unwrap();
+    let g = s
+        .load_grid(&mut |p| Err(format!("no files here: {p}")))
+        .unwrap();
+    let plan = planlab_core::global::plan::plan_on_map(
+        &g,
+        s.start.pos(),
+        s.goal.pos(),
+        &s.grid_planner,
+        false,
+    )
+    .unwrap();
+    assert_eq!(plan.path.cells.first(), Some(&s.start.pos()));
+    assert_eq!(plan.path.cells.last(), Some(&s.goal.pos()));
+}
+
+fn minimal(map: &str) -> String {
+    format!(
+        r#"{{"version": 1, "map": {map}, "start": {{"col": 0, "row": 0}}, "goal": {{"col": 2, "row": 1}}}}"#
+    )
+}
+
+#[test]
+fn scenario_minimal_defaults_and_encodings() {
+    let s = Scenario::from_json(&minimal(
+        r#"{"width": 3, "height": 2, "cells": ["..#", "?.."]}"#,
+    ))
+    .unwrap();
+    assert_eq!(s.name, "");
+    assert_eq!(s.grid_planner, GridPlanOptions::default());
+    let g = s.inline_grid().unwrap().unwrap();
+    assert_eq!(g.to_ascii(), "..#\n?..\n");
+    assert_eq!(g.resolution(), 1.0);
+    let r = Scenario::from_json(&minimal(
+        r#"{"width": 3, "height": 2, "resolution": 0.5, "origin": {"x": 1, "y": 2, "yaw": 0}, "rle": ["2.#", "?2."]}"#,
+    ))
+    .unwrap();
+    let rg = r.inline_grid().unwrap().unwrap();
+    assert_eq!(rg.cells(), g.cells());
+    assert_eq!(rg.resolution(), 0.5);
+    assert_eq!(rg.origin().y, 2.0);
+    assert!(matches!(
+        &r.map,
+        MapSpec::Inline(InlineMap {
+            encoding: RowEncoding::Rle,
+            ..
+        })
+    ));
+    // RLE is written back as RLE.
+    assert!(r.to_json_pretty().unwrap().contains("\"2.#\""));
+}
+
+#[test]
+fn scenario_planner_section_is_typed() {
+    let s = Scenario::from_json(
+        &minimal(r#"{"width": 3, "height": 2, "cells": ["...", "..."]}"#).replace(
+            r#""goal""#,
+            r#""grid_planner": {"algorithm": "safe-astar", "heuristic": "euclidean", "weight": 1.5,
+            "diagonal": "never", "allow_unknown": true, "inflate_m": 0.2, "keypoints": true,
+            "bottom_up_eps": 0.5}, "goal""#,
+        ),
+    )
+    .unwrap();
+    let p = s.grid_planner;
+    assert_eq!(p.algorithm, Algorithm::SafeAStar);
+    assert_eq!(p.heuristic, Heuristic::Euclidean);
+    assert_eq!(p.weight, 1.5);
+    assert_eq!(p.diagonal, Diagonal::Never);
+    assert!(p.allow_unknown && p.keypoints);
+    assert_eq!((p.inflate_m, p.bottom_up_eps), (0.2, Some(0.5)));
+}
+
+fn scenario_err(text: &str) -> ScenarioError {
+    match Scenario::from_json(text) {
+        Err(e) => e,
+        Ok(s) => panic!("accepted {text}: {s:?}"),
+    }
+}
+
+#[test]
+fn scenario_errors_are_specific() {
+    let inline = r#"{"width": 3, "height": 2, "cells": ["...", "..."]}"#;
+    let cases: Vec<(String, &str)> = vec![
+        (
+            minimal(inline).replace("\"version\": 1", "\"version\": 2"),
+            "version 2 is not supported",
+        ),
+        (
+            minimal(inline).replace("\"version\": 1,", ""),
+            "missing field `version`",
+        ),
+        (
+            minimal(inline).replace("\"start\"", "\"strat\""),
+            "unknown field `strat`",
+        ),
+        (
+            minimal(inline).replace(
+                "\"goal\"",
+                "\"grid_planner\": {\"heurisitc\": \"octile\"}, \"goal\"",
+            ),
+            "unknown field `grid_planner.heurisitc`",
+        ),
+        (
+            minimal(inline).replace(
+                "\"goal\"",
+                "\"grid_planner\": {\"safe\": {\"epsilom\": 1}}, \"goal\"",
+            ),
+            "unknown field `grid_planner.safe.epsilom`",
+        ),
+        (
+            minimal(inline).replace(
+                "\"goal\"",
+                "\"grid_planner\": {\"algorithm\": \"jps\", \"diagonal\": \"always\"}, \"goal\"",
+            ),
+            "jump point",
+        ),
+        (
+            minimal(inline).replace(
+                "\"goal\"",
+                "\"grid_planner\": {\"algorithm\": \"bfs\"}, \"goal\"",
+            ),
+            "bfs",
+        ),
+        (
+            minimal(inline).replace("\"goal\"", "\"grid_planner\": {\"weight\": 0.5}, \"goal\""),
+            "weight",
+        ),
+        (
+            minimal(inline).replace(
+                "\"goal\"",
+                "\"grid_planner\": {\"inflate_m\": -1}, \"goal\"",
+            ),
+            "inflate_m",
+        ),
+        (
+            minimal(inline).replace(
+                "\"goal\"",
+                "\"grid_planner\": {\"bottom_up_eps\": -1}, \"goal\"",
+            ),
+            "bottom_up_eps",
+        ),
+        (
+            minimal(r#"{"width": 3, "height": 2, "cells": ["...", ".."]}"#),
+            "row 2 has 2 characters",
+        ),
+        (
+            minimal(r#"{"width": 3, "height": 2, "cells": ["...", ".x."]}"#),
+            "row 2, column 2",
+        ),
+        (
+            minimal(r#"{"width": 3, "height": 2, "cells": ["..."]}"#),
+            "1 rows, expected height 2",
+        ),
+        (
+            minimal(r#"{"width": 3, "height": 2, "rle": ["3.", "4."]}"#),
+            "longer than the width",
+        ),
+        (
+            minimal(r#"{"width": 3, "height": 2, "cells": ["...", "..."], "rle": ["3.", "3."]}"#),
+            "not both",
+        ),
+        (minimal(r#"{"width": 3, "height": 2}"#), "needs `cells`"),
+        (
+            minimal(r#"{"cells": ["...", "..."]}"#),
+            "needs `width` and `height`",
+        ),
+        (
+            minimal(r#"{"width": 3, "height": 2, "resolution": -0.1, "cells": ["...", "..."]}"#),
+            "resolution",
+        ),
+        (
+            minimal(r#"{"width": 3, "height": 2, "resolution": 0, "cells": ["...", "..."]}"#),
+            "resolution",
+        ),
+        (
+            minimal(r#"{"width": 20000, "height": 20000, "rle": []}"#),
+            "too large",
+        ),
+        (
+            minimal(r#"{"width": 0, "height": 2, "cells": []}"#),
+            "empty",
+        ),
+        (minimal(r#"{"file": "maps/x.png"}"#), "unknown map format"),
+        (
+            minimal(r#"{"file": "maps/x.map", "cells": ["..."]}"#),
+            "not both",
+        ),
+        (
+            minimal(r#"{"file": "maps/x.map", "resolution": -1}"#),
+            "resolution",
+        ),
+        (
+            minimal(r#"{"width": 2, "height": 2, "cells": ["..", ".."]}"#),
+            "goal (2, 1) is outside the 2×2 map",
+        ),
+        (
+            minimal(inline).replace(
+                r#""col": 0, "row": 0"#,
+                r#""col": 0, "row": 0, "world": {"x": 2.5, "y": 0.5}"#,
+            ),
+            "lies in cell (2, 1)",
+        ),
+        (
+            minimal(inline).replace("\"version\": 1", "\"version\": 1, \"version\": 1"),
+            "duplicate field",
+        ),
+        ("[1, 2]".into(), "a scenario is a JSON object"),
+        (
+            minimal(inline).replace(r#"{"col": 0, "row": 0}"#, "[0, 0]"),
+            "expected an object at `start`",
+        ),
+        ("{\"version\": 1, ".into(), "EOF"),
+        ("{\"version\": 1e400}".into(), "number out of range"),
+        ("{\"version\": \"1\"}".into(), "invalid type: string \"1\""),
+        ("{\"version\": NaN}".into(), "expected value"),
+    ];
+    for (text, want) in cases {
+        let e = scenario_err(&text).to_string();
+        assert!(e.contains(want), "{text}\n  gave: {e}\n  want: {want}");
+        assert!(!e.contains('\n'), "one line: {e}");
+    }
+    let e = scenario_err("{\n  \"version\": 1,\n  \"nmae\": \"x\"\n}");
+    assert!(matches!(e, ScenarioError::Json { line: 3, .. }), "{e:?}");
+}
+
+#[test]
+fn scenario_file_reference_loads_through_the_reader() {
+    let text = r#"{"version": 1, "name": "tb3", "map": {"file": "maps/turtlebot3/map.yaml"},
+        "start": {"col": 200, "row": 200, "world": {"x": 0.025, "y": -0.825}}, "goal": {"col": 190, "row": 190}}"#;
+    let s = Scenario::from_json(text).unwrap();
+    assert_eq!(s.inline_grid().unwrap(), None);
+    let mut asked = Vec::new();
+    let g = s
+        .load_grid(&mut |p| {
+            asked.push(p.to_string());
+            let rel = p.strip_prefix("maps/").ok_or("outside maps/")?;
+            std::fs::read(format!("{DATA}/rosmaps/{rel}")).map_err(|e| e.to_string())
+        })
+        .unwrap();
+    assert_eq!(
+        asked,
+        ["maps/turtlebot3/map.yaml", "maps/turtlebot3/map.pgm"]
+    );
+    assert_eq!((g.width(), g.height(), g.resolution()), (384, 384, 0.05));
+    // A reader failure names the file.
+    let e = s.load_grid(&mut |_| Err("gone".into())).unwrap_err();
+    assert_eq!(e.to_string(), "cannot read maps/turtlebot3/map.yaml: gone");
+
+    // A Moving AI map with a resolution override.
+    let m = Scenario::from_json(
+        r#"{"version": 1, "map": {"file": "arena.map", "resolution": 0.1, "origin": {"x": -1, "y": 0, "yaw": 0}},
+            "start": {"col": 1, "row": 11}, "goal": {"col": 47, "row": 40}}"#,
+    )
+    .unwrap();
+    let g = m
+        .load_grid(&mut |_| Ok(read_bytes("movingai/dao/arena.map")))
+        .unwrap();
+    assert_eq!((g.width(), g.resolution(), g.origin().x), (49, 0.1, -1.0));
+    // Start/goal are checked against the loaded map.
+    let mut off = m.clone();
+    off.goal = ScenarioPoint::cell(49, 0);
+    assert!(off.validate().is_ok(), "not checkable without the file");
+    let e = off
+        .load_grid(&mut |_| Ok(read_bytes("movingai/dao/arena.map")))
+        .unwrap_err();
+    assert!(e.to_string().contains("outside the 49×49 map"), "{e}");
+}
+
+#[test]
+fn scenario_with_inline_grid_picks_encoding_and_validates_on_save() {
+    let small = OccupancyGrid::from_ascii("..\n.#\n").unwrap();
+    let s = Scenario::new("s", small.clone(), GridPos::new(0, 0), GridPos::new(1, 0));
+    assert!(matches!(
+        &s.map,
+        MapSpec::Inline(InlineMap {
+            encoding: RowEncoding::Plain,
+            ..
+        })
+    ));
+    let big = OccupancyGrid::new(101, 3).unwrap();
+    let s2 = s.clone().with_inline_grid(big.clone());
+    assert!(matches!(
+        &s2.map,
+        MapSpec::Inline(InlineMap {
+            encoding: RowEncoding::Rle,
+            ..
+        })
+    ));
+    assert!(s2.to_json_pretty().unwrap().contains("\"101.\""));
+    assert_eq!(
+        Scenario::from_json(&s2.to_json_pretty().unwrap()).unwrap(),
+        s2
+    );
+    // Values only Rust code can produce are caught before writing.
+    let mut bad = s.clone();
+    bad.grid_planner.inflate_m = f64::NAN;
+    assert!(bad.to_json_pretty().is_err());
+    let mut bad = s.clone();
+    bad.start.world = Some(WorldPoint {
+        x: f64::INFINITY,
+        y: 0.0,
+    });
+    assert!(bad.to_json_pretty().is_err());
+    let mut bad = s;
+    bad.map = MapSpec::File(MapFileRef {
+        file: "m.map".into(),
+        resolution: Some(f64::NAN),
+        origin: None,
+    });
+    assert!(bad.to_json_pretty().is_err());
+}
+
+/// Random planner options that validate.
+fn arb_options() -> impl Strategy<Value = GridPlanOptions> {
+    (
+        prop_oneof![
+            Just(Algorithm::AStar),
+            Just(Algorithm::Dijkstra),
+            Just(Algorithm::Jps),
+            Just(Algorithm::SafeAStar)
+        ],
+        prop_oneof![
+            Just(Heuristic::Manhattan),
+            Just(Heuristic::Euclidean),
+            Just(Heuristic::Octile),
+            Just(Heuristic::Chebyshev),
+            Just(Heuristic::Zero)
+        ],
+        1.0f64..5.0,
+        prop_oneof![
+            Just(Diagonal::Never),
+            Just(Diagonal::NoCornerCutting),
+            Just(Diagonal::OneSideFree),
+            Just(Diagonal::Always)
+        ],
+        any::<bool>(),
+        0.0f64..2.0,
+        any::<bool>(),
+        proptest::option::of(0.0f64..4.0),
+    )
+        .prop_map(
+            |(
+                algorithm,
+                heuristic,
+                weight,
+                mut diagonal,
+                allow_unknown,
+                inflate_m,
+                keypoints,
+                bottom_up_eps,
+            )| {
+                // JPS is defined for the Moving AI move rule only.
+                if algorithm == Algorithm::Jps {
+                    diagonal = Diagonal::NoCornerCutting;
+                }
+                GridPlanOptions {
+                    algorithm,
+                    heuristic,
+                    weight,
+                    diagonal,
+                    allow_unknown,
+                    inflate_m,
+                    keypoints,
+                    bottom_up_eps,
+                    ..GridPlanOptions::default()
+                }
+            },
+        )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn scenario_round_trips_losslessly(
+        g in arb_grid3(30),
+        res in 1e-3f64..10.0, x in -1e6f64..1e6, y in -1e6f64..1e6, yaw in -3.2f64..3.2,
+        sc in 0.0f64..1.0, sr in 0.0f64..1.0, gc in 0.0f64..1.0, gr in 0.0f64..1.0,
+        with_world in any::<bool>(), rle in any::<bool>(),
+        name in "\\PC{0,20}", description in "\\PC{0,60}",
+        options in arb_options(),
+    ) {
+        let g = g.with_frame(res, Pose2 { x, y, yaw }).unwrap();
+        let pick = |u: f64, n: usize| ((u * n as f64) as usize).min(n - 1) as u32;
+        let start = GridPos::new(pick(sc, g.width()), pick(sr, g.height()));
+        let goal = GridPos::new(pick(gc, g.width()), pick(gr, g.height()));
+        let mut s = Scenario::new(name, g.clone(), start, goal);
+        s.description = description;
+        s.grid_planner = options;
+        if let MapSpec::Inline(m) = &mut s.map {
+            m.encoding = if rle { RowEncoding::Rle } else { RowEncoding::Plain };
+        }
+        if with_world {
+            let (wx, wy) = g.cell_to_world(start.col as usize, start.row as usize);
+            s.start.world = Some(WorldPoint { x: wx, y: wy });
+        }
+        let json = s.to_json_pretty().unwrap();
+        let back = Scenario::from_json(&json).unwrap();
+        prop_assert_eq!(&back, &s);
+        prop_assert_eq!(back.inline_grid().unwrap().unwrap(), g);
+        // And the compact form reads the same.
+        let compact = serde_json::to_string(&s).unwrap();
+        prop_assert_eq!(Scenario::from_json(&compact).unwrap(), s);
+    }
+
+    #[test]
+    fn scenario_parser_never_panics_on_strings(s in "\\PC{0,300}") {
+        let _ = Scenario::from_json(&s);
+    }
+
+    #[test]
+    fn scenario_parser_never_panics_on_mutated_files(
+        cut in 0.0f64..1.0, pos in 0.0f64..1.0, ch in "[\\[\\]{}\",:0-9.#?a-z -]",
+    ) {
+        let text = std::fs::read_to_string(DEMO).unwrap();
+        // Truncations never panic and are errors (the closing brace is lost).
+        let floor = |mut i: usize| { while !text.is_char_boundary(i) { i -= 1; } i };
+        let n = floor(((text.len() - 2) as f64 * cut) as usize);
+        prop_assert!(Scenario::from_json(&text[..n]).is_err());
+        // Single-character substitutions never panic.
+        let i = floor(((text.len() - 1) as f64 * pos) as usize);
+        let end = i + text[i..].chars().next().map_or(1, char::len_utf8);
+        let mut mutated = text.clone();
+        mutated.replace_range(i..end, &ch);
+        let _ = Scenario::from_json(&mutated);
+    }
+}
+
+#[test]
+fn schema_doc_examples_are_valid_scenarios() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let doc = std::fs::read_to_string(format!("{root}/docs/scenario-schema.md")).unwrap();
+    let blocks: Vec<&str> = doc
+        .split("```json\n")
+        .skip(1)
+        .map(|b| b.split("```").next().unwrap())
+        .collect();
+    assert_eq!(blocks.len(), 3, "smallest, by reference, full example");
+    for block in &blocks {
+        let s = Scenario::from_json(block).unwrap_or_else(|e| panic!("{e}\n{block}"));
+        // File references resolve relative to assets/scenarios/.
+        let g = s
+            .load_grid(&mut |p| {
+                std::fs::read(format!("{root}/assets/scenarios/{p}")).map_err(|e| e.to_string())
+            })
+            .unwrap_or_else(|e| panic!("{e}\n{block}"));
+        assert!(g.width() > 0);
+    }
+    let demo = std::fs::read_to_string(DEMO).unwrap();
+    assert_eq!(blocks[2], demo, "the doc shows the asset verbatim");
+}

@@ -186,11 +186,15 @@ impl MapHandle {
         self.check_on_map(col0, row0)?;
         self.check_on_map(col1, row1)?;
         let mut crossed = Vec::new();
-        supercover(GridPos::new(col0, row0), GridPos::new(col1, row1), |c, r, corner| {
-            if corner.is_none() {
-                crossed.push((c, r));
-            }
-        });
+        supercover(
+            GridPos::new(col0, row0),
+            GridPos::new(col1, row1),
+            |c, r, corner| {
+                if corner.is_none() {
+                    crossed.push((c, r));
+                }
+            },
+        );
         let mut changed = 0;
         for (c, r) in crossed {
             // Cells of the walk lie in the endpoints' bounding box, so on the map.

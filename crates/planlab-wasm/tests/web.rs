@@ -51,7 +51,10 @@ fn astar_cost_and_path_arrays() {
     // Every step is a king move and the reported cost is the sum of steps.
     let mut len = 0.0;
     for w in path.chunks(2).collect::<Vec<_>>().windows(2) {
-        let (dc, dr) = (w[1][0] as i64 - w[0][0] as i64, w[1][1] as i64 - w[0][1] as i64);
+        let (dc, dr) = (
+            w[1][0] as i64 - w[0][0] as i64,
+            w[1][1] as i64 - w[0][1] as i64,
+        );
         assert!(dc.abs() <= 1 && dr.abs() <= 1 && (dc, dr) != (0, 0));
         len += if dc != 0 && dr != 0 { SQRT2 } else { 1.0 };
     }
@@ -71,7 +74,16 @@ fn jps_and_dijkstra_agree_with_astar() {
     let map = MapHandle::from_ascii(MAP).unwrap();
     let a = plan(&map, 6, 0, 0, 4, options(r#"{"algorithm":"astar"}"#), false).unwrap();
     let j = plan(&map, 6, 0, 0, 4, options(r#"{"algorithm":"jps"}"#), false).unwrap();
-    let d = plan(&map, 6, 0, 0, 4, options(r#"{"algorithm":"dijkstra"}"#), false).unwrap();
+    let d = plan(
+        &map,
+        6,
+        0,
+        0,
+        4,
+        options(r#"{"algorithm":"dijkstra"}"#),
+        false,
+    )
+    .unwrap();
     assert!((a.cost() - j.cost()).abs() < 1e-9);
     assert!((a.cost() - d.cost()).abs() < 1e-9);
     // Not recording leaves the expanded list empty but still counts.
@@ -90,14 +102,26 @@ fn start_in_wall_is_a_js_error_with_the_core_message() {
 #[wasm_bindgen_test]
 fn bad_options_and_files_are_errors_not_panics() {
     let map = MapHandle::from_ascii(MAP).unwrap();
-    let err = plan(&map, 0, 0, 6, 4, options(r#"{"algorithm":"teleport"}"#), false).unwrap_err();
+    let err = plan(
+        &map,
+        0,
+        0,
+        6,
+        4,
+        options(r#"{"algorithm":"teleport"}"#),
+        false,
+    )
+    .unwrap_err();
     assert!(message(err).starts_with("invalid plan options"));
     let err = plan(&map, 0, 0, 6, 4, options(r#"{"weight":0.5}"#), false).unwrap_err();
     assert!(message(err).contains("weight"));
     let err = MapHandle::from_movingai("type octile\nheight 2\nwidth 3\nmap\n...\n").unwrap_err();
     assert!(message(err).contains("Moving AI map"));
-    let err = MapHandle::from_ros("image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n", b"P5 2 2 255\n\x00")
-        .unwrap_err();
+    let err = MapHandle::from_ros(
+        "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n",
+        b"P5 2 2 255\n\x00",
+    )
+    .unwrap_err();
     assert!(!message(err).is_empty());
 }
 
@@ -111,8 +135,10 @@ fn editing_cells_replans_and_refuses_off_map() {
     assert!(message(err).starts_with("goal is unreachable"));
     let err = map.set_cell(7, 0, 1).unwrap_err();
     assert!(message(err).contains("outside"));
-    // A stroke re-opens the row: every crossed cell changes.
-    assert_eq!(map.paint_segment(0, 2, 6, 2, 0).unwrap(), 6);
+    // A stroke re-opens the whole (now all-wall) row: all 7 cells change,
+    // and repeating it changes none.
+    assert_eq!(map.paint_segment(0, 2, 6, 2, 0).unwrap(), 7);
+    assert_eq!(map.paint_segment(6, 2, 0, 2, 0).unwrap(), 0);
     assert!(plan(&map, 0, 0, 0, 4, JsValue::UNDEFINED, false).is_ok());
 }
 
@@ -122,7 +148,10 @@ fn defaults_and_scen_batch() {
     let algo = js_sys::Reflect::get(&d, &"algorithm".into()).unwrap();
     assert_eq!(algo.as_string().as_deref(), Some("astar"));
     let map = MapHandle::from_ascii(MAP).unwrap();
-    let scen = format!("version 1\n0\tm.map\t7\t5\t0\t0\t0\t4\t{}\n", 8.0 + 2.0 * SQRT2);
+    let scen = format!(
+        "version 1\n0\tm.map\t7\t5\t0\t0\t0\t4\t{}\n",
+        8.0 + 2.0 * SQRT2
+    );
     let batch = ScenBatch::new(&map, &scen, JsValue::UNDEFINED).unwrap();
     assert_eq!(batch.rows(), 1);
     assert!((batch.solve_all().unwrap() - batch.optimal_sum()).abs() < 1e-9);

@@ -9,6 +9,7 @@ pub mod astar;
 pub mod bottom_up;
 pub mod jps;
 pub mod keypoints;
+pub mod plan;
 pub mod safe_astar;
 mod search;
 

@@ -279,12 +279,12 @@ mod tests {
         let f = [inf, 4.0, inf, inf, 0.0, inf, 9.0, inf];
         let mut out = [0.0; 8];
         edt_1d(&f, &mut out, &mut Vec::new(), &mut Vec::new());
-        for q in 0..8 {
+        for (q, &got) in out.iter().enumerate() {
             let brute = (0..8)
                 .filter(|&p| f[p] < inf)
                 .map(|p| (q as f64 - p as f64).powi(2) + f[p])
                 .fold(inf, f64::min);
-            assert_eq!(out[q], brute, "q = {q}");
+            assert_eq!(got, brute, "q = {q}");
         }
         edt_1d(&[inf; 3], &mut out[..3], &mut Vec::new(), &mut Vec::new());
         assert!(out[..3].iter().all(|x| x.is_infinite()));

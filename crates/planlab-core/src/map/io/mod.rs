@@ -5,3 +5,4 @@
 
 pub mod movingai;
 pub mod ros;
+pub mod scenario;

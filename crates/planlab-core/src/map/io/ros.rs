@@ -112,8 +112,8 @@ impl RosMapMeta {
     }
 
     /// Checks the ranges [`parse_yaml`] enforces: resolution finite and
-    /// > 0, origin finite, thresholds in \[0, 1\] with free < occupied, image
-    /// not empty.
+    /// positive, origin finite, thresholds in \[0, 1\] with free below
+    /// occupied, image not empty.
     pub fn validate(&self) -> Result<(), MapError> {
         if self.image.trim().is_empty() {
             return Err(MapError::parse(YAML_FORMAT, 0, "`image` is empty"));

@@ -275,7 +275,10 @@ fn decode_rle(row: &str, r: usize, width: usize, cells: &mut Vec<Cell>) -> Resul
     for ch in row.chars() {
         if let Some(d) = ch.to_digit(10) {
             // Saturating: any count above the width is refused below anyway.
-            let c = count.unwrap_or(0).saturating_mul(10).saturating_add(d as usize);
+            let c = count
+                .unwrap_or(0)
+                .saturating_mul(10)
+                .saturating_add(d as usize);
             count = Some(c);
             continue;
         }
@@ -289,9 +292,7 @@ fn decode_rle(row: &str, r: usize, width: usize, cells: &mut Vec<Cell>) -> Resul
             return Err(format!("map.rle row {r}: a run has count 0"));
         }
         if k > width - n {
-            return Err(format!(
-                "map.rle row {r} is longer than the width {width}"
-            ));
+            return Err(format!("map.rle row {r} is longer than the width {width}"));
         }
         n += k;
         cells.extend(std::iter::repeat(cell).take(k));
@@ -392,7 +393,9 @@ impl From<MapSpec> for MapSpecJson {
             MapSpec::Inline(InlineMap { grid, encoding }) => {
                 let rows = grid.cells().chunks(grid.width().max(1));
                 let rows: Vec<String> = match encoding {
-                    RowEncoding::Plain => rows.map(|r| r.iter().map(|&c| cell_char(c)).collect()).collect(),
+                    RowEncoding::Plain => rows
+                        .map(|r| r.iter().map(|&c| cell_char(c)).collect())
+                        .collect(),
                     RowEncoding::Rle => rows.map(encode_rle).collect(),
                 };
                 let (cells, rle) = match encoding {
@@ -436,13 +439,64 @@ pub struct Scenario {
     pub grid_planner: GridPlanOptions,
 }
 
-/// Only the version, read first so a newer file is refused with a version
-/// message rather than an "unknown field" one.
-#[derive(Deserialize)]
-#[serde(rename = "Scenario")]
-struct VersionProbe {
-    #[serde(default)]
-    version: Option<u64>,
+/// Refuses fields the typed parse ignored. Sections defined elsewhere (the
+/// planner options) need not opt into `deny_unknown_fields`: every key of the
+/// input must reappear when the parsed scenario is written back, otherwise
+/// it was not read. Reports the dotted path and the line of the key.
+fn check_no_unknown_fields(
+    text: &str,
+    input: &serde_json::Value,
+    parsed: &Scenario,
+) -> Result<(), ScenarioError> {
+    use serde_json::Value;
+    /// The dotted path of the first problem and what it is.
+    fn walk(input: &Value, known: &Value, path: &str) -> Option<(String, &'static str)> {
+        match (input, known) {
+            (Value::Object(a), Value::Object(b)) => a.iter().find_map(|(k, v)| {
+                let here = if path.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{path}.{k}")
+                };
+                match b.get(k) {
+                    None => Some((here, "unknown field")),
+                    Some(w) => walk(v, w, &here),
+                }
+            }),
+            // serde accepts a struct written as an array of its fields; the
+            // format does not.
+            (Value::Array(_), Value::Object(_)) => {
+                Some((path.to_string(), "expected an object at"))
+            }
+            (Value::Array(a), Value::Array(b)) => a
+                .iter()
+                .zip(b)
+                .enumerate()
+                .find_map(|(i, (v, w))| walk(v, w, &format!("{path}[{i}]"))),
+            _ => None,
+        }
+    }
+    let known = serde_json::to_value(parsed)?;
+    let Some((path, what)) = walk(input, &known, "") else {
+        return Ok(());
+    };
+    let key = path.rsplit('.').next().unwrap_or(&path);
+    let needle = format!("\"{key}\"");
+    let (line, column) = text
+        .lines()
+        .enumerate()
+        .find_map(|(i, l)| l.find(&needle).map(|c| (i + 1, c + 1)))
+        .unwrap_or((0, 0));
+    let hint = if what == "unknown field" {
+        " (check its spelling and section)"
+    } else {
+        ""
+    };
+    Err(ScenarioError::Json {
+        line,
+        column,
+        message: format!("{what} `{path}`{hint}"),
+    })
 }
 
 impl Scenario {
@@ -477,10 +531,21 @@ impl Scenario {
         }
     }
 
-    /// Reads and validates a scenario ([`Scenario::validate`]).
+    /// Reads and validates a scenario ([`Scenario::validate`]). Unknown
+    /// fields anywhere are errors naming their dotted path.
     pub fn from_json(text: &str) -> Result<Scenario, ScenarioError> {
-        let probe: VersionProbe = serde_json::from_str(text)?;
-        if let Some(v) = probe.version {
+        // Untyped first: syntax errors, the top-level shape and the version
+        // come before field errors (a newer file gets a version message, not
+        // "unknown field").
+        let value: serde_json::Value = serde_json::from_str(text)?;
+        let Some(object) = value.as_object() else {
+            return Err(ScenarioError::Json {
+                line: 1,
+                column: 1,
+                message: "a scenario is a JSON object `{ \"version\": 1, … }`".into(),
+            });
+        };
+        if let Some(v) = object.get("version").and_then(serde_json::Value::as_u64) {
             if v != u64::from(SCENARIO_VERSION) {
                 return Err(ScenarioError::UnsupportedVersion {
                     found: v,
@@ -489,6 +554,7 @@ impl Scenario {
             }
         }
         let s: Scenario = serde_json::from_str(text)?;
+        check_no_unknown_fields(text, &value, &s)?;
         s.validate()?;
         Ok(s)
     }
