@@ -8,7 +8,9 @@
 // timed with performance.now() around one wasm call per repetition, so the
 // boundary cost is negligible. Prints one JSON line per map:
 //   {"map","rows","native_astar_ms","wasm_astar_ms","ratio"}
-// with the median milliseconds per query and ratio = wasm / native.
+// with the median milliseconds per query and ratio = wasm / native. The
+// 512×512 maps use every k-th .scen row (k fixed by --sample, default ≤ 250
+// rows), the same rows on both sides.
 //
 // Needs a built site (npm --prefix web run build:wasm && npm --prefix web run build).
 // Usage: node scripts/bench-wasm.mjs [--sample N] [--quick]
@@ -25,9 +27,10 @@ const sampleArg = args.indexOf('--sample');
 const SAMPLE = sampleArg >= 0 ? Number(args[sampleArg + 1]) : 250;
 
 const MAPS = [
-  { name: 'dao/arena', reps: quick ? 5 : 40 },
-  { name: 'maze/maze512-1-0', reps: quick ? 2 : 5 },
-  { name: 'random/random512-10-0', reps: quick ? 2 : 5 },
+  // inner = whole-scenario passes per timed block (≥ ~50 ms per block).
+  { name: 'dao/arena', reps: quick ? 3 : 11, inner: 30 },
+  { name: 'maze/maze512-1-0', reps: quick ? 2 : 5, inner: 1 },
+  { name: 'random/random512-10-0', reps: quick ? 2 : 5, inner: 1 },
 ];
 
 const median = (xs) => {
@@ -50,9 +53,9 @@ function cargo(argv) {
   if (r.status !== 0) throw new Error(`cargo ${argv.join(' ')} failed`);
 }
 
-function native(mapFile, scenFile, reps) {
+function native(mapFile, scenFile, reps, inner) {
   const exe = path.join(REPO, 'target/release/examples/bench_native');
-  const r = spawnSync(exe, [mapFile, scenFile, String(reps), 'astar'], { encoding: 'utf8' });
+  const r = spawnSync(exe, [mapFile, scenFile, String(reps), 'astar', String(inner)], { encoding: 'utf8' });
   if (r.status !== 0) throw new Error(`bench_native failed: ${r.stderr}`);
   return JSON.parse(r.stdout.trim().split('\n').pop());
 }
@@ -78,11 +81,12 @@ async function main() {
       const scenFile = path.join(tmp, `${path.basename(m.name)}.scen`);
       fs.writeFileSync(scenFile, scenText);
 
-      const nat = native(mapFile, scenFile, m.reps);
-      const web = await page.evaluate(([mt, st, reps]) => window.planlabBench(mt, st, reps), [
+      const nat = native(mapFile, scenFile, m.reps, m.inner);
+      const web = await page.evaluate(([mt, st, reps, inner]) => window.planlabBench(mt, st, reps, inner), [
         mapText,
         scenText,
         m.reps,
+        m.inner,
       ]);
       if (web.rows !== nat.rows) throw new Error(`${m.name}: row counts differ`);
       // Same code, same answers: totals agree and match the scenario optimum.
@@ -92,8 +96,8 @@ async function main() {
       if (Math.abs(web.totalCost - web.optimalSum) > 1e-3 * web.rows) {
         throw new Error(`${m.name}: total ${web.totalCost} != optimal sum ${web.optimalSum}`);
       }
-      const nativeMs = median(nat.times_ms) / nat.rows;
-      const wasmMs = median(web.timesMs) / web.rows;
+      const nativeMs = median(nat.times_ms) / (nat.rows * nat.inner);
+      const wasmMs = median(web.timesMs) / (web.rows * web.inner);
       const line = {
         map: path.basename(m.name),
         rows: web.rows,

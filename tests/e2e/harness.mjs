@@ -95,6 +95,7 @@ export async function startSession() {
   }
   const port = await freePort();
   const sc = serveCommand(port);
+  process.stderr.write(`# serving web/dist: ${[sc.cmd, ...(sc.args ?? [])].join(' ')}\n`);
   const child = spawn(sc.cmd, sc.args ?? [], {
     cwd: sc.cwd,
     shell: sc.shell ?? false,

@@ -183,11 +183,13 @@ pub fn plan_grid_for(grid: &OccupancyGrid, options: &GridPlanOptions) -> Result<
 /// let map = OccupancyGrid::from_ascii("
 /// .....
 /// .###.
-/// .....
+/// .#...
 /// ").unwrap();
-/// let opts = GridPlanOptions { algorithm: Algorithm::Jps, ..Default::default() };
+/// let opts = GridPlanOptions { algorithm: Algorithm::Jps, keypoints: true, ..Default::default() };
 /// let plan = plan_on_map(&map, GridPos::new(0, 1), GridPos::new(4, 1), &opts, false).unwrap();
-/// assert!((plan.path.cost - (2.0 + 2.0 * 2f64.sqrt())).abs() < 1e-9);
+/// // No corner cutting: round the walls through the top row.
+/// assert_eq!(plan.path.cost, 6.0);
+/// assert_eq!(plan.keypoints, vec![GridPos::new(0, 1), GridPos::new(0, 0), GridPos::new(4, 0), GridPos::new(4, 1)]);
 /// ```
 pub fn plan_on_map(
     grid: &OccupancyGrid,
