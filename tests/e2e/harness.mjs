@@ -95,7 +95,7 @@ export async function startSession() {
   }
   const port = await freePort();
   const sc = serveCommand(port);
-  process.stderr.write(`# serving web/dist: ${[sc.cmd, ...(sc.args ?? [])].join(' ')}\n`);
+  process.stderr.write(`serving web/dist: ${[sc.cmd, ...(sc.args ?? [])].join(' ')}\n`);
   const child = spawn(sc.cmd, sc.args ?? [], {
     cwd: sc.cwd,
     shell: sc.shell ?? false,
@@ -153,6 +153,9 @@ export function screenshot(page, name) {
 
 /** Client (viewport) coordinates of a cell centre, from the canvas view. */
 export async function cellPoint(page, col, row) {
+  // Let pending layout (an error box appearing resizes the canvas) and the
+  // view update settle first.
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
   return page.evaluate(
     ([c, r]) => {
       const cv = document.getElementById('map-canvas');
@@ -192,17 +195,18 @@ export async function setEndpoints(page, start, goal) {
   await clickCell(page, goal[0], goal[1]);
 }
 
-/** Drags the pointer from one cell to another with the current tool. */
+/**
+ * Drags the pointer from one cell to another with the current tool. A stroke
+ * re-plans in the next animation frame when it changed a cell (painting over
+ * walls changes nothing), so this waits two frames after releasing.
+ */
 export async function dragCells(page, from, to, steps = 20) {
   const a = await cellPoint(page, from[0], from[1]);
   const b = await cellPoint(page, to[0], to[1]);
-  await afterReplan(page, async () => {
-    await page.mouse.move(a.x, a.y);
-    await page.mouse.down();
-    await page.mouse.move(b.x, b.y, { steps });
-    await page.mouse.up();
-  });
-  // Strokes re-plan once per frame; wait for the last frame's plan.
+  await page.mouse.move(a.x, a.y);
+  await page.mouse.down();
+  await page.mouse.move(b.x, b.y, { steps });
+  await page.mouse.up();
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 }
 

@@ -7,6 +7,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import {
+  REPO,
   SHARED,
   startSession,
   openPage,
@@ -16,6 +17,7 @@ import {
   clickCell,
   dragCells,
   afterReplan,
+  cellPoint,
   metric,
   pathCells,
   pixelAt,
@@ -228,6 +230,93 @@ test('TurtleBot3 preset, safe A* and Bottom-Up run without console errors', asyn
   assert.equal(await errorText(page), null);
   assert.match(await page.textContent('#metric-keypoints'), /\d+ · \d+ BU/);
   await screenshot(page, '07-turtlebot3-safe-astar.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('a 512×512 Moving AI map opens from disk and plans the optimum', async () => {
+  const { page, problems } = await openPage(session);
+  const mapFile = path.join(SHARED, 'data/movingai/random/random512-10-0.map');
+  await afterReplan(page, () => page.setInputFiles('#file-input', mapFile));
+  assert.equal(await errorText(page), null);
+  assert.match(await page.textContent('#map-size'), /^512\s*×\s*512$/);
+  // The longest query of the scenario, clicked at a fitted scale of ~1.3 px per cell.
+  const rows = readScen(`${mapFile}.scen`);
+  const row = rows.reduce((a, b) => (b.optimal > a.optimal ? b : a));
+  await setEndpoints(page, row.start, row.goal);
+  assert.equal(await page.getAttribute('#map-canvas', 'data-start'), row.start.join(','));
+  assert.equal(await page.getAttribute('#map-canvas', 'data-goal'), row.goal.join(','));
+  assert.equal(await errorText(page), null);
+  near(await metric(page, 'cost'), row.optimal, 1e-3, 'A* cost on random512');
+  // Dijkstra expands a large part of the map; the page keeps up.
+  await afterReplan(page, () => page.selectOption('#algorithm', 'dijkstra'));
+  near(await metric(page, 'cost'), row.optimal, 1e-3, 'Dijkstra cost on random512');
+  assert.ok((await metric(page, 'expanded')) > 10_000);
+  await screenshot(page, '08-random512-dijkstra.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('scenario JSON: preset with inline map, and a file reference opened with its map', async () => {
+  const { page, problems } = await openPage(session);
+  await afterReplan(page, () => page.selectOption('#preset', 'grid-demo'));
+  assert.equal(await errorText(page), null);
+  assert.match(await page.textContent('#map-size'), /^40\s*×\s*30$/);
+  assert.equal(await page.textContent('#map-resolution'), '0.1 m / cell');
+  const cost = await metric(page, 'cost');
+  assert.ok(cost > 0);
+  near(await metric(page, 'length'), cost * 0.1, 1e-9, 'length = cost × 0.1 m');
+  await screenshot(page, '09-scenario-grid-demo.png');
+
+  // A scenario naming a map file: alone it is an error, with the file it loads.
+  const scen = JSON.stringify({
+    version: 1,
+    name: 'arena query',
+    map: { file: 'maps/arena.map' },
+    start: { col: ROW.start[0], row: ROW.start[1] },
+    goal: { col: ROW.goal[0], row: ROW.goal[1] },
+  });
+  const scenFile = { name: 'arena-query.json', mimeType: 'application/json', buffer: Buffer.from(scen) };
+  await page.setInputFiles('#file-input', [scenFile]);
+  await page.waitForFunction(() => !document.getElementById('error').hidden);
+  assert.match(await errorText(page), /arena\.map/);
+  assert.match(await page.textContent('#map-size'), /^40\s*×\s*30$/);
+  await afterReplan(page, () =>
+    page.setInputFiles('#file-input', [
+      scenFile,
+      { name: 'arena.map', mimeType: 'text/plain', buffer: fs.readFileSync(path.join(REPO, 'assets/maps/arena.map')) },
+    ]),
+  );
+  assert.equal(await errorText(page), null);
+  assert.match(await page.textContent('#map-size'), /^49\s*×\s*49$/);
+  near(await metric(page, 'cost'), ROW.optimal, 1e-3, 'scenario query cost');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('wheel zoom and right-drag pan keep clicks on the right cell', async () => {
+  const { page, problems } = await openPage(session);
+  const scale0 = Number(await page.getAttribute('#map-canvas', 'data-scale'));
+  const centre = await cellPoint(page, 24, 24);
+  await page.mouse.move(centre.x, centre.y);
+  await page.mouse.wheel(0, -400);
+  await page.waitForFunction((s) => Number(document.getElementById('map-canvas').dataset.scale) > s * 1.5, scale0);
+  // Pan with the right button.
+  const ox0 = Number(await page.getAttribute('#map-canvas', 'data-offset-x'));
+  await page.mouse.down({ button: 'right' });
+  await page.mouse.move(centre.x - 120, centre.y - 80, { steps: 8 });
+  await page.mouse.up({ button: 'right' });
+  near(Number(await page.getAttribute('#map-canvas', 'data-offset-x')), ox0 - 120, 1, 'pan x');
+  // Clicks still land on the intended cells at the new zoom.
+  await setEndpoints(page, [20, 20], [30, 26]);
+  assert.equal(await page.getAttribute('#map-canvas', 'data-start'), '20,20');
+  assert.equal(await page.getAttribute('#map-canvas', 'data-goal'), '30,26');
+  // 10 across, 6 down on open floor: octile distance 4 + 6√2.
+  near(await metric(page, 'cost'), 4 + 6 * Math.SQRT2, 1e-9, 'open-floor octile cost');
+  await screenshot(page, '10-zoomed.png');
+  // "Fit view" restores the whole map.
+  await page.click('#fit-view');
+  await page.waitForFunction((s) => Math.abs(Number(document.getElementById('map-canvas').dataset.scale) - s) < 1e-9, scale0);
   assert.deepEqual(problems, []);
   await page.close();
 });

@@ -6,6 +6,7 @@
 import init, {
   MapHandle,
   plan,
+  ScenarioHandle,
   defaultPlanOptions,
   inflationMask,
   rosImageName,
@@ -16,10 +17,11 @@ type Tool = 'start' | 'goal' | 'wall' | 'erase';
 
 interface Preset {
   name: string;
-  kind: 'movingai' | 'ros';
+  kind: 'movingai' | 'ros' | 'scenario';
   files: string[];
-  start: Cell;
-  goal: Cell;
+  /** Endpoints to place (a scenario brings its own). */
+  start?: Cell;
+  goal?: Cell;
 }
 
 const PRESETS: Record<string, Preset> = {
@@ -36,6 +38,11 @@ const PRESETS: Record<string, Preset> = {
     files: ['maps/turtlebot3.yaml', 'maps/turtlebot3.pgm'],
     start: [152, 182],
     goal: [235, 215],
+  },
+  'grid-demo': {
+    name: 'grid-demo.json',
+    kind: 'scenario',
+    files: ['scenarios/grid-demo.json'],
   },
 };
 
@@ -100,6 +107,7 @@ const ui = {
 // ------------------------------------------------------------------ errors
 function showError(text: string): void {
   ui.error.textContent = text;
+  ui.error.title = text;
   ui.error.hidden = false;
   ui.body.dataset.state = 'error';
 }
@@ -183,8 +191,8 @@ function syncControls(): void {
   ui.bottomUpEps.disabled = !ui.bottomUp.checked;
 }
 
-function applyDefaults(d: Record<string, unknown>): void {
-  defaults = d;
+/** Sets the controls from a GridPlanOptions object (defaults or a scenario's). */
+function applyOptions(d: Record<string, unknown>): void {
   const set = (s: HTMLSelectElement, v: unknown) => {
     if (typeof v === 'string' && Array.from(s.options).some((o) => o.value === v)) s.value = v;
   };
@@ -203,6 +211,7 @@ function applyDefaults(d: Record<string, unknown>): void {
     if (typeof safe.neighbourhood === 'number') ui.safeNeighbourhood.value = String(safe.neighbourhood);
     ui.safeAdmissible.checked = safe.admissible === true;
   }
+  syncControls();
 }
 
 // ----------------------------------------------------------------- metrics
@@ -276,6 +285,8 @@ function replan(): void {
   updateInflation(opts);
   view.setEndpoints(start, goal);
   const empty = { path: null, expanded: null, keyPoints: null, featureNodes: null, inflation };
+  ui.canvas.dataset.start = start ? start.join(',') : '';
+  ui.canvas.dataset.goal = goal ? goal.join(',') : '';
   planSeq += 1;
   ui.body.dataset.planSeq = String(planSeq);
   if (!start || !goal) {
@@ -284,7 +295,7 @@ function replan(): void {
     clearError();
     ui.body.dataset.state = 'idle';
     ui.canvas.dataset.pathLen = '0';
-    ui.status.textContent = !start ? 'Place the start.' : 'Place the goal.';
+    ui.status.textContent = !start ? 'Place the start: click a free cell.' : 'Place the goal: click a free cell.';
     return;
   }
   const t0 = performance.now();
@@ -321,7 +332,7 @@ function replan(): void {
     setMetric(ui.metric.time, `${ms.toFixed(2)} ms`, ms);
     ui.canvas.dataset.pathLen = String(res.pathLen);
     ui.canvas.dataset.path = Array.from(path).join(',');
-    let status = `Path found: ${res.pathLen} cells`;
+    let status = `Path found: ${res.pathLen} cells, ${res.lengthM.toFixed(2)} m`;
     if (safety.length) status += ` · min safety index ${safety.reduce((a, b) => Math.min(a, b), Infinity).toFixed(2)}/10`;
     ui.status.textContent = status;
   } finally {
@@ -365,6 +376,10 @@ async function fetchBytes(path: string): Promise<Uint8Array> {
 async function loadPreset(key: string): Promise<void> {
   const p = PRESETS[key];
   if (!p) throw new Error(`unknown preset ${key}`);
+  if (p.kind === 'scenario') {
+    installScenario(ScenarioHandle.fromJson(await fetchText(p.files[0])), p.name, {});
+    return;
+  }
   let m: MapHandle;
   if (p.kind === 'movingai') {
     m = MapHandle.fromMovingAi(await fetchText(p.files[0]));
@@ -372,7 +387,23 @@ async function loadPreset(key: string): Promise<void> {
     const [yaml, pgm] = await Promise.all([fetchText(p.files[0]), fetchBytes(p.files[1])]);
     m = MapHandle.fromRos(yaml, pgm);
   }
-  installMap(m, p.name, p.start, p.goal);
+  installMap(m, p.name, p.start ?? null, p.goal ?? null);
+}
+
+/**
+ * Installs a scenario: its map (inline, or a referenced file looked up in
+ * `files` by name), endpoints and planner options.
+ */
+function installScenario(sc: ScenarioHandle, name: string, files: Record<string, Uint8Array>): void {
+  try {
+    const m = sc.loadMap(files);
+    applyOptions({ ...defaults, ...(sc.plannerOptions() as Record<string, unknown>) });
+    const s = sc.start();
+    const g = sc.goal();
+    installMap(m, sc.name ? `${sc.name} (${name})` : name, [s[0], s[1]], [g[0], g[1]]);
+  } finally {
+    sc.free();
+  }
 }
 
 const ext = (f: File) => f.name.toLowerCase().split('.').pop() ?? '';
@@ -385,8 +416,21 @@ async function loadFiles(list: FileList | null): Promise<void> {
   const pgms = files.filter((f) => ext(f) === 'pgm');
   const movingai = files.find((f) => ext(f) === 'map');
   const ascii = files.find((f) => ext(f) === 'txt');
+  const json = files.find((f) => ext(f) === 'json');
   let m: MapHandle;
   let name: string;
+  if (json) {
+    // A scenario; the map files it references may be among the others.
+    const bytes: Record<string, Uint8Array> = {};
+    for (const f of files) if (f !== json) bytes[f.name] = new Uint8Array(await f.arrayBuffer());
+    try {
+      installScenario(ScenarioHandle.fromJson(await json.text()), json.name, bytes);
+    } catch (e) {
+      throw new Error(`${json.name}: ${messageOf(e)}`);
+    }
+    ui.preset.value = '';
+    return;
+  }
   if (yaml) {
     name = yaml.name;
     const yamlText = await yaml.text();
@@ -430,7 +474,7 @@ async function loadFiles(list: FileList | null): Promise<void> {
     );
   } else {
     throw new Error(
-      `Cannot open ${files.map((f) => f.name).join(', ')}: expected a Moving AI .map, or a ROS .yaml with its .pgm.`,
+      `Cannot open ${files.map((f) => f.name).join(', ')}: expected a Moving AI .map, a ROS .yaml with its .pgm, or a planlab scenario .json.`,
     );
   }
   installMap(m, name, null, null);
@@ -602,7 +646,8 @@ async function boot(): Promise<void> {
   syncControls();
   clearMetrics();
   await init();
-  applyDefaults(defaultPlanOptions() as Record<string, unknown>);
+  defaults = defaultPlanOptions() as Record<string, unknown>;
+  applyOptions(defaults);
   syncControls();
   ui.hint.textContent = hintForTool();
   await loadPreset(ui.preset.value || 'arena');

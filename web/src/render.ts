@@ -81,6 +81,8 @@ export class MapView {
   private start: Cell | null = null;
   private goal: Cell | null = null;
   private view: View = { scale: 1, ox: 0, oy: 0 };
+  /** The view is the fitted one (no zoom or pan since): refit on resize. */
+  private fitted = true;
   private pending = false;
   private cssW = 0;
   private cssH = 0;
@@ -154,6 +156,7 @@ export class MapView {
       ox: (this.cssW - bw * scale) / 2 - c0 * scale,
       oy: (this.cssH - bh * scale) / 2 - r0 * scale,
     };
+    this.fitted = true;
     this.publishView();
     this.request();
   }
@@ -164,12 +167,14 @@ export class MapView {
     const scale = Math.min(96, Math.max(0.05, v.scale * factor));
     const f = scale / v.scale;
     this.view = { scale, ox: x - (x - v.ox) * f, oy: y - (y - v.oy) * f };
+    this.fitted = false;
     this.publishView();
     this.request();
   }
 
   panBy(dx: number, dy: number): void {
     this.view = { ...this.view, ox: this.view.ox + dx, oy: this.view.oy + dy };
+    this.fitted = false;
     this.publishView();
     this.request();
   }
@@ -198,12 +203,22 @@ export class MapView {
   private resize(): void {
     const rect = this.canvas.getBoundingClientRect();
     const dpr = window.devicePixelRatio || 1;
-    const first = this.cssW === 0;
+    const [oldW, oldH] = [this.cssW, this.cssH];
     this.cssW = rect.width;
     this.cssH = rect.height;
     this.canvas.width = Math.max(1, Math.round(rect.width * dpr));
     this.canvas.height = Math.max(1, Math.round(rect.height * dpr));
-    if (first) this.fit();
+    if (this.fitted) {
+      this.fit();
+    } else {
+      // Keep what is in the middle of the view in the middle.
+      this.view = {
+        ...this.view,
+        ox: this.view.ox + (rect.width - oldW) / 2,
+        oy: this.view.oy + (rect.height - oldH) / 2,
+      };
+      this.publishView();
+    }
     this.request();
   }
 

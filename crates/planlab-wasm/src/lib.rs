@@ -7,6 +7,9 @@
 //! - [`plan`] forwards to [`plan_on_map`] with a [`GridPlanOptions`] that
 //!   crosses as a plain JS object (serde); the [`PlanResult`] hands its bulk
 //!   data out as typed arrays (`Uint32Array` of `col, row` pairs).
+//! - [`ScenarioHandle`] reads planlab's scenario JSON (map, start, goal,
+//!   planner options); a referenced map file is looked up among the files
+//!   the user opened with it.
 //! - Every core error becomes a `JsError` carrying the core's message.
 //! - [`ScenBatch`] solves a whole Moving AI `.scen` in one call so the page
 //!   can time it with `performance.now()` (core reads no clock) without
@@ -20,9 +23,11 @@ pub mod batch;
 
 use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};
 use planlab_core::global::{supercover, GridPos, PlanGrid};
+use planlab_core::map::io::scenario::{MapSpec, Scenario};
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::{Cell, OccupancyGrid};
 use wasm_bindgen::prelude::*;
+use wasm_bindgen::JsCast;
 
 /// Installs the panic hook once, when the module is instantiated, so a bug
 /// shows up as a readable console message instead of `unreachable`.
@@ -237,6 +242,87 @@ impl MapHandle {
                 self.grid.height()
             )))
         }
+    }
+}
+
+/// A planlab scenario (JSON, version 1): map, start, goal, planner options.
+#[wasm_bindgen]
+#[derive(Clone, Debug)]
+pub struct ScenarioHandle {
+    scenario: Scenario,
+}
+
+#[wasm_bindgen]
+impl ScenarioHandle {
+    /// Reads and validates scenario JSON.
+    #[wasm_bindgen(js_name = fromJson)]
+    pub fn from_json(text: &str) -> Result<ScenarioHandle, JsError> {
+        Ok(ScenarioHandle {
+            scenario: Scenario::from_json(text)?,
+        })
+    }
+
+    /// Short title.
+    #[wasm_bindgen(getter)]
+    pub fn name(&self) -> String {
+        self.scenario.name.clone()
+    }
+
+    /// What the scenario shows.
+    #[wasm_bindgen(getter)]
+    pub fn description(&self) -> String {
+        self.scenario.description.clone()
+    }
+
+    /// Start cell `[col, row]`.
+    pub fn start(&self) -> Vec<u32> {
+        let p = self.scenario.start.pos();
+        vec![p.col, p.row]
+    }
+
+    /// Goal cell `[col, row]`.
+    pub fn goal(&self) -> Vec<u32> {
+        let p = self.scenario.goal.pos();
+        vec![p.col, p.row]
+    }
+
+    /// The scenario's grid planner options as a plain JS object.
+    #[wasm_bindgen(js_name = plannerOptions)]
+    pub fn planner_options(&self) -> Result<JsValue, JsError> {
+        serde_wasm_bindgen::to_value(&self.scenario.grid_planner)
+            .map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// The referenced map file, or `undefined` for an inline map.
+    #[wasm_bindgen(js_name = mapFile)]
+    pub fn map_file(&self) -> Option<String> {
+        match &self.scenario.map {
+            MapSpec::File(f) => Some(f.file.clone()),
+            MapSpec::Inline(_) => None,
+        }
+    }
+
+    /// The scenario's map. `files` maps file names to their bytes
+    /// (`{"map.yaml": Uint8Array, …}`); a referenced file is looked up by
+    /// its base name, since the browser gives no directories.
+    #[wasm_bindgen(js_name = loadMap)]
+    pub fn load_map(&self, files: &js_sys::Object) -> Result<MapHandle, JsError> {
+        let mut read = |path: &str| -> Result<Vec<u8>, String> {
+            let base = path.rsplit(['/', '\\']).next().unwrap_or(path);
+            let v = js_sys::Reflect::get(files, &JsValue::from_str(base))
+                .map_err(|_| format!("cannot look up {base}"))?;
+            if v.is_undefined() {
+                return Err(format!(
+                    "not among the opened files: open {base} together with the scenario"
+                ));
+            }
+            v.dyn_into::<js_sys::Uint8Array>()
+                .map(|a| a.to_vec())
+                .map_err(|_| format!("{base} was not passed as bytes"))
+        };
+        Ok(MapHandle {
+            grid: self.scenario.load_grid(&mut read)?,
+        })
     }
 }
 

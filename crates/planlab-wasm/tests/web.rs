@@ -156,3 +156,39 @@ fn defaults_and_scen_batch() {
     assert_eq!(batch.rows(), 1);
     assert!((batch.solve_all().unwrap() - batch.optimal_sum()).abs() < 1e-9);
 }
+
+#[wasm_bindgen_test]
+fn scenario_inline_and_file_reference() {
+    let inline = r#####"{"version": 1, "name": "gap",
+        "map": {"width": 7, "height": 5, "cells": [".......", ".......", "####.##", ".......", "......."]},
+        "start": {"col": 0, "row": 0}, "goal": {"col": 0, "row": 4},
+        "grid_planner": {"algorithm": "jps"}}"#####;
+    let sc = planlab_wasm::ScenarioHandle::from_json(inline).unwrap();
+    assert_eq!(sc.name(), "gap");
+    assert_eq!((sc.start(), sc.goal()), (vec![0, 0], vec![0, 4]));
+    assert_eq!(sc.map_file(), None);
+    let opts = sc.planner_options().unwrap();
+    let algo = js_sys::Reflect::get(&opts, &"algorithm".into()).unwrap();
+    assert_eq!(algo.as_string().as_deref(), Some("jps"));
+    let map = sc.load_map(&js_sys::Object::new()).unwrap();
+    let r = plan(&map, 0, 0, 0, 4, opts, false).unwrap();
+    assert!((r.cost() - (8.0 + 2.0 * SQRT2)).abs() < 1e-9);
+
+    let by_ref = r#"{"version": 1, "map": {"file": "maps/gap.map"},
+        "start": {"col": 0, "row": 0}, "goal": {"col": 0, "row": 4}}"#;
+    let sc = planlab_wasm::ScenarioHandle::from_json(by_ref).unwrap();
+    assert_eq!(sc.map_file().as_deref(), Some("maps/gap.map"));
+    let err = sc.load_map(&js_sys::Object::new()).unwrap_err();
+    assert!(message(err).contains("gap.map"));
+    let files = js_sys::Object::new();
+    let text = "type octile\nheight 5\nwidth 7\nmap\n.......\n.......\n@@@@.@@\n.......\n.......\n";
+    js_sys::Reflect::set(
+        &files,
+        &"gap.map".into(),
+        &js_sys::Uint8Array::from(text.as_bytes()),
+    )
+    .unwrap();
+    let map = sc.load_map(&files).unwrap();
+    assert_eq!((map.width(), map.height()), (7, 5));
+    assert_eq!(map.cells()[2 * 7 + 4], 0);
+}

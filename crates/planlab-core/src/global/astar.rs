@@ -26,7 +26,7 @@
 
 use super::search::{
     check_size, trivial_path, unit_path_cost, with_space, xy, Entry, Estimate, FixedHeuristic,
-    Node, OctileEstimate, SearchSpace, ZeroEstimate, DIAG, STRAIGHT,
+    OctileEstimate, SearchSpace, ZeroEstimate, DIAG, G_MASK, OPEN, STRAIGHT,
 };
 use super::{check_weight, Diagonal, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
 use serde::{Deserialize, Serialize};
@@ -164,41 +164,34 @@ fn run<E: Estimate, const RULE: u8>(q: Query<'_>, est: E) -> Result<Path, PlanEr
     let s = grid.padded_index(start);
     let t = grid.padded_index(goal);
     let (gx, gy) = xy(t, stride);
-    space.reset(free.len());
-    let stamp = space.stamp;
-    let SearchSpace { nodes, open, .. } = space;
-    let nodes = nodes.as_mut_slice();
+    space.reset(free.len(), false);
+    let word = space.open_word(0);
+    let SearchSpace { g: words, open, .. } = &mut *space;
+    let words = words.as_mut_slice();
     let is_free = |j: usize| free.get(j).copied().unwrap_or(false);
 
-    if let Some(n) = nodes.get_mut(s) {
-        *n = Node {
-            g: 0,
-            parent: s as u32,
-            stamp,
-        };
+    if let Some(w) = words.get_mut(s) {
+        *w = word;
     }
     let (sx, sy) = xy(s, stride);
-    open.push(Entry {
-        f: est.h(sx.abs_diff(gx), sy.abs_diff(gy)),
-        g: 0,
-        idx: s as u32,
-    });
+    open.push(Entry::new(est.h(sx.abs_diff(gx), sy.abs_diff(gy)), 0, s));
 
     let mut expanded = 0usize;
-    while let Some(Entry { g, idx, .. }) = open.pop() {
+    while let Some(Entry { idx, .. }) = open.pop() {
         let i = idx as usize;
-        match nodes.get(i) {
-            // A stale duplicate: the cell was reached more cheaply since.
-            Some(node) if g > node.g => continue,
-            Some(_) => {}
-            None => continue,
+        let Some(w) = words.get_mut(i) else { continue };
+        if *w & OPEN == 0 {
+            // Already expanded: a stale duplicate entry.
+            continue;
         }
+        *w &= !OPEN;
+        let g = *w & G_MASK;
         expanded += 1;
         if let Some(r) = record.as_deref_mut() {
             r.push(grid.pos_of(i));
         }
         if i == t {
-            let cells = reconstruct(grid, nodes, s, t);
+            let cells = reconstruct::<RULE>(grid, space, s, t);
             return Ok(Path {
                 cost: unit_path_cost(&cells),
                 cells,
@@ -212,25 +205,20 @@ fn run<E: Estimate, const RULE: u8>(q: Query<'_>, est: E) -> Result<Path, PlanEr
         let down = i + stride;
         let n = is_free(up);
         let so = is_free(down);
-        let w = is_free(i.wrapping_sub(1));
+        let we = is_free(i.wrapping_sub(1));
         let e = is_free(i + 1);
 
         macro_rules! relax {
             ($j:expr, $nx:expr, $ny:expr, $cost:expr) => {{
                 let j: usize = $j;
                 let ng = g + $cost;
-                if let Some(nd) = nodes.get_mut(j) {
-                    if nd.stamp != stamp || ng < nd.g {
-                        *nd = Node {
-                            g: ng,
-                            parent: idx,
-                            stamp,
-                        };
-                        open.push(Entry {
-                            f: ng.saturating_add(est.h(($nx).abs_diff(gx), ($ny).abs_diff(gy))),
-                            g: ng,
-                            idx: j as u32,
-                        });
+                let new = word | ng;
+                if let Some(old) = words.get_mut(j) {
+                    // Unseen this search, or open at a higher cost.
+                    if *old > new {
+                        *old = new;
+                        let h = est.h(($nx).abs_diff(gx), ($ny).abs_diff(gy));
+                        open.push(Entry::new(ng.saturating_add(h), ng, j));
                     }
                 }
             }};
@@ -242,20 +230,20 @@ fn run<E: Estimate, const RULE: u8>(q: Query<'_>, est: E) -> Result<Path, PlanEr
         if so {
             relax!(down, x, y + 1, STRAIGHT);
         }
-        if w {
+        if we {
             relax!(i - 1, x - 1, y, STRAIGHT);
         }
         if e {
             relax!(i + 1, x + 1, y, STRAIGHT);
         }
         if RULE != NEVER {
-            if diagonal_ok::<RULE>(n, w, is_free(up.wrapping_sub(1))) {
+            if diagonal_ok::<RULE>(n, we, is_free(up.wrapping_sub(1))) {
                 relax!(up - 1, x - 1, y - 1, DIAG);
             }
             if diagonal_ok::<RULE>(n, e, is_free(up.wrapping_add(1))) {
                 relax!(up + 1, x + 1, y - 1, DIAG);
             }
-            if diagonal_ok::<RULE>(so, w, is_free(down - 1)) {
+            if diagonal_ok::<RULE>(so, we, is_free(down - 1)) {
                 relax!(down - 1, x - 1, y + 1, DIAG);
             }
             if diagonal_ok::<RULE>(so, e, is_free(down + 1)) {
@@ -266,17 +254,51 @@ fn run<E: Estimate, const RULE: u8>(q: Query<'_>, est: E) -> Result<Path, PlanEr
     Err(PlanError::Unreachable { expanded })
 }
 
-/// Follows parent links from `t` back to `s`; cells in start-to-goal order.
-fn reconstruct(grid: &PlanGrid, nodes: &[Node], s: usize, t: usize) -> Vec<GridPos> {
+/// Walks back from `t` to `s` without parent links: from each cell, step to
+/// a legal neighbour `n` reached in this search with `g(n) + cost ≤ g(cell)`.
+/// The cell's own predecessor always qualifies (costs only ever decrease),
+/// so the walk succeeds, strictly decreases `g`, and yields a path costing
+/// at most `g(t)`. Cells in start-to-goal order.
+fn reconstruct<const RULE: u8>(
+    grid: &PlanGrid,
+    space: &SearchSpace,
+    s: usize,
+    t: usize,
+) -> Vec<GridPos> {
+    let stride = grid.stride();
+    let free = grid.padded();
+    let is_free = |j: usize| free.get(j).copied().unwrap_or(false);
     let mut cells = vec![grid.pos_of(t)];
     let mut i = t;
-    // Each step strictly lowers g, so the walk ends; the bound guards
-    // against a corrupted chain all the same.
-    while i != s && cells.len() <= nodes.len() {
-        match nodes.get(i) {
-            Some(n) => i = n.parent as usize,
-            None => break,
-        }
+    let mut gi = space.g_of(t).unwrap_or(0);
+    while i != s {
+        let up = i.wrapping_sub(stride);
+        let down = i + stride;
+        let (n, so, we, e) = (
+            is_free(up),
+            is_free(down),
+            is_free(i.wrapping_sub(1)),
+            is_free(i + 1),
+        );
+        let straight = [(n, up), (so, down), (we, i.wrapping_sub(1)), (e, i + 1)];
+        let diagonal = [
+            (diagonal_ok::<RULE>(n, we, is_free(up.wrapping_sub(1))), up.wrapping_sub(1)),
+            (diagonal_ok::<RULE>(n, e, is_free(up.wrapping_add(1))), up.wrapping_add(1)),
+            (diagonal_ok::<RULE>(so, we, is_free(down - 1)), down - 1),
+            (diagonal_ok::<RULE>(so, e, is_free(down + 1)), down + 1),
+        ];
+        let step = straight
+            .iter()
+            .map(|&(ok, j)| (ok, j, STRAIGHT))
+            .chain(diagonal.iter().map(|&(ok, j)| (ok, j, DIAG)))
+            .filter(|&(ok, _, _)| ok)
+            .find_map(|(_, j, cost)| {
+                let gj = space.g_of(j)?;
+                (gj + cost <= gi).then_some((j, gj))
+            });
+        let Some((j, gj)) = step else { break };
+        i = j;
+        gi = gj;
         cells.push(grid.pos_of(i));
     }
     cells.reverse();

@@ -31,8 +31,8 @@
 
 use super::search::{
     check_size, scan_backward, scan_forward, trivial_path, unit_path_cost, with_space, xy, Entry,
-    Estimate, FixedHeuristic, LineBits, Node, OctileEstimate, SearchSpace, ZeroEstimate, DIAG,
-    STRAIGHT,
+    Estimate, FixedHeuristic, LineBits, OctileEstimate, SearchSpace, ZeroEstimate, DIAG, G_MASK,
+    OPEN, STRAIGHT,
 };
 use super::{Diagonal, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
 use serde::{Deserialize, Serialize};
@@ -208,39 +208,41 @@ fn run<E: Estimate>(
         gx,
         gy,
     };
-    space.reset(jumper.free.len());
-    let stamp = space.stamp;
-    let SearchSpace { nodes, open, .. } = space;
-    let nodes = nodes.as_mut_slice();
+    space.reset(jumper.free.len(), true);
+    let word = space.open_word(0);
+    let SearchSpace {
+        g: words,
+        parent: parents,
+        open,
+        ..
+    } = &mut *space;
+    let (words, parents) = (words.as_mut_slice(), parents.as_mut_slice());
 
-    if let Some(n) = nodes.get_mut(s) {
-        *n = Node {
-            g: 0,
-            parent: s as u32,
-            stamp,
-        };
+    if let (Some(w), Some(p)) = (words.get_mut(s), parents.get_mut(s)) {
+        *w = word;
+        *p = s as u32;
     }
     let (sx, sy) = xy(s, stride);
-    open.push(Entry {
-        f: est.h(sx.abs_diff(gx), sy.abs_diff(gy)),
-        g: 0,
-        idx: s as u32,
-    });
+    open.push(Entry::new(est.h(sx.abs_diff(gx), sy.abs_diff(gy)), 0, s));
 
     let mut expanded = 0usize;
-    while let Some(Entry { g, idx, .. }) = open.pop() {
+    while let Some(Entry { idx, .. }) = open.pop() {
         let i = idx as usize;
-        let parent = match nodes.get(i) {
-            Some(node) if g > node.g => continue,
-            Some(node) => node.parent as usize,
-            None => continue,
+        let (Some(w), Some(&parent)) = (words.get_mut(i), parents.get(i)) else {
+            continue;
         };
+        if *w & OPEN == 0 {
+            continue;
+        }
+        *w &= !OPEN;
+        let g = *w & G_MASK;
+        let parent = parent as usize;
         expanded += 1;
         if let Some(r) = record.as_deref_mut() {
             r.push(grid.pos_of(i));
         }
         if i == t {
-            let cells = reconstruct(grid, nodes, s, t);
+            let cells = reconstruct(grid, parents, s, t);
             return Ok(Path {
                 cost: unit_path_cost(&cells),
                 cells,
@@ -316,19 +318,14 @@ fn run<E: Estimate>(
             };
             let Some((j, cost)) = found else { continue };
             let ng = g + cost;
-            if let Some(node) = nodes.get_mut(j) {
-                if node.stamp != stamp || ng < node.g {
-                    *node = Node {
-                        g: ng,
-                        parent: idx,
-                        stamp,
-                    };
+            let new = word | ng;
+            if let (Some(old), Some(p)) = (words.get_mut(j), parents.get_mut(j)) {
+                if *old > new {
+                    *old = new;
+                    *p = idx;
                     let (jx, jy) = xy(j, stride);
-                    open.push(Entry {
-                        f: ng.saturating_add(est.h(jx.abs_diff(gx), jy.abs_diff(gy))),
-                        g: ng,
-                        idx: j as u32,
-                    });
+                    let h = est.h(jx.abs_diff(gx), jy.abs_diff(gy));
+                    open.push(Entry::new(ng.saturating_add(h), ng, j));
                 }
             }
         }
@@ -338,13 +335,14 @@ fn run<E: Estimate>(
 
 /// Follows parent links from `t` to `s` and fills in the cells of every
 /// straight or diagonal jump between consecutive jump points.
-fn reconstruct(grid: &PlanGrid, nodes: &[Node], s: usize, t: usize) -> Vec<GridPos> {
+fn reconstruct(grid: &PlanGrid, parents: &[u32], s: usize, t: usize) -> Vec<GridPos> {
     let stride = grid.stride();
     let mut jump_points = vec![t];
     let mut i = t;
-    while i != s && jump_points.len() <= nodes.len() {
-        match nodes.get(i) {
-            Some(n) => i = n.parent as usize,
+    // Parents form a tree rooted at `s`; the bound guards the walk anyway.
+    while i != s && jump_points.len() <= parents.len() {
+        match parents.get(i) {
+            Some(&p) => i = p as usize,
             None => break,
         }
         jump_points.push(i);

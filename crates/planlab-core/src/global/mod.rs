@@ -40,20 +40,20 @@ impl From<(u32, u32)> for GridPos {
     }
 }
 
-/// Which diagonal moves are allowed (PathFinding.js names in brackets).
+/// Which diagonal moves are allowed (PathFinding.js names in parentheses).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Diagonal {
-    /// 4-connected: no diagonal moves [Never].
+    /// 4-connected: no diagonal moves (Never).
     Never,
     /// 8-connected; a diagonal needs both orthogonal side cells free — the
-    /// Moving AI rule, so `.scen` optimal lengths hold [OnlyWhenNoObstacles].
+    /// Moving AI rule, so `.scen` optimal lengths hold (OnlyWhenNoObstacles).
     #[default]
     NoCornerCutting,
     /// 8-connected; a diagonal needs at least one side cell free
-    /// [IfAtMostOneObstacle].
+    /// (IfAtMostOneObstacle).
     OneSideFree,
-    /// 8-connected; diagonals through any corner [Always].
+    /// 8-connected; diagonals through any corner (Always).
     Always,
 }
 

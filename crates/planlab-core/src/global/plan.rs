@@ -26,7 +26,7 @@ pub enum Algorithm {
     /// Jump Point Search (8-connected, no corner cutting).
     #[serde(rename = "jps")]
     Jps,
-    /// Safe A* of [S] §1 (24-neighbourhood, safety term).
+    /// Safe A* of \[S\] §1 (24-neighbourhood, safety term).
     #[serde(rename = "safe-astar")]
     SafeAStar,
 }
@@ -80,9 +80,9 @@ pub struct GridPlanOptions {
     pub allow_unknown: bool,
     /// Grow obstacles by this radius before planning, metres (0 = off).
     pub inflate_m: f64,
-    /// Also extract key points ([T] §3.2.1) on the inflated map.
+    /// Also extract key points (\[T\] §3.2.1) on the inflated map.
     pub keypoints: bool,
-    /// Also run Bottom-Up segmentation ([S] §4.1) with this maximum error,
+    /// Also run Bottom-Up segmentation (\[S\] §4.1) with this maximum error,
     /// in cells; `None` = off.
     pub bottom_up_eps: Option<f64>,
     /// Safe A* parameters (used when `algorithm` is safe A*).

@@ -17,31 +17,44 @@ pub(crate) const STRAIGHT: u64 = 470_832;
 /// Cost of a diagonal move: round(√2 · STRAIGHT), a convergent of √2.
 pub(crate) const DIAG: u64 = 665_857;
 
-/// Per-cell search record, indexed by padded cell index.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Node {
-    /// Best known cost from the start (valid when `stamp` is current).
-    pub g: u64,
-    /// Padded index of the predecessor.
-    pub parent: u32,
-    /// Search generation that last wrote this record.
-    pub stamp: u32,
-}
+/// Bits of a cell's search word above the cost: a 16-bit generation tag.
+const TAG_SHIFT: u32 = 48;
+/// Set while a cell is open (generated, not yet expanded) in the current
+/// search; cleared when it is closed.
+pub(crate) const OPEN: u64 = 1 << 47;
+/// Mask of the cost `g` in a search word.
+pub(crate) const G_MASK: u64 = OPEN - 1;
+/// The largest padded grid the planners accept: any path then costs less
+/// than [`G_MASK`] (≤ 2·10⁸ cells × [`DIAG`] < 2⁴⁷).
+pub(crate) const MAX_PADDED_CELLS: usize = 200_000_000;
 
 /// An open-list entry: smallest `f` first, ties to the largest `g` (deepest
-/// node), which keeps A* from fanning out over equal-cost regions.
+/// node), which keeps A* from fanning out over equal-cost regions. `tie` is
+/// `g >> 16` (the tie-break needs no more precision), keeping the entry at
+/// 16 bytes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Entry {
     pub f: u64,
-    pub g: u64,
+    pub tie: u32,
     pub idx: u32,
+}
+
+impl Entry {
+    #[inline(always)]
+    pub fn new(f: u64, g: u64, idx: usize) -> Self {
+        Self {
+            f,
+            tie: (g >> 16) as u32,
+            idx: idx as u32,
+        }
+    }
 }
 
 impl Ord for Entry {
     #[inline]
     fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        // BinaryHeap is a max-heap: reverse f, keep g.
-        other.f.cmp(&self.f).then(self.g.cmp(&other.g))
+        // BinaryHeap is a max-heap: reverse f, keep the tie-break.
+        other.f.cmp(&self.f).then(self.tie.cmp(&other.tie))
     }
 }
 
@@ -52,28 +65,58 @@ impl PartialOrd for Entry {
     }
 }
 
-/// Reusable search buffers. A new query bumps `stamp` instead of clearing
-/// `nodes`, so starting a search costs O(1), not O(cells).
+/// Reusable search buffers, indexed by padded cell.
+///
+/// Each cell has one 64-bit word: `tag << 48 | OPEN? | g`. Every search
+/// uses a new, smaller `tag`, so words left by earlier searches compare
+/// greater than any word of the current one: "unseen or reachable more
+/// cheaply" is a single `old > new` comparison, and starting a search costs
+/// O(1) instead of clearing O(cells). A closed cell lacks [`OPEN`], so it
+/// never compares greater and is never reopened (the heuristics are
+/// consistent in integer units; see [`FixedHeuristic::eval`]).
 #[derive(Debug, Default)]
 pub(crate) struct SearchSpace {
-    pub nodes: Vec<Node>,
-    pub stamp: u32,
+    /// Search word per padded cell.
+    pub g: Vec<u64>,
+    /// Predecessor per padded cell (Jump Point Search only; A* walks back
+    /// along decreasing `g` instead).
+    pub parent: Vec<u32>,
+    /// `tag << 48` of the current search.
+    pub tag: u64,
+    /// The open list (lazy deletion).
     pub open: BinaryHeap<Entry>,
 }
 
 impl SearchSpace {
     /// Prepares for a search over `cells` padded cells.
-    pub fn reset(&mut self, cells: usize) {
-        if self.nodes.len() < cells {
-            self.nodes.resize(cells, Node::default());
+    pub fn reset(&mut self, cells: usize, with_parents: bool) {
+        if self.g.len() < cells {
+            self.g.resize(cells, u64::MAX);
+        }
+        if with_parents && self.parent.len() < cells {
+            self.parent.resize(cells, 0);
         }
         self.open.clear();
-        if self.stamp == u32::MAX {
-            // Stamp wrap-around: every stale record must be invalidated once.
-            self.nodes.fill(Node::default());
-            self.stamp = 0;
+        let mut tag = self.tag >> TAG_SHIFT;
+        if tag == 0 {
+            // Tags exhausted (or first use): forget every earlier search.
+            self.g.fill(u64::MAX);
+            tag = 0xFFFF;
         }
-        self.stamp += 1;
+        self.tag = (tag - 1) << TAG_SHIFT;
+    }
+
+    /// The word that opens a cell at cost `g` in the current search.
+    #[inline(always)]
+    pub fn open_word(&self, g: u64) -> u64 {
+        self.tag | OPEN | g
+    }
+
+    /// Cost of a cell reached in the current search, open or closed.
+    #[inline(always)]
+    pub fn g_of(&self, idx: usize) -> Option<u64> {
+        let w = *self.g.get(idx)?;
+        (w & !(OPEN | G_MASK) == self.tag).then_some(w & G_MASK)
     }
 }
 
@@ -92,7 +135,7 @@ pub(crate) fn with_space<R>(f: impl FnOnce(&mut SearchSpace) -> R) -> R {
 
 /// Refuses grids whose padded cell count does not fit the `u32` indices.
 pub(crate) fn check_size(grid: &PlanGrid) -> Result<(), PlanError> {
-    if grid.padded().len() >= u32::MAX as usize {
+    if grid.padded().len() > MAX_PADDED_CELLS {
         return Err(PlanError::InvalidConfig(format!(
             "a {}×{} grid is too large for the grid planners",
             grid.width(),
@@ -200,7 +243,9 @@ pub(crate) fn trivial_path(start: GridPos) -> Path {
 /// Padded cell index → padded `(x, y)`.
 #[inline]
 pub(crate) fn xy(idx: usize, stride: usize) -> (usize, usize) {
-    (idx % stride, idx / stride)
+    // 32-bit division is markedly faster; indices fit (see `check_size`).
+    let (i, s) = (idx as u32, stride as u32);
+    ((i % s) as usize, (i / s) as usize)
 }
 
 /// Bit-packed passability, by rows and by columns, of a padded grid: bit
