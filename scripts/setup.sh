@@ -31,6 +31,15 @@ if ! command -v wasm-pack >/dev/null 2>&1; then
   cargo install wasm-pack --locked
 fi
 
+# wasm-pack would try to download wasm-bindgen; install the exact version the
+# lock file pins from crates.io instead (its CLI must match the library).
+WB_VERSION=$(awk '/^name = "wasm-bindgen"$/ {getline; gsub(/"/, "", $3); print $3; exit}' Cargo.lock)
+if [ -n "$WB_VERSION" ] && [ "$(wasm-bindgen --version 2>/dev/null | awk '{print $2}')" != "$WB_VERSION" ]; then
+  log "installing wasm-bindgen-cli $WB_VERSION (about 3 minutes)"
+  # Not --locked: its lock pins a webpki-roots release the registry no longer serves.
+  cargo install wasm-bindgen-cli --version "$WB_VERSION" --force
+fi
+
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
   log "installing Node.js and npm"
   $SUDO apt-get update -qq && $SUDO apt-get install -y -qq nodejs npm

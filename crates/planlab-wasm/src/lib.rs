@@ -32,7 +32,7 @@ use wasm_bindgen::JsCast;
 /// Installs the panic hook once, when the module is instantiated, so a bug
 /// shows up as a readable console message instead of `unreachable`.
 #[wasm_bindgen(start)]
-pub fn start() {
+pub fn install_panic_hook() {
     console_error_panic_hook::set_once();
 }
 
