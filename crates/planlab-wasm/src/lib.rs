@@ -22,7 +22,7 @@
 pub mod batch;
 
 use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};
-use planlab_core::global::{supercover, GridPos, PlanGrid};
+use planlab_core::global::{GridPos, PlanGrid};
 use planlab_core::map::io::scenario::{MapSpec, Scenario};
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::{Cell, OccupancyGrid};
@@ -188,28 +188,12 @@ impl MapHandle {
         kind: u8,
     ) -> Result<u32, JsError> {
         let cell = cell_of(kind)?;
-        self.check_on_map(col0, row0)?;
-        self.check_on_map(col1, row1)?;
-        let mut crossed = Vec::new();
-        supercover(
-            GridPos::new(col0, row0),
-            GridPos::new(col1, row1),
-            |c, r, corner| {
-                if corner.is_none() {
-                    crossed.push((c, r));
-                }
-            },
-        );
-        let mut changed = 0;
-        for (c, r) in crossed {
-            // Cells of the walk lie in the endpoints' bounding box, so on the map.
-            let (c, r) = (c as usize, r as usize);
-            if self.grid.get(c, r) != Some(cell) {
-                self.grid.set(c, r, cell)?;
-                changed += 1;
-            }
-        }
-        Ok(changed)
+        let changed = self.grid.paint_segment(
+            (col0 as usize, row0 as usize),
+            (col1 as usize, row1 as usize),
+            cell,
+        )?;
+        Ok(changed as u32)
     }
 
     /// The map as a Moving AI `.map` (unknown written as blocked).

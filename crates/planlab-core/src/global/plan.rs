@@ -133,7 +133,9 @@ pub enum GridPlanError {
     #[error(transparent)]
     Map(#[from] MapError),
     /// The endpoint is free on the map but inside the inflated obstacles.
-    #[error("{which} ({col}, {row}) is within {inflate_m} m of an obstacle: blocked after inflation")]
+    #[error(
+        "{which} ({col}, {row}) is within {inflate_m} m of an obstacle: blocked after inflation"
+    )]
     BlockedByInflation {
         /// Start or goal.
         which: Endpoint,
@@ -165,7 +167,10 @@ pub fn build_planner(options: &GridPlanOptions) -> Result<Box<dyn GridPlanner>, 
 
 /// The passability grid `options` imply: unknown cells per
 /// `allow_unknown`, obstacles grown by `inflate_m`.
-pub fn plan_grid_for(grid: &OccupancyGrid, options: &GridPlanOptions) -> Result<PlanGrid, GridPlanError> {
+pub fn plan_grid_for(
+    grid: &OccupancyGrid,
+    options: &GridPlanOptions,
+) -> Result<PlanGrid, GridPlanError> {
     if options.inflate_m == 0.0 {
         return Ok(PlanGrid::new(grid, options.allow_unknown));
     }

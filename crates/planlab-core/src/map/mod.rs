@@ -375,6 +375,44 @@ impl OccupancyGrid {
         }
     }
 
+    /// Sets every cell the straight segment between the centres of
+    /// `(col0, row0)` and `(col1, row1)` crosses — one brush stroke between
+    /// two pointer samples. Both ends must be on the map. Returns how many
+    /// cells changed.
+    pub fn paint_segment(
+        &mut self,
+        (col0, row0): (usize, usize),
+        (col1, row1): (usize, usize),
+        cell: Cell,
+    ) -> Result<usize, MapError> {
+        for (col, row) in [(col0, row0), (col1, row1)] {
+            if col >= self.width || row >= self.height {
+                return Err(MapError::OutOfBounds {
+                    col: col as i64,
+                    row: row as i64,
+                    width: self.width,
+                    height: self.height,
+                });
+            }
+        }
+        let mut changed = 0;
+        let (a, b) = (
+            crate::global::GridPos::new(col0 as u32, row0 as u32),
+            crate::global::GridPos::new(col1 as u32, row1 as u32),
+        );
+        crate::global::supercover(a, b, |c, r, corner| {
+            // Crossed cells lie in the endpoints' bounding box, so on the map.
+            if corner.is_none() {
+                let i = r as usize * self.width + c as usize;
+                if self.cells[i] != cell {
+                    self.cells[i] = cell;
+                    changed += 1;
+                }
+            }
+        });
+        Ok(changed)
+    }
+
     /// Number of cells of each kind: (free, occupied, unknown).
     pub fn counts(&self) -> (usize, usize, usize) {
         let mut c = (0, 0, 0);
@@ -502,6 +540,21 @@ mod tests {
                 }
             ),
             Err(MapError::BadOrigin { .. })
+        ));
+    }
+
+    #[test]
+    fn paint_segment_marks_the_crossed_cells() {
+        let mut g = OccupancyGrid::new(5, 3).unwrap();
+        assert_eq!(g.paint_segment((0, 0), (4, 2), Cell::Occupied), Ok(7));
+        // The supercover: every cell the segment touches.
+        assert_eq!(g.to_ascii(), "##...\n.###.\n...##\n");
+        // Painting again changes nothing; erasing restores.
+        assert_eq!(g.paint_segment((0, 0), (4, 2), Cell::Occupied), Ok(0));
+        assert_eq!(g.paint_segment((4, 2), (0, 0), Cell::Free), Ok(7));
+        assert!(matches!(
+            g.paint_segment((0, 0), (5, 0), Cell::Occupied),
+            Err(MapError::OutOfBounds { col: 5, .. })
         ));
     }
 
