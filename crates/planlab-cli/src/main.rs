@@ -3,6 +3,7 @@
 //! Every failure prints one line `planlab: error: …` on stderr and exits
 //! non-zero; usage errors exit 2 (clap's convention).
 
+mod bench;
 mod grid_cmds;
 mod load;
 mod serve;
@@ -259,7 +260,20 @@ fn run(cli: Cli) -> Result<(), String> {
             };
             grid_cmds::plan(&map, &grid, &args)
         }
-        Command::Bench { .. } => Err("bench: being wired".into()),
+        Command::Bench {
+            kind: BenchKind::Grid { map, scen, reps },
+        } => {
+            let grid = load::load_movingai(&map)?;
+            let rows = load::load_scen(&scen)?;
+            planlab_core::map::io::movingai::check_scen_against_map(&rows, &grid)
+                .map_err(|e| format!("{} does not fit {}: {e}", scen.display(), map.display()))?;
+            let report = bench::bench_grid(&grid, &rows, reps.max(1))?;
+            println!(
+                "{}",
+                serde_json::to_string(&report).map_err(|e| e.to_string())?
+            );
+            Ok(())
+        }
     }
 }
 

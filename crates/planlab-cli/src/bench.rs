@@ -1,0 +1,151 @@
+//! `planlab bench grid`: our A* and JPS against the `pathfinding` crate's
+//! `astar` on the same Moving AI rows, all three checked against the optimum.
+
+use planlab_core::global::astar::{AStar, AStarConfig};
+use planlab_core::global::jps::{Jps, JpsConfig};
+use planlab_core::global::{GridPlanner, PlanGrid};
+use planlab_core::map::io::movingai::ScenRow;
+use planlab_core::map::OccupancyGrid;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Milliseconds per query of each planner and the ratios.
+#[derive(Debug, Serialize)]
+pub struct BenchReport {
+    /// Rows solved per repetition.
+    pub rows: usize,
+    /// Our A*, ms per query.
+    pub astar_ms: f64,
+    /// Our JPS, ms per query.
+    pub jps_ms: f64,
+    /// `pathfinding::directed::astar::astar`, ms per query.
+    pub pathfinding_ms: f64,
+    /// pathfinding_ms / astar_ms.
+    pub astar_speedup: f64,
+    /// astar_ms / jps_ms.
+    pub jps_speedup: f64,
+}
+
+/// Fixed-point move costs for the peer (it needs an `Ord` cost): 1 and √2
+/// scaled so the rounding error stays far below the 1e-3 tolerance.
+const STRAIGHT: u64 = 1_000_000;
+const DIAG: u64 = 1_414_214;
+
+fn matches(cost: f64, optimal: f64) -> bool {
+    (cost - optimal).abs() <= 1e-3 * optimal.max(1.0)
+}
+
+/// The peer: pathfinding's A* with the same 8-connected, no-corner-cutting
+/// successors and the octile heuristic, over cell indices.
+fn pathfinding_cost(grid: &PlanGrid, row: &ScenRow) -> Option<f64> {
+    let w = grid.width() as u32;
+    let free = |c: i64, r: i64| grid.is_free(c, r);
+    let (gc, gr) = (row.goal.col as i64, row.goal.row as i64);
+    let start = row.start.row * w + row.start.col;
+    let goal = row.goal.row * w + row.goal.col;
+    let result = pathfinding::directed::astar::astar(
+        &start,
+        |&i| {
+            let (c, r) = ((i % w) as i64, (i / w) as i64);
+            let mut out: Vec<(u32, u64)> = Vec::with_capacity(8);
+            for (dc, dr) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
+                if free(c + dc, r + dr) {
+                    out.push((((r + dr) as u32) * w + (c + dc) as u32, STRAIGHT));
+                }
+            }
+            for (dc, dr) in [(1, 1), (1, -1), (-1, 1), (-1, -1)] {
+                if free(c + dc, r + dr) && free(c + dc, r) && free(c, r + dr) {
+                    out.push((((r + dr) as u32) * w + (c + dc) as u32, DIAG));
+                }
+            }
+            out
+        },
+        |&i| {
+            let (c, r) = ((i % w) as i64, (i / w) as i64);
+            let (dx, dy) = ((c - gc).unsigned_abs(), (r - gr).unsigned_abs());
+            let (lo, hi) = (dx.min(dy), dx.max(dy));
+            // Octile, rounded down so it stays admissible in fixed point.
+            (hi - lo) * STRAIGHT + lo * (DIAG - 1)
+        },
+        |&i| i == goal,
+    );
+    result.map(|(_, c)| c as f64 / STRAIGHT as f64)
+}
+
+/// Runs the three planners over `rows` `reps` times each (the fastest
+/// repetition counts) and checks every cost against the row's optimum.
+pub fn bench_grid(
+    grid: &OccupancyGrid,
+    rows: &[ScenRow],
+    reps: usize,
+) -> Result<BenchReport, String> {
+    if rows.is_empty() {
+        return Err("the scenario has no rows".into());
+    }
+    let plan_grid = PlanGrid::new(grid, false);
+    let astar = AStar::new(AStarConfig::default()).map_err(|e| e.to_string())?;
+    let jps = Jps::new(JpsConfig::default()).map_err(|e| e.to_string())?;
+    let check = |name: &str, i: usize, cost: Option<f64>| -> Result<(), String> {
+        match cost {
+            Some(c) if matches(c, rows[i].optimal) => Ok(()),
+            other => Err(format!(
+                "{name} row {i}: cost {other:?} differs from the optimum {}",
+                rows[i].optimal
+            )),
+        }
+    };
+    let time = |name: &str, solve: &dyn Fn(&ScenRow) -> Option<f64>| -> Result<f64, String> {
+        let mut best = f64::INFINITY;
+        for _ in 0..reps.max(1) {
+            let t = Instant::now();
+            for (i, row) in rows.iter().enumerate() {
+                check(name, i, solve(row))?;
+            }
+            best = best.min(t.elapsed().as_secs_f64());
+        }
+        Ok(best * 1e3 / rows.len() as f64)
+    };
+    let astar_ms = time("A*", &|r| {
+        astar.plan(&plan_grid, r.start, r.goal).ok().map(|p| p.cost)
+    })?;
+    let jps_ms = time("JPS", &|r| {
+        jps.plan(&plan_grid, r.start, r.goal).ok().map(|p| p.cost)
+    })?;
+    let pathfinding_ms = time("pathfinding astar", &|r| pathfinding_cost(&plan_grid, r))?;
+    Ok(BenchReport {
+        rows: rows.len(),
+        astar_ms,
+        jps_ms,
+        pathfinding_ms,
+        astar_speedup: pathfinding_ms / astar_ms,
+        jps_speedup: astar_ms / jps_ms,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use planlab_core::global::GridPos;
+
+    #[test]
+    fn peer_is_optimal_and_refuses_corner_cutting() {
+        let g = OccupancyGrid::from_ascii("..\n#.\n").unwrap();
+        let pg = PlanGrid::new(&g, false);
+        let row = |s: (u32, u32), t: (u32, u32), optimal: f64| ScenRow {
+            bucket: 0,
+            map: String::new(),
+            width: 2,
+            height: 2,
+            start: GridPos::new(s.0, s.1),
+            goal: GridPos::new(t.0, t.1),
+            optimal,
+        };
+        // (0,0) -> (1,1) may cut no corner: two straight moves.
+        assert_eq!(pathfinding_cost(&pg, &row((0, 0), (1, 1), 2.0)), Some(2.0));
+        let report = bench_grid(&g, &[row((0, 0), (1, 1), 2.0)], 1).unwrap();
+        assert_eq!(report.rows, 1);
+        // A wrong optimum is reported, not averaged away.
+        let err = bench_grid(&g, &[row((0, 0), (1, 1), 1.5)], 1).unwrap_err();
+        assert!(err.contains("row 0"), "{err}");
+    }
+}
