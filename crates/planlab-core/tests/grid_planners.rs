@@ -16,10 +16,7 @@ use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 /// Root of the shared Moving AI data, beside the repository clone.
-const MOVINGAI: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../../shared/data/movingai"
-);
+const MOVINGAI: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data/movingai");
 
 const NCC: Diagonal = Diagonal::NoCornerCutting;
 const SQRT2: f64 = std::f64::consts::SQRT_2;
@@ -35,10 +32,20 @@ fn ascii(text: &str) -> PlanGrid {
 /// Why `path` is not a legal `start`→`goal` path under `rule`, if it is not:
 /// every cell free, every step one king move, diagonals obeying the rule,
 /// and `cost` equal to the sum of the move lengths.
-fn illegal(grid: &PlanGrid, path: &Path, start: GridPos, goal: GridPos, rule: Diagonal) -> Option<String> {
+fn illegal(
+    grid: &PlanGrid,
+    path: &Path,
+    start: GridPos,
+    goal: GridPos,
+    rule: Diagonal,
+) -> Option<String> {
     let cells = &path.cells;
     if cells.first() != Some(&start) || cells.last() != Some(&goal) {
-        return Some(format!("path runs {:?} → {:?}", cells.first(), cells.last()));
+        return Some(format!(
+            "path runs {:?} → {:?}",
+            cells.first(),
+            cells.last()
+        ));
     }
     let free = |c: u32, r: u32| grid.is_free(c as i64, r as i64);
     if let Some(c) = cells.iter().find(|c| !free(c.col, c.row)) {
@@ -136,7 +143,10 @@ fn movingai_maze512_every_row_optimal() {
 
 #[test]
 fn movingai_random512_every_row_optimal() {
-    check_benchmark("random/random512-10-0.map", "random/random512-10-0.map.scen");
+    check_benchmark(
+        "random/random512-10-0.map",
+        "random/random512-10-0.map.scen",
+    );
 }
 
 // ---------------------------------------------------------------------------
@@ -370,23 +380,45 @@ fn endpoints_off_the_map_or_blocked_are_typed_errors() {
     for planner in planners {
         assert!(matches!(
             planner.plan(&g, p(3, 0), p(0, 0)),
-            Err(PlanError::OffMap { which: Endpoint::Start, col: 3, row: 0, width: 3, height: 2 })
+            Err(PlanError::OffMap {
+                which: Endpoint::Start,
+                col: 3,
+                row: 0,
+                width: 3,
+                height: 2
+            })
         ));
         assert!(matches!(
             planner.plan(&g, p(0, 0), p(0, 2)),
-            Err(PlanError::OffMap { which: Endpoint::Goal, col: 0, row: 2, .. })
+            Err(PlanError::OffMap {
+                which: Endpoint::Goal,
+                col: 0,
+                row: 2,
+                ..
+            })
         ));
         assert!(matches!(
             planner.plan(&g, p(0, 0), p(u32::MAX, u32::MAX)),
-            Err(PlanError::OffMap { which: Endpoint::Goal, .. })
+            Err(PlanError::OffMap {
+                which: Endpoint::Goal,
+                ..
+            })
         ));
         assert_eq!(
             planner.plan(&g, p(2, 0), p(0, 0)),
-            Err(PlanError::Blocked { which: Endpoint::Start, col: 2, row: 0 })
+            Err(PlanError::Blocked {
+                which: Endpoint::Start,
+                col: 2,
+                row: 0
+            })
         );
         assert_eq!(
             planner.plan(&g, p(0, 0), p(2, 0)),
-            Err(PlanError::Blocked { which: Endpoint::Goal, col: 2, row: 0 })
+            Err(PlanError::Blocked {
+                which: Endpoint::Goal,
+                col: 2,
+                row: 0
+            })
         );
     }
 }
@@ -424,7 +456,10 @@ fn invalid_weights_and_rules_are_refused() {
             ..AStarConfig::default()
         })
         .unwrap_err();
-        assert!(matches!(err, PlanError::InvalidConfig(_)), "weight {weight}");
+        assert!(
+            matches!(err, PlanError::InvalidConfig(_)),
+            "weight {weight}"
+        );
     }
     assert!(AStar::new(AStarConfig {
         weight: 1.0,

@@ -25,8 +25,9 @@
 //! ```
 
 use super::search::{
-    check_size, trivial_path, unit_path_cost, with_space, xy, Entry, Estimate, FixedHeuristic,
-    OctileEstimate, SearchSpace, ZeroEstimate, DIAG, G_MASK, OPEN, STRAIGHT,
+    check_size, dir_index, improves, trivial_path, unit_path_cost, walk_back, with_space, xy,
+    Estimate, FixedHeuristic, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DIAG, G_MASK,
+    G_SHIFT, OPEN, STRAIGHT,
 };
 use super::{check_weight, Diagonal, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
 use serde::{Deserialize, Serialize};
@@ -157,46 +158,74 @@ fn run<E: Estimate, const RULE: u8>(q: Query<'_>, est: E) -> Result<Path, PlanEr
         start,
         goal,
         space,
-        mut record,
+        record,
     } = q;
-    let free = grid.padded();
-    let stride = grid.stride();
     let s = grid.padded_index(start);
     let t = grid.padded_index(goal);
+    space.reset(grid.padded().len());
+    let tag = space.open_word(0, 0);
+    let SearchSpace {
+        words,
+        radix,
+        binary,
+        ..
+    } = &mut *space;
+    let (reached, expanded) = if E::MONOTONE {
+        search::<E, RULE, _>(grid, s, t, words, radix, tag, est, record)
+    } else {
+        search::<E, RULE, _>(grid, s, t, words, binary, tag, est, record)
+    };
+    if !reached {
+        return Err(PlanError::Unreachable { expanded });
+    }
+    // The walk cannot fail (see `walk_back`); an empty path would be a bug.
+    let cells = walk_back(grid, space, s, t).unwrap_or_default();
+    Ok(Path {
+        cost: unit_path_cost(&cells),
+        cells,
+        expanded,
+    })
+}
+
+/// The A* loop: whether `t` was reached, and how many cells were expanded.
+/// `tag` is the open word of cost 0 (see [`SearchSpace::open_word`]).
+#[allow(clippy::too_many_arguments)]
+fn search<E: Estimate, const RULE: u8, Q: OpenList>(
+    grid: &PlanGrid,
+    s: usize,
+    t: usize,
+    words: &mut [u64],
+    open: &mut Q,
+    tag: u64,
+    est: E,
+    mut record: Option<&mut Vec<GridPos>>,
+) -> (bool, usize) {
+    let free = grid.padded();
+    let stride = grid.stride();
     let (gx, gy) = xy(t, stride);
-    space.reset(free.len(), false);
-    let word = space.open_word(0);
-    let SearchSpace { g: words, open, .. } = &mut *space;
-    let words = words.as_mut_slice();
     let is_free = |j: usize| free.get(j).copied().unwrap_or(false);
 
     if let Some(w) = words.get_mut(s) {
-        *w = word;
+        *w = tag;
     }
     let (sx, sy) = xy(s, stride);
-    open.push(Entry::new(est.h(sx.abs_diff(gx), sy.abs_diff(gy)), 0, s));
+    open.push(est.h(sx.abs_diff(gx), sy.abs_diff(gy)), 0, s);
 
     let mut expanded = 0usize;
-    while let Some(Entry { idx, .. }) = open.pop() {
-        let i = idx as usize;
+    while let Some(i) = open.pop() {
         let Some(w) = words.get_mut(i) else { continue };
         if *w & OPEN == 0 {
             // Already expanded: a stale duplicate entry.
             continue;
         }
         *w &= !OPEN;
-        let g = *w & G_MASK;
+        let g = (*w >> G_SHIFT) & G_MASK;
         expanded += 1;
         if let Some(r) = record.as_deref_mut() {
             r.push(grid.pos_of(i));
         }
         if i == t {
-            let cells = reconstruct::<RULE>(grid, space, s, t);
-            return Ok(Path {
-                cost: unit_path_cost(&cells),
-                cells,
-                expanded,
-            });
+            return (true, expanded);
         }
         let (x, y) = xy(i, stride);
         // Free cells are interior, so these never wrap; a wrapped index
@@ -209,100 +238,48 @@ fn run<E: Estimate, const RULE: u8>(q: Query<'_>, est: E) -> Result<Path, PlanEr
         let e = is_free(i + 1);
 
         macro_rules! relax {
-            ($j:expr, $nx:expr, $ny:expr, $cost:expr) => {{
+            ($j:expr, $nx:expr, $ny:expr, $cost:expr, $dir:expr) => {{
                 let j: usize = $j;
                 let ng = g + $cost;
-                let new = word | ng;
+                let new = tag | ng << G_SHIFT | $dir;
                 if let Some(old) = words.get_mut(j) {
-                    // Unseen this search, or open at a higher cost.
-                    if *old > new {
+                    if improves(*old, new) {
                         *old = new;
                         let h = est.h(($nx).abs_diff(gx), ($ny).abs_diff(gy));
-                        open.push(Entry::new(ng.saturating_add(h), ng, j));
+                        open.push(ng.saturating_add(h), ng, j);
                     }
                 }
             }};
         }
 
         if n {
-            relax!(up, x, y - 1, STRAIGHT);
+            relax!(up, x, y - 1, STRAIGHT, dir_index(0, -1));
         }
         if so {
-            relax!(down, x, y + 1, STRAIGHT);
+            relax!(down, x, y + 1, STRAIGHT, dir_index(0, 1));
         }
         if we {
-            relax!(i - 1, x - 1, y, STRAIGHT);
+            relax!(i - 1, x - 1, y, STRAIGHT, dir_index(-1, 0));
         }
         if e {
-            relax!(i + 1, x + 1, y, STRAIGHT);
+            relax!(i + 1, x + 1, y, STRAIGHT, dir_index(1, 0));
         }
         if RULE != NEVER {
             if diagonal_ok::<RULE>(n, we, is_free(up.wrapping_sub(1))) {
-                relax!(up - 1, x - 1, y - 1, DIAG);
+                relax!(up - 1, x - 1, y - 1, DIAG, dir_index(-1, -1));
             }
             if diagonal_ok::<RULE>(n, e, is_free(up.wrapping_add(1))) {
-                relax!(up + 1, x + 1, y - 1, DIAG);
+                relax!(up + 1, x + 1, y - 1, DIAG, dir_index(1, -1));
             }
             if diagonal_ok::<RULE>(so, we, is_free(down - 1)) {
-                relax!(down - 1, x - 1, y + 1, DIAG);
+                relax!(down - 1, x - 1, y + 1, DIAG, dir_index(-1, 1));
             }
             if diagonal_ok::<RULE>(so, e, is_free(down + 1)) {
-                relax!(down + 1, x + 1, y + 1, DIAG);
+                relax!(down + 1, x + 1, y + 1, DIAG, dir_index(1, 1));
             }
         }
     }
-    Err(PlanError::Unreachable { expanded })
-}
-
-/// Walks back from `t` to `s` without parent links: from each cell, step to
-/// a legal neighbour `n` reached in this search with `g(n) + cost ≤ g(cell)`.
-/// The cell's own predecessor always qualifies (costs only ever decrease),
-/// so the walk succeeds, strictly decreases `g`, and yields a path costing
-/// at most `g(t)`. Cells in start-to-goal order.
-fn reconstruct<const RULE: u8>(
-    grid: &PlanGrid,
-    space: &SearchSpace,
-    s: usize,
-    t: usize,
-) -> Vec<GridPos> {
-    let stride = grid.stride();
-    let free = grid.padded();
-    let is_free = |j: usize| free.get(j).copied().unwrap_or(false);
-    let mut cells = vec![grid.pos_of(t)];
-    let mut i = t;
-    let mut gi = space.g_of(t).unwrap_or(0);
-    while i != s {
-        let up = i.wrapping_sub(stride);
-        let down = i + stride;
-        let (n, so, we, e) = (
-            is_free(up),
-            is_free(down),
-            is_free(i.wrapping_sub(1)),
-            is_free(i + 1),
-        );
-        let straight = [(n, up), (so, down), (we, i.wrapping_sub(1)), (e, i + 1)];
-        let diagonal = [
-            (diagonal_ok::<RULE>(n, we, is_free(up.wrapping_sub(1))), up.wrapping_sub(1)),
-            (diagonal_ok::<RULE>(n, e, is_free(up.wrapping_add(1))), up.wrapping_add(1)),
-            (diagonal_ok::<RULE>(so, we, is_free(down - 1)), down - 1),
-            (diagonal_ok::<RULE>(so, e, is_free(down + 1)), down + 1),
-        ];
-        let step = straight
-            .iter()
-            .map(|&(ok, j)| (ok, j, STRAIGHT))
-            .chain(diagonal.iter().map(|&(ok, j)| (ok, j, DIAG)))
-            .filter(|&(ok, _, _)| ok)
-            .find_map(|(_, j, cost)| {
-                let gj = space.g_of(j)?;
-                (gj + cost <= gi).then_some((j, gj))
-            });
-        let Some((j, gj)) = step else { break };
-        i = j;
-        gi = gj;
-        cells.push(grid.pos_of(i));
-    }
-    cells.reverse();
-    cells
+    (false, expanded)
 }
 
 #[cfg(test)]

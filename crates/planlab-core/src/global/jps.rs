@@ -30,9 +30,9 @@
 //! ```
 
 use super::search::{
-    check_size, scan_backward, scan_forward, trivial_path, unit_path_cost, with_space, xy, Entry,
-    Estimate, FixedHeuristic, LineBits, OctileEstimate, SearchSpace, ZeroEstimate, DIAG, G_MASK,
-    OPEN, STRAIGHT,
+    check_size, dir_index, improves, trivial_path, unit_path_cost, walk_back, with_space, xy,
+    Estimate, FixedHeuristic, LineBits, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DIAG,
+    DIRS, DIR_MASK, G_MASK, G_SHIFT, OPEN, STRAIGHT,
 };
 use super::{Diagonal, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
 use serde::{Deserialize, Serialize};
@@ -111,6 +111,8 @@ impl GridPlanner for Jps {
     }
 }
 
+const EAGER: bool = false;
+
 /// Read-only view of the grid for jumping.
 struct Jumper<'a> {
     free: &'a [bool],
@@ -132,11 +134,10 @@ impl Jumper<'_> {
     #[inline(always)]
     fn horizontal(&self, x: usize, y: usize, dx: isize) -> Option<usize> {
         let target = if y == self.gy { self.gx } else { usize::MAX };
-        let (l, w) = (&self.lines.rows, self.lines.row_words);
         if dx > 0 {
-            scan_forward(l, w, y, x, target)
+            self.lines.rows.jump_forward(y, x, target)
         } else {
-            scan_backward(l, w, y, x, target)
+            self.lines.rows.jump_backward(y, x, target)
         }
     }
 
@@ -144,48 +145,154 @@ impl Jumper<'_> {
     #[inline(always)]
     fn vertical(&self, x: usize, y: usize, dy: isize) -> Option<usize> {
         let target = if x == self.gx { self.gy } else { usize::MAX };
-        let (l, w) = (&self.lines.cols, self.lines.col_words);
         if dy > 0 {
-            scan_forward(l, w, x, y, target)
+            self.lines.cols.jump_forward(x, y, target)
         } else {
-            scan_backward(l, w, x, y, target)
-        }
-    }
-
-    /// Diagonal jump from `(x, y)`: the jump point's padded index and the
-    /// number of diagonal steps. A cell is a jump point when it is the goal
-    /// or a straight jump from it (along either component) finds one.
-    #[inline]
-    fn diagonal(&self, x: usize, y: usize, dx: isize, dy: isize) -> Option<(usize, usize)> {
-        let (mut x, mut y) = (x, y);
-        let mut i = y * self.stride + x;
-        let step_x = dx;
-        let step_y = dy * self.stride as isize;
-        let mut n = 0usize;
-        loop {
-            let side_x = i.wrapping_add_signed(step_x);
-            let side_y = i.wrapping_add_signed(step_y);
-            let next = side_x.wrapping_add_signed(step_y);
-            if !(self.free(side_x) && self.free(side_y) && self.free(next)) {
-                return None;
-            }
-            i = next;
-            x = x.wrapping_add_signed(dx);
-            y = y.wrapping_add_signed(dy);
-            n += 1;
-            if i == self.t
-                || self.horizontal(x, y, dx).is_some()
-                || self.vertical(x, y, dy).is_some()
-            {
-                return Some((i, n));
-            }
+            self.lines.cols.jump_backward(x, y, target)
         }
     }
 }
 
-#[inline(always)]
-fn sign(a: usize, b: usize) -> isize {
-    (a > b) as isize - (a < b) as isize
+/// One search's mutable state.
+struct Search<'a, E, Q> {
+    jumper: Jumper<'a>,
+    words: &'a mut [u64],
+    open: &'a mut Q,
+    /// Open word of cost 0 (see [`SearchSpace::open_word`]).
+    tag: u64,
+    est: E,
+}
+
+impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
+    /// Records cell `j` at `(jx, jy)` reached at cost `g` by a move in
+    /// direction `dir`, and opens it, if that improves on what it has.
+    #[inline(always)]
+    fn relax(&mut self, j: usize, jx: usize, jy: usize, g: u64, dir: u64) {
+        let new = self.tag | g << G_SHIFT | dir;
+        if let Some(old) = self.words.get_mut(j) {
+            if improves(*old, new) {
+                *old = new;
+                let (gx, gy) = (self.jumper.gx, self.jumper.gy);
+                let h = self.est.h(jx.abs_diff(gx), jy.abs_diff(gy));
+                self.open.push(g.saturating_add(h), g, j);
+            }
+        }
+    }
+
+    /// Straight jump from `(x, y)` (cost `g`) in direction `(dx, dy)`, one of
+    /// them 0; relaxes the jump point found.
+    #[inline(always)]
+    fn straight(&mut self, x: usize, y: usize, g: u64, dx: isize, dy: isize) {
+        let stride = self.jumper.stride;
+        if dy == 0 {
+            if let Some(jx) = self.jumper.horizontal(x, y, dx) {
+                let cost = STRAIGHT * jx.abs_diff(x) as u64;
+                self.relax(y * stride + jx, jx, y, g + cost, dir_index(dx, 0));
+            }
+        } else if let Some(jy) = self.jumper.vertical(x, y, dy) {
+            let cost = STRAIGHT * jy.abs_diff(y) as u64;
+            self.relax(jy * stride + x, x, jy, g + cost, dir_index(0, dy));
+        }
+    }
+
+    /// Diagonal jump from `(x, y)` (cost `g`) in direction `(dx, dy)`.
+    ///
+    /// As in plain JPS, the jump stops at the goal or at the first cell from
+    /// which a straight jump along either component finds a jump point, and
+    /// opens that cell. Those straight jump points are relaxed right away,
+    /// reusing the scans that found them (a form of Harabor & Grastien's
+    /// 2014 intermediate-point pruning), so when the cell is expanded later
+    /// only the diagonal continues (see [`Search::expand`]).
+    #[inline]
+    fn diagonal(&mut self, x: usize, y: usize, g: u64, dx: isize, dy: isize) {
+        let stride = self.jumper.stride;
+        let (mut x, mut y, mut g) = (x, y, g);
+        let mut i = y * stride + x;
+        let step_y = dy * stride as isize;
+        loop {
+            let side_x = i.wrapping_add_signed(dx);
+            let side_y = i.wrapping_add_signed(step_y);
+            let next = side_x.wrapping_add_signed(step_y);
+            if !(self.jumper.free(side_x) && self.jumper.free(side_y) && self.jumper.free(next)) {
+                return;
+            }
+            i = next;
+            x = x.wrapping_add_signed(dx);
+            y = y.wrapping_add_signed(dy);
+            g += DIAG;
+            if i == self.jumper.t {
+                self.relax(i, x, y, g, dir_index(dx, dy));
+                return;
+            }
+            let h = self.jumper.horizontal(x, y, dx);
+            let v = self.jumper.vertical(x, y, dy);
+            if h.is_some() || v.is_some() {
+                if let Some(jx) = h {
+                    let cost = STRAIGHT * jx.abs_diff(x) as u64;
+                    self.relax(y * stride + jx, jx, y, g + cost, dir_index(dx, 0));
+                }
+                if let Some(jy) = v {
+                    let cost = STRAIGHT * jy.abs_diff(y) as u64;
+                    self.relax(jy * stride + x, x, jy, g + cost, dir_index(0, dy));
+                }
+                if EAGER {
+                    self.mark(i, g, dir_index(dx, dy));
+                } else {
+                    self.relax(i, x, y, g, dir_index(dx, dy));
+                    return;
+                }
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn mark(&mut self, j: usize, g: u64, dir: u64) {
+        let new = self.tag | g << G_SHIFT | dir;
+        if let Some(old) = self.words.get_mut(j) {
+            if improves(*old, new) {
+                *old = new;
+            }
+        }
+    }
+
+    /// Generates the successors of cell `i` at `(x, y)`, reached at cost `g`
+    /// by a move in direction `dir` (any direction for the start).
+    #[inline]
+    fn expand(&mut self, i: usize, x: usize, y: usize, g: u64, dir: Option<(isize, isize)>) {
+        let stride = self.jumper.stride as isize;
+        match dir {
+            None => {
+                for (dx, dy) in DIRS {
+                    if dx == 0 || dy == 0 {
+                        self.straight(x, y, g, dx, dy);
+                    } else {
+                        self.diagonal(x, y, g, dx, dy);
+                    }
+                }
+            }
+            // Reached diagonally: its straight successors were relaxed when
+            // it was found (see `diagonal`); only the diagonal goes on. (No
+            // forced neighbours after a diagonal move without corner cutting.)
+            Some((dx, dy)) if dx != 0 && dy != 0 => {
+                self.diagonal(x, y, g, dx, dy);
+            }
+            Some((dx, dy)) => {
+                self.straight(x, y, g, dx, dy);
+                // Forced neighbours: a free cell beside this one whose
+                // counterpart beside the previous cell is blocked (so the
+                // parent could not reach it more directly).
+                for side in [-1isize, 1] {
+                    let (sx, sy) = if dx != 0 { (0, side) } else { (side, 0) };
+                    let beside = i.wrapping_add_signed(sy * stride + sx);
+                    let behind = beside.wrapping_add_signed(-(dy * stride + dx));
+                    if self.jumper.free(beside) && !self.jumper.free(behind) {
+                        self.straight(x, y, g, sx, sy);
+                        self.diagonal(x, y, g, dx + sx, dy + sy);
+                    }
+                }
+            }
+        }
+    }
 }
 
 fn run<E: Estimate>(
@@ -193,174 +300,99 @@ fn run<E: Estimate>(
     start: GridPos,
     goal: GridPos,
     space: &mut SearchSpace,
-    mut record: Option<&mut Vec<GridPos>>,
+    record: Option<&mut Vec<GridPos>>,
     est: E,
 ) -> Result<Path, PlanError> {
-    let stride = grid.stride();
-    let s = grid.padded_index(start);
-    let t = grid.padded_index(goal);
-    let (gx, gy) = xy(t, stride);
-    let jumper = Jumper {
-        free: grid.padded(),
-        lines: grid.lines(),
-        stride,
-        t,
-        gx,
-        gy,
-    };
-    space.reset(jumper.free.len(), true);
-    let word = space.open_word(0);
+    space.reset(grid.padded().len());
+    let tag = space.open_word(0, 0);
+    let (s, t) = (grid.padded_index(start), grid.padded_index(goal));
     let SearchSpace {
-        g: words,
-        parent: parents,
-        open,
+        words,
+        radix,
+        binary,
         ..
     } = &mut *space;
-    let (words, parents) = (words.as_mut_slice(), parents.as_mut_slice());
+    let (reached, expanded) = if E::MONOTONE {
+        search(grid, s, t, words, radix, tag, est, record)
+    } else {
+        search(grid, s, t, words, binary, tag, est, record)
+    };
+    if !reached {
+        return Err(PlanError::Unreachable { expanded });
+    }
+    // The walk cannot fail (see `walk_back`); an empty path would be a bug.
+    let cells = walk_back(grid, space, s, t).unwrap_or_default();
+    Ok(Path {
+        cost: unit_path_cost(&cells),
+        cells,
+        expanded,
+    })
+}
 
-    if let (Some(w), Some(p)) = (words.get_mut(s), parents.get_mut(s)) {
-        *w = word;
-        *p = s as u32;
+/// The JPS loop: whether `t` was reached, and how many jump points were
+/// expanded.
+#[allow(clippy::too_many_arguments)]
+fn search<E: Estimate, Q: OpenList>(
+    grid: &PlanGrid,
+    s: usize,
+    t: usize,
+    words: &mut [u64],
+    open: &mut Q,
+    tag: u64,
+    est: E,
+    mut record: Option<&mut Vec<GridPos>>,
+) -> (bool, usize) {
+    let stride = grid.stride();
+    let (gx, gy) = xy(t, stride);
+    let mut search = Search {
+        jumper: Jumper {
+            free: grid.padded(),
+            lines: grid.lines(),
+            stride,
+            t,
+            gx,
+            gy,
+        },
+        words,
+        open,
+        tag,
+        est,
+    };
+    if let Some(w) = search.words.get_mut(s) {
+        *w = tag;
     }
     let (sx, sy) = xy(s, stride);
-    open.push(Entry::new(est.h(sx.abs_diff(gx), sy.abs_diff(gy)), 0, s));
+    search
+        .open
+        .push(est.h(sx.abs_diff(gx), sy.abs_diff(gy)), 0, s);
 
     let mut expanded = 0usize;
-    while let Some(Entry { idx, .. }) = open.pop() {
-        let i = idx as usize;
-        let (Some(w), Some(&parent)) = (words.get_mut(i), parents.get(i)) else {
+    while let Some(i) = search.open.pop() {
+        let Some(w) = search.words.get_mut(i) else {
             continue;
         };
         if *w & OPEN == 0 {
+            // Already expanded: a stale duplicate entry.
             continue;
         }
         *w &= !OPEN;
-        let g = *w & G_MASK;
-        let parent = parent as usize;
+        let (g, dir) = ((*w >> G_SHIFT) & G_MASK, *w & DIR_MASK);
         expanded += 1;
         if let Some(r) = record.as_deref_mut() {
             r.push(grid.pos_of(i));
         }
         if i == t {
-            let cells = reconstruct(grid, parents, s, t);
-            return Ok(Path {
-                cost: unit_path_cost(&cells),
-                cells,
-                expanded,
-            });
+            return (true, expanded);
         }
         let (x, y) = xy(i, stride);
-        let (px, py) = xy(parent, stride);
-        let (dx, dy) = (sign(x, px), sign(y, py));
-
-        // Directions to jump in: all eight from the start; otherwise the
-        // natural ones plus those forced by an obstacle beside the move.
-        let mut dirs = [(0isize, 0isize); 8];
-        let mut nd = 0usize;
-        let mut add = |d: (isize, isize)| {
-            if let Some(slot) = dirs.get_mut(nd) {
-                *slot = d;
-                nd += 1;
-            }
-        };
-        if i == s {
-            for d in [
-                (1, 0),
-                (-1, 0),
-                (0, 1),
-                (0, -1),
-                (1, 1),
-                (1, -1),
-                (-1, 1),
-                (-1, -1),
-            ] {
-                add(d);
-            }
-        } else if dx != 0 && dy != 0 {
-            add((dx, 0));
-            add((0, dy));
-            add((dx, dy));
-        } else if dx != 0 {
-            add((dx, 0));
-            for side in [-1isize, 1] {
-                let beside = i.wrapping_add_signed(side * stride as isize);
-                if jumper.free(beside) && !jumper.free(beside.wrapping_add_signed(-dx)) {
-                    add((0, side));
-                    add((dx, side));
-                }
-            }
+        let dir = if i == s {
+            None
         } else {
-            add((0, dy));
-            for side in [-1isize, 1] {
-                let beside = i.wrapping_add_signed(side);
-                if jumper.free(beside)
-                    && !jumper.free(beside.wrapping_add_signed(-dy * stride as isize))
-                {
-                    add((side, 0));
-                    add((side, dy));
-                }
-            }
-        }
-
-        for &(ddx, ddy) in dirs.iter().take(nd) {
-            let found = if ddy == 0 {
-                jumper
-                    .horizontal(x, y, ddx)
-                    .map(|jx| (y * stride + jx, STRAIGHT * jx.abs_diff(x) as u64))
-            } else if ddx == 0 {
-                jumper
-                    .vertical(x, y, ddy)
-                    .map(|jy| (jy * stride + x, STRAIGHT * jy.abs_diff(y) as u64))
-            } else {
-                jumper
-                    .diagonal(x, y, ddx, ddy)
-                    .map(|(j, n)| (j, DIAG * n as u64))
-            };
-            let Some((j, cost)) = found else { continue };
-            let ng = g + cost;
-            let new = word | ng;
-            if let (Some(old), Some(p)) = (words.get_mut(j), parents.get_mut(j)) {
-                if *old > new {
-                    *old = new;
-                    *p = idx;
-                    let (jx, jy) = xy(j, stride);
-                    let h = est.h(jx.abs_diff(gx), jy.abs_diff(gy));
-                    open.push(Entry::new(ng.saturating_add(h), ng, j));
-                }
-            }
-        }
+            DIRS.get(dir as usize).copied()
+        };
+        search.expand(i, x, y, g, dir);
     }
-    Err(PlanError::Unreachable { expanded })
-}
-
-/// Follows parent links from `t` to `s` and fills in the cells of every
-/// straight or diagonal jump between consecutive jump points.
-fn reconstruct(grid: &PlanGrid, parents: &[u32], s: usize, t: usize) -> Vec<GridPos> {
-    let stride = grid.stride();
-    let mut jump_points = vec![t];
-    let mut i = t;
-    // Parents form a tree rooted at `s`; the bound guards the walk anyway.
-    while i != s && jump_points.len() <= parents.len() {
-        match parents.get(i) {
-            Some(&p) => i = p as usize,
-            None => break,
-        }
-        jump_points.push(i);
-    }
-    let mut cells = vec![grid.pos_of(s)];
-    for w in jump_points.windows(2).rev() {
-        let (from, to) = (w[1], w[0]);
-        let ((fx, fy), (tx, ty)) = (xy(from, stride), xy(to, stride));
-        let (dx, dy) = (sign(tx, fx), sign(ty, fy));
-        let steps = fx.abs_diff(tx).max(fy.abs_diff(ty));
-        let (mut x, mut y) = (fx, fy);
-        for _ in 0..steps {
-            x = x.wrapping_add_signed(dx);
-            y = y.wrapping_add_signed(dy);
-            cells.push(grid.pos_of(y * stride + x));
-        }
-    }
-    cells
+    (false, expanded)
 }
 
 #[cfg(test)]

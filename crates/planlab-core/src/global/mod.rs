@@ -219,8 +219,8 @@ pub struct PlanGrid {
     stride: usize,
     /// (width + 2) × (height + 2); `true` = passable.
     free: Vec<bool>,
-    /// The same bitmap packed 64 cells a word, by rows and by columns, for
-    /// Jump Point Search; kept in step with `free`.
+    /// The same bitmap packed 64 cells a word, by rows and by columns, with
+    /// the stop masks of Jump Point Search; kept in step with `free`.
     lines: search::LineBits,
 }
 
@@ -242,10 +242,7 @@ impl PlanGrid {
                 free[(r + 1) * stride + c + 1] = f(c, r);
             }
         }
-        let mut lines = search::LineBits::new(stride, height + 2);
-        for (i, _) in free.iter().enumerate().filter(|(_, &f)| f) {
-            lines.set(i % stride, i / stride, true);
-        }
+        let lines = search::LineBits::new(&free, stride, height + 2);
         Self {
             width,
             height,

@@ -17,107 +17,298 @@ pub(crate) const STRAIGHT: u64 = 470_832;
 /// Cost of a diagonal move: round(√2 · STRAIGHT), a convergent of √2.
 pub(crate) const DIAG: u64 = 665_857;
 
-/// Bits of a cell's search word above the cost: a 16-bit generation tag.
-const TAG_SHIFT: u32 = 48;
+/// A cell's search word: `tag (13 bits) | OPEN | g (47 bits) | dir (3 bits)`.
+/// The generation tag sits on top so words of earlier searches compare
+/// greater than any word of the current one.
+const TAG_SHIFT: u32 = 51;
+/// Largest generation tag; a fresh word (`u64::MAX`) carries it.
+const MAX_TAG: u64 = (1 << (64 - TAG_SHIFT)) - 1;
 /// Set while a cell is open (generated, not yet expanded) in the current
 /// search; cleared when it is closed.
-pub(crate) const OPEN: u64 = 1 << 47;
-/// Mask of the cost `g` in a search word.
-pub(crate) const G_MASK: u64 = OPEN - 1;
+pub(crate) const OPEN: u64 = 1 << 50;
+/// Shift of `g` in a search word.
+pub(crate) const G_SHIFT: u32 = 3;
+/// Mask of `g` once shifted down.
+pub(crate) const G_MASK: u64 = (1 << 47) - 1;
+/// Mask of the arrival direction (an index into [`DIRS`]).
+pub(crate) const DIR_MASK: u64 = 0b111;
 /// The largest padded grid the planners accept: any path then costs less
-/// than [`G_MASK`] (≤ 2·10⁸ cells × [`DIAG`] < 2⁴⁷).
+/// than 2⁴⁷ units (2·10⁸ cells × [`DIAG`] < 2⁴⁷).
 pub(crate) const MAX_PADDED_CELLS: usize = 200_000_000;
 
-/// An open-list entry: smallest `f` first, ties to the largest `g` (deepest
-/// node), which keeps A* from fanning out over equal-cost regions. `tie` is
-/// `g >> 16` (the tie-break needs no more precision), keeping the entry at
-/// 16 bytes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Entry {
-    pub f: u64,
-    pub tie: u32,
-    pub idx: u32,
+/// The eight moves `(dx, dy)`, indexed by the direction stored in a search
+/// word: straight ones first.
+pub(crate) const DIRS: [(isize, isize); 8] = [
+    (1, 0),
+    (-1, 0),
+    (0, 1),
+    (0, -1),
+    (1, 1),
+    (1, -1),
+    (-1, 1),
+    (-1, -1),
+];
+
+/// Index in [`DIRS`] of the move `(dx, dy)` (each −1, 0 or 1, not both 0).
+#[inline(always)]
+pub(crate) fn dir_index(dx: isize, dy: isize) -> u64 {
+    match (dx, dy) {
+        (1, 0) => 0,
+        (-1, 0) => 1,
+        (0, 1) => 2,
+        (0, -1) => 3,
+        (1, 1) => 4,
+        (1, -1) => 5,
+        (-1, 1) => 6,
+        _ => 7,
+    }
 }
 
-impl Entry {
-    #[inline(always)]
-    pub fn new(f: u64, g: u64, idx: usize) -> Self {
+/// The open list: pops the entry of smallest `f`, ties to the largest `g`
+/// (the deepest node, which keeps A* from fanning out over equal-cost
+/// regions). Entries are never decreased in place; a cell pushed twice
+/// leaves a stale entry that the planners skip (lazy deletion).
+pub(crate) trait OpenList {
+    /// Adds cell `idx` with priority `f` and cost `g`.
+    fn push(&mut self, f: u64, g: u64, idx: usize);
+    /// Removes the best entry's cell.
+    fn pop(&mut self) -> Option<usize>;
+    /// Empties the list, keeping its allocations.
+    fn clear(&mut self);
+}
+
+/// Tie-break payload: `g >> 16` (ample precision for ordering ties) above
+/// the cell index, so a max-order on the `u64` prefers larger `g`.
+#[inline(always)]
+fn payload(g: u64, idx: usize) -> u64 {
+    (g >> 16).min(u32::MAX as u64) << 32 | idx as u64 & 0xFFFF_FFFF
+}
+
+/// A binary heap keyed by `(f, g)` packed in one `u128`, for any priorities.
+#[derive(Debug, Default)]
+pub(crate) struct BinaryQueue(BinaryHeap<u128>);
+
+impl OpenList for BinaryQueue {
+    #[inline]
+    fn push(&mut self, f: u64, g: u64, idx: usize) {
+        // Max-heap: invert f so the smallest f is the largest key.
+        self.0.push(((!f as u128) << 64) | payload(g, idx) as u128);
+    }
+
+    #[inline]
+    fn pop(&mut self) -> Option<usize> {
+        self.0.pop().map(|k| (k as u32) as usize)
+    }
+
+    fn clear(&mut self) {
+        self.0.clear();
+    }
+}
+
+/// A radix heap (Ahuja, Mehlhorn, Orlin & Tarjan 1990) over `f`, for
+/// searches whose popped `f` never decreases — A* with a consistent
+/// heuristic and weight 1, Dijkstra, JPS. Pushing is O(1); each entry is
+/// redistributed O(log range) times at most, usually a handful. Entries
+/// whose `f` equals the last popped one wait in a small max-heap ordered by
+/// `g`, which gives the tie-break.
+#[derive(Debug)]
+pub(crate) struct RadixQueue {
+    /// `f` of the last entry taken out of the buckets.
+    last: u64,
+    /// Entries with `f == last`, as tie-break payloads.
+    top: BinaryHeap<u64>,
+    /// Bucket `b` (1..=64) holds `(f, payload)` with the highest bit in which
+    /// `f` differs from `last` equal to `b − 1`.
+    buckets: Vec<Vec<(u64, u64)>>,
+    /// Bit `b − 1` set when bucket `b` is non-empty.
+    occupied: u64,
+    /// Spare vector swapped in while a bucket is redistributed.
+    spare: Vec<(u64, u64)>,
+}
+
+impl Default for RadixQueue {
+    fn default() -> Self {
         Self {
-            f,
-            tie: (g >> 16) as u32,
-            idx: idx as u32,
+            last: 0,
+            top: BinaryHeap::new(),
+            buckets: vec![Vec::new(); 65],
+            occupied: 0,
+            spare: Vec::new(),
         }
     }
 }
 
-impl Ord for Entry {
+impl OpenList for RadixQueue {
     #[inline]
-    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        // BinaryHeap is a max-heap: reverse f, keep the tie-break.
-        other.f.cmp(&self.f).then(self.tie.cmp(&other.tie))
+    fn push(&mut self, f: u64, g: u64, idx: usize) {
+        let p = payload(g, idx);
+        if f <= self.last {
+            // `f < last` cannot happen with a consistent heuristic; were it
+            // to, the entry is still better than every bucketed one.
+            self.top.push(p);
+        } else {
+            let b = (64 - (f ^ self.last).leading_zeros()) as usize;
+            if let Some(bucket) = self.buckets.get_mut(b) {
+                bucket.push((f, p));
+                self.occupied |= 1 << (b - 1);
+            }
+        }
     }
-}
 
-impl PartialOrd for Entry {
     #[inline]
-    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
+    fn pop(&mut self) -> Option<usize> {
+        if let Some(p) = self.top.pop() {
+            return Some((p as u32) as usize);
+        }
+        if self.occupied == 0 {
+            return None;
+        }
+        let b = self.occupied.trailing_zeros() as usize + 1;
+        self.occupied &= !(1 << (b - 1));
+        let mut moving = std::mem::take(&mut self.spare);
+        if let Some(bucket) = self.buckets.get_mut(b) {
+            std::mem::swap(bucket, &mut moving);
+        }
+        self.last = moving.iter().map(|&(f, _)| f).min().unwrap_or(self.last);
+        for &(f, p) in &moving {
+            if f == self.last {
+                self.top.push(p);
+            } else {
+                // Every other entry lands in a lower bucket than `b`.
+                let nb = (64 - (f ^ self.last).leading_zeros()) as usize;
+                if let Some(bucket) = self.buckets.get_mut(nb) {
+                    bucket.push((f, p));
+                    self.occupied |= 1 << (nb - 1);
+                }
+            }
+        }
+        moving.clear();
+        self.spare = moving;
+        self.top.pop().map(|p| (p as u32) as usize)
+    }
+
+    fn clear(&mut self) {
+        self.last = 0;
+        self.top.clear();
+        while self.occupied != 0 {
+            let b = self.occupied.trailing_zeros() as usize;
+            if let Some(bucket) = self.buckets.get_mut(b + 1) {
+                bucket.clear();
+            }
+            self.occupied &= !(1 << b);
+        }
     }
 }
 
 /// Reusable search buffers, indexed by padded cell.
 ///
-/// Each cell has one 64-bit word: `tag << 48 | OPEN? | g`. Every search
-/// uses a new, smaller `tag`, so words left by earlier searches compare
-/// greater than any word of the current one: "unseen or reachable more
-/// cheaply" is a single `old > new` comparison, and starting a search costs
-/// O(1) instead of clearing O(cells). A closed cell lacks [`OPEN`], so it
-/// never compares greater and is never reopened (the heuristics are
-/// consistent in integer units; see [`FixedHeuristic::eval`]).
+/// Each cell has one 64-bit word (see [`TAG_SHIFT`]): generation tag, open
+/// flag, cost `g` and the direction of the move that reached the cell.
+/// Every search uses a new, smaller tag, so words left by earlier searches
+/// compare greater than any word of the current one: "unseen, or open at a
+/// higher cost" is a single comparison ([`SearchSpace::improves`]), and
+/// starting a search costs O(1) instead of clearing O(cells). A closed cell
+/// lacks [`OPEN`], so it never compares greater and is never reopened (the
+/// monotone searches never need to; see [`FixedHeuristic::eval`]). Paths are
+/// recovered by walking back along the stored directions, so there is no
+/// parent array.
 #[derive(Debug, Default)]
 pub(crate) struct SearchSpace {
     /// Search word per padded cell.
-    pub g: Vec<u64>,
-    /// Predecessor per padded cell (Jump Point Search only; A* walks back
-    /// along decreasing `g` instead).
-    pub parent: Vec<u32>,
-    /// `tag << 48` of the current search.
+    pub words: Vec<u64>,
+    /// `tag << TAG_SHIFT` of the current search.
     pub tag: u64,
-    /// The open list (lazy deletion).
-    pub open: BinaryHeap<Entry>,
+    /// Open list for monotone searches.
+    pub radix: RadixQueue,
+    /// Open list for the others (weighted or inconsistent heuristics).
+    pub binary: BinaryQueue,
 }
 
 impl SearchSpace {
     /// Prepares for a search over `cells` padded cells.
-    pub fn reset(&mut self, cells: usize, with_parents: bool) {
-        if self.g.len() < cells {
-            self.g.resize(cells, u64::MAX);
+    pub fn reset(&mut self, cells: usize) {
+        if self.words.len() < cells {
+            self.words.resize(cells, u64::MAX);
         }
-        if with_parents && self.parent.len() < cells {
-            self.parent.resize(cells, 0);
-        }
-        self.open.clear();
+        self.radix.clear();
+        self.binary.clear();
         let mut tag = self.tag >> TAG_SHIFT;
         if tag == 0 {
             // Tags exhausted (or first use): forget every earlier search.
-            self.g.fill(u64::MAX);
-            tag = 0xFFFF;
+            self.words.fill(u64::MAX);
+            tag = MAX_TAG;
         }
         self.tag = (tag - 1) << TAG_SHIFT;
     }
 
-    /// The word that opens a cell at cost `g` in the current search.
+    /// The word of an open cell reached at cost `g` by move `dir`.
     #[inline(always)]
-    pub fn open_word(&self, g: u64) -> u64 {
-        self.tag | OPEN | g
+    pub fn open_word(&self, g: u64, dir: u64) -> u64 {
+        self.tag | OPEN | g << G_SHIFT | dir
     }
 
-    /// Cost of a cell reached in the current search, open or closed.
+    /// Cost and arrival direction of a cell reached in the current search,
+    /// open or closed.
     #[inline(always)]
-    pub fn g_of(&self, idx: usize) -> Option<u64> {
-        let w = *self.g.get(idx)?;
-        (w & !(OPEN | G_MASK) == self.tag).then_some(w & G_MASK)
+    pub fn reached(&self, idx: usize) -> Option<(u64, u64)> {
+        let w = *self.words.get(idx)?;
+        (w >> TAG_SHIFT == self.tag >> TAG_SHIFT).then_some(((w >> G_SHIFT) & G_MASK, w & DIR_MASK))
     }
+}
+
+/// Whether `new` (an open word of the current search) improves on the
+/// stored word `old`: `old` is from an earlier search, or open now at a
+/// higher cost. Directions are ignored.
+#[inline(always)]
+pub(crate) fn improves(old: u64, new: u64) -> bool {
+    old | DIR_MASK > new | DIR_MASK
+}
+
+/// Walks back from `t` to `s` along the stored arrival directions. From a
+/// cell `c`, the cells behind it along its direction are visited until one
+/// reached in this search with `g + distance ≤ g(c)`: the cell `c` was
+/// reached from lies on that ray and its cost has only decreased since, so
+/// the walk always succeeds, every step strictly lowers `g`, and the result
+/// costs at most `g(t)`. Cells in start-to-goal order; `None` only if the
+/// search space is inconsistent (never, barring a bug).
+pub(crate) fn walk_back(
+    grid: &PlanGrid,
+    space: &SearchSpace,
+    s: usize,
+    t: usize,
+) -> Option<Vec<GridPos>> {
+    let stride = grid.stride();
+    let free = grid.padded();
+    let (mut gc, mut dir) = space.reached(t)?;
+    let (mut x, mut y) = xy(t, stride);
+    // Padded → map coordinates (the padding is one cell).
+    let pos = |x: usize, y: usize| GridPos::new((x - 1) as u32, (y - 1) as u32);
+    let mut cells = vec![pos(x, y)];
+    let mut c = t;
+    while c != s {
+        let (dx, dy) = DIRS.get(dir as usize).copied()?;
+        let back = -(dy * stride as isize + dx);
+        let cost = if dx != 0 && dy != 0 { DIAG } else { STRAIGHT };
+        let mut k = 0u64;
+        let found = loop {
+            c = c.wrapping_add_signed(back);
+            x = x.wrapping_add_signed(-dx);
+            y = y.wrapping_add_signed(-dy);
+            k += 1;
+            if !free.get(c).copied().unwrap_or(false) {
+                break None;
+            }
+            cells.push(pos(x, y));
+            if let Some((gq, dq)) = space.reached(c) {
+                if gq + k * cost <= gc {
+                    break Some((gq, dq));
+                }
+            }
+        };
+        (gc, dir) = found?;
+    }
+    cells.reverse();
+    Some(cells)
 }
 
 thread_local! {
@@ -169,6 +360,8 @@ impl FixedHeuristic {
             Heuristic::Manhattan => STRAIGHT * (dx + dy),
             Heuristic::Chebyshev => STRAIGHT * hi,
             Heuristic::Zero => 0,
+            // Rounding down a consistent estimate keeps it consistent when
+            // move costs are integers (DIAG ≥ √2·STRAIGHT).
             Heuristic::Euclidean => {
                 let (fx, fy) = (dx as f64, dy as f64);
                 ((fx * fx + fy * fy).sqrt() * STRAIGHT as f64) as u64
@@ -186,6 +379,10 @@ impl FixedHeuristic {
 /// A heuristic in fixed-point units; the planners are monomorphised over it
 /// so the common octile and zero cases compile to straight-line integer code.
 pub(crate) trait Estimate: Copy {
+    /// Whether `f` never decreases along a search with this estimate
+    /// (consistent, weight 1), so the radix queue applies.
+    const MONOTONE: bool;
+
     /// Estimate for absolute offsets `dx`, `dy` in cells.
     fn h(&self, dx: usize, dy: usize) -> u64;
 }
@@ -195,6 +392,7 @@ pub(crate) trait Estimate: Copy {
 pub(crate) struct OctileEstimate;
 
 impl Estimate for OctileEstimate {
+    const MONOTONE: bool = true;
     #[inline(always)]
     fn h(&self, dx: usize, dy: usize) -> u64 {
         let (lo, hi) = if dx < dy { (dx, dy) } else { (dy, dx) };
@@ -207,6 +405,7 @@ impl Estimate for OctileEstimate {
 pub(crate) struct ZeroEstimate;
 
 impl Estimate for ZeroEstimate {
+    const MONOTONE: bool = true;
     #[inline(always)]
     fn h(&self, _dx: usize, _dy: usize) -> u64 {
         0
@@ -214,6 +413,7 @@ impl Estimate for ZeroEstimate {
 }
 
 impl Estimate for FixedHeuristic {
+    const MONOTONE: bool = false;
     #[inline]
     fn h(&self, dx: usize, dy: usize) -> u64 {
         self.eval(dx, dy)
@@ -248,146 +448,187 @@ pub(crate) fn xy(idx: usize, stride: usize) -> (usize, usize) {
     ((i % s) as usize, (i / s) as usize)
 }
 
-/// Bit-packed passability, by rows and by columns, of a padded grid: bit
-/// `x` of row line `y` (and bit `y` of column line `x`) is set when padded
-/// cell `(x, y)` is passable. Jump Point Search scans these 64 cells at a
-/// time (Harabor & Grastien 2014, "block-based" JPS).
+/// Bit-packed passability of a padded grid along one orientation (rows or
+/// columns), with the stop masks straight jumps scan, 64 cells per word
+/// (Harabor & Grastien 2014, "block-based" JPS).
+///
+/// Bit `pos` of line `l` in `free` is set when the cell at position `pos` of
+/// line `l` is passable. Bit `pos` of `fwd` is set where a jump moving to
+/// increasing positions must stop: the cell is blocked, or it has a forced
+/// neighbour — the cell beside it in an adjacent line is passable while the
+/// one beside its predecessor (`pos − 1`) is blocked. `bwd` is the same for
+/// decreasing positions (successor `pos + 1`). The masks are a function of
+/// three adjacent lines, recomputed locally on every edit; they hold no
+/// jump distances (this is online JPS, not JPS+).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub(crate) struct LineBits {
-    /// Words per row line.
-    pub row_words: usize,
-    /// `padded height × row_words` words.
-    pub rows: Vec<u64>,
-    /// Words per column line.
-    pub col_words: usize,
-    /// `stride × col_words` words.
-    pub cols: Vec<u64>,
+pub(crate) struct Lines {
+    /// Words per line.
+    words: usize,
+    /// Number of lines.
+    count: usize,
+    free: Vec<u64>,
+    fwd: Vec<u64>,
+    bwd: Vec<u64>,
 }
 
-impl LineBits {
-    /// All-blocked lines for a padded `stride × padded_height` grid.
-    pub fn new(stride: usize, padded_height: usize) -> Self {
-        let row_words = stride.div_ceil(64);
-        let col_words = padded_height.div_ceil(64);
+impl Lines {
+    /// `count` all-blocked lines of `len` cells.
+    fn new(count: usize, len: usize) -> Self {
+        let words = len.div_ceil(64);
         Self {
-            row_words,
-            rows: vec![0; row_words * padded_height],
-            col_words,
-            cols: vec![0; col_words * stride],
+            words,
+            count,
+            free: vec![0; words * count],
+            fwd: vec![!0; words * count],
+            bwd: vec![!0; words * count],
         }
     }
 
-    /// Sets padded cell `(x, y)` passable or blocked.
-    pub fn set(&mut self, x: usize, y: usize, free: bool) {
-        let (ri, rb) = (y * self.row_words + x / 64, x % 64);
-        let (ci, cb) = (x * self.col_words + y / 64, y % 64);
-        if let (Some(r), Some(c)) = (self.rows.get_mut(ri), self.cols.get_mut(ci)) {
+    fn set_free_bit(&mut self, line: usize, pos: usize, free: bool) {
+        if let Some(w) = self.free.get_mut(line * self.words + pos / 64) {
             if free {
-                *r |= 1 << rb;
-                *c |= 1 << cb;
+                *w |= 1 << (pos % 64);
             } else {
-                *r &= !(1 << rb);
-                *c &= !(1 << cb);
+                *w &= !(1 << (pos % 64));
             }
         }
     }
-}
 
-/// Scans line `line` forward (increasing position) from `pos` for the first
-/// position `s > pos` where a straight jump stops: a blocked cell (→ `None`),
-/// the `target` position, or a cell with a forced neighbour — a passable cell
-/// in an adjacent line whose predecessor (`s − 1`) there is blocked.
-///
-/// `line` must be an interior line (it has lines on both sides) and the last
-/// position of every line must be blocked, which the padding guarantees.
-#[inline]
-pub(crate) fn scan_forward(
-    lines: &[u64],
-    words: usize,
-    line: usize,
-    pos: usize,
-    target: usize,
-) -> Option<usize> {
-    let base = line * words;
-    let prev = lines.get(base.checked_sub(words)?..base)?;
-    let cur = lines.get(base..base + words)?;
-    let next = lines.get(base + words..base + 2 * words)?;
-    let start = pos + 1;
-    let mut k = start / 64;
-    let mut mask = !0u64 << (start % 64);
-    // Bit 63 of the previous word, shifted in as bit 0 of this one.
-    let (mut carry_p, mut carry_n) = match k.checked_sub(1) {
-        Some(j) => (prev.get(j)? >> 63, next.get(j)? >> 63),
-        None => (0, 0),
-    };
-    let target_word = target / 64;
-    while let (Some(&p), Some(&c), Some(&n)) = (prev.get(k), cur.get(k), next.get(k)) {
-        let forced = (p & !((p << 1) | carry_p)) | (n & !((n << 1) | carry_n));
-        let mut stop = (forced | !c) & mask;
-        if k == target_word {
-            stop |= (1u64 << (target % 64)) & mask;
-        }
-        if stop != 0 {
-            let b = stop.trailing_zeros();
-            return if (c >> b) & 1 == 1 {
-                Some(k * 64 + b as usize)
-            } else {
-                None
-            };
-        }
-        carry_p = p >> 63;
-        carry_n = n >> 63;
-        mask = !0;
-        k += 1;
+    #[inline]
+    fn free_word(&self, line: usize, k: usize) -> u64 {
+        self.free.get(line * self.words + k).copied().unwrap_or(0)
     }
-    None
+
+    /// Recomputes the stop masks of word `k` of `line`.
+    fn refresh(&mut self, line: usize, k: usize) {
+        if k >= self.words || line >= self.count {
+            return;
+        }
+        let c = self.free_word(line, k);
+        let (mut fwd, mut bwd) = (!c, !c);
+        // Edge lines are never scanned; they keep "stop everywhere free".
+        if line > 0 && line + 1 < self.count {
+            for side in [line - 1, line + 1] {
+                let w = self.free_word(side, k);
+                let before = match k.checked_sub(1) {
+                    Some(j) => self.free_word(side, j) >> 63,
+                    None => 0,
+                };
+                let after = if k + 1 < self.words {
+                    self.free_word(side, k + 1) << 63
+                } else {
+                    0
+                };
+                fwd |= w & !((w << 1) | before);
+                bwd |= w & !((w >> 1) | after);
+            }
+        }
+        let i = line * self.words + k;
+        if let (Some(f), Some(b)) = (self.fwd.get_mut(i), self.bwd.get_mut(i)) {
+            *f = fwd;
+            *b = bwd;
+        }
+    }
+
+    fn refresh_all(&mut self) {
+        for line in 0..self.count {
+            for k in 0..self.words {
+                self.refresh(line, k);
+            }
+        }
+    }
+
+    /// Whether position `pos` of `line` is passable.
+    #[inline(always)]
+    fn is_free(&self, line: usize, pos: usize) -> bool {
+        (self.free_word(line, pos / 64) >> (pos % 64)) & 1 == 1
+    }
+
+    /// Straight jump from `pos` towards increasing positions along `line`:
+    /// the first position `s > pos` that is `target`, or where `fwd` stops,
+    /// if passable (`None` when the jump runs into an obstacle).
+    #[inline(always)]
+    pub fn jump_forward(&self, line: usize, pos: usize, target: usize) -> Option<usize> {
+        let base = line * self.words;
+        let start = pos + 1;
+        let mut k = start / 64;
+        let mut m = self.fwd.get(base + k)? & (!0u64 << (start % 64));
+        while m == 0 {
+            k += 1;
+            if k >= self.words {
+                return None;
+            }
+            m = *self.fwd.get(base + k)?;
+        }
+        let stop = k * 64 + m.trailing_zeros() as usize;
+        if target > pos && target < stop {
+            Some(target)
+        } else if self.is_free(line, stop) {
+            Some(stop)
+        } else {
+            None
+        }
+    }
+
+    /// As [`Lines::jump_forward`], towards decreasing positions.
+    #[inline(always)]
+    pub fn jump_backward(&self, line: usize, pos: usize, target: usize) -> Option<usize> {
+        let base = line * self.words;
+        let start = pos.checked_sub(1)?;
+        let mut k = start / 64;
+        let mut m = self.bwd.get(base + k)? & (!0u64 >> (63 - start % 64));
+        while m == 0 {
+            k = k.checked_sub(1)?;
+            m = *self.bwd.get(base + k)?;
+        }
+        let stop = k * 64 + 63 - m.leading_zeros() as usize;
+        if target < pos && target > stop {
+            Some(target)
+        } else if self.is_free(line, stop) {
+            Some(stop)
+        } else {
+            None
+        }
+    }
 }
 
-/// As [`scan_forward`], towards decreasing positions: the last `s < pos`
-/// that is blocked (→ `None`), `target`, or has a forced neighbour (a
-/// passable adjacent cell whose successor `s + 1` there is blocked).
-#[inline]
-pub(crate) fn scan_backward(
-    lines: &[u64],
-    words: usize,
-    line: usize,
-    pos: usize,
-    target: usize,
-) -> Option<usize> {
-    let base = line * words;
-    let prev = lines.get(base.checked_sub(words)?..base)?;
-    let cur = lines.get(base..base + words)?;
-    let next = lines.get(base + words..base + 2 * words)?;
-    let start = pos.checked_sub(1)?;
-    let mut k = start / 64;
-    let mut mask = !0u64 >> (63 - start % 64);
-    // Bit 0 of the next word, shifted in as bit 63 of this one.
-    let (mut carry_p, mut carry_n) = match (prev.get(k + 1), next.get(k + 1)) {
-        (Some(&p), Some(&n)) => (p << 63, n << 63),
-        _ => (0, 0),
-    };
-    let target_word = target / 64;
-    loop {
-        let (Some(&p), Some(&c), Some(&n)) = (prev.get(k), cur.get(k), next.get(k)) else {
-            return None;
-        };
-        let forced = (p & !((p >> 1) | carry_p)) | (n & !((n >> 1) | carry_n));
-        let mut stop = (forced | !c) & mask;
-        if k == target_word {
-            stop |= (1u64 << (target % 64)) & mask;
+/// The padded grid's [`Lines`] by rows (line = y, position = x) and by
+/// columns (line = x, position = y).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct LineBits {
+    pub rows: Lines,
+    pub cols: Lines,
+}
+
+impl LineBits {
+    /// Lines of a padded `stride × padded_height` grid whose padded cell
+    /// `(x, y)` is passable when `free[y * stride + x]`.
+    pub fn new(free: &[bool], stride: usize, padded_height: usize) -> Self {
+        let mut rows = Lines::new(padded_height, stride);
+        let mut cols = Lines::new(stride, padded_height);
+        for (i, _) in free.iter().enumerate().filter(|(_, &f)| f) {
+            let (x, y) = (i % stride, i / stride);
+            rows.set_free_bit(y, x, true);
+            cols.set_free_bit(x, y, true);
         }
-        if stop != 0 {
-            let b = 63 - stop.leading_zeros();
-            return if (c >> b) & 1 == 1 {
-                Some(k * 64 + b as usize)
-            } else {
-                None
-            };
+        rows.refresh_all();
+        cols.refresh_all();
+        Self { rows, cols }
+    }
+
+    /// Sets padded cell `(x, y)` passable or blocked, and refreshes the stop
+    /// masks it affects (the words around it in its line and both
+    /// neighbouring lines).
+    pub fn set(&mut self, x: usize, y: usize, free: bool) {
+        self.rows.set_free_bit(y, x, free);
+        self.cols.set_free_bit(x, y, free);
+        for (lines, line, pos) in [(&mut self.rows, y, x), (&mut self.cols, x, y)] {
+            for l in line.saturating_sub(1)..=line + 1 {
+                for k in pos.saturating_sub(1) / 64..=(pos + 1) / 64 {
+                    lines.refresh(l, k);
+                }
+            }
         }
-        carry_p = p << 63;
-        carry_n = n << 63;
-        mask = !0;
-        k = k.checked_sub(1)?;
     }
 }
 
@@ -423,9 +664,9 @@ mod tests {
     }
 
     #[test]
-    fn scans_match_cell_by_cell_jumps() {
-        // Deterministic pseudo-random lines of 150 cells (3 words), blocked
-        // at both ends like the padded grid.
+    fn jumps_match_cell_by_cell_jumps_before_and_after_edits() {
+        // Deterministic pseudo-random grids of 150 × 7 padded cells (3 words
+        // per row), blocked all round like a padded grid.
         let mut state = 0x2545_f491_4f6c_dd1du64;
         let mut rnd = || {
             state ^= state << 13;
@@ -433,43 +674,55 @@ mod tests {
             state ^= state << 17;
             state
         };
-        let (len, nlines) = (150usize, 5usize);
+        let (stride, height) = (150usize, 7usize);
         for density in [2u64, 5, 20, 50] {
-            let grid: Vec<Vec<bool>> = (0..nlines)
-                .map(|_| {
-                    (0..len)
-                        .map(|p| p != 0 && p != len - 1 && rnd() % 100 >= density)
-                        .collect()
+            let mut free: Vec<bool> = (0..stride * height)
+                .map(|i| {
+                    let (x, y) = (i % stride, i / stride);
+                    x > 0 && y > 0 && x + 1 < stride && y + 1 < height && rnd() % 100 >= density
                 })
                 .collect();
-            let words = len.div_ceil(64);
-            let mut lines = vec![0u64; words * nlines];
-            for (l, row) in grid.iter().enumerate() {
-                for (p, &f) in row.iter().enumerate() {
-                    if f {
-                        lines[l * words + p / 64] |= 1 << (p % 64);
+            let mut bits = LineBits::new(&free, stride, height);
+            for round in 0..2 {
+                let rows: Vec<Vec<bool>> = (0..height)
+                    .map(|y| (0..stride).map(|x| free[y * stride + x]).collect())
+                    .collect();
+                let cols: Vec<Vec<bool>> = (0..stride)
+                    .map(|x| (0..height).map(|y| free[y * stride + x]).collect())
+                    .collect();
+                for (lines, grid) in [(&bits.rows, &rows), (&bits.cols, &cols)] {
+                    for line in 1..grid.len() - 1 {
+                        for pos in 1..grid[line].len() - 1 {
+                            let target = if pos % 3 == 0 {
+                                (pos * 7) % grid[line].len()
+                            } else {
+                                usize::MAX
+                            };
+                            let msg =
+                                format!("round {round} line {line} pos {pos} target {target}");
+                            assert_eq!(
+                                lines.jump_forward(line, pos, target),
+                                naive(grid, line, pos, true, target),
+                                "forward {msg}"
+                            );
+                            assert_eq!(
+                                lines.jump_backward(line, pos, target),
+                                naive(grid, line, pos, false, target),
+                                "backward {msg}"
+                            );
+                        }
                     }
                 }
-            }
-            for line in 1..nlines - 1 {
-                for pos in 1..len - 1 {
-                    let target = if pos % 3 == 0 {
-                        (pos * 7) % len
-                    } else {
-                        usize::MAX
-                    };
-                    assert_eq!(
-                        scan_forward(&lines, words, line, pos, target),
-                        naive(&grid, line, pos, true, target),
-                        "forward line {line} pos {pos} target {target}"
-                    );
-                    assert_eq!(
-                        scan_backward(&lines, words, line, pos, target),
-                        naive(&grid, line, pos, false, target),
-                        "backward line {line} pos {pos} target {target}"
-                    );
+                // Edit some interior cells, across word boundaries too.
+                for _ in 0..60 {
+                    let x = 1 + (rnd() as usize) % (stride - 2);
+                    let y = 1 + (rnd() as usize) % (height - 2);
+                    let f = rnd() % 2 == 0;
+                    free[y * stride + x] = f;
+                    bits.set(x, y, f);
                 }
             }
+            assert_eq!(bits, LineBits::new(&free, stride, height));
         }
     }
 
