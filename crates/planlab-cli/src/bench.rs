@@ -1,6 +1,7 @@
 //! `planlab bench grid`: our A* and JPS against the `pathfinding` crate's
 //! `astar` on the same Moving AI rows, all three checked against the optimum.
 
+use crate::peer::pathfinding_cost;
 use planlab_core::global::astar::{AStar, AStarConfig};
 use planlab_core::global::jps::{Jps, JpsConfig};
 use planlab_core::global::{GridPlanner, PlanGrid};
@@ -26,50 +27,8 @@ pub struct BenchReport {
     pub jps_speedup: f64,
 }
 
-/// Fixed-point move costs for the peer (it needs an `Ord` cost): 1 and √2
-/// scaled so the rounding error stays far below the 1e-3 tolerance.
-const STRAIGHT: u64 = 1_000_000;
-const DIAG: u64 = 1_414_214;
-
 fn matches(cost: f64, optimal: f64) -> bool {
     (cost - optimal).abs() <= 1e-3 * optimal.max(1.0)
-}
-
-/// The peer: pathfinding's A* with the same 8-connected, no-corner-cutting
-/// successors and the octile heuristic, over cell indices.
-fn pathfinding_cost(grid: &PlanGrid, row: &ScenRow) -> Option<f64> {
-    let w = grid.width() as u32;
-    let free = |c: i64, r: i64| grid.is_free(c, r);
-    let (gc, gr) = (row.goal.col as i64, row.goal.row as i64);
-    let start = row.start.row * w + row.start.col;
-    let goal = row.goal.row * w + row.goal.col;
-    let result = pathfinding::directed::astar::astar(
-        &start,
-        |&i| {
-            let (c, r) = ((i % w) as i64, (i / w) as i64);
-            let mut out: Vec<(u32, u64)> = Vec::with_capacity(8);
-            for (dc, dr) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
-                if free(c + dc, r + dr) {
-                    out.push((((r + dr) as u32) * w + (c + dc) as u32, STRAIGHT));
-                }
-            }
-            for (dc, dr) in [(1, 1), (1, -1), (-1, 1), (-1, -1)] {
-                if free(c + dc, r + dr) && free(c + dc, r) && free(c, r + dr) {
-                    out.push((((r + dr) as u32) * w + (c + dc) as u32, DIAG));
-                }
-            }
-            out
-        },
-        |&i| {
-            let (c, r) = ((i % w) as i64, (i / w) as i64);
-            let (dx, dy) = ((c - gc).unsigned_abs(), (r - gr).unsigned_abs());
-            let (lo, hi) = (dx.min(dy), dx.max(dy));
-            // Octile, rounded down so it stays admissible in fixed point.
-            (hi - lo) * STRAIGHT + lo * (DIAG - 1)
-        },
-        |&i| i == goal,
-    );
-    result.map(|(_, c)| c as f64 / STRAIGHT as f64)
 }
 
 /// Runs the three planners over `rows` `reps` times each (the fastest
@@ -111,7 +70,9 @@ pub fn bench_grid(
     let jps_ms = time("JPS", &|r| {
         jps.plan(&plan_grid, r.start, r.goal).ok().map(|p| p.cost)
     })?;
-    let pathfinding_ms = time("pathfinding astar", &|r| pathfinding_cost(&plan_grid, r))?;
+    let pathfinding_ms = time("pathfinding astar", &|r| {
+        pathfinding_cost(&plan_grid, r.start, r.goal)
+    })?;
     Ok(BenchReport {
         rows: rows.len(),
         astar_ms,
@@ -141,7 +102,10 @@ mod tests {
             optimal,
         };
         // (0,0) -> (1,1) may cut no corner: two straight moves.
-        assert_eq!(pathfinding_cost(&pg, &row((0, 0), (1, 1), 2.0)), Some(2.0));
+        assert_eq!(
+            pathfinding_cost(&pg, GridPos::new(0, 0), GridPos::new(1, 1)),
+            Some(2.0)
+        );
         let report = bench_grid(&g, &[row((0, 0), (1, 1), 2.0)], 1).unwrap();
         assert_eq!(report.rows, 1);
         // A wrong optimum is reported, not averaged away.

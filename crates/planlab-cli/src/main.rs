@@ -6,6 +6,7 @@
 mod bench;
 mod grid_cmds;
 mod load;
+mod peer;
 mod serve;
 
 use clap::{Parser, Subcommand, ValueEnum};
