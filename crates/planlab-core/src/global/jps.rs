@@ -111,7 +111,8 @@ impl GridPlanner for Jps {
     }
 }
 
-const EAGER: bool = false;
+const CORNERS: bool = true;
+const MARK_EVERY: usize = 8;
 
 /// Read-only view of the grid for jumping.
 struct Jumper<'a> {
@@ -184,116 +185,171 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
     #[inline(always)]
     fn straight(&mut self, x: usize, y: usize, g: u64, dx: isize, dy: isize) {
         let stride = self.jumper.stride;
-        if dy == 0 {
-            if let Some(jx) = self.jumper.horizontal(x, y, dx) {
-                let cost = STRAIGHT * jx.abs_diff(x) as u64;
-                self.relax(y * stride + jx, jx, y, g + cost, dir_index(dx, 0));
+        let (mut x, mut y, mut g, mut dx, mut dy) = (x, y, g, dx, dy);
+        let mut corners = 0usize;
+        loop {
+            let (j, jx, jy, jg) = if dy == 0 {
+                let Some(jx) = self.jumper.horizontal(x, y, dx) else {
+                    return;
+                };
+                (y * stride + jx, jx, y, g + STRAIGHT * jx.abs_diff(x) as u64)
+            } else {
+                let Some(jy) = self.jumper.vertical(x, y, dy) else {
+                    return;
+                };
+                (jy * stride + x, x, jy, g + STRAIGHT * jy.abs_diff(y) as u64)
+            };
+            let dir = dir_index(dx, dy);
+            if CORNERS && j != self.jumper.t {
+                // A corridor corner (ahead blocked, one side open) has a
+                // single successor, the jump along that side: follow it now
+                // instead of queueing the corner.
+                let (sx, sy) = (dy, dx); // a perpendicular
+                let ahead = j.wrapping_add_signed(dy * stride as isize + dx);
+                let side_a = j.wrapping_add_signed(sy * stride as isize + sx);
+                let side_b = j.wrapping_add_signed(-(sy * stride as isize + sx));
+                let (fa, fb) = (self.jumper.free(side_a), self.jumper.free(side_b));
+                if !self.jumper.free(ahead) && fa != fb {
+                    // Only every MARK_EVERY-th corner is recorded: the path is
+                    // walked back through the others (see `walk_back`), and the
+                    // records still stop a chain that comes round a loop.
+                    corners += 1;
+                    if corners % MARK_EVERY == 0 && !self.mark(j, jg, dir) {
+                        return;
+                    }
+                    (x, y, g) = (jx, jy, jg);
+                    (dx, dy) = if fa { (sx, sy) } else { (-sx, -sy) };
+                    continue;
+                }
             }
-        } else if let Some(jy) = self.jumper.vertical(x, y, dy) {
-            let cost = STRAIGHT * jy.abs_diff(y) as u64;
-            self.relax(jy * stride + x, x, jy, g + cost, dir_index(0, dy));
+            self.relax(j, jx, jy, jg, dir);
+            return;
         }
     }
 
-    /// Diagonal jump from `(x, y)` (cost `g`) in direction `(dx, dy)`.
+    /// Diagonal jump from `(x, y)` (cost `g`) in direction `(DX, DY)`.
     ///
     /// As in plain JPS, the jump stops at the goal or at the first cell from
     /// which a straight jump along either component finds a jump point, and
     /// opens that cell. Those straight jump points are relaxed right away,
     /// reusing the scans that found them (a form of Harabor & Grastien's
     /// 2014 intermediate-point pruning), so when the cell is expanded later
-    /// only the diagonal continues (see [`Search::expand`]).
-    #[inline]
-    fn diagonal(&mut self, x: usize, y: usize, g: u64, dx: isize, dy: isize) {
+    /// only the diagonal continues (see [`Search::expand`]). Monomorphised
+    /// per direction: this is the innermost loop in open terrain.
+    #[inline(never)]
+    fn diagonal<const DX: isize, const DY: isize>(&mut self, x: usize, y: usize, g: u64) {
         let stride = self.jumper.stride;
         let (mut x, mut y, mut g) = (x, y, g);
         let mut i = y * stride + x;
-        let step_y = dy * stride as isize;
+        let step_y = DY * stride as isize;
         loop {
-            let side_x = i.wrapping_add_signed(dx);
+            let side_x = i.wrapping_add_signed(DX);
             let side_y = i.wrapping_add_signed(step_y);
             let next = side_x.wrapping_add_signed(step_y);
             if !(self.jumper.free(side_x) && self.jumper.free(side_y) && self.jumper.free(next)) {
                 return;
             }
             i = next;
-            x = x.wrapping_add_signed(dx);
-            y = y.wrapping_add_signed(dy);
+            x = x.wrapping_add_signed(DX);
+            y = y.wrapping_add_signed(DY);
             g += DIAG;
             if i == self.jumper.t {
-                self.relax(i, x, y, g, dir_index(dx, dy));
+                self.relax(i, x, y, g, dir_index(DX, DY));
                 return;
             }
-            let h = self.jumper.horizontal(x, y, dx);
-            let v = self.jumper.vertical(x, y, dy);
+            let h = self.jumper.horizontal(x, y, DX);
+            let v = self.jumper.vertical(x, y, DY);
             if h.is_some() || v.is_some() {
                 if let Some(jx) = h {
                     let cost = STRAIGHT * jx.abs_diff(x) as u64;
-                    self.relax(y * stride + jx, jx, y, g + cost, dir_index(dx, 0));
+                    self.relax(y * stride + jx, jx, y, g + cost, dir_index(DX, 0));
                 }
                 if let Some(jy) = v {
                     let cost = STRAIGHT * jy.abs_diff(y) as u64;
-                    self.relax(jy * stride + x, x, jy, g + cost, dir_index(0, dy));
+                    self.relax(jy * stride + x, x, jy, g + cost, dir_index(0, DY));
                 }
-                if EAGER {
-                    self.mark(i, g, dir_index(dx, dy));
-                } else {
-                    self.relax(i, x, y, g, dir_index(dx, dy));
-                    return;
-                }
+                self.relax(i, x, y, g, dir_index(DX, DY));
+                return;
             }
         }
     }
 
+    /// [`Search::diagonal`] for a direction known only at run time.
+    #[inline]
+    fn diagonal_to(&mut self, x: usize, y: usize, g: u64, dx: isize, dy: isize) {
+        match (dx > 0, dy > 0) {
+            (true, true) => self.diagonal::<1, 1>(x, y, g),
+            (true, false) => self.diagonal::<1, -1>(x, y, g),
+            (false, true) => self.diagonal::<-1, 1>(x, y, g),
+            (false, false) => self.diagonal::<-1, -1>(x, y, g),
+        }
+    }
+
+    /// Records cell `j` reached at cost `g` by a move in direction `dir`
+    /// without queueing it, if that improves on what it has; whether it did.
+    /// The cell stays marked open, so a cheaper route found later still
+    /// queues it.
     #[inline(always)]
-    fn mark(&mut self, j: usize, g: u64, dir: u64) {
+    fn mark(&mut self, j: usize, g: u64, dir: u64) -> bool {
         let new = self.tag | g << G_SHIFT | dir;
-        if let Some(old) = self.words.get_mut(j) {
-            if improves(*old, new) {
+        match self.words.get_mut(j) {
+            Some(old) if improves(*old, new) => {
                 *old = new;
+                true
             }
+            _ => false,
         }
     }
 
     /// Generates the successors of cell `i` at `(x, y)`, reached at cost `g`
-    /// by a move in direction `dir` (any direction for the start).
+    /// by the move [`DIRS`]`[dir]`, or by none for the start (`dir ≥ 8`).
     #[inline]
-    fn expand(&mut self, i: usize, x: usize, y: usize, g: u64, dir: Option<(isize, isize)>) {
-        let stride = self.jumper.stride as isize;
+    fn expand(&mut self, i: usize, x: usize, y: usize, g: u64, dir: u64) {
         match dir {
-            None => {
-                for (dx, dy) in DIRS {
-                    if dx == 0 || dy == 0 {
-                        self.straight(x, y, g, dx, dy);
-                    } else {
-                        self.diagonal(x, y, g, dx, dy);
-                    }
-                }
-            }
+            0 => self.after_straight(i, x, y, g, 1, 0),
+            1 => self.after_straight(i, x, y, g, -1, 0),
+            2 => self.after_straight(i, x, y, g, 0, 1),
+            3 => self.after_straight(i, x, y, g, 0, -1),
             // Reached diagonally: its straight successors were relaxed when
             // it was found (see `diagonal`); only the diagonal goes on. (No
             // forced neighbours after a diagonal move without corner cutting.)
-            Some((dx, dy)) if dx != 0 && dy != 0 => {
-                self.diagonal(x, y, g, dx, dy);
-            }
-            Some((dx, dy)) => {
-                self.straight(x, y, g, dx, dy);
-                // Forced neighbours: a free cell beside this one whose
-                // counterpart beside the previous cell is blocked (so the
-                // parent could not reach it more directly).
-                for side in [-1isize, 1] {
-                    let (sx, sy) = if dx != 0 { (0, side) } else { (side, 0) };
-                    let beside = i.wrapping_add_signed(sy * stride + sx);
-                    let behind = beside.wrapping_add_signed(-(dy * stride + dx));
-                    if self.jumper.free(beside) && !self.jumper.free(behind) {
-                        self.straight(x, y, g, sx, sy);
-                        self.diagonal(x, y, g, dx + sx, dy + sy);
-                    }
+            4 => self.diagonal::<1, 1>(x, y, g),
+            5 => self.diagonal::<1, -1>(x, y, g),
+            6 => self.diagonal::<-1, 1>(x, y, g),
+            7 => self.diagonal::<-1, -1>(x, y, g),
+            _ => {
+                for (dx, dy) in DIRS.iter().take(4) {
+                    self.straight(x, y, g, *dx, *dy);
                 }
+                self.diagonal::<1, 1>(x, y, g);
+                self.diagonal::<1, -1>(x, y, g);
+                self.diagonal::<-1, 1>(x, y, g);
+                self.diagonal::<-1, -1>(x, y, g);
+            }
+        }
+    }
+
+    /// Successors after a straight move `(dx, dy)`: the jump ahead, and for
+    /// each forced neighbour — a free cell beside this one whose counterpart
+    /// beside the previous cell is blocked, so the parent could not reach it
+    /// more directly — the jumps towards it and diagonally past it.
+    #[inline]
+    fn after_straight(&mut self, i: usize, x: usize, y: usize, g: u64, dx: isize, dy: isize) {
+        let stride = self.jumper.stride as isize;
+        self.straight(x, y, g, dx, dy);
+        for side in [-1isize, 1] {
+            let (sx, sy) = if dx != 0 { (0, side) } else { (side, 0) };
+            let beside = i.wrapping_add_signed(sy * stride + sx);
+            let behind = beside.wrapping_add_signed(-(dy * stride + dx));
+            if self.jumper.free(beside) && !self.jumper.free(behind) {
+                self.straight(x, y, g, sx, sy);
+                self.diagonal_to(x, y, g, dx + sx, dy + sy);
             }
         }
     }
 }
+
+static JPS_BIN: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
 
 fn run<E: Estimate>(
     grid: &PlanGrid,
@@ -312,7 +368,7 @@ fn run<E: Estimate>(
         binary,
         ..
     } = &mut *space;
-    let (reached, expanded) = if E::MONOTONE {
+    let (reached, expanded) = if E::MONOTONE && !*JPS_BIN.get_or_init(|| std::env::var_os("JPS_BIN").is_some()) {
         search(grid, s, t, words, radix, tag, est, record)
     } else {
         search(grid, s, t, words, binary, tag, est, record)
@@ -321,7 +377,7 @@ fn run<E: Estimate>(
         return Err(PlanError::Unreachable { expanded });
     }
     // The walk cannot fail (see `walk_back`); an empty path would be a bug.
-    let cells = walk_back(grid, space, s, t).unwrap_or_default();
+    let cells = walk_back(grid, |i| space.reached(i), s, t).unwrap_or_default();
     Ok(Path {
         cost: unit_path_cost(&cells),
         cells,
@@ -385,12 +441,7 @@ fn search<E: Estimate, Q: OpenList>(
             return (true, expanded);
         }
         let (x, y) = xy(i, stride);
-        let dir = if i == s {
-            None
-        } else {
-            DIRS.get(dir as usize).copied()
-        };
-        search.expand(i, x, y, g, dir);
+        search.expand(i, x, y, g, if i == s { 8 } else { dir });
     }
     (false, expanded)
 }

@@ -51,7 +51,7 @@ pub(crate) const DIRS: [(isize, isize); 8] = [
 
 /// Index in [`DIRS`] of the move `(dx, dy)` (each −1, 0 or 1, not both 0).
 #[inline(always)]
-pub(crate) fn dir_index(dx: isize, dy: isize) -> u64 {
+pub(crate) const fn dir_index(dx: isize, dy: isize) -> u64 {
     match (dx, dy) {
         (1, 0) => 0,
         (-1, 0) => 1,
@@ -116,7 +116,7 @@ pub(crate) struct RadixQueue {
     /// `f` of the last entry taken out of the buckets.
     last: u64,
     /// Entries with `f == last`, as tie-break payloads.
-    top: BinaryHeap<u64>,
+    top: Vec<u64>,
     /// Bucket `b` (1..=64) holds `(f, payload)` with the highest bit in which
     /// `f` differs from `last` equal to `b − 1`.
     buckets: Vec<Vec<(u64, u64)>>,
@@ -130,7 +130,7 @@ impl Default for RadixQueue {
     fn default() -> Self {
         Self {
             last: 0,
-            top: BinaryHeap::new(),
+            top: Vec::new(),
             buckets: vec![Vec::new(); 65],
             occupied: 0,
             spare: Vec::new(),
@@ -273,33 +273,51 @@ pub(crate) fn improves(old: u64, new: u64) -> bool {
 /// search space is inconsistent (never, barring a bug).
 pub(crate) fn walk_back(
     grid: &PlanGrid,
-    space: &SearchSpace,
+    reached: impl Fn(usize) -> Option<(u64, u64)>,
     s: usize,
     t: usize,
 ) -> Option<Vec<GridPos>> {
     let stride = grid.stride();
-    let free = grid.padded();
-    let (mut gc, mut dir) = space.reached(t)?;
+    let free = |i: usize| grid.padded().get(i).copied().unwrap_or(false);
+    let (mut gc, mut dir) = reached(t)?;
     let (mut x, mut y) = xy(t, stride);
     // Padded → map coordinates (the padding is one cell).
     let pos = |x: usize, y: usize| GridPos::new((x - 1) as u32, (y - 1) as u32);
-    let mut cells = vec![pos(x, y)];
+    let offset = |dx: isize, dy: isize| dy * stride as isize + dx;
+    // A path of cost g has at most g / STRAIGHT moves: one allocation.
+    let mut cells = Vec::with_capacity((gc / STRAIGHT) as usize + 1);
+    cells.push(pos(x, y));
     let mut c = t;
     while c != s {
-        let (dx, dy) = DIRS.get(dir as usize).copied()?;
-        let back = -(dy * stride as isize + dx);
+        let (mut dx, mut dy) = DIRS.get(dir as usize).copied()?;
         let cost = if dx != 0 && dy != 0 { DIAG } else { STRAIGHT };
         let mut k = 0u64;
         let found = loop {
-            c = c.wrapping_add_signed(back);
+            let mut next = c.wrapping_add_signed(-offset(dx, dy));
+            if !free(next) {
+                // Jump Point Search follows corridor corners without
+                // recording them all: at such a corner the way back turns to
+                // the only open side.
+                if cost != STRAIGHT {
+                    break None;
+                }
+                let (a, b) = (
+                    c.wrapping_add_signed(offset(dy, dx)),
+                    c.wrapping_add_signed(-offset(dy, dx)),
+                );
+                (dx, dy) = match (free(a), free(b)) {
+                    (true, false) => (-dy, -dx),
+                    (false, true) => (dy, dx),
+                    _ => break None,
+                };
+                next = c.wrapping_add_signed(-offset(dx, dy));
+            }
+            c = next;
             x = x.wrapping_add_signed(-dx);
             y = y.wrapping_add_signed(-dy);
             k += 1;
-            if !free.get(c).copied().unwrap_or(false) {
-                break None;
-            }
             cells.push(pos(x, y));
-            if let Some((gq, dq)) = space.reached(c) {
+            if let Some((gq, dq)) = reached(c) {
                 if gq + k * cost <= gc {
                     break Some((gq, dq));
                 }
@@ -466,37 +484,49 @@ pub(crate) struct Lines {
     words: usize,
     /// Number of lines.
     count: usize,
-    free: Vec<u64>,
-    fwd: Vec<u64>,
-    bwd: Vec<u64>,
+    /// `count × words` blocks, line-major.
+    blocks: Vec<LineWord>,
+}
+
+/// 64 cells of a line: passability and both stop masks side by side, so a
+/// scan touches one cache line per word.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[repr(align(32))]
+struct LineWord {
+    free: u64,
+    fwd: u64,
+    bwd: u64,
 }
 
 impl Lines {
     /// `count` all-blocked lines of `len` cells.
     fn new(count: usize, len: usize) -> Self {
         let words = len.div_ceil(64);
+        let blocked = LineWord {
+            free: 0,
+            fwd: !0,
+            bwd: !0,
+        };
         Self {
             words,
             count,
-            free: vec![0; words * count],
-            fwd: vec![!0; words * count],
-            bwd: vec![!0; words * count],
+            blocks: vec![blocked; words * count],
         }
     }
 
     fn set_free_bit(&mut self, line: usize, pos: usize, free: bool) {
-        if let Some(w) = self.free.get_mut(line * self.words + pos / 64) {
+        if let Some(w) = self.blocks.get_mut(line * self.words + pos / 64) {
             if free {
-                *w |= 1 << (pos % 64);
+                w.free |= 1 << (pos % 64);
             } else {
-                *w &= !(1 << (pos % 64));
+                w.free &= !(1 << (pos % 64));
             }
         }
     }
 
     #[inline]
     fn free_word(&self, line: usize, k: usize) -> u64 {
-        self.free.get(line * self.words + k).copied().unwrap_or(0)
+        self.blocks.get(line * self.words + k).map_or(0, |w| w.free)
     }
 
     /// Recomputes the stop masks of word `k` of `line`.
@@ -523,10 +553,9 @@ impl Lines {
                 bwd |= w & !((w >> 1) | after);
             }
         }
-        let i = line * self.words + k;
-        if let (Some(f), Some(b)) = (self.fwd.get_mut(i), self.bwd.get_mut(i)) {
-            *f = fwd;
-            *b = bwd;
+        if let Some(w) = self.blocks.get_mut(line * self.words + k) {
+            w.fwd = fwd;
+            w.bwd = bwd;
         }
     }
 
@@ -538,32 +567,27 @@ impl Lines {
         }
     }
 
-    /// Whether position `pos` of `line` is passable.
-    #[inline(always)]
-    fn is_free(&self, line: usize, pos: usize) -> bool {
-        (self.free_word(line, pos / 64) >> (pos % 64)) & 1 == 1
-    }
-
     /// Straight jump from `pos` towards increasing positions along `line`:
     /// the first position `s > pos` that is `target`, or where `fwd` stops,
     /// if passable (`None` when the jump runs into an obstacle).
     #[inline(always)]
     pub fn jump_forward(&self, line: usize, pos: usize, target: usize) -> Option<usize> {
         let base = line * self.words;
+        let blocks = self.blocks.get(base..base + self.words)?;
         let start = pos + 1;
         let mut k = start / 64;
-        let mut m = self.fwd.get(base + k)? & (!0u64 << (start % 64));
+        let mut w = blocks.get(k)?;
+        let mut m = w.fwd & (!0u64 << (start % 64));
         while m == 0 {
             k += 1;
-            if k >= self.words {
-                return None;
-            }
-            m = *self.fwd.get(base + k)?;
+            w = blocks.get(k)?;
+            m = w.fwd;
         }
-        let stop = k * 64 + m.trailing_zeros() as usize;
+        let b = m.trailing_zeros();
+        let stop = k * 64 + b as usize;
         if target > pos && target < stop {
             Some(target)
-        } else if self.is_free(line, stop) {
+        } else if (w.free >> b) & 1 == 1 {
             Some(stop)
         } else {
             None
@@ -574,17 +598,21 @@ impl Lines {
     #[inline(always)]
     pub fn jump_backward(&self, line: usize, pos: usize, target: usize) -> Option<usize> {
         let base = line * self.words;
+        let blocks = self.blocks.get(base..base + self.words)?;
         let start = pos.checked_sub(1)?;
         let mut k = start / 64;
-        let mut m = self.bwd.get(base + k)? & (!0u64 >> (63 - start % 64));
+        let mut w = blocks.get(k)?;
+        let mut m = w.bwd & (!0u64 >> (63 - start % 64));
         while m == 0 {
             k = k.checked_sub(1)?;
-            m = *self.bwd.get(base + k)?;
+            w = blocks.get(k)?;
+            m = w.bwd;
         }
-        let stop = k * 64 + 63 - m.leading_zeros() as usize;
+        let b = 63 - m.leading_zeros();
+        let stop = k * 64 + b as usize;
         if target < pos && target > stop {
             Some(target)
-        } else if self.is_free(line, stop) {
+        } else if (w.free >> b) & 1 == 1 {
             Some(stop)
         } else {
             None
