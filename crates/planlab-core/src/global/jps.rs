@@ -238,40 +238,57 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
     /// per direction: this is the innermost loop in open terrain.
     #[inline(never)]
     fn diagonal<const DX: isize, const DY: isize>(&mut self, x: usize, y: usize, g: u64) {
-        let stride = self.jumper.stride;
-        let (mut x, mut y, mut g) = (x, y, g);
-        let mut i = y * stride + x;
-        let step_y = DY * stride as isize;
+        let jumper = &self.jumper;
+        let free = |i: usize| jumper.free.get(i).copied().unwrap_or(false);
+        let step_y = DY * jumper.stride as isize;
+        let (mut x, mut y, mut n) = (x, y, 0u64);
+        let mut i = y * jumper.stride + x;
         loop {
             let side_x = i.wrapping_add_signed(DX);
-            let side_y = i.wrapping_add_signed(step_y);
             let next = side_x.wrapping_add_signed(step_y);
-            if !(self.jumper.free(side_x) && self.jumper.free(side_y) && self.jumper.free(next)) {
+            if !(free(side_x) && free(i.wrapping_add_signed(step_y)) && free(next)) {
                 return;
             }
             i = next;
             x = x.wrapping_add_signed(DX);
             y = y.wrapping_add_signed(DY);
-            g += DIAG;
-            if i == self.jumper.t {
-                self.relax(i, x, y, g, dir_index(DX, DY));
-                return;
+            n += 1;
+            if i == jumper.t {
+                break;
             }
-            let h = self.jumper.horizontal(x, y, DX);
-            let v = self.jumper.vertical(x, y, DY);
+            let h = jumper.horizontal(x, y, DX);
+            let v = jumper.vertical(x, y, DY);
             if h.is_some() || v.is_some() {
-                if let Some(jx) = h {
-                    let cost = STRAIGHT * jx.abs_diff(x) as u64;
-                    self.relax(y * stride + jx, jx, y, g + cost, dir_index(DX, 0));
-                }
-                if let Some(jy) = v {
-                    let cost = STRAIGHT * jy.abs_diff(y) as u64;
-                    self.relax(jy * stride + x, x, jy, g + cost, dir_index(0, DY));
-                }
-                self.relax(i, x, y, g, dir_index(DX, DY));
+                self.diagonal_hit::<DX, DY>(i, x, y, g + n * DIAG, h, v);
                 return;
             }
         }
+        self.relax(i, x, y, g + n * DIAG, dir_index(DX, DY));
+    }
+
+    /// The end of a diagonal jump at `i` = `(x, y)` (cost `g`), where the
+    /// straight jumps found `h` (a column) and/or `v` (a row): relaxes
+    /// them and the cell itself. Kept out of line so the sweep stays tight.
+    #[inline(never)]
+    fn diagonal_hit<const DX: isize, const DY: isize>(
+        &mut self,
+        i: usize,
+        x: usize,
+        y: usize,
+        g: u64,
+        h: Option<usize>,
+        v: Option<usize>,
+    ) {
+        let stride = self.jumper.stride;
+        if let Some(jx) = h {
+            let cost = STRAIGHT * jx.abs_diff(x) as u64;
+            self.relax(y * stride + jx, jx, y, g + cost, dir_index(DX, 0));
+        }
+        if let Some(jy) = v {
+            let cost = STRAIGHT * jy.abs_diff(y) as u64;
+            self.relax(jy * stride + x, x, jy, g + cost, dir_index(0, DY));
+        }
+        self.relax(i, x, y, g, dir_index(DX, DY));
     }
 
     /// [`Search::diagonal`] for a direction known only at run time.
@@ -368,11 +385,12 @@ fn run<E: Estimate>(
         binary,
         ..
     } = &mut *space;
-    let (reached, expanded) = if E::MONOTONE && !*JPS_BIN.get_or_init(|| std::env::var_os("JPS_BIN").is_some()) {
-        search(grid, s, t, words, radix, tag, est, record)
-    } else {
-        search(grid, s, t, words, binary, tag, est, record)
-    };
+    let (reached, expanded) =
+        if E::MONOTONE && !*JPS_BIN.get_or_init(|| std::env::var_os("JPS_BIN").is_some()) {
+            search(grid, s, t, words, radix, tag, est, record)
+        } else {
+            search(grid, s, t, words, binary, tag, est, record)
+        };
     if !reached {
         return Err(PlanError::Unreachable { expanded });
     }

@@ -11,7 +11,7 @@ pub mod jps;
 pub mod keypoints;
 pub mod plan;
 pub mod safe_astar;
-mod search;
+pub mod search;
 
 use crate::map::{Cell, OccupancyGrid};
 use serde::{Deserialize, Serialize};

@@ -157,6 +157,7 @@ impl OpenList for RadixQueue {
 
     #[inline]
     fn pop(&mut self) -> Option<usize> {
+        POPS.with(|c| c.set(c.get() + 1));
         if let Some(p) = self.top.pop() {
             return Some((p as u32) as usize);
         }
@@ -170,6 +171,7 @@ impl OpenList for RadixQueue {
             std::mem::swap(bucket, &mut moving);
         }
         self.last = moving.iter().map(|&(f, _)| f).min().unwrap_or(self.last);
+        POPS.with(|c| LEVEL.with(|l| l.set(c.get())));
         for &(f, p) in &moving {
             if f == self.last {
                 self.top.push(p);
@@ -330,6 +332,10 @@ pub(crate) fn walk_back(
 }
 
 thread_local! {
+    /// debug
+    pub static POPS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+    /// debug
+    pub static LEVEL: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
     static SPACE: RefCell<SearchSpace> = RefCell::new(SearchSpace::default());
 }
 
