@@ -26,9 +26,9 @@
 //! ```
 
 use super::search::{
-    check_size, dir_index, improves, trivial_path, unit_path_cost, walk_back, with_space, xy,
-    Estimate, FixedHeuristic, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DIAG, G_MASK,
-    G_SHIFT, OPEN, STRAIGHT,
+    check_size, dir_index, finish, improves, trivial_path, with_space, xy, Estimate,
+    FixedHeuristic, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DIAG, G_MASK, G_SHIFT,
+    OPEN, STRAIGHT,
 };
 use super::{check_weight, Diagonal, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
 use serde::{Deserialize, Serialize};
@@ -176,16 +176,7 @@ fn run<E: Estimate, const RULE: u8>(q: Query<'_>, est: E) -> Result<Path, PlanEr
     } else {
         search::<E, RULE, _>(grid, s, t, words, binary, tag, est, record)
     };
-    if !reached {
-        return Err(PlanError::Unreachable { expanded });
-    }
-    // The walk cannot fail (see `walk_back`); an empty path would be a bug.
-    let cells = walk_back(grid, |i| space.reached(i), s, t).unwrap_or_default();
-    Ok(Path {
-        cost: unit_path_cost(&cells),
-        cells,
-        expanded,
-    })
+    finish(grid, space, (s, t), reached, expanded)
 }
 
 /// The A* loop: whether `t` was reached, and how many cells were expanded.

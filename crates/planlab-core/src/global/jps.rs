@@ -30,9 +30,9 @@
 //! ```
 
 use super::search::{
-    check_size, dir_index, improves, trivial_path, unit_path_cost, walk_back, with_space, xy,
-    Estimate, FixedHeuristic, LineBits, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DIAG,
-    DIRS, DIR_MASK, G_MASK, G_SHIFT, OPEN, STRAIGHT,
+    check_size, dir_index, finish, improves, trivial_path, with_space, xy, Estimate,
+    FixedHeuristic, LineBits, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DIAG, DIRS,
+    DIR_MASK, G_MASK, G_SHIFT, OPEN, STRAIGHT,
 };
 use super::{Diagonal, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
 use serde::{Deserialize, Serialize};
@@ -366,8 +366,6 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
     }
 }
 
-static JPS_BIN: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-
 fn run<E: Estimate>(
     grid: &PlanGrid,
     start: GridPos,
@@ -385,22 +383,12 @@ fn run<E: Estimate>(
         binary,
         ..
     } = &mut *space;
-    let (reached, expanded) =
-        if E::MONOTONE && !*JPS_BIN.get_or_init(|| std::env::var_os("JPS_BIN").is_some()) {
-            search(grid, s, t, words, radix, tag, est, record)
-        } else {
-            search(grid, s, t, words, binary, tag, est, record)
-        };
-    if !reached {
-        return Err(PlanError::Unreachable { expanded });
-    }
-    // The walk cannot fail (see `walk_back`); an empty path would be a bug.
-    let cells = walk_back(grid, |i| space.reached(i), s, t).unwrap_or_default();
-    Ok(Path {
-        cost: unit_path_cost(&cells),
-        cells,
-        expanded,
-    })
+    let (reached, expanded) = if E::MONOTONE {
+        search(grid, s, t, words, radix, tag, est, record)
+    } else {
+        search(grid, s, t, words, binary, tag, est, record)
+    };
+    finish(grid, space, (s, t), reached, expanded)
 }
 
 /// The JPS loop: whether `t` was reached, and how many jump points were

@@ -213,21 +213,23 @@ pub fn plan_on_map(
         }
     }
     let plan_grid = plan_grid_for(grid, options)?;
-    if options.inflate_m > 0.0 {
-        // Say "blocked after inflation" rather than a bare "inside an obstacle"
-        // when the raw map has the endpoint free.
-        let raw = PlanGrid::new(grid, options.allow_unknown);
-        raw.check_endpoints(start, goal)?;
-        for (which, p) in [(Endpoint::Start, start), (Endpoint::Goal, goal)] {
-            if !plan_grid.is_free(p.col as i64, p.row as i64) {
+    if let Err(e) = plan_grid.check_endpoints(start, goal) {
+        // Say "blocked after inflation" rather than a bare "inside an
+        // obstacle" when the raw map has the endpoint free.
+        if let PlanError::Blocked { which, col, row } = e {
+            let raw_free = grid
+                .get(col as usize, row as usize)
+                .is_some_and(|c| c.passable(options.allow_unknown));
+            if raw_free && options.inflate_m > 0.0 {
                 return Err(GridPlanError::BlockedByInflation {
                     which,
-                    col: p.col,
-                    row: p.row,
+                    col,
+                    row,
                     inflate_m: options.inflate_m,
                 });
             }
         }
+        return Err(e.into());
     }
     let mut expanded = Vec::new();
     let path = planner.plan_recording(

@@ -109,8 +109,8 @@ impl OpenList for BinaryQueue {
 /// searches whose popped `f` never decreases — A* with a consistent
 /// heuristic and weight 1, Dijkstra, JPS. Pushing is O(1); each entry is
 /// redistributed O(log range) times at most, usually a handful. Entries
-/// whose `f` equals the last popped one wait in a small max-heap ordered by
-/// `g`, which gives the tie-break.
+/// whose `f` equals the last popped one wait on a stack, so the most
+/// recently generated (usually the deepest) goes first among equal `f`.
 #[derive(Debug)]
 pub(crate) struct RadixQueue {
     /// `f` of the last entry taken out of the buckets.
@@ -157,7 +157,6 @@ impl OpenList for RadixQueue {
 
     #[inline]
     fn pop(&mut self) -> Option<usize> {
-        POPS.with(|c| c.set(c.get() + 1));
         if let Some(p) = self.top.pop() {
             return Some((p as u32) as usize);
         }
@@ -171,7 +170,6 @@ impl OpenList for RadixQueue {
             std::mem::swap(bucket, &mut moving);
         }
         self.last = moving.iter().map(|&(f, _)| f).min().unwrap_or(self.last);
-        POPS.with(|c| LEVEL.with(|l| l.set(c.get())));
         for &(f, p) in &moving {
             if f == self.last {
                 self.top.push(p);
@@ -266,6 +264,27 @@ pub(crate) fn improves(old: u64, new: u64) -> bool {
     old | DIR_MASK > new | DIR_MASK
 }
 
+/// The end of every search: `Unreachable` if `t` was not reached, else the
+/// walked-back path with its cost.
+pub(crate) fn finish(
+    grid: &PlanGrid,
+    space: &SearchSpace,
+    (s, t): (usize, usize),
+    reached: bool,
+    expanded: usize,
+) -> Result<Path, PlanError> {
+    if !reached {
+        return Err(PlanError::Unreachable { expanded });
+    }
+    // The walk cannot fail (see `walk_back`); an empty path would be a bug.
+    let cells = walk_back(grid, |i| space.reached(i), s, t).unwrap_or_default();
+    Ok(Path {
+        cost: unit_path_cost(&cells),
+        cells,
+        expanded,
+    })
+}
+
 /// Walks back from `t` to `s` along the stored arrival directions. From a
 /// cell `c`, the cells behind it along its direction are visited until one
 /// reached in this search with `g + distance ≤ g(c)`: the cell `c` was
@@ -332,10 +351,6 @@ pub(crate) fn walk_back(
 }
 
 thread_local! {
-    /// debug
-    pub static POPS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
-    /// debug
-    pub static LEVEL: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
     static SPACE: RefCell<SearchSpace> = RefCell::new(SearchSpace::default());
 }
 
