@@ -13,4 +13,7 @@
 #![warn(missing_docs)]
 
 pub mod global;
+pub mod local;
 pub mod map;
+pub mod num;
+pub mod world;

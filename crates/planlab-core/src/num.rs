@@ -1,0 +1,155 @@
+//! Deterministic numerics: transcendental functions and a seeded RNG.
+//!
+//! `f64::sin` and friends call the platform's libm natively and a different
+//! implementation in WebAssembly, and the two may differ in the last bit.
+//! Simulation code calls these wrappers (the pure-Rust `libm` crate on every
+//! target) so the same scenario and seed give bit-identical traces natively
+//! and in the browser. `+ - * / sqrt` are exactly rounded by IEEE 754 on both
+//! and need no wrapper.
+
+use std::f64::consts::PI;
+
+/// Sine (deterministic across targets).
+#[inline]
+pub fn sin(x: f64) -> f64 {
+    libm::sin(x)
+}
+
+/// Cosine (deterministic across targets).
+#[inline]
+pub fn cos(x: f64) -> f64 {
+    libm::cos(x)
+}
+
+/// Two-argument arctangent (deterministic across targets).
+#[inline]
+pub fn atan2(y: f64, x: f64) -> f64 {
+    libm::atan2(y, x)
+}
+
+/// Arcsine (deterministic across targets).
+#[inline]
+pub fn asin(x: f64) -> f64 {
+    libm::asin(x)
+}
+
+/// Arccosine (deterministic across targets).
+#[inline]
+pub fn acos(x: f64) -> f64 {
+    libm::acos(x)
+}
+
+/// e^x (deterministic across targets).
+#[inline]
+pub fn exp(x: f64) -> f64 {
+    libm::exp(x)
+}
+
+/// Natural logarithm (deterministic across targets).
+#[inline]
+pub fn ln(x: f64) -> f64 {
+    libm::log(x)
+}
+
+/// x^y (deterministic across targets).
+#[inline]
+pub fn pow(x: f64, y: f64) -> f64 {
+    libm::pow(x, y)
+}
+
+/// √(x² + y²) by plain arithmetic (exactly rounded sqrt), deterministic.
+#[inline]
+pub fn hypot(x: f64, y: f64) -> f64 {
+    (x * x + y * y).sqrt()
+}
+
+/// Wraps an angle to (−π, π].
+#[inline]
+pub fn wrap_angle(a: f64) -> f64 {
+    if a > -PI && a <= PI {
+        return a;
+    }
+    let two_pi = 2.0 * PI;
+    let mut r = a - two_pi * libm::floor((a + PI) / two_pi);
+    if r <= -PI {
+        r += two_pi;
+    }
+    if r > PI {
+        r -= two_pi;
+    }
+    r
+}
+
+/// Small seeded random generator (SplitMix64): deterministic on every
+/// target, no global state. Good enough for noise and jitter, not crypto.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Rng {
+    state: u64,
+}
+
+impl Rng {
+    /// A generator seeded with `seed`; equal seeds give equal streams.
+    pub fn new(seed: u64) -> Self {
+        Self { state: seed }
+    }
+
+    /// Next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
+        self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1).
+    pub fn uniform(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    /// Uniform in [lo, hi).
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.uniform()
+    }
+
+    /// Standard normal sample (Box–Muller with the deterministic libm).
+    pub fn normal(&mut self) -> f64 {
+        let u1 = 1.0 - self.uniform(); // (0, 1]: ln is finite
+        let u2 = self.uniform();
+        (-2.0 * ln(u1)).sqrt() * cos(2.0 * PI * u2)
+    }
+
+    /// An independent generator for a sub-stream (e.g. one per mover).
+    pub fn fork(&mut self, stream: u64) -> Rng {
+        Rng::new(self.next_u64() ^ stream.wrapping_mul(0xD6E8_FEB8_6659_FD93))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_angle_lands_in_half_open_interval() {
+        for k in -20..20 {
+            let a = k as f64 * 0.7;
+            let w = wrap_angle(a);
+            assert!(w > -PI && w <= PI, "{a} -> {w}");
+            assert!((cos(w) - cos(a)).abs() < 1e-9 && (sin(w) - sin(a)).abs() < 1e-9);
+        }
+        assert_eq!(wrap_angle(-PI), PI);
+    }
+
+    #[test]
+    fn rng_is_seeded_and_normal_has_unit_variance() {
+        let mut a = Rng::new(7);
+        let mut b = Rng::new(7);
+        assert_eq!(a.next_u64(), b.next_u64());
+        let n = 20_000;
+        let xs: Vec<f64> = (0..n).map(|_| a.normal()).collect();
+        let mean = xs.iter().sum::<f64>() / n as f64;
+        let var = xs.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n as f64;
+        assert!(mean.abs() < 0.03, "mean {mean}");
+        assert!((var - 1.0).abs() < 0.05, "var {var}");
+    }
+}

@@ -1,0 +1,72 @@
+//! The simulated world (SPEC §1, §3): the robot's body and kinematics, moving
+//! disc obstacles with their motion models, and the static map's geometry.
+//!
+//! Everything here is a pure function of its inputs and of simulated time, so
+//! an episode replays bit for bit (see [`crate::num`] for why trigonometry
+//! goes through `libm`).
+
+pub mod movers;
+pub mod robot;
+pub mod static_map;
+
+pub use movers::{MotionModel, MoverSpec, MoverState, ScriptSample};
+pub use robot::{Command, Drive, Footprint, RobotLimits, RobotSpec, RobotState};
+pub use static_map::StaticMap;
+
+use thiserror::Error;
+
+/// Invalid world description: bad robot, mover or map geometry.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum WorldError {
+    /// A parameter is NaN, infinite or out of its range; the text names it.
+    #[error("invalid {0}")]
+    InvalidParameter(String),
+    /// The map cannot be simulated (e.g. a rotated origin).
+    #[error("map not supported by the simulator: {0}")]
+    UnsupportedMap(String),
+    /// The robot starts overlapping an obstacle.
+    #[error("the robot starts in collision at ({x:.3}, {y:.3}) m: {with}")]
+    StartInCollision {
+        /// Start x, metres.
+        x: f64,
+        /// Start y, metres.
+        y: f64,
+        /// What it overlaps ("a wall", "mover 2", "the map edge").
+        with: String,
+    },
+}
+
+/// Checks that `value` is finite and ≥ `min`; the error names `what`.
+pub(crate) fn check_min(what: &str, value: f64, min: f64) -> Result<(), WorldError> {
+    if value.is_finite() && value >= min {
+        Ok(())
+    } else {
+        Err(WorldError::InvalidParameter(format!(
+            "{what} = {value}: must be a finite number ≥ {min}"
+        )))
+    }
+}
+
+/// Checks that `value` is finite and > 0; the error names `what`.
+pub(crate) fn check_positive(what: &str, value: f64) -> Result<(), WorldError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(WorldError::InvalidParameter(format!(
+            "{what} = {value}: must be a finite number > 0"
+        )))
+    }
+}
+
+/// Checks that both coordinates of a point are finite.
+pub(crate) fn check_point(what: &str, p: [f64; 2]) -> Result<(), WorldError> {
+    if p[0].is_finite() && p[1].is_finite() {
+        Ok(())
+    } else {
+        Err(WorldError::InvalidParameter(format!(
+            "{what} = ({}, {}): coordinates must be finite numbers",
+            p[0], p[1]
+        )))
+    }
+}

@@ -1,0 +1,375 @@
+//! Moving disc obstacles and their motion models (SPEC §1): constant velocity
+//! stopping at the map edge ([T] Fig 3-11), back-and-forth between two points
+//! ([S] Fig 12), a waypoint loop and a scripted time series.
+//!
+//! Each model is a closed-form function of time, so a mover's state at any
+//! instant is exact, cheap and identical on replay, whatever the step size.
+
+use serde::{Deserialize, Serialize};
+
+use super::{check_min, check_point, check_positive, WorldError};
+
+/// One sample of a scripted trajectory.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScriptSample {
+    /// Time, seconds from the episode start.
+    pub t: f64,
+    /// Position x, metres.
+    pub x: f64,
+    /// Position y, metres.
+    pub y: f64,
+}
+
+/// How a mover moves.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "model", deny_unknown_fields)]
+pub enum MotionModel {
+    /// Straight line at constant velocity from `start`; stops (velocity 0)
+    /// when the disc touches the map boundary.
+    ConstantVelocity {
+        /// Position at t = 0, metres.
+        start: [f64; 2],
+        /// Velocity (v_x, v_y), m/s.
+        velocity: [f64; 2],
+    },
+    /// From `a` to `b` and back, forever, at `speed`.
+    BackAndForth {
+        /// First end (position at t = 0), metres.
+        a: [f64; 2],
+        /// Second end, metres.
+        b: [f64; 2],
+        /// Speed, m/s.
+        speed: f64,
+    },
+    /// Around the closed polyline through `points` (starting at the first),
+    /// forever, at `speed`.
+    WaypointLoop {
+        /// Corners, metres; at least two.
+        points: Vec<[f64; 2]>,
+        /// Speed, m/s.
+        speed: f64,
+    },
+    /// Piecewise-linear through timed samples; holds the first position
+    /// before the first sample and the last after the last.
+    Scripted {
+        /// Samples with strictly increasing times.
+        samples: Vec<ScriptSample>,
+    },
+}
+
+/// A moving disc obstacle.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MoverSpec {
+    /// Identifier shown in traces and on the page.
+    #[serde(default)]
+    pub id: u32,
+    /// Disc radius, metres.
+    pub radius: f64,
+    /// Motion model.
+    pub motion: MotionModel,
+}
+
+/// Position and velocity of a mover at one instant.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+pub struct MoverState {
+    /// Position, metres.
+    pub pos: [f64; 2],
+    /// Velocity, m/s.
+    pub vel: [f64; 2],
+}
+
+/// Axis-aligned world bounds (x_min, y_min, x_max, y_max) a mover's centre
+/// must stay within (the map shrunk by the mover's radius).
+pub type Bounds = [f64; 4];
+
+impl MoverSpec {
+    /// Checks every number and the model's shape.
+    pub fn validate(&self) -> Result<(), WorldError> {
+        let who = format!("mover {}", self.id);
+        check_positive(&format!("{who} radius (m)"), self.radius)?;
+        match &self.motion {
+            MotionModel::ConstantVelocity { start, velocity } => {
+                check_point(&format!("{who} start"), *start)?;
+                check_point(&format!("{who} velocity"), *velocity)
+            }
+            MotionModel::BackAndForth { a, b, speed } => {
+                check_point(&format!("{who} a"), *a)?;
+                check_point(&format!("{who} b"), *b)?;
+                check_min(&format!("{who} speed (m/s)"), *speed, 0.0)
+            }
+            MotionModel::WaypointLoop { points, speed } => {
+                if points.len() < 2 {
+                    return Err(WorldError::InvalidParameter(format!(
+                        "{who} waypoint loop: needs at least 2 points, got {}",
+                        points.len()
+                    )));
+                }
+                for (i, p) in points.iter().enumerate() {
+                    check_point(&format!("{who} point {i}"), *p)?;
+                }
+                check_min(&format!("{who} speed (m/s)"), *speed, 0.0)
+            }
+            MotionModel::Scripted { samples } => {
+                if samples.is_empty() {
+                    return Err(WorldError::InvalidParameter(format!(
+                        "{who} script: needs at least 1 sample"
+                    )));
+                }
+                for (i, s) in samples.iter().enumerate() {
+                    check_point(&format!("{who} sample {i}"), [s.x, s.y])?;
+                    if !s.t.is_finite() || (i > 0 && s.t <= samples[i - 1].t) {
+                        return Err(WorldError::InvalidParameter(format!(
+                            "{who} sample {i} time {}: times must be finite and strictly increasing",
+                            s.t
+                        )));
+                    }
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// Position and velocity at time `t` ≥ 0. `bounds` is the map's extent;
+    /// only the constant-velocity model uses it (it stops at the edge).
+    pub fn state_at(&self, t: f64, bounds: Bounds) -> MoverState {
+        let t = t.max(0.0);
+        match &self.motion {
+            MotionModel::ConstantVelocity { start, velocity } => {
+                constant_velocity(*start, *velocity, t, self.radius, bounds)
+            }
+            MotionModel::BackAndForth { a, b, speed } => back_and_forth(*a, *b, *speed, t),
+            MotionModel::WaypointLoop { points, speed } => waypoint_loop(points, *speed, t),
+            MotionModel::Scripted { samples } => scripted(samples, t),
+        }
+    }
+}
+
+fn constant_velocity(p0: [f64; 2], v: [f64; 2], t: f64, r: f64, b: Bounds) -> MoverState {
+    // Time until the disc first touches an edge it is heading for.
+    let mut t_stop = f64::INFINITY;
+    for k in 0..2 {
+        let (lo, hi) = (b[k] + r, b[k + 2] - r);
+        if v[k] > 0.0 {
+            t_stop = t_stop.min(((hi - p0[k]) / v[k]).max(0.0));
+        } else if v[k] < 0.0 {
+            t_stop = t_stop.min(((lo - p0[k]) / v[k]).max(0.0));
+        }
+    }
+    let tt = t.min(t_stop);
+    let moving = t < t_stop;
+    MoverState {
+        pos: [p0[0] + v[0] * tt, p0[1] + v[1] * tt],
+        vel: if moving { v } else { [0.0, 0.0] },
+    }
+}
+
+fn lerp(a: [f64; 2], b: [f64; 2], s: f64) -> [f64; 2] {
+    [a[0] + (b[0] - a[0]) * s, a[1] + (b[1] - a[1]) * s]
+}
+
+fn back_and_forth(a: [f64; 2], b: [f64; 2], speed: f64, t: f64) -> MoverState {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    if len == 0.0 || speed == 0.0 {
+        return MoverState {
+            pos: a,
+            vel: [0.0, 0.0],
+        };
+    }
+    let s = (speed * t) % (2.0 * len);
+    let u = [d[0] / len * speed, d[1] / len * speed];
+    if s < len {
+        MoverState {
+            pos: lerp(a, b, s / len),
+            vel: u,
+        }
+    } else {
+        MoverState {
+            pos: lerp(a, b, (2.0 * len - s) / len),
+            vel: [-u[0], -u[1]],
+        }
+    }
+}
+
+fn waypoint_loop(points: &[[f64; 2]], speed: f64, t: f64) -> MoverState {
+    let n = points.len();
+    let seg_len = |i: usize| {
+        let (p, q) = (points[i], points[(i + 1) % n]);
+        ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt()
+    };
+    let total: f64 = (0..n).map(seg_len).sum();
+    if total == 0.0 || speed == 0.0 {
+        return MoverState {
+            pos: points[0],
+            vel: [0.0, 0.0],
+        };
+    }
+    let mut s = (speed * t) % total;
+    for i in 0..n {
+        let l = seg_len(i);
+        if s < l || i == n - 1 {
+            let (p, q) = (points[i], points[(i + 1) % n]);
+            if l == 0.0 {
+                continue;
+            }
+            let f = (s / l).min(1.0);
+            return MoverState {
+                pos: lerp(p, q, f),
+                vel: [(q[0] - p[0]) / l * speed, (q[1] - p[1]) / l * speed],
+            };
+        }
+        s -= l;
+    }
+    MoverState {
+        pos: points[0],
+        vel: [0.0, 0.0],
+    }
+}
+
+fn scripted(samples: &[ScriptSample], t: f64) -> MoverState {
+    let first = samples[0];
+    if t <= first.t {
+        return MoverState {
+            pos: [first.x, first.y],
+            vel: [0.0, 0.0],
+        };
+    }
+    for w in samples.windows(2) {
+        let (p, q) = (w[0], w[1]);
+        if t < q.t {
+            let dt = q.t - p.t;
+            let f = (t - p.t) / dt;
+            return MoverState {
+                pos: lerp([p.x, p.y], [q.x, q.y], f),
+                vel: [(q.x - p.x) / dt, (q.y - p.y) / dt],
+            };
+        }
+    }
+    let last = samples[samples.len() - 1];
+    MoverState {
+        pos: [last.x, last.y],
+        vel: [0.0, 0.0],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const B: Bounds = [0.0, 0.0, 10.0, 10.0];
+
+    #[test]
+    fn constant_velocity_stops_at_the_edge() {
+        let m = MoverSpec {
+            id: 1,
+            radius: 0.5,
+            motion: MotionModel::ConstantVelocity {
+                start: [5.0, 5.0],
+                velocity: [1.0, 0.0],
+            },
+        };
+        let s = m.state_at(2.0, B);
+        assert_eq!(s.pos, [7.0, 5.0]);
+        assert_eq!(s.vel, [1.0, 0.0]);
+        let s = m.state_at(100.0, B);
+        assert_eq!(s.pos, [9.5, 5.0]);
+        assert_eq!(s.vel, [0.0, 0.0]);
+    }
+
+    #[test]
+    fn back_and_forth_returns() {
+        let m = MoverSpec {
+            id: 0,
+            radius: 0.2,
+            motion: MotionModel::BackAndForth {
+                a: [0.0, 0.0],
+                b: [2.0, 0.0],
+                speed: 1.0,
+            },
+        };
+        assert_eq!(m.state_at(1.0, B).pos, [1.0, 0.0]);
+        let s = m.state_at(3.0, B);
+        assert!((s.pos[0] - 1.0).abs() < 1e-12 && s.vel[0] < 0.0);
+        assert!((m.state_at(4.0, B).pos[0]).abs() < 1e-12);
+    }
+
+    #[test]
+    fn waypoint_loop_and_script() {
+        let m = MoverSpec {
+            id: 0,
+            radius: 0.2,
+            motion: MotionModel::WaypointLoop {
+                points: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]],
+                speed: 1.0,
+            },
+        };
+        let s = m.state_at(1.5, B);
+        assert!((s.pos[0] - 1.0).abs() < 1e-12 && (s.pos[1] - 0.5).abs() < 1e-12);
+        let m = MoverSpec {
+            id: 0,
+            radius: 0.2,
+            motion: MotionModel::Scripted {
+                samples: vec![
+                    ScriptSample {
+                        t: 1.0,
+                        x: 0.0,
+                        y: 0.0,
+                    },
+                    ScriptSample {
+                        t: 3.0,
+                        x: 2.0,
+                        y: 0.0,
+                    },
+                ],
+            },
+        };
+        assert_eq!(m.state_at(0.0, B).pos, [0.0, 0.0]);
+        assert_eq!(
+            m.state_at(2.0, B),
+            MoverState {
+                pos: [1.0, 0.0],
+                vel: [1.0, 0.0]
+            }
+        );
+        assert_eq!(m.state_at(9.0, B).pos, [2.0, 0.0]);
+    }
+
+    #[test]
+    fn validation_catches_bad_input() {
+        let bad = MoverSpec {
+            id: 3,
+            radius: 0.2,
+            motion: MotionModel::Scripted {
+                samples: vec![
+                    ScriptSample {
+                        t: 1.0,
+                        x: 0.0,
+                        y: 0.0,
+                    },
+                    ScriptSample {
+                        t: 1.0,
+                        x: 2.0,
+                        y: 0.0,
+                    },
+                ],
+            },
+        };
+        assert!(bad.validate().is_err());
+        let nan = MoverSpec {
+            id: 3,
+            radius: f64::NAN,
+            motion: MotionModel::BackAndForth {
+                a: [0.0, 0.0],
+                b: [1.0, 0.0],
+                speed: 1.0,
+            },
+        };
+        assert!(nan
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("mover 3 radius"));
+    }
+}
