@@ -15,5 +15,8 @@
 pub mod global;
 pub mod local;
 pub mod map;
+pub mod metrics;
 pub mod num;
+pub mod reproduce;
+pub mod sim;
 pub mod world;

@@ -6,6 +6,8 @@
 //! state, the goal, the static map and the movers within sensing range (with
 //! their observed velocities). They never read the simulator's future.
 
+pub mod registry;
+
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 

@@ -1,0 +1,2 @@
+//! Episode metrics (SPEC §4, §7): time, path length, clearance, turning,
+//! speed drops, tracking error, wheel-load share.
