@@ -6,6 +6,7 @@
 //! state, the goal, the static map and the movers within sensing range (with
 //! their observed velocities). They never read the simulator's future.
 
+pub mod pursuit;
 pub mod registry;
 
 use serde::{Deserialize, Serialize};
@@ -26,7 +27,7 @@ pub struct ObservedMover {
     pub radius: f64,
 }
 
-/// One odometry sample for the last control period ([C] eq 15–18): the
+/// One odometry sample for the last control period (\[C\] eq 15–18): the
 /// body-frame increment (Δx, Δy, Δθ) the wheels report (what was commanded)
 /// and the true one a laser odometry measures.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
@@ -68,11 +69,11 @@ pub enum GoalKind {
     Final,
     /// A key point / feature node of the global path.
     Intermediate,
-    /// A virtual goal placed beside a special obstacle ([T] §3.2).
+    /// A virtual goal placed beside a special obstacle (\[T\] §3.2).
     Virtual,
 }
 
-/// Obstacle class of [T] Fig 3-10 / Table 3-1.
+/// Obstacle class of \[T\] Fig 3-10 / Table 3-1.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ObstacleClass {

@@ -1,11 +1,23 @@
 //! Planner registry: names, config fields and construction of every local
 //! planner, so scenarios, the CLI (`planlab planners`, `planlab run
 //! --planner`) and the page pick planners by name.
+//!
+//! Adding a planner: one arm in [`build`], one entry in [`list`]. Its config
+//! struct derives `Serialize + Deserialize + Default` with
+//! `#[serde(default, deny_unknown_fields)]`; [`parse_config`] reads it from
+//! the scenario's JSON with errors naming the field, and [`field_infos`]
+//! derives the field list (with defaults) from `Default` plus a static
+//! `(name, unit, doc)` table.
 
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
+use super::pursuit::{Pursuit, PursuitConfig};
 use super::{LocalError, LocalPlanner};
 use crate::world::{RobotSpec, RobotState, StaticMap};
+
+/// The planner a scenario without a `local_planner` section uses.
+pub const DEFAULT_PLANNER: &str = "dwa";
 
 /// A planner chosen by name with its config as JSON (fields left out take
 /// the paper's defaults; unknown fields are refused, naming them).
@@ -17,6 +29,23 @@ pub struct PlannerChoice {
     /// Config object for that planner.
     #[serde(default = "empty_object")]
     pub config: serde_json::Value,
+}
+
+impl PlannerChoice {
+    /// The planner `name` with its default config (`{}`).
+    pub fn named(name: impl Into<String>) -> Self {
+        Self {
+            name: name.into(),
+            config: empty_object(),
+        }
+    }
+}
+
+impl Default for PlannerChoice {
+    /// [`DEFAULT_PLANNER`] with its default config.
+    fn default() -> Self {
+        Self::named(DEFAULT_PLANNER)
+    }
 }
 
 fn empty_object() -> serde_json::Value {
@@ -49,13 +78,21 @@ pub struct PlannerInfo {
     pub fields: Vec<FieldInfo>,
 }
 
-/// Every registered planner.
+/// Every registered planner, in a fixed order.
 pub fn list() -> Vec<PlannerInfo> {
-    Vec::new()
+    vec![PlannerInfo {
+        name: "pursuit".into(),
+        paper: "none (test baseline)".into(),
+        summary: "Naive baseline: steers straight at the goal with a braking profile; \
+                  no obstacle avoidance."
+            .into(),
+        fields: field_infos::<PursuitConfig>(PursuitConfig::FIELDS),
+    }]
 }
 
 /// Builds the planner `choice` names for `robot` on `map`, starting at
-/// `start` and heading for `goal` (world metres).
+/// `start` and heading for `goal` (world metres). Config errors name the
+/// field; an unknown name is [`LocalError::UnknownPlanner`].
 pub fn build(
     choice: &PlannerChoice,
     robot: &RobotSpec,
@@ -63,6 +100,163 @@ pub fn build(
     start: &RobotState,
     goal: [f64; 2],
 ) -> Result<Box<dyn LocalPlanner>, LocalError> {
-    let _ = (robot, map, start, goal);
-    Err(LocalError::UnknownPlanner(choice.name.clone()))
+    let _ = (map, start);
+    match choice.name.as_str() {
+        "pursuit" => Ok(Box::new(Pursuit::new(
+            parse_config(&choice.name, &choice.config)?,
+            robot,
+            goal,
+        )?)),
+        _ => Err(LocalError::UnknownPlanner(choice.name.clone())),
+    }
+}
+
+/// Whether `name` is a registered planner.
+pub fn is_registered(name: &str) -> bool {
+    list().iter().any(|p| p.name == name)
+}
+
+/// Reads a planner config from JSON: `null` and `{}` give `T::default()`,
+/// left-out fields their defaults. On error the message names the planner
+/// and the offending field (`dwa.config.alpha: invalid type: string "x",
+/// expected f64`). `T` should be `#[serde(default, deny_unknown_fields)]`.
+pub fn parse_config<T>(planner: &str, value: &serde_json::Value) -> Result<T, LocalError>
+where
+    T: DeserializeOwned + Serialize + Default,
+{
+    use serde_json::Value;
+    if value.is_null() {
+        return Ok(T::default());
+    }
+    // serde would also take a struct written as an array of its fields.
+    let Value::Object(input) = value else {
+        return Err(LocalError::InvalidParameter(format!(
+            "{planner}.config must be a JSON object of fields, got {value}"
+        )));
+    };
+    let err = match T::deserialize(value) {
+        Ok(t) => return Ok(t),
+        Err(e) => e,
+    };
+    // serde_json does not say which field a type error is in: put the input
+    // fields one at a time on top of the defaults; the first that fails is it.
+    if let Ok(Value::Object(mut probe)) = serde_json::to_value(T::default()) {
+        for (k, v) in input {
+            probe.insert(k.clone(), v.clone());
+            if let Err(e) = T::deserialize(&Value::Object(probe.clone())) {
+                let msg = e.to_string();
+                let named = if msg.starts_with("unknown field") {
+                    format!(": {msg}")
+                } else {
+                    format!(".{k}: {msg}")
+                };
+                return Err(LocalError::InvalidParameter(format!(
+                    "{planner}.config{named}"
+                )));
+            }
+        }
+    }
+    Err(LocalError::InvalidParameter(format!(
+        "{planner}.config: {err}"
+    )))
+}
+
+/// The field list of config `T`: each `(name, unit, doc)` of `table` (in
+/// its order) with the default taken from `T::default()` (dotted names reach
+/// into nested objects), then any field the table forgot, with empty unit
+/// and doc (a unit test per planner checks there are none).
+pub fn field_infos<T: Serialize + Default>(table: &[(&str, &str, &str)]) -> Vec<FieldInfo> {
+    let defaults = serde_json::to_value(T::default()).unwrap_or(serde_json::Value::Null);
+    let lookup = |name: &str| {
+        name.split('.')
+            .try_fold(&defaults, |v, k| v.get(k))
+            .cloned()
+            .unwrap_or(serde_json::Value::Null)
+    };
+    let mut out: Vec<FieldInfo> = table
+        .iter()
+        .map(|&(name, unit, doc)| FieldInfo {
+            name: name.to_string(),
+            unit: unit.to_string(),
+            default: lookup(name),
+            doc: doc.to_string(),
+        })
+        .collect();
+    if let serde_json::Value::Object(m) = &defaults {
+        for (k, v) in m {
+            let covered = table
+                .iter()
+                .any(|&(n, _, _)| n == k || n.starts_with(&format!("{k}.")));
+            if !covered {
+                out.push(FieldInfo {
+                    name: k.clone(),
+                    unit: String::new(),
+                    default: v.clone(),
+                    doc: String::new(),
+                });
+            }
+        }
+    }
+    out
+}
+
+/// Checks a planner parameter is finite and ≥ `min` (or > `min` when
+/// `strict`); the error names `planner.field`.
+pub fn check_param(
+    planner: &str,
+    field: &str,
+    value: f64,
+    min: f64,
+    strict: bool,
+) -> Result<(), LocalError> {
+    let ok = value.is_finite() && if strict { value > min } else { value >= min };
+    if ok {
+        Ok(())
+    } else {
+        let rel = if strict { ">" } else { "≥" };
+        Err(LocalError::InvalidParameter(format!(
+            "{planner}.{field} = {value}: must be a finite number {rel} {min}"
+        )))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn every_field_documented_and_names_unique() {
+        let all = list();
+        for p in &all {
+            for f in &p.fields {
+                assert!(!f.doc.is_empty(), "{}.{} has no doc", p.name, f.name);
+                assert!(!f.default.is_null(), "{}.{} has no default", p.name, f.name);
+            }
+            assert_eq!(all.iter().filter(|q| q.name == p.name).count(), 1);
+        }
+        assert!(is_registered("pursuit"));
+    }
+
+    #[test]
+    fn parse_config_names_the_field() {
+        let c: PursuitConfig = parse_config("pursuit", &json!({"k_w": 3.0})).unwrap();
+        assert_eq!(c.k_w, 3.0);
+        let e = parse_config::<PursuitConfig>("pursuit", &json!({"k_w": 1, "turn_angle": "x"}))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("pursuit.config.turn_angle"), "{e}");
+        let e = parse_config::<PursuitConfig>("pursuit", &json!({"kw": 1}))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("unknown field `kw`"), "{e}");
+        let e = parse_config::<PursuitConfig>("pursuit", &json!([1]))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("object"), "{e}");
+        assert_eq!(
+            parse_config::<PursuitConfig>("pursuit", &serde_json::Value::Null).unwrap(),
+            PursuitConfig::default()
+        );
+    }
 }

@@ -1,2 +1,358 @@
 //! Episode metrics (SPEC §4, §7): time, path length, clearance, turning,
-//! speed drops, tracking error, wheel-load share.
+//! speed drops, tracking error, wheel-load share — the quantities the
+//! papers' tables compare, computed from a [`Trace`] the same way for every
+//! planner.
+//!
+//! Definitions (chosen so they do not depend on the time step):
+//! - **path length**: sum of the distances between consecutive trace
+//!   positions.
+//! - **clearance**: the trace's exact footprint clearance (capped at
+//!   [`crate::sim::CLEARANCE_CAP`]), minimum and mean over all rows.
+//! - **turning**: the driven path is resampled every
+//!   [`TURN_RESAMPLE_M`] of arc length; the turning angle at each interior
+//!   resampled point is |Δ heading| between the chords before and after it.
+//!   Total = sum, max = largest. Turning on the spot adds nothing (the path
+//!   does not move), so this is the path's geometric turning (\[L\] Table 2).
+//! - **speed drops**: with speed s = √(v² + v_y²) and peak P over the
+//!   episode, a drop is a fall of more than [`SPEED_DROP_FRACTION`]·P below
+//!   the running local maximum that is followed by a rise of the same amount
+//!   above the following local minimum. A fall never followed by a rise (the
+//!   final stop at the goal, or stopping for good) is not counted (\[S\]
+//!   Fig 11 counts slow-downs on the way).
+//! - **tracking error**: distance from every trace position to the global
+//!   path polyline; mean, max and (population) variance. `None` without a
+//!   global path (\[C\] Tables 3–4).
+//! - **load share**: share of the rows carrying wheel loads in which every
+//!   wheel load exceeds the threshold (40 N in \[C\] Table 5); `None` without
+//!   a vehicle model.
+
+use serde::{Deserialize, Serialize};
+
+use crate::num::{atan2, hypot, wrap_angle};
+use crate::sim::{Outcome, Trace};
+
+/// Arc-length step of the resampling used for turning angles, m.
+pub const TURN_RESAMPLE_M: f64 = 0.1;
+
+/// A speed drop is a fall by more than this share of the episode's peak
+/// speed (then a rise by as much).
+pub const SPEED_DROP_FRACTION: f64 = 0.3;
+
+/// The wheel-load threshold of \[C\] Table 5, N.
+pub const DEFAULT_LOAD_THRESHOLD_N: f64 = 40.0;
+
+/// What one episode measured. Field names are those of `planlab run --json`
+/// and `planlab reproduce --json`; `None` (JSON `null`) where a metric does
+/// not apply.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EpisodeMetrics {
+    /// How the episode ended.
+    pub outcome: Outcome,
+    /// Episode duration, s.
+    pub time_s: f64,
+    /// Driven path length, m.
+    pub path_length_m: f64,
+    /// Smallest clearance, m.
+    pub min_clearance_m: f64,
+    /// Mean clearance over the rows, m.
+    pub mean_clearance_m: f64,
+    /// Total turning of the resampled path, rad.
+    pub total_turn_rad: f64,
+    /// Largest turning angle at one resampled point, rad.
+    pub max_turn_rad: f64,
+    /// Number of speed drops on the way.
+    pub speed_drops: u32,
+    /// Mean distance to the global path, m.
+    pub mean_tracking_error_m: Option<f64>,
+    /// Largest distance to the global path, m.
+    pub max_tracking_error_m: Option<f64>,
+    /// Variance of the distance to the global path, m².
+    pub tracking_error_var_m2: Option<f64>,
+    /// Share (0–1) of rows with every wheel load above the threshold.
+    pub load_ok_share: Option<f64>,
+}
+
+impl EpisodeMetrics {
+    /// Computes every metric of `trace` (see the module doc for the
+    /// definitions). `global_path` may be empty (no tracking error);
+    /// `load_threshold_n` is the wheel-load threshold, N.
+    pub fn from_trace(
+        trace: &Trace,
+        global_path: &[[f64; 2]],
+        outcome: Outcome,
+        load_threshold_n: f64,
+    ) -> EpisodeMetrics {
+        let rows = &trace.steps;
+        let pts = trace.positions();
+        let n = rows.len().max(1) as f64;
+        let path_length_m = pts
+            .windows(2)
+            .map(|w| hypot(w[1][0] - w[0][0], w[1][1] - w[0][1]))
+            .sum();
+        let min_clearance_m = rows
+            .iter()
+            .map(|r| r.clearance)
+            .fold(f64::INFINITY, f64::min);
+        let mean_clearance_m = rows.iter().map(|r| r.clearance).sum::<f64>() / n;
+        let (total_turn_rad, max_turn_rad) = turning(&pts, TURN_RESAMPLE_M);
+        let speeds: Vec<f64> = rows.iter().map(|r| hypot(r.v, r.vy)).collect();
+        let tracking = tracking_errors(&pts, global_path);
+        let loads: Vec<bool> = rows
+            .iter()
+            .filter_map(|r| r.wheel_loads)
+            .map(|l| l.iter().all(|&f| f > load_threshold_n))
+            .collect();
+        EpisodeMetrics {
+            outcome,
+            time_s: rows.last().map_or(0.0, |r| r.t),
+            path_length_m,
+            min_clearance_m: if min_clearance_m.is_finite() {
+                min_clearance_m
+            } else {
+                0.0
+            },
+            mean_clearance_m,
+            total_turn_rad,
+            max_turn_rad,
+            speed_drops: speed_drops(&speeds, SPEED_DROP_FRACTION),
+            mean_tracking_error_m: tracking.map(|t| t.0),
+            max_tracking_error_m: tracking.map(|t| t.1),
+            tracking_error_var_m2: tracking.map(|t| t.2),
+            load_ok_share: if loads.is_empty() {
+                None
+            } else {
+                Some(loads.iter().filter(|&&ok| ok).count() as f64 / loads.len() as f64)
+            },
+        }
+    }
+}
+
+/// Points every `ds` of arc length along the polyline, from its start
+/// (the remainder shorter than `ds` at the end is dropped).
+pub fn resample(pts: &[[f64; 2]], ds: f64) -> Vec<[f64; 2]> {
+    let Some(&first) = pts.first() else {
+        return Vec::new();
+    };
+    let mut out = vec![first];
+    if ds.is_nan() || ds <= 0.0 {
+        return out;
+    }
+    // Distance still to go from the segment start to the next sample.
+    let mut need = ds;
+    for w in pts.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let len = hypot(b[0] - a[0], b[1] - a[1]);
+        let mut at = 0.0;
+        while len - at >= need {
+            at += need;
+            let f = at / len;
+            out.push([a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f]);
+            need = ds;
+        }
+        need -= len - at;
+    }
+    out
+}
+
+/// (total, max) turning angle of the path resampled every `ds`, rad.
+pub fn turning(pts: &[[f64; 2]], ds: f64) -> (f64, f64) {
+    let r = resample(pts, ds);
+    let headings: Vec<f64> = r
+        .windows(2)
+        .map(|w| atan2(w[1][1] - w[0][1], w[1][0] - w[0][0]))
+        .collect();
+    headings
+        .windows(2)
+        .map(|h| wrap_angle(h[1] - h[0]).abs())
+        .fold((0.0, 0.0), |(tot, mx), a| (tot + a, f64::max(mx, a)))
+}
+
+/// Number of drops of `speeds` by more than `fraction` of its peak that are
+/// followed by a rise of the same amount (see the module doc).
+pub fn speed_drops(speeds: &[f64], fraction: f64) -> u32 {
+    let peak = speeds.iter().copied().fold(0.0, f64::max);
+    let thr = fraction * peak;
+    if thr.is_nan() || thr <= 0.0 {
+        return 0;
+    }
+    let mut count = 0;
+    let mut high = f64::NEG_INFINITY; // running local maximum while rising
+    let mut low = f64::INFINITY; // running local minimum after a fall
+    let mut fallen = false;
+    for &s in speeds {
+        if fallen {
+            low = low.min(s);
+            if s > low + thr {
+                count += 1;
+                fallen = false;
+                high = s;
+            }
+        } else {
+            high = high.max(s);
+            if s < high - thr {
+                fallen = true;
+                low = s;
+            }
+        }
+    }
+    count
+}
+
+/// Distance from `p` to segment a–b.
+fn point_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    hypot(p[0] - (a[0] + t * dx), p[1] - (a[1] + t * dy))
+}
+
+/// Distance from `p` to the polyline (a single point counts as one).
+pub fn distance_to_polyline(p: [f64; 2], path: &[[f64; 2]]) -> Option<f64> {
+    match path {
+        [] => None,
+        [a] => Some(hypot(p[0] - a[0], p[1] - a[1])),
+        _ => path
+            .windows(2)
+            .map(|w| point_segment(p, w[0], w[1]))
+            .reduce(f64::min),
+    }
+}
+
+/// (mean, max, variance) of the distances from `pts` to `path`.
+fn tracking_errors(pts: &[[f64; 2]], path: &[[f64; 2]]) -> Option<(f64, f64, f64)> {
+    if pts.is_empty() {
+        return None;
+    }
+    let d: Vec<f64> = pts
+        .iter()
+        .map(|&p| distance_to_polyline(p, path))
+        .collect::<Option<_>>()?;
+    let n = d.len() as f64;
+    let mean = d.iter().sum::<f64>() / n;
+    let max = d.iter().copied().fold(0.0, f64::max);
+    let var = d.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n;
+    Some((mean, max, var))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::TraceStep;
+    use std::f64::consts::FRAC_PI_2;
+
+    fn trace(rows: &[(f64, f64, f64, f64)]) -> Trace {
+        // (x, y, v, clearance), 0.1 s apart.
+        Trace {
+            steps: rows
+                .iter()
+                .enumerate()
+                .map(|(i, &(x, y, v, c))| TraceStep {
+                    t: i as f64 * 0.1,
+                    x,
+                    y,
+                    v,
+                    clearance: c,
+                    ..Default::default()
+                })
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn length_clearance_and_time() {
+        let tr = trace(&[
+            (0.0, 0.0, 0.0, 1.0),
+            (3.0, 4.0, 1.0, 0.5),
+            (3.0, 5.0, 1.0, 1.5),
+        ]);
+        let m = EpisodeMetrics::from_trace(&tr, &[], Outcome::Reached, 40.0);
+        assert_eq!(m.path_length_m, 6.0);
+        assert_eq!(m.min_clearance_m, 0.5);
+        assert_eq!(m.mean_clearance_m, 1.0);
+        assert!((m.time_s - 0.2).abs() < 1e-12);
+        assert_eq!(m.mean_tracking_error_m, None);
+        assert_eq!(m.load_ok_share, None);
+        let j = serde_json::to_value(&m).unwrap();
+        assert_eq!(j["outcome"], "reached");
+        assert!(j["load_ok_share"].is_null());
+    }
+
+    #[test]
+    fn right_angle_turn_counts_once_whatever_the_step() {
+        // An L: 2 m east then 2 m north, sampled coarsely and finely.
+        for n in [4usize, 40] {
+            let mut pts = Vec::new();
+            for i in 0..=n {
+                pts.push((2.0 * i as f64 / n as f64, 0.0, 1.0, 1.0));
+            }
+            for i in 1..=n {
+                pts.push((2.0, 2.0 * i as f64 / n as f64, 1.0, 1.0));
+            }
+            let m = EpisodeMetrics::from_trace(&trace(&pts), &[], Outcome::Reached, 40.0);
+            assert!((m.total_turn_rad - FRAC_PI_2).abs() < 1e-9, "{n}: {m:?}");
+            // The corner falls between resampled points, so it shows as two
+            // 45° turns at 0.1 m resolution.
+            assert!(m.max_turn_rad <= FRAC_PI_2 + 1e-9 && m.max_turn_rad >= FRAC_PI_2 / 2.0 - 1e-9);
+        }
+        // A straight line: no turning.
+        let straight: Vec<_> = (0..30).map(|i| (i as f64 * 0.07, 1.0, 1.0, 1.0)).collect();
+        let m = EpisodeMetrics::from_trace(&trace(&straight), &[], Outcome::Reached, 40.0);
+        assert!(m.total_turn_rad < 1e-12);
+    }
+
+    #[test]
+    fn resample_spacing() {
+        let r = resample(&[[0.0, 0.0], [0.25, 0.0], [0.25, 0.3]], 0.1);
+        assert_eq!(r.len(), 6); // 0.55 m → samples at 0, 0.1 … 0.5
+        for w in r.windows(2) {
+            let d = hypot(w[1][0] - w[0][0], w[1][1] - w[0][1]);
+            assert!(d <= 0.1 + 1e-12 && d > 0.07, "{d}");
+        }
+    }
+
+    #[test]
+    fn speed_drops_ignore_the_final_stop() {
+        let s = [
+            0.0, 0.5, 1.0, 1.0, 0.5, 0.2, 0.6, 1.0, 0.95, 1.0, 0.4, 0.9, 1.0, 0.5, 0.0,
+        ];
+        // Falls 1.0→0.2 (rise after), 1.0→0.4 (rise after), final stop
+        // (no rise): 2. The 1.0→0.95 wobble is below 30 %.
+        assert_eq!(speed_drops(&s, 0.3), 2);
+        assert_eq!(speed_drops(&[0.0, 0.3, 0.6, 0.6, 0.3, 0.0], 0.3), 0);
+        assert_eq!(speed_drops(&[], 0.3), 0);
+        assert_eq!(speed_drops(&[0.0; 5], 0.3), 0);
+    }
+
+    #[test]
+    fn tracking_error_against_a_polyline() {
+        let path = [[0.0, 0.0], [10.0, 0.0]];
+        let tr = trace(&[
+            (1.0, 0.0, 1.0, 1.0),
+            (2.0, 1.0, 1.0, 1.0),
+            (3.0, -2.0, 1.0, 1.0),
+            (12.0, 0.0, 1.0, 1.0),
+        ]);
+        let m = EpisodeMetrics::from_trace(&tr, &path, Outcome::Reached, 40.0);
+        // Distances 0, 1, 2, 2 (the last beyond the end).
+        assert_eq!(m.mean_tracking_error_m, Some(1.25));
+        assert_eq!(m.max_tracking_error_m, Some(2.0));
+        // Variance: ((1.25)² + (0.25)² + 0.75² + 0.75²) / 4 = 0.6875.
+        assert!((m.tracking_error_var_m2.unwrap() - 0.6875).abs() < 1e-12);
+        assert_eq!(distance_to_polyline([3.0, 4.0], &[[0.0, 0.0]]), Some(5.0));
+    }
+
+    #[test]
+    fn load_share_counts_rows_with_loads() {
+        let mut tr = trace(&[(0.0, 0.0, 0.0, 1.0); 5]);
+        tr.steps[1].wheel_loads = Some([50.0; 4]);
+        tr.steps[2].wheel_loads = Some([50.0, 39.0, 50.0, 50.0]);
+        tr.steps[3].wheel_loads = Some([41.0; 4]);
+        tr.steps[4].wheel_loads = Some([40.0; 4]);
+        let m = EpisodeMetrics::from_trace(&tr, &[], Outcome::Reached, 40.0);
+        assert_eq!(m.load_ok_share, Some(0.5));
+    }
+}

@@ -1,2 +1,793 @@
 //! Fixed-step, seeded, deterministic episodes (SPEC §1, §3): world + robot +
 //! local planner → trace and outcome.
+//!
+//! One [`Episode::step`] is one control period of `dt`:
+//! 1. **observe** the movers at time t (closed-form [`MoverSpec::state_at`])
+//!    whose surface is within `sensing_range` of the robot's centre, with
+//!    their true velocities;
+//! 2. ask the planner for a command, clamp it to what the motors can do
+//!    ([`RobotSpec::feasible`]);
+//! 3. move the robot with the terrain model ([`Terrain::step`]: exact
+//!    kinematics on flat ground, slip and road vibration when configured);
+//! 4. at t + dt, check collisions exactly (footprint vs walls and map edge
+//!    with parry2d, footprint vs mover discs in closed form), then the goal,
+//!    then stuck and timeout. The first outcome other than
+//!    [`Outcome::Running`] is final.
+//!
+//! Time is `steps × dt` (no accumulated rounding), nothing reads a clock and
+//! all trigonometry goes through [`crate::num`], so the same setup and seed
+//! give a bit-identical [`Trace`] natively and in WebAssembly.
+
+mod trace;
+
+pub use trace::{Trace, TraceStep, CSV_HEADER};
+
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+use crate::local::registry::{self, PlannerChoice};
+use crate::local::{LocalError, LocalPlanner, ObservedMover, OdometrySample, PlannerDebug};
+use crate::map::io::scenario::{Scenario, ScenarioError};
+use crate::map::{MapError, OccupancyGrid};
+use crate::num::{cos, hypot, sin};
+use crate::world::{
+    Footprint, MoverSpec, MoverState, RobotSpec, RobotState, StaticMap, Terrain, TerrainSpec,
+    WorldError,
+};
+
+/// Clearance values in traces and metrics are capped here, metres: farther
+/// obstacles do not matter to a local planner and an exact search beyond it
+/// would cost time.
+pub const CLEARANCE_CAP: f64 = 5.0;
+
+/// The most steps one episode may take (`max_time / dt`), so a typo cannot
+/// start an endless run.
+pub const MAX_STEPS: f64 = 10_000_000.0;
+
+/// Simulation settings of an episode.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SimConfig {
+    /// Control period and integration step, s.
+    pub dt: f64,
+    /// The episode ends as [`Outcome::Timeout`] at this time, s.
+    pub max_time: f64,
+    /// The goal is reached when the robot's centre is this close, m.
+    pub goal_tolerance: f64,
+    /// Stuck: the best distance to the goal so far did not improve by
+    /// `stuck_distance` within this long, s.
+    pub stuck_time: f64,
+    /// Progress that counts against being stuck, m.
+    pub stuck_distance: f64,
+    /// Movers whose surface is within this distance of the robot's centre
+    /// are observed, m.
+    pub sensing_range: f64,
+    /// Keep every rollout's points in the planner debug (for drawing);
+    /// off makes batch runs faster.
+    pub record_rollouts: bool,
+    /// Unknown (`?`) map cells block the robot.
+    pub unknown_is_obstacle: bool,
+}
+
+impl Default for SimConfig {
+    fn default() -> Self {
+        Self {
+            dt: 0.1,
+            max_time: 120.0,
+            goal_tolerance: 0.2,
+            stuck_time: 15.0,
+            stuck_distance: 0.2,
+            sensing_range: 5.0,
+            record_rollouts: false,
+            unknown_is_obstacle: true,
+        }
+    }
+}
+
+impl SimConfig {
+    /// Checks every number; the error names the field (`sim.dt`, …).
+    pub fn validate(&self) -> Result<(), SimError> {
+        let field = |name: &str, unit: &str, v: f64, min: f64, strict: bool| {
+            let ok = v.is_finite() && if strict { v > min } else { v >= min };
+            if ok {
+                Ok(())
+            } else {
+                let rel = if strict { ">" } else { "≥" };
+                Err(SimError::InvalidConfig(format!(
+                    "sim.{name} = {v} {unit}: must be a finite number {rel} {min}"
+                )))
+            }
+        };
+        field("dt", "s", self.dt, 0.0, true)?;
+        field("max_time", "s", self.max_time, 0.0, true)?;
+        field("goal_tolerance", "m", self.goal_tolerance, 0.0, true)?;
+        field("stuck_time", "s", self.stuck_time, 0.0, true)?;
+        field("stuck_distance", "m", self.stuck_distance, 0.0, false)?;
+        field("sensing_range", "m", self.sensing_range, 0.0, false)?;
+        if self.max_time / self.dt > MAX_STEPS {
+            return Err(SimError::InvalidConfig(format!(
+                "sim.max_time = {} s with sim.dt = {} s is more than {MAX_STEPS} steps",
+                self.max_time, self.dt
+            )));
+        }
+        Ok(())
+    }
+
+    /// Number of steps until timeout: ⌈max_time / dt⌉.
+    fn max_steps(&self) -> u64 {
+        // The small slack keeps 120 / 0.1 = 1200.0000000000002 at 1200.
+        (self.max_time / self.dt - 1e-9).ceil().max(1.0) as u64
+    }
+}
+
+/// How an episode ended (or that it has not).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Outcome {
+    /// Still going.
+    #[default]
+    Running,
+    /// The robot's centre came within `goal_tolerance` of the goal.
+    Reached,
+    /// The footprint touched a wall, the map edge or a mover.
+    Collision,
+    /// `max_time` passed.
+    Timeout,
+    /// No progress toward the goal for `stuck_time`.
+    Stuck,
+}
+
+impl Outcome {
+    /// The kebab-case name (`reached`, `collision`, …).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Outcome::Running => "running",
+            Outcome::Reached => "reached",
+            Outcome::Collision => "collision",
+            Outcome::Timeout => "timeout",
+            Outcome::Stuck => "stuck",
+        }
+    }
+}
+
+impl std::fmt::Display for Outcome {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// Why an episode could not be set up or changed.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum SimError {
+    /// Bad robot, mover, start or map geometry.
+    #[error(transparent)]
+    World(#[from] WorldError),
+    /// The planner's config is invalid, its name unknown, or it found no
+    /// global path.
+    #[error(transparent)]
+    Planner(#[from] LocalError),
+    /// The scenario is invalid.
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    /// The map is invalid.
+    #[error(transparent)]
+    Map(#[from] MapError),
+    /// A simulation setting is out of range; the text names it.
+    #[error("invalid simulation setting: {0}")]
+    InvalidConfig(String),
+    /// The goal is not a free point of the map.
+    #[error("the goal ({x:.3}, {y:.3}) m {reason}")]
+    BadGoal {
+        /// Goal x, metres.
+        x: f64,
+        /// Goal y, metres.
+        y: f64,
+        /// What is wrong ("is off the map", "is inside a wall", …).
+        reason: String,
+    },
+}
+
+/// Everything an episode starts from.
+#[derive(Debug, Clone)]
+pub struct EpisodeSetup {
+    /// Static obstacles.
+    pub map: StaticMap,
+    /// The robot's body and limits.
+    pub robot: RobotSpec,
+    /// Start pose and velocities.
+    pub start: RobotState,
+    /// Goal, world metres.
+    pub goal: [f64; 2],
+    /// Moving obstacles (motion models run on episode time).
+    pub movers: Vec<MoverSpec>,
+    /// The local planner and its config.
+    pub planner: PlannerChoice,
+    /// Simulation settings.
+    pub config: SimConfig,
+    /// Terrain / vehicle dynamics.
+    pub terrain: TerrainSpec,
+    /// Seed of every random stream of the episode.
+    pub seed: u64,
+}
+
+/// Exact distance (m) from a footprint at `pose` to a disc; ≤ 0 when they
+/// overlap (minus the penetration depth). Closed form (point to rotated
+/// rectangle, or centre distance for a circle): the same value parry2d's
+/// ball–cuboid query gives, without its dispatch cost per mover per step.
+pub fn footprint_disc_distance(
+    footprint: &Footprint,
+    pose: &RobotState,
+    centre: [f64; 2],
+    radius: f64,
+) -> f64 {
+    let (dx, dy) = (centre[0] - pose.x, centre[1] - pose.y);
+    match *footprint {
+        Footprint::Circle { radius: r } => hypot(dx, dy) - r - radius,
+        Footprint::Rectangle { length, width } => {
+            let (s, c) = (sin(pose.theta), cos(pose.theta));
+            // Disc centre in the body frame.
+            let (lx, ly) = (c * dx + s * dy, -s * dx + c * dy);
+            let (ex, ey) = (lx.abs() - 0.5 * length, ly.abs() - 0.5 * width);
+            let d = if ex > 0.0 || ey > 0.0 {
+                hypot(ex.max(0.0), ey.max(0.0))
+            } else {
+                ex.max(ey)
+            };
+            d - radius
+        }
+    }
+}
+
+/// One running episode.
+pub struct Episode {
+    map: StaticMap,
+    robot: RobotSpec,
+    start: RobotState,
+    state: RobotState,
+    goal: [f64; 2],
+    movers: Vec<MoverSpec>,
+    choice: PlannerChoice,
+    planner: Box<dyn LocalPlanner>,
+    config: SimConfig,
+    terrain_spec: TerrainSpec,
+    terrain: Terrain,
+    seed: u64,
+    steps: u64,
+    max_steps: u64,
+    outcome: Outcome,
+    trace: Trace,
+    odometry: Option<OdometrySample>,
+    accel_z: f64,
+    /// Best distance to the goal that counted as progress, and when.
+    progress: (f64, f64),
+}
+
+impl std::fmt::Debug for Episode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Episode")
+            .field("planner", &self.choice.name)
+            .field("time", &self.time())
+            .field("state", &self.state)
+            .field("outcome", &self.outcome)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Checks a goal is a finite point in a free cell of the map.
+fn check_goal(map: &StaticMap, goal: [f64; 2]) -> Result<(), SimError> {
+    let bad = |reason: &str| SimError::BadGoal {
+        x: goal[0],
+        y: goal[1],
+        reason: reason.to_string(),
+    };
+    if !(goal[0].is_finite() && goal[1].is_finite()) {
+        return Err(bad("is not a finite point"));
+    }
+    let Some((col, row)) = map.grid().world_to_cell(goal[0], goal[1]) else {
+        return Err(bad("is off the map"));
+    };
+    if map.is_blocked(col as i64, row as i64) {
+        return Err(bad(&format!(
+            "is inside a wall (cell ({col}, {row}) is blocked)"
+        )));
+    }
+    Ok(())
+}
+
+fn check_state(s: &RobotState) -> Result<(), SimError> {
+    for (name, v) in [
+        ("x", s.x),
+        ("y", s.y),
+        ("theta", s.theta),
+        ("v", s.v),
+        ("vy", s.vy),
+        ("w", s.w),
+    ] {
+        if !v.is_finite() {
+            return Err(WorldError::InvalidParameter(format!(
+                "start.{name} = {v}: must be a finite number"
+            ))
+            .into());
+        }
+    }
+    Ok(())
+}
+
+impl Episode {
+    /// Validates the setup and builds the planner. Errors: invalid numbers
+    /// (naming the field), a start pose overlapping a wall, the map edge or
+    /// a mover ([`WorldError::StartInCollision`]), a goal off the map or in
+    /// a wall ([`SimError::BadGoal`]), and the planner's own errors (bad
+    /// config, no global path).
+    pub fn new(setup: EpisodeSetup) -> Result<Episode, SimError> {
+        let EpisodeSetup {
+            map,
+            robot,
+            start,
+            goal,
+            movers,
+            planner: choice,
+            config,
+            terrain: terrain_spec,
+            seed,
+        } = setup;
+        config.validate()?;
+        robot.validate()?;
+        for m in &movers {
+            m.validate()?;
+        }
+        check_state(&start)?;
+        check_goal(&map, goal)?;
+        let start = RobotState {
+            theta: crate::num::wrap_angle(start.theta),
+            ..start
+        };
+        let fp = robot.footprint;
+        if map.footprint_collides(&fp, &start) {
+            let b = map.bounds();
+            let r = fp.circumscribed_radius();
+            let pokes_out = start.x - r < b[0]
+                || start.y - r < b[1]
+                || start.x + r > b[2]
+                || start.y + r > b[3];
+            let centre_free = map
+                .grid()
+                .world_to_cell(start.x, start.y)
+                .is_some_and(|(c, r)| !map.is_blocked(c as i64, r as i64));
+            let with = if pokes_out && centre_free {
+                "the map edge or a wall"
+            } else {
+                "a wall"
+            };
+            return Err(WorldError::StartInCollision {
+                x: start.x,
+                y: start.y,
+                with: with.into(),
+            }
+            .into());
+        }
+        let bounds = map.bounds();
+        for m in &movers {
+            let s = m.state_at(0.0, bounds);
+            if footprint_disc_distance(&fp, &start, s.pos, m.radius) <= 0.0 {
+                return Err(WorldError::StartInCollision {
+                    x: start.x,
+                    y: start.y,
+                    with: format!("mover {}", m.id),
+                }
+                .into());
+            }
+        }
+        let terrain = Terrain::new(terrain_spec.clone(), seed)?;
+        let mut planner = registry::build(&choice, &robot, &map, &start, goal)?;
+        planner.set_record_rollouts(config.record_rollouts);
+        let mut ep = Episode {
+            max_steps: config.max_steps(),
+            progress: (hypot(goal[0] - start.x, goal[1] - start.y), 0.0),
+            map,
+            robot,
+            start,
+            state: start,
+            goal,
+            movers,
+            choice,
+            planner,
+            config,
+            terrain_spec,
+            terrain,
+            seed,
+            steps: 0,
+            outcome: Outcome::Running,
+            trace: Trace::default(),
+            odometry: None,
+            accel_z: 0.0,
+        };
+        let first = ep.trace_row(Default::default(), None, &ep.movers_at(0.0));
+        ep.trace.steps.push(first);
+        Ok(ep)
+    }
+
+    /// Builds the episode a scenario describes on `grid` (its map, already
+    /// loaded: see [`Scenario::load_grid`]). Start and goal are the points'
+    /// `world` positions when given, else their cell centres; sections left
+    /// out take their defaults (the planner: [`registry::DEFAULT_PLANNER`]).
+    pub fn from_scenario(scenario: &Scenario, grid: OccupancyGrid) -> Result<Episode, SimError> {
+        scenario.validate_against(&grid)?;
+        let config = scenario.sim.unwrap_or_default();
+        config.validate()?;
+        let [x, y] = scenario.start_world(&grid);
+        let goal = scenario.goal_world(&grid);
+        let map = StaticMap::new(grid, config.unknown_is_obstacle)?;
+        Episode::new(EpisodeSetup {
+            map,
+            robot: scenario.robot.unwrap_or_default(),
+            start: RobotState {
+                x,
+                y,
+                theta: scenario.start_yaw.unwrap_or(0.0),
+                ..Default::default()
+            },
+            goal,
+            movers: scenario.movers.clone().unwrap_or_default(),
+            planner: scenario.local_planner.clone().unwrap_or_default(),
+            config,
+            terrain: scenario.terrain.clone().unwrap_or_default(),
+            seed: scenario.seed.unwrap_or(0),
+        })
+    }
+
+    /// The setup this episode would restart from: the original start, map,
+    /// robot, planner, settings and seed with the *current* goal and movers
+    /// (after [`Episode::set_goal`] / [`Episode::set_movers`]).
+    pub fn setup(&self) -> EpisodeSetup {
+        EpisodeSetup {
+            map: self.map.clone(),
+            robot: self.robot,
+            start: self.start,
+            goal: self.goal,
+            movers: self.movers.clone(),
+            planner: self.choice.clone(),
+            config: self.config,
+            terrain: self.terrain_spec.clone(),
+            seed: self.seed,
+        }
+    }
+
+    /// Mover positions and velocities at time `t`.
+    fn movers_at(&self, t: f64) -> Vec<MoverState> {
+        let b = self.map.bounds();
+        self.movers.iter().map(|m| m.state_at(t, b)).collect()
+    }
+
+    /// Exact clearance of the robot at its current pose (capped).
+    fn clearance(&self, movers: &[MoverState]) -> f64 {
+        let fp = &self.robot.footprint;
+        let s = &self.state;
+        // The clearance field bounds the exact distance from above (centre
+        // distance − inscribed radius, plus the field's error), so the exact
+        // search never needs to look further than that.
+        let bound =
+            self.map.clearance(s.x, s.y) + self.map.grid().resolution() - fp.inscribed_radius();
+        let look = CLEARANCE_CAP.min(bound.max(0.0));
+        let mut c = self.map.footprint_distance(fp, s, look);
+        if c >= look {
+            c = CLEARANCE_CAP.min(c);
+        }
+        for (m, ms) in self.movers.iter().zip(movers) {
+            c = c.min(footprint_disc_distance(fp, s, ms.pos, m.radius));
+        }
+        c.clamp(0.0, CLEARANCE_CAP)
+    }
+
+    fn trace_row(
+        &self,
+        cmd: crate::world::Command,
+        ts: Option<&crate::world::TerrainStep>,
+        movers: &[MoverState],
+    ) -> TraceStep {
+        let s = &self.state;
+        let d = self.planner.debug();
+        let goal = if self.steps == 0 {
+            self.goal
+        } else {
+            d.current_goal
+        };
+        TraceStep {
+            t: self.time(),
+            x: s.x,
+            y: s.y,
+            theta: s.theta,
+            v: s.v,
+            vy: s.vy,
+            w: s.w,
+            cmd,
+            clearance: self.clearance(movers),
+            goal,
+            goal_kind: if self.steps == 0 {
+                Default::default()
+            } else {
+                d.goal_kind
+            },
+            mode: if self.steps == 0 {
+                String::new()
+            } else {
+                d.mode.clone()
+            },
+            classes: if self.steps == 0 {
+                Vec::new()
+            } else {
+                d.classes.clone()
+            },
+            accel_z: ts.map_or(0.0, |t| t.accel_z),
+            wheel_loads: ts.and_then(|t| t.wheel_loads),
+            movers: self
+                .movers
+                .iter()
+                .zip(movers)
+                .map(|(m, ms)| (m.id, ms.pos))
+                .collect(),
+        }
+    }
+
+    /// Advances one control period and returns the outcome (unchanged once
+    /// the episode has ended).
+    pub fn step(&mut self) -> Outcome {
+        if self.outcome != Outcome::Running {
+            return self.outcome;
+        }
+        let dt = self.config.dt;
+        let t = self.time();
+        let now = self.movers_at(t);
+        let range = self.config.sensing_range;
+        let observed: Vec<ObservedMover> = self
+            .movers
+            .iter()
+            .zip(&now)
+            .filter(|(m, ms)| {
+                hypot(ms.pos[0] - self.state.x, ms.pos[1] - self.state.y) - m.radius <= range
+            })
+            .map(|(m, ms)| ObservedMover {
+                id: m.id,
+                pos: ms.pos,
+                vel: ms.vel,
+                radius: m.radius,
+            })
+            .collect();
+        let obs = crate::local::Observation {
+            time: t,
+            dt,
+            state: &self.state,
+            goal: self.goal,
+            map: &self.map,
+            movers: &observed,
+            odometry: self.odometry,
+            accel_z: self.accel_z,
+        };
+        let raw = self.planner.step(&obs);
+        let cmd = self.robot.feasible(&self.state, raw, dt);
+        let ts = self.terrain.step(&self.state, cmd, dt);
+        self.state = ts.next;
+        self.odometry = ts.odometry;
+        self.accel_z = ts.accel_z;
+        self.steps += 1;
+        let t1 = self.time();
+        let next = self.movers_at(t1);
+        let fp = self.robot.footprint;
+        let hit_wall = self.map.footprint_collides(&fp, &self.state);
+        let hit_mover = self
+            .movers
+            .iter()
+            .zip(&next)
+            .any(|(m, ms)| footprint_disc_distance(&fp, &self.state, ms.pos, m.radius) <= 0.0);
+        let d_goal = hypot(self.goal[0] - self.state.x, self.goal[1] - self.state.y);
+        if d_goal < self.progress.0 - self.config.stuck_distance {
+            self.progress = (d_goal, t1);
+        }
+        let finite = [self.state.x, self.state.y, self.state.theta]
+            .iter()
+            .all(|v| v.is_finite());
+        self.outcome = if hit_wall || hit_mover || !finite {
+            Outcome::Collision
+        } else if d_goal <= self.config.goal_tolerance {
+            Outcome::Reached
+        } else if self.steps >= self.max_steps {
+            Outcome::Timeout
+        } else if t1 - self.progress.1 >= self.config.stuck_time {
+            Outcome::Stuck
+        } else {
+            Outcome::Running
+        };
+        let row = self.trace_row(cmd, Some(&ts), &next);
+        self.trace.steps.push(row);
+        self.outcome
+    }
+
+    /// Steps until the episode ends; returns the outcome.
+    pub fn run(&mut self) -> Outcome {
+        while self.outcome == Outcome::Running {
+            self.step();
+        }
+        self.outcome
+    }
+
+    /// The outcome so far.
+    pub fn outcome(&self) -> Outcome {
+        self.outcome
+    }
+
+    /// Simulated time, s (steps × dt).
+    pub fn time(&self) -> f64 {
+        self.steps as f64 * self.config.dt
+    }
+
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// The robot's true state.
+    pub fn state(&self) -> &RobotState {
+        &self.state
+    }
+
+    /// The robot.
+    pub fn robot(&self) -> &RobotSpec {
+        &self.robot
+    }
+
+    /// The static map.
+    pub fn map(&self) -> &StaticMap {
+        &self.map
+    }
+
+    /// The final goal, metres.
+    pub fn goal(&self) -> [f64; 2] {
+        self.goal
+    }
+
+    /// Simulation settings.
+    pub fn config(&self) -> &SimConfig {
+        &self.config
+    }
+
+    /// The planner choice (name and config).
+    pub fn planner_choice(&self) -> &PlannerChoice {
+        &self.choice
+    }
+
+    /// The movers' specs.
+    pub fn movers(&self) -> &[MoverSpec] {
+        &self.movers
+    }
+
+    /// Every mover now: (id, radius, position and velocity).
+    pub fn movers_now(&self) -> Vec<(u32, f64, MoverState)> {
+        self.movers
+            .iter()
+            .zip(self.movers_at(self.time()))
+            .map(|(m, s)| (m.id, m.radius, s))
+            .collect()
+    }
+
+    /// What the planner did in its last step.
+    pub fn planner_debug(&self) -> &PlannerDebug {
+        self.planner.debug()
+    }
+
+    /// The trace so far: the start (t = 0) and one row per step.
+    pub fn trace(&self) -> &Trace {
+        &self.trace
+    }
+
+    /// Records (or stops recording) every rollout for drawing.
+    pub fn set_record_rollouts(&mut self, on: bool) {
+        self.config.record_rollouts = on;
+        self.planner.set_record_rollouts(on);
+    }
+
+    /// Moves the goal (the user dragged it): checked like the start goal,
+    /// then the planner re-targets (it may replan and fail with
+    /// [`LocalError::NoGlobalPath`], leaving the old goal in force). The
+    /// stuck timer restarts.
+    pub fn set_goal(&mut self, goal: [f64; 2]) -> Result<(), SimError> {
+        check_goal(&self.map, goal)?;
+        self.planner.set_goal(&self.map, &self.state, goal)?;
+        self.goal = goal;
+        let d = hypot(goal[0] - self.state.x, goal[1] - self.state.y);
+        self.progress = (d, self.time());
+        Ok(())
+    }
+
+    /// Replaces the movers (the page edits them live). Their motion models
+    /// run on episode time: a constant-velocity mover placed at p with
+    /// velocity u at time t needs `start` = p − u·t. Each is validated; a
+    /// mover dropped onto the robot is a collision at the next step.
+    pub fn set_movers(&mut self, movers: Vec<MoverSpec>) -> Result<(), SimError> {
+        for m in &movers {
+            m.validate()?;
+        }
+        self.movers = movers;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use parry2d_f64::math::{Pose, Rot2, Vector};
+    use parry2d_f64::query;
+    use parry2d_f64::shape::{Ball, Cuboid};
+
+    #[test]
+    fn disc_distance_matches_parry() {
+        let rect = Footprint::Rectangle {
+            length: 0.8,
+            width: 0.4,
+        };
+        let mut rng = crate::num::Rng::new(3);
+        for _ in 0..200 {
+            let pose = RobotState {
+                x: rng.range(-1.0, 1.0),
+                y: rng.range(-1.0, 1.0),
+                theta: rng.range(-3.0, 3.0),
+                ..Default::default()
+            };
+            let c = [rng.range(-2.0, 2.0), rng.range(-2.0, 2.0)];
+            let r = rng.range(0.05, 0.5);
+            let ours = footprint_disc_distance(&rect, &pose, c, r);
+            let rot = Rot2::from_cos_sin_unchecked(cos(pose.theta), sin(pose.theta));
+            let p1 = Pose::from_parts(Vector::new(pose.x, pose.y), rot);
+            let p2 = Pose::from_translation(Vector::new(c[0], c[1]));
+            let theirs =
+                query::distance(&p1, &Cuboid::new(Vector::new(0.4, 0.2)), &p2, &Ball::new(r))
+                    .unwrap()
+                    .distance;
+            if theirs > 0.0 {
+                assert!((ours - theirs).abs() < 1e-9, "{ours} vs {theirs}");
+            } else {
+                assert!(ours <= 1e-12, "{ours} vs {theirs}");
+            }
+        }
+        let circle = Footprint::Circle { radius: 0.3 };
+        let d = footprint_disc_distance(&circle, &RobotState::default(), [1.0, 0.0], 0.2);
+        assert!((d - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn config_validation_names_the_field() {
+        let c = SimConfig {
+            dt: -0.1,
+            ..Default::default()
+        };
+        assert!(c.validate().unwrap_err().to_string().contains("sim.dt"));
+        let c = SimConfig {
+            stuck_distance: f64::NAN,
+            ..Default::default()
+        };
+        assert!(c
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("sim.stuck_distance"));
+        let c = SimConfig {
+            max_time: 1e9,
+            dt: 1e-3,
+            ..Default::default()
+        };
+        assert!(c
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("sim.max_time"));
+        assert_eq!(SimConfig::default().max_steps(), 1200);
+        assert_eq!(
+            SimConfig {
+                max_time: 0.25,
+                ..Default::default()
+            }
+            .max_steps(),
+            3
+        );
+    }
+}

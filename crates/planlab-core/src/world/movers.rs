@@ -1,6 +1,6 @@
 //! Moving disc obstacles and their motion models (SPEC §1): constant velocity
-//! stopping at the map edge ([T] Fig 3-11), back-and-forth between two points
-//! ([S] Fig 12), a waypoint loop and a scripted time series.
+//! stopping at the map edge (\[T\] Fig 3-11), back-and-forth between two points
+//! (\[S\] Fig 12), a waypoint loop and a scripted time series.
 //!
 //! Each model is a closed-form function of time, so a mover's state at any
 //! instant is exact, cheap and identical on replay, whatever the step size.

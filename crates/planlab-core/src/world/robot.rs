@@ -1,5 +1,5 @@
-//! Robot body and kinematics (SPEC §3): differential drive [T] eq 2-1…2-3
-//! and omnidirectional / 4WIS [C] eq 12, circle or rectangle footprint.
+//! Robot body and kinematics (SPEC §3): differential drive \[T\] eq 2-1…2-3
+//! and omnidirectional / 4WIS \[C\] eq 12, circle or rectangle footprint.
 
 use serde::{Deserialize, Serialize};
 

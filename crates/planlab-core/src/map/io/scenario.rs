@@ -12,13 +12,19 @@
 //!   fails in an older planlab with "unknown field", naming the field.
 //! - **Lossless**: [`Scenario::to_json_pretty`] then [`Scenario::from_json`]
 //!   gives back an equal [`Scenario`], floats bit for bit.
+//! - **Simulation sections** (all optional): `robot`, `start_yaw`,
+//!   `movers`, `local_planner`, `sim`, `terrain`, `seed`; an episode is
+//!   built from them by [`crate::sim::Episode::from_scenario`].
 //! - **No file system**: a map referenced by path is read through a closure
 //!   the caller supplies ([`Scenario::load_grid`]), so this works in wasm.
 
 use crate::global::plan::{build_planner, GridPlanOptions};
 use crate::global::GridPos;
+use crate::local::registry::{self, PlannerChoice};
 use crate::map::io::{movingai, ros};
 use crate::map::{check_dimensions, Cell, MapError, OccupancyGrid, Pose2};
+use crate::sim::SimConfig;
+use crate::world::{MoverSpec, RobotSpec, TerrainSpec};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -437,6 +443,203 @@ pub struct Scenario {
     /// Grid global planner settings (algorithm, heuristic, inflation, …).
     #[serde(default)]
     pub grid_planner: GridPlanOptions,
+    /// The robot's drive, footprint and limits (default: a 0.2 m disc,
+    /// differential drive, [`RobotSpec::default`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robot: Option<RobotSpec>,
+    /// Heading at the start, rad (default 0 = facing +x).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub start_yaw: Option<f64>,
+    /// Moving disc obstacles (default none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub movers: Option<Vec<MoverSpec>>,
+    /// The local planner by registry name with its config (default
+    /// [`registry::DEFAULT_PLANNER`] with the paper's values).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub local_planner: Option<PlannerChoice>,
+    /// Simulation settings (default [`SimConfig::default`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sim: Option<SimConfig>,
+    /// Terrain and vehicle dynamics (default flat, no slip).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub terrain: Option<TerrainSpec>,
+    /// Seed of the episode's random streams (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
+}
+
+/// Sets the value at dotted `path` (`sim.dt`, `movers.0.radius`) in a
+/// scenario's JSON tree, before it is parsed: what `planlab run --set` and
+/// the reproduction presets use. `value` is parsed as JSON (`0.5`, `true`,
+/// `{"k": 1}`, `[1, 2]`), else taken as a string (`astar`). Missing object
+/// keys along the way are created; array indices must exist. Errors name
+/// the path.
+pub fn set_json_path(
+    root: &mut serde_json::Value,
+    path: &str,
+    value: &str,
+) -> Result<(), ScenarioError> {
+    use serde_json::Value;
+    let bad = |why: String| ScenarioError::Invalid(format!("--set {path}: {why}"));
+    let parts: Vec<&str> = path.split('.').collect();
+    if path.is_empty() || parts.iter().any(|p| p.is_empty()) {
+        return Err(bad(
+            "the path needs names separated by single dots, like sim.dt".into(),
+        ));
+    }
+    let new: Value =
+        serde_json::from_str(value).unwrap_or_else(|_| Value::String(value.to_string()));
+    let mut here = root;
+    let mut done = String::new();
+    for (i, part) in parts.iter().enumerate() {
+        let last = i + 1 == parts.len();
+        here = match here {
+            Value::Object(m) => {
+                if last {
+                    m.insert(part.to_string(), new);
+                    return Ok(());
+                }
+                m.entry(part.to_string())
+                    .or_insert_with(|| Value::Object(Default::default()))
+            }
+            Value::Array(a) => {
+                let len = a.len();
+                let idx: usize = part.parse().map_err(|_| {
+                    bad(format!(
+                        "`{done}` is a list: `{part}` must be an index 0…{len}"
+                    ))
+                })?;
+                let slot = a
+                    .get_mut(idx)
+                    .ok_or_else(|| bad(format!("`{done}` has {len} entries: no index {idx}")))?;
+                if last {
+                    *slot = new;
+                    return Ok(());
+                }
+                slot
+            }
+            other => {
+                let kind = match other {
+                    Value::Null => "null",
+                    Value::Bool(_) => "a boolean",
+                    Value::Number(_) => "a number",
+                    Value::String(_) => "a string",
+                    _ => "a value",
+                };
+                return Err(bad(format!("`{done}` is {kind}: it has no field `{part}`")));
+            }
+        };
+        if !done.is_empty() {
+            done.push('.');
+        }
+        done.push_str(part);
+    }
+    Ok(())
+}
+
+/// Chooses local planner `name` in a scenario's JSON tree: its config is
+/// kept when the name does not change and reset to `{}` when it does.
+pub fn set_planner_name(root: &mut serde_json::Value, name: &str) -> Result<(), ScenarioError> {
+    use serde_json::Value;
+    let Value::Object(top) = root else {
+        return Err(ScenarioError::Invalid(
+            "a scenario is a JSON object `{ \"version\": 1, … }`".into(),
+        ));
+    };
+    let lp = top
+        .entry("local_planner")
+        .or_insert_with(|| Value::Object(Default::default()));
+    let Value::Object(lp) = lp else {
+        return Err(ScenarioError::Invalid(
+            "local_planner must be an object `{ \"name\": …, \"config\": { … } }`".into(),
+        ));
+    };
+    if lp.get("name").and_then(Value::as_str) != Some(name) {
+        lp.insert("name".into(), Value::String(name.into()));
+        lp.insert("config".into(), Value::Object(Default::default()));
+    }
+    Ok(())
+}
+
+/// The dotted path (`robot.limits.v_max`, `movers[0].radius`) of the JSON
+/// value at 1-based `line` / `column` of `text`: where serde_json stopped.
+/// Empty at the top level.
+fn json_path_at(text: &str, line: usize, column: usize) -> String {
+    enum Frame {
+        Obj { key: Option<String>, want_key: bool },
+        Arr(usize),
+    }
+    let mut stack: Vec<Frame> = Vec::new();
+    let (mut l, mut c) = (1usize, 0usize);
+    let mut chars = text.chars();
+    while let Some(ch) = chars.next() {
+        if ch == '\n' {
+            l += 1;
+            c = 0;
+        } else {
+            c += 1;
+        }
+        if l > line || (l == line && c >= column) {
+            break;
+        }
+        match ch {
+            '{' => stack.push(Frame::Obj {
+                key: None,
+                want_key: true,
+            }),
+            '[' => stack.push(Frame::Arr(0)),
+            '}' | ']' => {
+                stack.pop();
+            }
+            ',' => match stack.last_mut() {
+                Some(Frame::Obj { want_key, .. }) => *want_key = true,
+                Some(Frame::Arr(i)) => *i += 1,
+                None => {}
+            },
+            ':' => {
+                if let Some(Frame::Obj { want_key, .. }) = stack.last_mut() {
+                    *want_key = false;
+                }
+            }
+            '"' => {
+                let mut s = String::new();
+                let mut escaped = false;
+                for ch in chars.by_ref() {
+                    c += 1;
+                    if escaped {
+                        escaped = false;
+                        s.push(ch);
+                    } else if ch == '\\' {
+                        escaped = true;
+                    } else if ch == '"' {
+                        break;
+                    } else {
+                        s.push(ch);
+                    }
+                }
+                if let Some(Frame::Obj { key, want_key }) = stack.last_mut() {
+                    if *want_key {
+                        *key = Some(s);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut path = String::new();
+    for f in &stack {
+        match f {
+            Frame::Obj { key: Some(k), .. } => {
+                if !path.is_empty() {
+                    path.push('.');
+                }
+                path.push_str(k);
+            }
+            Frame::Obj { key: None, .. } => {}
+            Frame::Arr(i) => path.push_str(&format!("[{i}]")),
+        }
+    }
+    path
 }
 
 /// Refuses fields the typed parse ignored. Sections defined elsewhere (the
@@ -519,7 +722,38 @@ impl Scenario {
             start: start.into(),
             goal: goal.into(),
             grid_planner: GridPlanOptions::default(),
+            robot: None,
+            start_yaw: None,
+            movers: None,
+            local_planner: None,
+            sim: None,
+            terrain: None,
+            seed: None,
         }
+    }
+
+    /// World position of a point: its `world` position when given, else
+    /// the centre of its cell.
+    fn point_world(pt: &ScenarioPoint, grid: &OccupancyGrid) -> [f64; 2] {
+        match pt.world {
+            Some(w) => [w.x, w.y],
+            None => {
+                let (x, y) = grid.cell_to_world(pt.col as usize, pt.row as usize);
+                [x, y]
+            }
+        }
+    }
+
+    /// The start in world metres on `grid`: `start.world`, else the start
+    /// cell's centre.
+    pub fn start_world(&self, grid: &OccupancyGrid) -> [f64; 2] {
+        Self::point_world(&self.start, grid)
+    }
+
+    /// The goal in world metres on `grid`: `goal.world`, else the goal
+    /// cell's centre.
+    pub fn goal_world(&self, grid: &OccupancyGrid) -> [f64; 2] {
+        Self::point_world(&self.goal, grid)
     }
 
     /// Plain rows for small maps, run-length encoding for large ones.
@@ -553,10 +787,32 @@ impl Scenario {
                 });
             }
         }
-        let s: Scenario = serde_json::from_str(text)?;
+        let s: Scenario = serde_json::from_str(text).map_err(|e| {
+            // serde_json says where, not which field: name it.
+            let path = json_path_at(text, e.line(), e.column());
+            match ScenarioError::from(e) {
+                ScenarioError::Json {
+                    line,
+                    column,
+                    message,
+                } if !path.is_empty() => ScenarioError::Json {
+                    line,
+                    column,
+                    message: format!("`{path}`: {message}"),
+                },
+                other => other,
+            }
+        })?;
         check_no_unknown_fields(text, &value, &s)?;
         s.validate()?;
         Ok(s)
+    }
+
+    /// Reads a scenario from an already parsed JSON tree (after
+    /// [`set_json_path`] edits), with the same checks and messages as
+    /// [`Scenario::from_json`].
+    pub fn from_value(value: &serde_json::Value) -> Result<Scenario, ScenarioError> {
+        Scenario::from_json(&serde_json::to_string_pretty(value)?)
     }
 
     /// Validates, then writes pretty-printed JSON that
@@ -623,6 +879,7 @@ impl Scenario {
                 }
             }
         }
+        self.validate_sim_sections()?;
         match &self.map {
             MapSpec::Inline(m) => self.validate_against(&m.grid)?,
             MapSpec::File(f) => {
@@ -647,6 +904,46 @@ impl Scenario {
                         .into());
                     }
                 }
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks the simulation sections' numbers and the planner's name (its
+    /// config is checked when the planner is built, which needs the map).
+    fn validate_sim_sections(&self) -> Result<(), ScenarioError> {
+        let invalid = |e: &dyn std::fmt::Display| ScenarioError::Invalid(e.to_string());
+        if let Some(r) = &self.robot {
+            r.validate().map_err(|e| invalid(&e))?;
+        }
+        if let Some(yaw) = self.start_yaw {
+            if !yaw.is_finite() {
+                return Err(ScenarioError::Invalid(format!(
+                    "start_yaw = {yaw}: must be a finite number (rad)"
+                )));
+            }
+        }
+        for (i, m) in self.movers.iter().flatten().enumerate() {
+            m.validate()
+                .map_err(|e| ScenarioError::Invalid(format!("movers[{i}]: {e}")))?;
+        }
+        if let Some(c) = &self.sim {
+            c.validate().map_err(|e| invalid(&e))?;
+        }
+        if let Some(p) = &self.local_planner {
+            if !registry::is_registered(&p.name) {
+                let names: Vec<String> = registry::list().into_iter().map(|p| p.name).collect();
+                return Err(ScenarioError::Invalid(format!(
+                    "local_planner.name: unknown planner `{}`; known: {}",
+                    p.name,
+                    names.join(", ")
+                )));
+            }
+            if !(p.config.is_object() || p.config.is_null()) {
+                return Err(ScenarioError::Invalid(format!(
+                    "local_planner.config must be an object of fields, got {}",
+                    p.config
+                )));
             }
         }
         Ok(())
