@@ -72,12 +72,18 @@ pub fn kind_of(path: &Path) -> Result<MapKind, String> {
 pub fn load_scenario(path: &Path) -> Result<(OccupancyGrid, Scenario), String> {
     let scenario =
         Scenario::from_json(&read_text(path)?).map_err(|e| format!("{}: {e}", path.display()))?;
+    let grid = grid_of(path, &scenario)?;
+    Ok((grid, scenario))
+}
+
+/// The map of the scenario read from `path`: inline, or the referenced file
+/// resolved relative to the scenario's folder.
+pub fn grid_of(path: &Path, scenario: &Scenario) -> Result<OccupancyGrid, String> {
     let dir = path.parent().unwrap_or_else(|| Path::new("."));
     let mut read = |rel: &str| std::fs::read(dir.join(rel)).map_err(|e| e.to_string());
-    let grid = scenario
+    scenario
         .load_grid(&mut read)
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok((grid, scenario))
+        .map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// Loads a map of any supported kind; scenarios come with their scenario.

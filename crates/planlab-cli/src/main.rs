@@ -8,6 +8,7 @@ mod grid_cmds;
 mod load;
 mod peer;
 mod serve;
+mod sim_cmds;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use planlab_core::global::plan::{Algorithm, GridPlanOptions};
@@ -162,6 +163,44 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Run one simulated episode of a scenario .json and print its metrics.
+    Run {
+        /// Scenario JSON (a referenced map file is found relative to it).
+        scenario: PathBuf,
+        /// Local planner by registry name (see `planlab planners`); its
+        /// config is reset to the defaults when the name changes.
+        #[arg(long)]
+        planner: Option<String>,
+        /// Seed of the episode's random streams.
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Edit the scenario before reading it: a dotted path and a JSON
+        /// value (or plain text), e.g. `sim.dt=0.05`, `movers.0.radius=0.4`,
+        /// `local_planner.config.alpha=0.2`. Repeatable.
+        #[arg(long = "set", value_name = "PATH=VALUE", allow_hyphen_values = true)]
+        set: Vec<String>,
+        /// One JSON object instead of a table.
+        #[arg(long)]
+        json: bool,
+        /// Write the per-step trace as CSV to this file.
+        #[arg(long, value_name = "FILE.csv")]
+        trace: Option<PathBuf>,
+    },
+    /// List the local planners with their config fields, units and defaults.
+    Planners {
+        /// JSON output (an array of planners).
+        #[arg(long)]
+        json: bool,
+    },
+    /// Run the papers' experiments (all, or one by id) and check each
+    /// relation; exits non-zero when one does not hold.
+    Reproduce {
+        /// Experiment id, e.g. T-fig3-2; all when omitted.
+        id: Option<String>,
+        /// One JSON line per experiment.
+        #[arg(long)]
+        json: bool,
+    },
     /// Benchmarks.
     Bench {
         #[command(subcommand)]
@@ -184,6 +223,25 @@ enum Command {
 fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Serve { dir, host, port } => serve::serve(&dir, &host, port),
+        Command::Run {
+            scenario,
+            planner,
+            seed,
+            set,
+            json,
+            trace,
+        } => sim_cmds::run(
+            &scenario,
+            &sim_cmds::RunArgs {
+                planner: planner.as_deref(),
+                seed,
+                set: &set,
+                json,
+                trace: trace.as_deref(),
+            },
+        ),
+        Command::Planners { json } => sim_cmds::planners(json),
+        Command::Reproduce { id, json } => sim_cmds::reproduce(id.as_deref(), json),
         Command::Scen {
             map,
             scen,

@@ -1034,7 +1034,11 @@ fn schema_doc_examples_are_valid_scenarios() {
         .skip(1)
         .map(|b| b.split("```").next().unwrap())
         .collect();
-    assert_eq!(blocks.len(), 3, "smallest, by reference, full example");
+    assert_eq!(
+        blocks.len(),
+        4,
+        "smallest, by reference, full example, simulated episode"
+    );
     for block in &blocks {
         let s = Scenario::from_json(block).unwrap_or_else(|e| panic!("{e}\n{block}"));
         // File references resolve relative to assets/scenarios/.

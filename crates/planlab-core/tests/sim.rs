@@ -85,8 +85,9 @@ fn pursuit_reaches_the_goal_in_an_empty_room() {
 
 #[test]
 fn driving_into_a_wall_collides_at_the_exact_step() {
-    // A full-height wall in column 50: x ∈ [5.0, 5.1].
-    let wall: Vec<(usize, usize)> = (0..100).map(|r| (50, r)).collect();
+    // A wall in column 50 (x ∈ [5.0, 5.1]) up to y = 9 m; the gap above
+    // keeps the goal reachable, but not straight ahead.
+    let wall: Vec<(usize, usize)> = (10..100).map(|r| (50, r)).collect();
     let mut ep = Episode::new(setup(room(10, 10, &wall), [2.0, 5.05, 0.0], [9.5, 5.05])).unwrap();
     assert_eq!(ep.run(), Outcome::Collision);
     // Accelerating at 0.2 m/s² in 0.1 s steps: v_k = 0.02k up to 1 m/s at
@@ -289,6 +290,16 @@ fn bad_input_is_refused_with_clear_errors() {
     assert!(err(s.clone()).to_string().contains("inside a wall"));
     s.goal = [5.0, 11.0];
     assert!(err(s).to_string().contains("off the map"));
+
+    // A goal in a closed box (free inside, walls around).
+    let ring: Vec<(usize, usize)> = (40..60)
+        .flat_map(|c| (40..60).map(move |r| (c, r)))
+        .filter(|&(c, r)| c == 40 || c == 59 || r == 40 || r == 59)
+        .collect();
+    let s = setup(room(10, 10, &ring), [1.0, 1.0, 0.0], [5.0, 5.0]);
+    let e = err(s);
+    assert!(matches!(e, SimError::Unreachable { .. }), "{e}");
+    assert!(e.to_string().contains("cannot be reached"), "{e}");
 
     // Unknown planner and a bad planner config.
     let mut s = base();

@@ -186,6 +186,19 @@ pub enum SimError {
         /// What is wrong ("is off the map", "is inside a wall", …).
         reason: String,
     },
+    /// No free path joins the robot's cell and the goal's: walls enclose
+    /// one of them.
+    #[error("the goal ({x:.3}, {y:.3}) m cannot be reached from ({from_x:.3}, {from_y:.3}) m: no free path of map cells joins them")]
+    Unreachable {
+        /// Goal x, metres.
+        x: f64,
+        /// Goal y, metres.
+        y: f64,
+        /// Robot x, metres.
+        from_x: f64,
+        /// Robot y, metres.
+        from_y: f64,
+    },
 }
 
 /// Everything an episode starts from.
@@ -295,6 +308,56 @@ fn check_goal(map: &StaticMap, goal: [f64; 2]) -> Result<(), SimError> {
     Ok(())
 }
 
+/// Checks that the goal's cell is connected to the robot's cell through
+/// free cells (4-neighbours: two cells touching only at a corner let no
+/// robot through). Ignores the robot's size and the movers, so it only
+/// refuses goals that no planner could reach.
+fn check_reachable(map: &StaticMap, from: [f64; 2], goal: [f64; 2]) -> Result<(), SimError> {
+    let grid = map.grid();
+    let (w, h) = (grid.width(), grid.height());
+    let (Some(a), Some(b)) = (
+        grid.world_to_cell(from[0], from[1]),
+        grid.world_to_cell(goal[0], goal[1]),
+    ) else {
+        // Off-map points are reported by the other checks.
+        return Ok(());
+    };
+    let idx = |(c, r): (usize, usize)| r * w + c;
+    let mut seen = vec![false; w * h];
+    let mut stack = vec![a];
+    if let Some(s) = seen.get_mut(idx(a)) {
+        *s = true;
+    }
+    while let Some((c, r)) = stack.pop() {
+        if (c, r) == b {
+            return Ok(());
+        }
+        let next = [
+            (c.wrapping_sub(1), r),
+            (c + 1, r),
+            (c, r.wrapping_sub(1)),
+            (c, r + 1),
+        ];
+        for (nc, nr) in next {
+            if nc >= w || nr >= h || map.is_blocked(nc as i64, nr as i64) {
+                continue;
+            }
+            if let Some(s) = seen.get_mut(idx((nc, nr))) {
+                if !*s {
+                    *s = true;
+                    stack.push((nc, nr));
+                }
+            }
+        }
+    }
+    Err(SimError::Unreachable {
+        x: goal[0],
+        y: goal[1],
+        from_x: from[0],
+        from_y: from[1],
+    })
+}
+
 fn check_state(s: &RobotState) -> Result<(), SimError> {
     for (name, v) in [
         ("x", s.x),
@@ -318,7 +381,8 @@ impl Episode {
     /// Validates the setup and builds the planner. Errors: invalid numbers
     /// (naming the field), a start pose overlapping a wall, the map edge or
     /// a mover ([`WorldError::StartInCollision`]), a goal off the map or in
-    /// a wall ([`SimError::BadGoal`]), and the planner's own errors (bad
+    /// a wall ([`SimError::BadGoal`]), a goal walled off from the start
+    /// ([`SimError::Unreachable`]), and the planner's own errors (bad
     /// config, no global path).
     pub fn new(setup: EpisodeSetup) -> Result<Episode, SimError> {
         let EpisodeSetup {
@@ -379,6 +443,7 @@ impl Episode {
                 .into());
             }
         }
+        check_reachable(&map, [start.x, start.y], goal)?;
         let terrain = Terrain::new(terrain_spec.clone(), seed)?;
         let mut planner = registry::build(&choice, &robot, &map, &start, goal)?;
         planner.set_record_rollouts(config.record_rollouts);
@@ -692,6 +757,7 @@ impl Episode {
     /// stuck timer restarts.
     pub fn set_goal(&mut self, goal: [f64; 2]) -> Result<(), SimError> {
         check_goal(&self.map, goal)?;
+        check_reachable(&self.map, [self.state.x, self.state.y], goal)?;
         self.planner.set_goal(&self.map, &self.state, goal)?;
         self.goal = goal;
         let d = hypot(goal[0] - self.state.x, goal[1] - self.state.y);

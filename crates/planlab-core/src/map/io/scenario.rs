@@ -487,6 +487,15 @@ pub fn set_json_path(
             "the path needs names separated by single dots, like sim.dt".into(),
         ));
     }
+    let lower = value
+        .trim()
+        .trim_start_matches(['+', '-'])
+        .to_ascii_lowercase();
+    if matches!(lower.as_str(), "nan" | "inf" | "infinity") {
+        return Err(bad(format!(
+            "{value} is not a number JSON can hold; give a finite number"
+        )));
+    }
     let new: Value =
         serde_json::from_str(value).unwrap_or_else(|_| Value::String(value.to_string()));
     let mut here = root;

@@ -1,0 +1,302 @@
+//! `planlab run`, `planlab planners` and `planlab reproduce`: simulated
+//! episodes, the planner registry and the papers' experiments.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use planlab_core::local::registry;
+use planlab_core::map::io::scenario::{set_json_path, set_planner_name, Scenario};
+use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::reproduce::{self, ExperimentResult};
+use planlab_core::sim::Episode;
+use serde::Serialize;
+
+use crate::load;
+
+/// Options of `planlab run`.
+pub struct RunArgs<'a> {
+    /// Replaces `local_planner.name`.
+    pub planner: Option<&'a str>,
+    /// Replaces `seed`.
+    pub seed: Option<u64>,
+    /// `a.b.c=VALUE` edits, in order.
+    pub set: &'a [String],
+    /// One JSON object instead of a table.
+    pub json: bool,
+    /// Write the per-step trace CSV here.
+    pub trace: Option<&'a Path>,
+}
+
+/// What `planlab run --json` prints: the run's identity, then the metrics.
+#[derive(Serialize)]
+struct RunReport<'a> {
+    scenario: &'a str,
+    planner: &'a str,
+    seed: u64,
+    steps: u64,
+    /// FNV-1a hash of the trace, hex (the determinism check compares it).
+    trace_hash: String,
+    #[serde(flatten)]
+    metrics: &'a EpisodeMetrics,
+}
+
+/// Reads the scenario at `path` with the planner, seed and `--set` edits
+/// applied to its JSON tree, and its map.
+fn edited_scenario(
+    path: &Path,
+    args: &RunArgs<'_>,
+) -> Result<(Scenario, planlab_core::map::OccupancyGrid), String> {
+    let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let text = load::read_text(path)?;
+    let mut tree: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| at(&planlab_core::map::io::scenario::ScenarioError::from(e)))?;
+    if let Some(p) = args.planner {
+        set_planner_name(&mut tree, p).map_err(|e| at(&e))?;
+    }
+    if let Some(seed) = args.seed {
+        set_json_path(&mut tree, "seed", &seed.to_string()).map_err(|e| at(&e))?;
+    }
+    for edit in args.set {
+        let Some((key, value)) = edit.split_once('=') else {
+            return Err(format!(
+                "--set {edit}: expected PATH=VALUE, like sim.dt=0.05"
+            ));
+        };
+        set_json_path(&mut tree, key.trim(), value).map_err(|e| at(&e))?;
+    }
+    // Errors in an edited tree point at lines of the re-written text, so
+    // say so when edits were made.
+    let scenario = if args.planner.is_none() && args.seed.is_none() && args.set.is_empty() {
+        Scenario::from_json(&text)
+    } else {
+        Scenario::from_value(&tree)
+    }
+    .map_err(|e| {
+        if args.set.is_empty() && args.planner.is_none() && args.seed.is_none() {
+            at(&e)
+        } else {
+            format!("{} (after --planner/--seed/--set): {e}", path.display())
+        }
+    })?;
+    let grid = load::grid_of(path, &scenario)?;
+    Ok((scenario, grid))
+}
+
+/// `planlab run`: one episode, metrics on stdout.
+pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
+    let (scenario, grid) = edited_scenario(path, args)?;
+    let mut ep =
+        Episode::from_scenario(&scenario, grid).map_err(|e| format!("{}: {e}", path.display()))?;
+    let outcome = ep.run();
+    let m = EpisodeMetrics::from_trace(
+        ep.trace(),
+        &ep.planner_debug().global_path,
+        outcome,
+        DEFAULT_LOAD_THRESHOLD_N,
+    );
+    if let Some(t) = args.trace {
+        std::fs::write(t, ep.trace().to_csv())
+            .map_err(|e| format!("cannot write {}: {e}", t.display()))?;
+    }
+    let report = RunReport {
+        scenario: &scenario.name,
+        planner: &ep.planner_choice().name,
+        seed: scenario.seed.unwrap_or(0),
+        steps: ep.steps(),
+        trace_hash: format!("{:016x}", ep.trace().hash()),
+        metrics: &m,
+    };
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        let title = if scenario.name.is_empty() {
+            path.display().to_string()
+        } else {
+            scenario.name.clone()
+        };
+        println!("{title} — planner {}, seed {}", report.planner, report.seed);
+        print!("{}", metrics_table(&m));
+        println!("{:<22}{}", "steps", report.steps);
+        println!("{:<22}{}", "trace hash", report.trace_hash);
+    }
+    Ok(())
+}
+
+fn opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or_else(|| "—".into(), |x| format!("{x:.digits$}"))
+}
+
+/// The metrics as `name value unit` lines.
+fn metrics_table(m: &EpisodeMetrics) -> String {
+    let rows = [
+        ("outcome", m.outcome.to_string(), ""),
+        ("time", format!("{:.2}", m.time_s), "s"),
+        ("path length", format!("{:.3}", m.path_length_m), "m"),
+        ("min clearance", format!("{:.3}", m.min_clearance_m), "m"),
+        ("mean clearance", format!("{:.3}", m.mean_clearance_m), "m"),
+        ("total turning", format!("{:.3}", m.total_turn_rad), "rad"),
+        ("max turning", format!("{:.3}", m.max_turn_rad), "rad"),
+        ("speed drops", m.speed_drops.to_string(), ""),
+        ("mean tracking error", opt(m.mean_tracking_error_m, 3), "m"),
+        ("max tracking error", opt(m.max_tracking_error_m, 3), "m"),
+        ("tracking error var", opt(m.tracking_error_var_m2, 4), "m²"),
+        (
+            "wheel loads > 40 N",
+            opt(m.load_ok_share.map(|x| 100.0 * x), 1),
+            "%",
+        ),
+    ];
+    rows.iter()
+        .map(|(k, v, u)| {
+            let u = if v == "—" { "" } else { u };
+            format!("{k:<22}{v} {u}").trim_end().to_string() + "\n"
+        })
+        .collect()
+}
+
+/// `planlab planners`: the registry.
+pub fn planners(json: bool) -> Result<(), String> {
+    let list = registry::list();
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string(&list).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    for p in &list {
+        println!("{} — {}", p.name, p.summary);
+        println!("  paper: {}", p.paper);
+        let w = p.fields.iter().map(|f| f.name.len()).max().unwrap_or(0);
+        for f in &p.fields {
+            let default = match f.default.as_f64() {
+                Some(x) if f.default.is_f64() => {
+                    let t = format!("{x:.4}");
+                    let t = t.trim_end_matches('0');
+                    if t.ends_with('.') {
+                        format!("{t}0")
+                    } else {
+                        t.to_string()
+                    }
+                }
+                _ => f.default.to_string(),
+            };
+            let unit = if f.unit.is_empty() || f.unit == "1" {
+                String::new()
+            } else {
+                format!(" {}", f.unit)
+            };
+            println!("  {:<w$}  {:>10}{unit:<7}  {}", f.name, default, f.doc);
+        }
+        println!();
+    }
+    Ok(())
+}
+
+/// `planlab reproduce`: runs one or every experiment; fails when a
+/// relation does not hold.
+pub fn reproduce(id: Option<&str>, json: bool) -> Result<(), String> {
+    let all = reproduce::all();
+    let chosen: Vec<_> = match id {
+        None => all,
+        Some(id) => {
+            let ids: Vec<&str> = all.iter().map(|e| e.id).collect();
+            let Some(e) = all.iter().find(|e| e.id == id) else {
+                let known = if ids.is_empty() {
+                    "none are registered".to_string()
+                } else {
+                    format!("known ids: {}", ids.join(", "))
+                };
+                return Err(format!("unknown experiment `{id}`; {known}"));
+            };
+            vec![e.clone()]
+        }
+    };
+    let mut failed = Vec::new();
+    for exp in &chosen {
+        let r = reproduce::run(exp).map_err(|e| format!("{}: {e}", exp.id))?;
+        if json {
+            println!("{}", serde_json::to_string(&r).map_err(|e| e.to_string())?);
+        } else {
+            print!("{}", experiment_table(&r));
+        }
+        if !r.holds {
+            failed.push(r.id.clone());
+        }
+    }
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(format!(
+            "{} of {} relations do not hold: {}",
+            failed.len(),
+            chosen.len(),
+            failed.join(", ")
+        ))
+    }
+}
+
+/// A paper-style table of one experiment: runs as rows, metrics as columns.
+fn experiment_table(r: &ExperimentResult) -> String {
+    let mut s = format!("{} — {}\n  {}\n", r.id, r.paper, r.what);
+    let head = [
+        "run",
+        "outcome",
+        "time s",
+        "length m",
+        "min clr m",
+        "mean clr m",
+        "turn rad",
+        "max turn",
+        "drops",
+        "track m",
+        "track max",
+        "load %",
+    ];
+    let mut rows: Vec<Vec<String>> = vec![head.iter().map(|h| h.to_string()).collect()];
+    let runs: &BTreeMap<String, EpisodeMetrics> = &r.runs;
+    for (name, m) in runs {
+        rows.push(vec![
+            name.clone(),
+            m.outcome.to_string(),
+            format!("{:.2}", m.time_s),
+            format!("{:.2}", m.path_length_m),
+            format!("{:.3}", m.min_clearance_m),
+            format!("{:.3}", m.mean_clearance_m),
+            format!("{:.2}", m.total_turn_rad),
+            format!("{:.2}", m.max_turn_rad),
+            m.speed_drops.to_string(),
+            opt(m.mean_tracking_error_m, 3),
+            opt(m.max_tracking_error_m, 3),
+            opt(m.load_ok_share.map(|x| 100.0 * x), 1),
+        ]);
+    }
+    let widths: Vec<usize> = (0..head.len())
+        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
+        .collect();
+    for row in &rows {
+        s.push_str("  ");
+        for (c, cell) in row.iter().enumerate() {
+            let pad = widths[c] - cell.chars().count();
+            if c == 0 || c == 1 {
+                s.push_str(cell);
+                s.push_str(&" ".repeat(pad + 2));
+            } else {
+                s.push_str(&" ".repeat(pad));
+                s.push_str(cell);
+                s.push_str("  ");
+            }
+        }
+        s.truncate(s.trim_end_matches(' ').len());
+        s.push('\n');
+    }
+    s.push_str(&format!(
+        "  relation: {}\n  holds: {}\n\n",
+        r.relation,
+        if r.holds { "yes" } else { "NO" }
+    ));
+    s
+}
