@@ -6,8 +6,11 @@
 //! state, the goal, the static map and the movers within sensing range (with
 //! their observed velocities). They never read the simulator's future.
 
+pub mod dwa;
 pub mod pursuit;
 pub mod registry;
+#[cfg(test)]
+pub(crate) mod testkit;
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;

@@ -114,29 +114,29 @@ impl StaticMap {
         if !(lx > 0.0 && ly > 0.0 && lx < w as f64 && ly < h as f64) {
             return 0.0;
         }
-        let edge = lx.min(ly).min(w as f64 - lx).min(h as f64 - ly) * self.res;
-        // Cell-centre lattice coordinates (u up from the bottom row).
-        let (fx, fy) = (lx - 0.5, ly - 0.5);
-        let (x0, y0) = (fx.floor(), fy.floor());
-        let (tx, ty) = (fx - x0, fy - y0);
-        let at = |cx: f64, cy: f64| -> f64 {
-            let c = (cx.max(0.0) as usize).min(w - 1);
-            let u = (cy.max(0.0) as usize).min(h - 1);
-            self.clear[(h - 1 - u) * w + c]
-        };
-        let (x0c, y0c) = (x0.max(0.0), y0.max(0.0));
-        let v00 = at(x0c, y0c);
-        let v10 = at(x0 + 1.0, y0c);
-        let v01 = at(x0c, y0 + 1.0);
-        let v11 = at(x0 + 1.0, y0 + 1.0);
-        let v = (v00 * (1.0 - tx) + v10 * tx) * (1.0 - ty) + (v01 * (1.0 - tx) + v11 * tx) * ty;
+        // lx, ly are positive here, so truncation is floor (no libm call on
+        // targets without SSE4.1; the values are the same).
+        let (cx, cy) = (lx as usize, ly as usize);
         // Inside a blocked cell the distance is 0 whatever the neighbours say.
-        let cell_blocked = self.is_blocked(lx as i64, (h - 1) as i64 - ly as i64);
-        if cell_blocked {
-            0.0
-        } else {
-            v.min(edge)
+        if self.blocked[(h - 1 - cy.min(h - 1)) * w + cx.min(w - 1)] {
+            return 0.0;
         }
+        let edge = lx.min(ly).min(w as f64 - lx).min(h as f64 - ly) * self.res;
+        // Cell-centre lattice coordinates (u up from the bottom row);
+        // fx, fy > −0.5, so floor is −1 below 0 and truncation above.
+        let (fx, fy) = (lx - 0.5, ly - 0.5);
+        let ix = if fx < 0.0 { -1 } else { fx as isize };
+        let iy = if fy < 0.0 { -1 } else { fy as isize };
+        let (tx, ty) = (fx - ix as f64, fy - iy as f64);
+        let (c0, c1) = (ix.max(0) as usize, ((ix + 1) as usize).min(w - 1));
+        let (u0, u1) = (iy.max(0) as usize, ((iy + 1) as usize).min(h - 1));
+        let (r0, r1) = ((h - 1 - u0) * w, (h - 1 - u1) * w);
+        let v00 = self.clear[r0 + c0];
+        let v10 = self.clear[r0 + c1];
+        let v01 = self.clear[r1 + c0];
+        let v11 = self.clear[r1 + c1];
+        let v = (v00 * (1.0 - tx) + v10 * tx) * (1.0 - ty) + (v01 * (1.0 - tx) + v11 * tx) * ty;
+        v.min(edge)
     }
 
     /// Exact test: does the footprint at `pose` overlap a blocked cell or

@@ -1,0 +1,1151 @@
+//! Baseline Dynamic Window Approach (SPEC §4.1; Fox, Burgard & Thrun 1997 as
+//! restated in \[T\] eq 3-1…3-5), written as a reusable engine.
+//!
+//! One control step:
+//! 1. **Window** V_r = V_s ∩ V_d: speeds within the robot's limits and
+//!    reachable within one control period under its accelerations
+//!    ([`crate::world::RobotLimits`]).
+//! 2. **Samples** (v, ω) on the window at resolutions (`v_res`, `w_res`), or
+//!    a fixed number per axis (`v_samples`, `w_samples`); 0 is added on an
+//!    axis whose window contains it (stopping, driving straight).
+//! 3. **Rollouts**: each sample is held for `predict_time`, stepping the
+//!    SPEC §3 Euler update of [`crate::world::robot::integrate`] every
+//!    `sim_dt`.
+//! 4. **Clearance** of every rollout point: the static map's
+//!    [`StaticMap::clearance`] minus the footprint's circumscribed radius
+//!    (and `safety_margin`), and the distance to every perceived mover disc —
+//!    at its position at the rollout step's time when `predict_movers`
+//!    (constant velocity, the default), else at its current position.
+//!    A rollout whose clearance reaches 0 collides and is discarded (early
+//!    exit); so is one breaking V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b)
+//!    with dist its smallest clearance to what stands still (the map, and
+//!    the movers when they are not predicted: braking does not help against
+//!    a mover that keeps coming, the collision test covers those).
+//! 5. **Critics** on the admissible rollouts: heading = π − |bearing error
+//!    to the goal at the rollout end|, dist = smallest clearance capped at
+//!    `dist_cap`, velocity = v. Each is divided by its sum over the
+//!    admissible samples (SPEC Decision) and G = α·head + ρ·β·dist + γ·vel
+//!    picks the command (ρ = 1 for the baseline; \[T\] eq 3-8 sets it).
+//!
+//! With no admissible sample the robot brakes at its largest deceleration
+//! and, for a circular footprint, turns in place toward the goal (mode
+//! `"no-admissible"`); nothing here panics or returns NaN.
+//!
+//! **Defaults.** \[T\] gives no numeric DWA parameters (its tables list only
+//! map and APF settings). Its simulations, like \[S\]'s (whose §5 values
+//! match exactly: v_max 1 m/s, ω_max 20, a_v 0.2 m/s², a_ω 50, Δt 0.1 s,
+//! α 0.05, γ 0.1), descend from the widely copied MATLAB "Dynamic Window
+//! Approach sample": α 0.05, β 0.2, γ 0.1, predict 3.0 s, v_res 0.01 m/s,
+//! ω_res 1°/s, dist capped at 2·R = 1.0 m. Those are the defaults here; the
+//! speed and acceleration limits come from [`crate::world::RobotSpec`].
+//!
+//! **Movers.** The improved variants reuse [`DwaCore`] with their own
+//! [`GoalProvider`]: it picks the goal, the weight set, ρ and an optional
+//! held linear speed (\[S\]'s dual-velocity model) every step.
+
+use serde::{Deserialize, Serialize};
+
+use super::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug, Rollout};
+use crate::num::{atan2, cos, hypot, sin, wrap_angle};
+use crate::world::{Command, Footprint, RobotSpec, RobotState, StaticMap};
+
+/// Critic names, in the order of [`Rollout::raw`] and [`Rollout::normalised`].
+pub const CRITICS: [&str; 3] = ["heading", "dist", "velocity"];
+
+/// Most samples on one axis of the window (a tiny resolution cannot make a
+/// step take forever).
+pub const MAX_SAMPLES_PER_AXIS: usize = 1001;
+
+/// Most integration steps in one rollout (`predict_time / sim_dt`).
+pub const MAX_ROLLOUT_STEPS: usize = 10_000;
+
+/// Critic weights of G = α·head + β·dist + γ·vel.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Weights {
+    /// α, weight of the heading critic (1).
+    pub alpha: f64,
+    /// β, weight of the clearance critic (1).
+    pub beta: f64,
+    /// γ, weight of the velocity critic (1).
+    pub gamma: f64,
+}
+
+impl Default for Weights {
+    fn default() -> Self {
+        Self {
+            alpha: 0.05,
+            beta: 0.2,
+            gamma: 0.1,
+        }
+    }
+}
+
+impl Weights {
+    /// Checks every weight is finite and ≥ 0; errors name `prefix.alpha` etc.
+    pub fn validate(&self, prefix: &str) -> Result<(), LocalError> {
+        check(prefix, "alpha", self.alpha, 0.0, false)?;
+        check(prefix, "beta", self.beta, 0.0, false)?;
+        check(prefix, "gamma", self.gamma, 0.0, false)
+    }
+}
+
+/// Settings of the baseline DWA (SPEC §4.1); `Default` is the MATLAB DWA
+/// sample both \[T\] and \[S\] build on (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DwaConfig {
+    /// α, heading weight (1).
+    pub alpha: f64,
+    /// β, clearance weight (1).
+    pub beta: f64,
+    /// γ, velocity weight (1).
+    pub gamma: f64,
+    /// Linear-speed sampling resolution, m/s (used when `v_samples` = 0).
+    pub v_res: f64,
+    /// Turn-rate sampling resolution, rad/s (used when `w_samples` = 0).
+    pub w_res: f64,
+    /// Linear speeds per step spread evenly over the window; 0 = by `v_res`.
+    pub v_samples: u32,
+    /// Turn rates per step spread evenly over the window; 0 = by `w_res`.
+    pub w_samples: u32,
+    /// Rollout horizon, s.
+    pub predict_time: f64,
+    /// Rollout integration step, s.
+    pub sim_dt: f64,
+    /// The clearance critic saturates here, m.
+    pub dist_cap: f64,
+    /// Extra clearance kept beyond the footprint, m (rollouts closer than
+    /// this to anything collide).
+    pub safety_margin: f64,
+    /// Movers move at their observed velocity along the rollout (true) or
+    /// stay where they are now (false).
+    pub predict_movers: bool,
+    /// Apply the admissible-velocity rule V_a (braking distance).
+    pub admissible_window: bool,
+    /// With no admissible sample, a circular robot turns in place toward
+    /// the goal while braking.
+    pub rotate_in_place: bool,
+}
+
+impl Default for DwaConfig {
+    fn default() -> Self {
+        let w = Weights::default();
+        Self {
+            alpha: w.alpha,
+            beta: w.beta,
+            gamma: w.gamma,
+            v_res: 0.01,
+            w_res: 1f64.to_radians(),
+            v_samples: 0,
+            w_samples: 0,
+            predict_time: 3.0,
+            sim_dt: 0.1,
+            dist_cap: 1.0,
+            safety_margin: 0.0,
+            predict_movers: true,
+            admissible_window: true,
+            rotate_in_place: true,
+        }
+    }
+}
+
+/// `(name, unit, doc)` of every [`DwaConfig`] field, for the registry.
+pub const DWA_FIELDS: &[(&str, &str, &str)] = &[
+    ("alpha", "1", "α, heading weight: π − |bearing error at the rollout end|"),
+    ("beta", "1", "β, clearance weight: smallest clearance, capped"),
+    ("gamma", "1", "γ, velocity weight: forward speed"),
+    ("v_res", "m/s", "linear-speed sampling resolution (when v_samples = 0)"),
+    ("w_res", "rad/s", "turn-rate sampling resolution (when w_samples = 0)"),
+    ("v_samples", "1", "linear speeds per step, evenly spread; 0 = by v_res"),
+    ("w_samples", "1", "turn rates per step, evenly spread; 0 = by w_res"),
+    ("predict_time", "s", "rollout horizon"),
+    ("sim_dt", "s", "rollout integration step"),
+    ("dist_cap", "m", "clearance critic saturates here"),
+    ("safety_margin", "m", "extra clearance kept beyond the footprint"),
+    ("predict_movers", "bool", "movers move at their observed velocity along rollouts"),
+    ("admissible_window", "bool", "apply V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b)"),
+    ("rotate_in_place", "bool", "with no admissible sample, a round robot turns toward the goal"),
+];
+
+/// Checks `value` is finite and ≥ `min` (> when `strict`); errors name
+/// `prefix.field`.
+pub(crate) fn check(
+    prefix: &str,
+    field: &str,
+    value: f64,
+    min: f64,
+    strict: bool,
+) -> Result<(), LocalError> {
+    let ok = value.is_finite() && if strict { value > min } else { value >= min };
+    if ok {
+        Ok(())
+    } else {
+        let rel = if strict { ">" } else { "≥" };
+        let name = if prefix.is_empty() {
+            field.to_string()
+        } else {
+            format!("{prefix}.{field}")
+        };
+        Err(LocalError::InvalidParameter(format!(
+            "{name} = {value}: must be a finite number {rel} {min}"
+        )))
+    }
+}
+
+impl DwaConfig {
+    /// The configured weights.
+    pub fn weights(&self) -> Weights {
+        Weights {
+            alpha: self.alpha,
+            beta: self.beta,
+            gamma: self.gamma,
+        }
+    }
+
+    /// Checks every number; errors name `prefix.field`.
+    pub fn validate(&self, prefix: &str) -> Result<(), LocalError> {
+        self.weights().validate(prefix)?;
+        check(prefix, "v_res", self.v_res, 0.0, true)?;
+        check(prefix, "w_res", self.w_res, 0.0, true)?;
+        check(prefix, "predict_time", self.predict_time, 0.0, true)?;
+        check(prefix, "sim_dt", self.sim_dt, 0.0, true)?;
+        check(prefix, "dist_cap", self.dist_cap, 0.0, true)?;
+        check(prefix, "safety_margin", self.safety_margin, 0.0, false)?;
+        for (name, n) in [("v_samples", self.v_samples), ("w_samples", self.w_samples)] {
+            if n as usize > MAX_SAMPLES_PER_AXIS {
+                return Err(LocalError::InvalidParameter(format!(
+                    "{prefix}.{name} = {n}: at most {MAX_SAMPLES_PER_AXIS}"
+                )));
+            }
+        }
+        if self.predict_time / self.sim_dt > MAX_ROLLOUT_STEPS as f64 {
+            return Err(LocalError::InvalidParameter(format!(
+                "{prefix}.predict_time / {prefix}.sim_dt = {} steps: at most {MAX_ROLLOUT_STEPS}",
+                self.predict_time / self.sim_dt
+            )));
+        }
+        Ok(())
+    }
+
+    fn rollout_steps(&self) -> usize {
+        ((self.predict_time / self.sim_dt - 1e-9).ceil() as usize).clamp(1, MAX_ROLLOUT_STEPS)
+    }
+}
+
+/// What one step of the engine is asked to do.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepRequest {
+    /// The goal the heading critic steers to, metres.
+    pub goal: [f64; 2],
+    /// Critic weights for this step.
+    pub weights: Weights,
+    /// Relative distance factor ρ multiplying β (\[T\] eq 3-8); 1 = off.
+    pub rho: f64,
+    /// Hold the linear speed at this value (\[S\] eq 9–12); `None` = the
+    /// normal window. When no sample at the held speed is admissible the
+    /// normal window is used instead.
+    pub hold_v: Option<f64>,
+}
+
+/// What one step of the engine chose.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepResult {
+    /// The command.
+    pub cmd: Command,
+    /// Number of admissible samples (0: the braking fallback was used).
+    pub admissible: usize,
+    /// Number of samples evaluated.
+    pub samples: usize,
+    /// Whether the held speed had to be released (no admissible sample).
+    pub hold_released: bool,
+}
+
+/// Per-sample scratch record.
+#[derive(Debug, Clone, Copy, Default)]
+struct Cand {
+    v: f64,
+    w: f64,
+    /// heading, dist (capped), velocity.
+    raw: [f64; 3],
+    admissible: bool,
+}
+
+/// The DWA engine: window, sampling, rollouts, clearance, critics. Reused by
+/// every DWA variant; allocation-free per step once warmed up unless
+/// rollouts are recorded.
+#[derive(Debug, Clone)]
+pub struct DwaCore {
+    cfg: DwaConfig,
+    robot: RobotSpec,
+    /// Footprint's circumscribed radius + safety margin, m.
+    r_eff: f64,
+    round: bool,
+    steps: usize,
+    record: bool,
+    cands: Vec<Cand>,
+    vs: Vec<f64>,
+    ws: Vec<f64>,
+    /// Kept movers' positions per rollout step: `[k * m + j]`, k = 1..=steps.
+    mover_pos: Vec<[f64; 2]>,
+    mover_rad: Vec<f64>,
+    kept: Vec<usize>,
+    points: Vec<[f64; 2]>,
+    debug: PlannerDebug,
+}
+
+impl DwaCore {
+    /// Builds the engine; the config is validated (errors name `prefix.field`).
+    pub fn new(cfg: DwaConfig, robot: &RobotSpec, prefix: &str) -> Result<Self, LocalError> {
+        cfg.validate(prefix)?;
+        robot
+            .validate()
+            .map_err(|e| LocalError::InvalidParameter(e.to_string()))?;
+        let debug = PlannerDebug {
+            critics: CRITICS.iter().map(|s| s.to_string()).collect(),
+            mode: "normal".into(),
+            ..Default::default()
+        };
+        Ok(Self {
+            r_eff: robot.footprint.circumscribed_radius() + cfg.safety_margin,
+            round: matches!(robot.footprint, Footprint::Circle { .. }),
+            steps: cfg.rollout_steps(),
+            cfg,
+            robot: *robot,
+            record: false,
+            cands: Vec::new(),
+            vs: Vec::new(),
+            ws: Vec::new(),
+            mover_pos: Vec::new(),
+            mover_rad: Vec::new(),
+            kept: Vec::new(),
+            points: Vec::new(),
+            debug,
+        })
+    }
+
+    /// The config.
+    pub fn config(&self) -> &DwaConfig {
+        &self.cfg
+    }
+
+    /// The robot.
+    pub fn robot(&self) -> &RobotSpec {
+        &self.robot
+    }
+
+    /// Footprint radius plus safety margin, m.
+    pub fn effective_radius(&self) -> f64 {
+        self.r_eff
+    }
+
+    /// Record every rollout in [`DwaCore::debug`] or not.
+    pub fn set_record(&mut self, on: bool) {
+        self.record = on;
+        if !on {
+            self.debug.rollouts.clear();
+            self.debug.chosen = None;
+        }
+    }
+
+    /// What the last step did.
+    pub fn debug(&self) -> &PlannerDebug {
+        &self.debug
+    }
+
+    /// Mutable access, so goal providers can add their own fields.
+    pub fn debug_mut(&mut self) -> &mut PlannerDebug {
+        &mut self.debug
+    }
+
+    /// Clearance (m) of the robot's centre to the nearest static obstacle or
+    /// perceived mover surface, without the footprint.
+    pub fn centre_clearance(map: &StaticMap, movers: &[super::ObservedMover], p: [f64; 2]) -> f64 {
+        let mut c = map.clearance(p[0], p[1]);
+        for m in movers {
+            c = c.min(hypot(m.pos[0] - p[0], m.pos[1] - p[1]) - m.radius);
+        }
+        c.max(0.0)
+    }
+
+    /// One control step: the best admissible command toward `req.goal`.
+    pub fn plan(&mut self, obs: &Observation<'_>, req: &StepRequest) -> StepResult {
+        let s = *obs.state;
+        let finite = [s.x, s.y, s.theta, s.v, s.w, req.goal[0], req.goal[1]]
+            .iter()
+            .all(|x| x.is_finite());
+        if !finite {
+            // A broken state: stop rather than compute with NaN.
+            self.debug.mode = "invalid-state".into();
+            self.debug.rollouts.clear();
+            self.debug.chosen = None;
+            return StepResult {
+                cmd: Command::default(),
+                admissible: 0,
+                samples: 0,
+                hold_released: false,
+            };
+        }
+        let dt = if obs.dt.is_finite() && obs.dt > 0.0 {
+            obs.dt
+        } else {
+            self.cfg.sim_dt
+        };
+        let mut res = self.evaluate(obs, req, dt, req.hold_v);
+        if res.admissible == 0 && req.hold_v.is_some() {
+            res = self.evaluate(obs, req, dt, None);
+            res.hold_released = true;
+        }
+        if res.admissible == 0 {
+            res.cmd = self.fallback(&s, req.goal, dt);
+            self.debug.mode = "no-admissible".into();
+            self.debug.chosen = None;
+        }
+        res
+    }
+
+    /// Braking fallback: v toward 0 at the largest deceleration; a round
+    /// robot also turns toward the goal (within its angular window).
+    fn fallback(&self, s: &RobotState, goal: [f64; 2], dt: f64) -> Command {
+        let l = &self.robot.limits;
+        let dv = l.acc_v * dt;
+        let v = if s.v > 0.0 {
+            (s.v - dv).max(0.0)
+        } else {
+            (s.v + dv).min(0.0)
+        };
+        let dw = l.acc_w * dt;
+        let toward_zero = if s.w > 0.0 {
+            (s.w - dw).max(0.0)
+        } else {
+            (s.w + dw).min(0.0)
+        };
+        let w = if self.cfg.rotate_in_place && self.round {
+            let err = wrap_angle(atan2(goal[1] - s.y, goal[0] - s.x) - s.theta);
+            // Turn at the rate that closes the error in one period, within
+            // the limits and the angular window.
+            let want = (err / dt).clamp(-l.w_max, l.w_max);
+            want.clamp(s.w - dw, s.w + dw)
+        } else {
+            toward_zero
+        };
+        Command { v, vy: 0.0, w }
+    }
+
+    /// Sample values on `[lo, hi]`.
+    fn axis(out: &mut Vec<f64>, lo: f64, hi: f64, res: f64, count: u32) {
+        out.clear();
+        if hi - lo <= 1e-12 {
+            out.push(lo);
+            return;
+        }
+        if count > 0 {
+            let n = count as usize;
+            if n == 1 {
+                out.push(0.5 * (lo + hi));
+            } else {
+                let step = (hi - lo) / (n - 1) as f64;
+                out.extend((0..n).map(|i| if i + 1 == n { hi } else { lo + step * i as f64 }));
+            }
+        } else {
+            let n = (((hi - lo) / res + 1e-9).floor() as usize + 1).min(MAX_SAMPLES_PER_AXIS);
+            out.extend((0..n).map(|i| lo + res * i as f64));
+            if let Some(&last) = out.last() {
+                if hi - last > 1e-9 && out.len() < MAX_SAMPLES_PER_AXIS {
+                    out.push(hi);
+                }
+            }
+        }
+        if lo < 0.0 && hi > 0.0 && !out.iter().any(|x| x.abs() < 1e-12) {
+            out.push(0.0);
+        }
+    }
+
+    /// The window [lo, hi] of one velocity component.
+    fn window(cur: f64, acc: f64, min: f64, max: f64, dt: f64) -> (f64, f64) {
+        let (a, b) = (cur - acc * dt, cur + acc * dt);
+        let (lo, hi) = (a.max(min), b.min(max));
+        if lo <= hi {
+            (lo, hi)
+        } else if b < min {
+            (b, b)
+        } else {
+            (a, a)
+        }
+    }
+
+    fn evaluate(
+        &mut self,
+        obs: &Observation<'_>,
+        req: &StepRequest,
+        dt: f64,
+        hold_v: Option<f64>,
+    ) -> StepResult {
+        let s = *obs.state;
+        let l = self.robot.limits;
+        let (v_lo, v_hi) = match hold_v {
+            Some(v) if v.is_finite() => {
+                let v = v.clamp(l.v_min, l.v_max);
+                (v, v)
+            }
+            _ => Self::window(s.v, l.acc_v, l.v_min, l.v_max, dt),
+        };
+        let (w_lo, w_hi) = Self::window(s.w, l.acc_w, -l.w_max, l.w_max, dt);
+        let mut vs = std::mem::take(&mut self.vs);
+        let mut ws = std::mem::take(&mut self.ws);
+        Self::axis(&mut vs, v_lo, v_hi, self.cfg.v_res, self.cfg.v_samples);
+        Self::axis(&mut ws, w_lo, w_hi, self.cfg.w_res, self.cfg.w_samples);
+
+        // Beyond this distance clearance changes nothing: the critic is
+        // capped and V_a is met by every sample.
+        let v_abs = v_lo.abs().max(v_hi.abs());
+        let w_abs = w_lo.abs().max(w_hi.abs());
+        let horizon = self
+            .cfg
+            .dist_cap
+            .max(v_abs * v_abs / (2.0 * l.acc_v))
+            .max(w_abs * w_abs / (2.0 * l.acc_w))
+            + 1e-6;
+        let t_total = self.steps as f64 * self.cfg.sim_dt;
+        self.prepare_movers(obs, &s, v_abs * t_total, horizon);
+
+        // Threshold of collision: 0, or the current clearance when the
+        // robot already sits inside the margin (it may leave, not go deeper).
+        let stat0 = obs.map.clearance(s.x, s.y) - self.r_eff;
+        let c0 = self.mover_clearance(stat0, s.x, s.y, 0, horizon);
+        let limit = c0.min(0.0);
+
+        let (s0, c0t) = (sin(s.theta), cos(s.theta));
+        let record = self.record;
+        if record {
+            self.debug.rollouts.clear();
+        }
+        self.cands.clear();
+        for &v in &vs {
+            for &w in &ws {
+                let cand = self.rollout(obs.map, &s, (s0, c0t), v, w, (limit, stat0), horizon, req);
+                self.cands.push(cand);
+                if record {
+                    let mut r = Rollout {
+                        cmd: Command { v, vy: 0.0, w },
+                        points: Vec::with_capacity(self.points.len()),
+                        admissible: cand.admissible,
+                        raw: cand.raw.to_vec(),
+                        normalised: vec![0.0; 3],
+                        score: f64::NEG_INFINITY,
+                    };
+                    r.points.extend_from_slice(&self.points);
+                    self.debug.rollouts.push(r);
+                }
+            }
+        }
+        self.vs = vs;
+        self.ws = ws;
+
+        // Normalise each critic by its sum over the admissible samples.
+        let mut sum = [0.0f64; 3];
+        let mut n_ok = 0usize;
+        for c in self.cands.iter().filter(|c| c.admissible) {
+            n_ok += 1;
+            for (k, x) in sum.iter_mut().enumerate() {
+                *x += c.raw[k];
+            }
+        }
+        let wts = [req.weights.alpha, req.weights.beta * req.rho, req.weights.gamma];
+        let mut best: Option<(usize, f64)> = None;
+        for (i, c) in self.cands.iter().enumerate() {
+            if !c.admissible {
+                continue;
+            }
+            let mut score = 0.0;
+            let mut norm = [0.0f64; 3];
+            for k in 0..3 {
+                norm[k] = if sum[k] > 0.0 { c.raw[k] / sum[k] } else { 0.0 };
+                score += wts[k] * norm[k];
+            }
+            if !score.is_finite() {
+                score = f64::NEG_INFINITY;
+            }
+            if best.map_or(true, |(_, b)| score > b) {
+                best = Some((i, score));
+            }
+            if record {
+                if let Some(r) = self.debug.rollouts.get_mut(i) {
+                    r.normalised.copy_from_slice(&norm);
+                    r.score = score;
+                }
+            }
+        }
+        let samples = self.cands.len();
+        self.debug.chosen = if record { best.map(|(i, _)| i) } else { None };
+        self.debug.current_goal = req.goal;
+        match best {
+            Some((i, _)) => {
+                let c = self.cands[i];
+                StepResult {
+                    cmd: Command {
+                        v: c.v,
+                        vy: 0.0,
+                        w: c.w,
+                    },
+                    admissible: n_ok,
+                    samples,
+                    hold_released: false,
+                }
+            }
+            None => StepResult {
+                cmd: Command::default(),
+                admissible: 0,
+                samples,
+                hold_released: false,
+            },
+        }
+    }
+
+    /// Keeps the movers that can come within `horizon` of a rollout and
+    /// tabulates their positions per rollout step.
+    fn prepare_movers(&mut self, obs: &Observation<'_>, s: &RobotState, reach: f64, horizon: f64) {
+        self.mover_pos.clear();
+        self.mover_rad.clear();
+        let t_total = self.steps as f64 * self.cfg.sim_dt;
+        let predict = self.cfg.predict_movers;
+        let mut kept = std::mem::take(&mut self.kept);
+        kept.clear();
+        for (j, m) in obs.movers.iter().enumerate() {
+            let finite = m.pos.iter().chain(m.vel.iter()).all(|x| x.is_finite())
+                && m.radius.is_finite();
+            if !finite {
+                continue;
+            }
+            let d0 = hypot(m.pos[0] - s.x, m.pos[1] - s.y) - m.radius - self.r_eff;
+            let travel = if predict {
+                hypot(m.vel[0], m.vel[1]) * t_total
+            } else {
+                0.0
+            };
+            if d0 - reach - travel <= horizon {
+                kept.push(j);
+            }
+        }
+        let n = kept.len();
+        if n == 0 {
+            self.kept = kept;
+            return;
+        }
+        self.mover_rad.extend(kept.iter().map(|&j| obs.movers[j].radius));
+        self.mover_pos.resize((self.steps + 1) * n, [0.0, 0.0]);
+        for k in 0..=self.steps {
+            let t = if predict {
+                k as f64 * self.cfg.sim_dt
+            } else {
+                0.0
+            };
+            for (jj, &j) in kept.iter().enumerate() {
+                let m = &obs.movers[j];
+                self.mover_pos[k * n + jj] = [m.pos[0] + m.vel[0] * t, m.pos[1] + m.vel[1] * t];
+            }
+        }
+        self.kept = kept;
+    }
+
+    /// Clearance of the footprint (as a disc of radius `r_eff`) centred at
+    /// (x, y) at rollout step k, exact up to `horizon`, given its static
+    /// part `stat` (map clearance minus `r_eff`): map and movers.
+    #[inline]
+    fn mover_clearance(&self, stat: f64, x: f64, y: f64, k: usize, horizon: f64) -> f64 {
+        let mut best = stat;
+        let n = self.mover_rad.len();
+        if n > 0 {
+            let row = &self.mover_pos[k * n..(k + 1) * n];
+            for (p, &r) in row.iter().zip(&self.mover_rad) {
+                let (dx, dy) = (p[0] - x, p[1] - y);
+                let d2 = dx * dx + dy * dy;
+                let lim = best.min(horizon) + r + self.r_eff;
+                // Only a closer mover needs the square root.
+                if lim <= 0.0 || d2 < lim * lim {
+                    best = best.min(d2.sqrt() - r - self.r_eff);
+                }
+            }
+        }
+        best
+    }
+
+    /// Rolls (v, ω) out and scores it; fills `self.points` when recording.
+    #[allow(clippy::too_many_arguments)]
+    fn rollout(
+        &mut self,
+        map: &StaticMap,
+        s: &RobotState,
+        (sin0, cos0): (f64, f64),
+        v: f64,
+        w: f64,
+        (limit, stat0): (f64, f64),
+        horizon: f64,
+        req: &StepRequest,
+    ) -> Cand {
+        let h = self.cfg.sim_dt;
+        let record = self.record;
+        if record {
+            self.points.clear();
+        }
+        // The Euler update of `integrate`: x += v·cos θ·h, y += v·sin θ·h,
+        // θ += ω·h. cos/sin of θ_k = θ_0 + kωh advance by an exact rotation
+        // (one sin/cos per sample instead of per step; deterministic).
+        let (sd, cd) = (sin(w * h), cos(w * h));
+        let (mut sn, mut cs) = (sin0, cos0);
+        let (mut x, mut y) = (s.x, s.y);
+        let mut min_c = f64::INFINITY;
+        let mut min_static = f64::INFINITY;
+        let mut collided = false;
+        // Skipping map lookups far from walls: the clearance field is
+        // √2-Lipschitz (bilinear over samples 1-Lipschitz per axis) up to a
+        // cell at blocked-cell borders, so while the last looked-up value
+        // minus √2·(distance driven since) stays above horizon + a cell, the
+        // point's value is above the horizon and every decision (capped
+        // critic, V_a, collision) is the same as with the exact value.
+        let res = map.grid().resolution();
+        let skip_above = horizon + res;
+        let step_len = v.abs() * h * (1.0 + 1e-9);
+        let mut last = stat0;
+        let mut since = 0.0;
+        for k in 1..=self.steps {
+            x += v * cs * h;
+            y += v * sn * h;
+            let (ns, nc) = (sn * cd + cs * sd, cs * cd - sn * sd);
+            sn = ns;
+            cs = nc;
+            if record {
+                self.points.push([x, y]);
+            }
+            since += step_len;
+            let stat = if last - std::f64::consts::SQRT_2 * since > skip_above {
+                skip_above
+            } else {
+                last = map.clearance(x, y) - self.r_eff;
+                since = 0.0;
+                last
+            };
+            let c = self.mover_clearance(stat, x, y, k, horizon);
+            min_c = min_c.min(c);
+            min_static = min_static.min(stat);
+            if c <= limit {
+                collided = true;
+                break;
+            }
+        }
+        let theta = wrap_angle(s.theta + w * h * self.steps as f64);
+        let dist = min_c.max(0.0);
+        // V_a is about stopping before an obstacle: static ones, and movers
+        // when they are taken as standing still. Predicted movers are
+        // handled by the collision test (stopping does not help against a
+        // mover that keeps coming).
+        let brake_dist = if self.cfg.predict_movers {
+            min_static.max(0.0)
+        } else {
+            dist
+        };
+        let l = &self.robot.limits;
+        let admissible = !collided
+            && (!self.cfg.admissible_window
+                || (v.abs() <= (2.0 * brake_dist * l.acc_v).sqrt() + 1e-12
+                    && w.abs() <= (2.0 * brake_dist * l.acc_w).sqrt() + 1e-12));
+        let bearing = atan2(req.goal[1] - y, req.goal[0] - x);
+        let heading = std::f64::consts::PI - wrap_angle(bearing - theta).abs();
+        Cand {
+            v,
+            w,
+            raw: [heading, dist.min(self.cfg.dist_cap), v.max(0.0)],
+            admissible,
+        }
+    }
+}
+
+/// What a [`GoalProvider`] decides for one step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Guidance {
+    /// The goal to steer to.
+    pub goal: [f64; 2],
+    /// Why that goal.
+    pub kind: GoalKind,
+    /// Critic weights.
+    pub weights: Weights,
+    /// Relative distance factor ρ on β (1 = none).
+    pub rho: f64,
+    /// Held linear speed (\[S\] dual-velocity model), or `None`.
+    pub hold_v: Option<f64>,
+    /// Strategy name for the trace ("normal", "decelerate", …).
+    pub mode: &'static str,
+}
+
+/// Chooses each step's goal, weights and velocity model: the part in which
+/// the DWA variants differ.
+pub trait GoalProvider {
+    /// Registry name of the planner this provider makes.
+    fn name(&self) -> &'static str;
+    /// This step's guidance; `base` are the config's weights.
+    fn guide(&mut self, obs: &Observation<'_>, base: Weights, core: &DwaCore) -> Guidance;
+    /// The final goal moved: replan what depends on it.
+    fn retarget(
+        &mut self,
+        map: &StaticMap,
+        state: &RobotState,
+        goal: [f64; 2],
+        core: &DwaCore,
+    ) -> Result<(), LocalError>;
+    /// Adds the provider's own fields (global path, classes …) to the debug.
+    fn annotate(&self, debug: &mut PlannerDebug);
+}
+
+/// The baseline's goal provider: always the final goal, fixed weights.
+#[derive(Debug, Clone)]
+pub struct FinalGoal {
+    goal: [f64; 2],
+}
+
+impl GoalProvider for FinalGoal {
+    fn name(&self) -> &'static str {
+        "dwa"
+    }
+    fn guide(&mut self, obs: &Observation<'_>, base: Weights, _core: &DwaCore) -> Guidance {
+        self.goal = obs.goal;
+        Guidance {
+            goal: obs.goal,
+            kind: GoalKind::Final,
+            weights: base,
+            rho: 1.0,
+            hold_v: None,
+            mode: "normal",
+        }
+    }
+    fn retarget(
+        &mut self,
+        _map: &StaticMap,
+        _state: &RobotState,
+        goal: [f64; 2],
+        _core: &DwaCore,
+    ) -> Result<(), LocalError> {
+        check_goal(goal)?;
+        self.goal = goal;
+        Ok(())
+    }
+    fn annotate(&self, _debug: &mut PlannerDebug) {}
+}
+
+/// Checks a goal point is finite.
+pub(crate) fn check_goal(goal: [f64; 2]) -> Result<(), LocalError> {
+    if goal[0].is_finite() && goal[1].is_finite() {
+        Ok(())
+    } else {
+        Err(LocalError::InvalidParameter(format!(
+            "goal = ({}, {}): must be finite",
+            goal[0], goal[1]
+        )))
+    }
+}
+
+/// A DWA planner: the engine plus a goal provider.
+#[derive(Debug, Clone)]
+pub struct DwaPlanner<G> {
+    core: DwaCore,
+    guide: G,
+}
+
+/// The baseline DWA (registry name `dwa`).
+pub type Dwa = DwaPlanner<FinalGoal>;
+
+impl Dwa {
+    /// Baseline DWA for `robot` heading to `goal`.
+    pub fn new(cfg: DwaConfig, robot: &RobotSpec, goal: [f64; 2]) -> Result<Self, LocalError> {
+        check_goal(goal)?;
+        Ok(Self {
+            core: DwaCore::new(cfg, robot, "dwa")?,
+            guide: FinalGoal { goal },
+        })
+    }
+}
+
+impl<G: GoalProvider> DwaPlanner<G> {
+    /// Assembles a planner from its parts.
+    pub fn from_parts(core: DwaCore, guide: G) -> Self {
+        Self { core, guide }
+    }
+
+    /// The engine.
+    pub fn core(&self) -> &DwaCore {
+        &self.core
+    }
+
+    /// The goal provider.
+    pub fn guide(&self) -> &G {
+        &self.guide
+    }
+}
+
+impl<G: GoalProvider> LocalPlanner for DwaPlanner<G> {
+    fn name(&self) -> &'static str {
+        self.guide.name()
+    }
+
+    fn step(&mut self, obs: &Observation<'_>) -> Command {
+        let base = self.core.config().weights();
+        let g = self.guide.guide(obs, base, &self.core);
+        let req = StepRequest {
+            goal: g.goal,
+            weights: g.weights,
+            rho: if g.rho.is_finite() && g.rho >= 0.0 {
+                g.rho
+            } else {
+                1.0
+            },
+            hold_v: g.hold_v,
+        };
+        let res = self.core.plan(obs, &req);
+        let d = self.core.debug_mut();
+        d.goal_kind = g.kind;
+        d.current_goal = g.goal;
+        if res.admissible > 0 {
+            d.mode = if res.hold_released {
+                format!("{}-released", g.mode)
+            } else {
+                g.mode.to_string()
+            };
+        }
+        self.guide.annotate(self.core.debug_mut());
+        res.cmd
+    }
+
+    fn set_goal(
+        &mut self,
+        map: &StaticMap,
+        state: &RobotState,
+        goal: [f64; 2],
+    ) -> Result<(), LocalError> {
+        self.guide.retarget(map, state, goal, &self.core)
+    }
+
+    fn debug(&self) -> &PlannerDebug {
+        self.core.debug()
+    }
+
+    fn set_record_rollouts(&mut self, on: bool) {
+        self.core.set_record(on);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::testkit::{self, End};
+    use super::super::ObservedMover;
+    use super::*;
+    use crate::world::{MotionModel, MoverSpec, RobotLimits};
+
+    fn robot() -> RobotSpec {
+        RobotSpec {
+            footprint: Footprint::Circle { radius: 0.2 },
+            limits: RobotLimits {
+                v_max: 1.0,
+                v_min: 0.0,
+                w_max: 20f64.to_radians(),
+                acc_v: 0.2,
+                acc_w: 50f64.to_radians(),
+                ..Default::default()
+            },
+            ..Default::default()
+        }
+    }
+
+    fn open(w: usize, h: usize) -> StaticMap {
+        let row = ".".repeat(w);
+        let text: Vec<String> = (0..h).map(|_| row.clone()).collect();
+        testkit::map(&(text.join("\n") + "\n"), 0.1)
+    }
+
+    fn at(x: f64, y: f64, theta: f64) -> RobotState {
+        RobotState {
+            x,
+            y,
+            theta,
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn drives_to_a_goal_in_the_open() {
+        let map = open(100, 60);
+        let mut p = Dwa::new(DwaConfig::default(), &robot(), [8.0, 4.5]).unwrap();
+        let r = testkit::run(&mut p, &map, &robot(), at(1.0, 1.0, 0.0), [8.0, 4.5], &[], 80.0, 0.3);
+        assert_eq!(r.end, End::Reached, "{:?}", r.states.last());
+        assert!(r.length < 1.3 * hypot(7.0, 3.5), "{}", r.length);
+    }
+
+    #[test]
+    fn commands_stay_inside_the_window_and_critics_normalise() {
+        let map = open(200, 200);
+        let mut p = Dwa::new(
+            DwaConfig {
+                v_samples: 7,
+                w_samples: 9,
+                ..Default::default()
+            },
+            &robot(),
+            [5.0, 5.0],
+        )
+        .unwrap();
+        p.set_record_rollouts(true);
+        let l = robot().limits;
+        // 10 m from the walls V_a allows up to √(2·6·0.2) ≈ 1.5 m/s.
+        for (v, w) in [(0.0, 0.0), (0.5, 0.2), (1.0, -0.3), (0.05, 0.34)] {
+            let s = RobotState {
+                v,
+                w,
+                ..at(10.0, 10.0, 0.3)
+            };
+            let obs = Observation {
+                time: 0.0,
+                dt: 0.1,
+                state: &s,
+                goal: [19.0, 19.0],
+                map: &map,
+                movers: &[],
+                odometry: None,
+                accel_z: 0.0,
+            };
+            let c = p.step(&obs);
+            assert!(c.v >= (v - l.acc_v * 0.1 - 1e-12).max(0.0) && c.v <= (v + l.acc_v * 0.1 + 1e-12).min(1.0));
+            assert!(c.w >= w - l.acc_w * 0.1 - 1e-12 && c.w <= w + l.acc_w * 0.1 + 1e-12);
+            let d = p.debug();
+            assert!(d.rollouts.len() >= 63);
+            let chosen = d.chosen.expect("chosen");
+            assert_eq!(d.rollouts[chosen].cmd.v, c.v);
+            for k in 0..3 {
+                let sum: f64 = d
+                    .rollouts
+                    .iter()
+                    .filter(|r| r.admissible)
+                    .map(|r| r.normalised[k])
+                    .sum();
+                assert!(sum == 0.0 || (sum - 1.0).abs() < 1e-9, "critic {k}: {sum}");
+            }
+            assert!(d.rollouts.iter().all(|r| r.points.len() == 30));
+        }
+    }
+
+    #[test]
+    fn boxed_in_robot_brakes_and_turns_without_nan() {
+        // A 5×5-cell room at 0.1 m: the robot (r 0.2) just fits.
+        let map = testkit::map("#######\n#.....#\n#.....#\n#.....#\n#.....#\n#.....#\n#######\n", 0.1);
+        let mut p = Dwa::new(DwaConfig::default(), &robot(), [5.0, 5.0]).unwrap();
+        let s = RobotState {
+            v: 0.3,
+            ..at(0.35, 0.35, 0.0)
+        };
+        let obs = Observation {
+            time: 0.0,
+            dt: 0.1,
+            state: &s,
+            goal: [0.35, 5.0],
+            map: &map,
+            movers: &[],
+            odometry: None,
+            accel_z: 0.0,
+        };
+        let c = p.step(&obs);
+        assert_eq!(p.debug().mode, "no-admissible");
+        assert!((c.v - 0.28).abs() < 1e-12, "{c:?}");
+        assert!(c.w > 0.0, "turns left toward the goal: {c:?}");
+    }
+
+    #[test]
+    fn nan_config_names_the_field() {
+        let e = Dwa::new(
+            DwaConfig {
+                beta: f64::NAN,
+                ..Default::default()
+            },
+            &robot(),
+            [1.0, 1.0],
+        )
+        .unwrap_err();
+        assert!(matches!(&e, LocalError::InvalidParameter(m) if m.contains("dwa.beta")), "{e}");
+        let e = Dwa::new(
+            DwaConfig {
+                predict_time: -1.0,
+                ..Default::default()
+            },
+            &robot(),
+            [1.0, 1.0],
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("dwa.predict_time"), "{e}");
+    }
+
+    #[test]
+    fn predicted_movers_are_not_hit() {
+        // A mover crosses the straight line to the goal; with prediction the
+        // robot never touches it (it slows, waits or swerves).
+        let map = open(160, 80);
+        for (start, vel) in [([6.0, 0.6], [0.0, 0.4]), ([6.0, 7.4], [0.0, -0.4]), ([12.0, 4.0], [-0.3, 0.0])] {
+            let mover = MoverSpec {
+                id: 1,
+                radius: 0.3,
+                motion: MotionModel::ConstantVelocity { start, velocity: vel },
+            };
+            let mut p = Dwa::new(DwaConfig::default(), &robot(), [14.0, 4.0]).unwrap();
+            let r = testkit::run(&mut p, &map, &robot(), at(1.0, 4.0, 0.0), [14.0, 4.0], &[mover], 150.0, 0.3);
+            assert_ne!(r.end, End::Collision, "mover from {start:?}");
+            assert!(r.min_clearance > 0.0);
+        }
+    }
+
+    #[test]
+    fn movers_far_away_are_culled_but_near_ones_count() {
+        let map = open(60, 60);
+        let mut core = DwaCore::new(DwaConfig::default(), &robot(), "dwa").unwrap();
+        let s = at(1.0, 3.0, 0.0);
+        let movers = [
+            ObservedMover {
+                id: 1,
+                pos: [1.9, 3.0],
+                vel: [0.0, 0.0],
+                radius: 0.3,
+            },
+            ObservedMover {
+                id: 2,
+                pos: [5.5, 5.5],
+                vel: [0.0, 0.0],
+                radius: 0.3,
+            },
+        ];
+        let obs = Observation {
+            time: 0.0,
+            dt: 0.1,
+            state: &s,
+            goal: [5.0, 3.0],
+            map: &map,
+            movers: &movers,
+            odometry: None,
+            accel_z: 0.0,
+        };
+        let req = StepRequest {
+            goal: [5.0, 3.0],
+            weights: Weights::default(),
+            rho: 1.0,
+            hold_v: None,
+        };
+        let res = core.plan(&obs, &req);
+        assert_eq!(core.mover_rad.len(), 1, "only the near mover is kept");
+        assert!(res.admissible > 0);
+        // Held speed: the v axis collapses.
+        let s2 = RobotState { v: 0.3, ..s };
+        let obs2 = Observation { state: &s2, movers: &[], ..obs };
+        let res = core.plan(
+            &obs2,
+            &StepRequest {
+                hold_v: Some(0.3),
+                ..req
+            },
+        );
+        assert_eq!(res.cmd.v, 0.3);
+        assert_eq!(res.samples, 11);
+    }
+}
