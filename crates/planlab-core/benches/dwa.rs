@@ -26,7 +26,10 @@ fn scene() -> Scene {
     let mut cells = vec![Cell::Free; w * h];
     let centre = (100.0, 100.0);
     for _ in 0..60 {
-        let (c0, r0) = (rng.range(0.0, 190.0) as usize, rng.range(0.0, 190.0) as usize);
+        let (c0, r0) = (
+            rng.range(0.0, 190.0) as usize,
+            rng.range(0.0, 190.0) as usize,
+        );
         let (bw, bh) = (rng.range(3.0, 9.0) as usize, rng.range(3.0, 9.0) as usize);
         // Keep a 1.5 m disc around the robot free (centre-to-block distance).
         let gap = |lo: f64, len: f64, c: f64| (lo - c).max(c - (lo + len)).max(0.0);
@@ -65,7 +68,10 @@ fn scene() -> Scene {
         {
             continue;
         }
-        let (speed, dir) = (rng.range(0.0, 0.5), rng.range(-3.14, 3.14));
+        let (speed, dir) = (
+            rng.range(0.0, 0.5),
+            rng.range(-std::f64::consts::PI, std::f64::consts::PI),
+        );
         movers.push(ObservedMover {
             id: movers.len() as u32,
             pos,
@@ -113,8 +119,16 @@ fn bench(c: &mut Criterion) {
     let l = robot.limits;
     assert!(r.samples >= 800, "{} samples", r.samples);
     assert!(r.admissible > 0, "no admissible sample");
-    assert!((r.cmd.v - sc.state.v).abs() <= l.acc_v * 0.1 + 1e-9, "{:?}", r.cmd);
-    assert!((r.cmd.w - sc.state.w).abs() <= l.acc_w * 0.1 + 1e-9, "{:?}", r.cmd);
+    assert!(
+        (r.cmd.v - sc.state.v).abs() <= l.acc_v * 0.1 + 1e-9,
+        "{:?}",
+        r.cmd
+    );
+    assert!(
+        (r.cmd.w - sc.state.w).abs() <= l.acc_w * 0.1 + 1e-9,
+        "{:?}",
+        r.cmd
+    );
     eprintln!(
         "dwa step: {} samples, {} admissible, cmd v {:.3} w {:.3}",
         r.samples, r.admissible, r.cmd.v, r.cmd.w

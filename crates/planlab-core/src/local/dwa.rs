@@ -152,20 +152,60 @@ impl Default for DwaConfig {
 
 /// `(name, unit, doc)` of every [`DwaConfig`] field, for the registry.
 pub const DWA_FIELDS: &[(&str, &str, &str)] = &[
-    ("alpha", "1", "α, heading weight: π − |bearing error at the rollout end|"),
-    ("beta", "1", "β, clearance weight: smallest clearance, capped"),
+    (
+        "alpha",
+        "1",
+        "α, heading weight: π − |bearing error at the rollout end|",
+    ),
+    (
+        "beta",
+        "1",
+        "β, clearance weight: smallest clearance, capped",
+    ),
     ("gamma", "1", "γ, velocity weight: forward speed"),
-    ("v_res", "m/s", "linear-speed sampling resolution (when v_samples = 0)"),
-    ("w_res", "rad/s", "turn-rate sampling resolution (when w_samples = 0)"),
-    ("v_samples", "1", "linear speeds per step, evenly spread; 0 = by v_res"),
-    ("w_samples", "1", "turn rates per step, evenly spread; 0 = by w_res"),
+    (
+        "v_res",
+        "m/s",
+        "linear-speed sampling resolution (when v_samples = 0)",
+    ),
+    (
+        "w_res",
+        "rad/s",
+        "turn-rate sampling resolution (when w_samples = 0)",
+    ),
+    (
+        "v_samples",
+        "1",
+        "linear speeds per step, evenly spread; 0 = by v_res",
+    ),
+    (
+        "w_samples",
+        "1",
+        "turn rates per step, evenly spread; 0 = by w_res",
+    ),
     ("predict_time", "s", "rollout horizon"),
     ("sim_dt", "s", "rollout integration step"),
     ("dist_cap", "m", "clearance critic saturates here"),
-    ("safety_margin", "m", "extra clearance kept beyond the footprint"),
-    ("predict_movers", "bool", "movers move at their observed velocity along rollouts"),
-    ("admissible_window", "bool", "apply V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b)"),
-    ("rotate_in_place", "bool", "with no admissible sample, a round robot turns toward the goal"),
+    (
+        "safety_margin",
+        "m",
+        "extra clearance kept beyond the footprint",
+    ),
+    (
+        "predict_movers",
+        "bool",
+        "movers move at their observed velocity along rollouts",
+    ),
+    (
+        "admissible_window",
+        "bool",
+        "apply V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b)",
+    ),
+    (
+        "rotate_in_place",
+        "bool",
+        "with no admissible sample, a round robot turns toward the goal",
+    ),
 ];
 
 /// Checks `value` is finite and ≥ `min` (> when `strict`); errors name
@@ -551,7 +591,11 @@ impl DwaCore {
                 *x += c.raw[k];
             }
         }
-        let wts = [req.weights.alpha, req.weights.beta * req.rho, req.weights.gamma];
+        let wts = [
+            req.weights.alpha,
+            req.weights.beta * req.rho,
+            req.weights.gamma,
+        ];
         let mut best: Option<(usize, f64)> = None;
         for (i, c) in self.cands.iter().enumerate() {
             if !c.admissible {
@@ -612,8 +656,8 @@ impl DwaCore {
         let mut kept = std::mem::take(&mut self.kept);
         kept.clear();
         for (j, m) in obs.movers.iter().enumerate() {
-            let finite = m.pos.iter().chain(m.vel.iter()).all(|x| x.is_finite())
-                && m.radius.is_finite();
+            let finite =
+                m.pos.iter().chain(m.vel.iter()).all(|x| x.is_finite()) && m.radius.is_finite();
             if !finite {
                 continue;
             }
@@ -632,7 +676,8 @@ impl DwaCore {
             self.kept = kept;
             return;
         }
-        self.mover_rad.extend(kept.iter().map(|&j| obs.movers[j].radius));
+        self.mover_rad
+            .extend(kept.iter().map(|&j| obs.movers[j].radius));
         self.mover_pos.resize((self.steps + 1) * n, [0.0, 0.0]);
         for k in 0..=self.steps {
             let t = if predict {
@@ -973,7 +1018,16 @@ mod tests {
     fn drives_to_a_goal_in_the_open() {
         let map = open(100, 60);
         let mut p = Dwa::new(DwaConfig::default(), &robot(), [8.0, 4.5]).unwrap();
-        let r = testkit::run(&mut p, &map, &robot(), at(1.0, 1.0, 0.0), [8.0, 4.5], &[], 80.0, 0.3);
+        let r = testkit::run(
+            &mut p,
+            &map,
+            &robot(),
+            at(1.0, 1.0, 0.0),
+            [8.0, 4.5],
+            &[],
+            80.0,
+            0.3,
+        );
         assert_eq!(r.end, End::Reached, "{:?}", r.states.last());
         assert!(r.length < 1.3 * hypot(7.0, 3.5), "{}", r.length);
     }
@@ -1011,7 +1065,10 @@ mod tests {
                 accel_z: 0.0,
             };
             let c = p.step(&obs);
-            assert!(c.v >= (v - l.acc_v * 0.1 - 1e-12).max(0.0) && c.v <= (v + l.acc_v * 0.1 + 1e-12).min(1.0));
+            assert!(
+                c.v >= (v - l.acc_v * 0.1 - 1e-12).max(0.0)
+                    && c.v <= (v + l.acc_v * 0.1 + 1e-12).min(1.0)
+            );
             assert!(c.w >= w - l.acc_w * 0.1 - 1e-12 && c.w <= w + l.acc_w * 0.1 + 1e-12);
             let d = p.debug();
             assert!(d.rollouts.len() >= 63);
@@ -1033,7 +1090,10 @@ mod tests {
     #[test]
     fn boxed_in_robot_brakes_and_turns_without_nan() {
         // A 5×5-cell room at 0.1 m: the robot (r 0.2) just fits.
-        let map = testkit::map("#######\n#.....#\n#.....#\n#.....#\n#.....#\n#.....#\n#######\n", 0.1);
+        let map = testkit::map(
+            "#######\n#.....#\n#.....#\n#.....#\n#.....#\n#.....#\n#######\n",
+            0.1,
+        );
         let mut p = Dwa::new(DwaConfig::default(), &robot(), [5.0, 5.0]).unwrap();
         let s = RobotState {
             v: 0.3,
@@ -1066,7 +1126,10 @@ mod tests {
             [1.0, 1.0],
         )
         .unwrap_err();
-        assert!(matches!(&e, LocalError::InvalidParameter(m) if m.contains("dwa.beta")), "{e}");
+        assert!(
+            matches!(&e, LocalError::InvalidParameter(m) if m.contains("dwa.beta")),
+            "{e}"
+        );
         let e = Dwa::new(
             DwaConfig {
                 predict_time: -1.0,
@@ -1084,14 +1147,30 @@ mod tests {
         // A mover crosses the straight line to the goal; with prediction the
         // robot never touches it (it slows, waits or swerves).
         let map = open(160, 80);
-        for (start, vel) in [([6.0, 0.6], [0.0, 0.4]), ([6.0, 7.4], [0.0, -0.4]), ([12.0, 4.0], [-0.3, 0.0])] {
+        for (start, vel) in [
+            ([6.0, 0.6], [0.0, 0.4]),
+            ([6.0, 7.4], [0.0, -0.4]),
+            ([12.0, 4.0], [-0.3, 0.0]),
+        ] {
             let mover = MoverSpec {
                 id: 1,
                 radius: 0.3,
-                motion: MotionModel::ConstantVelocity { start, velocity: vel },
+                motion: MotionModel::ConstantVelocity {
+                    start,
+                    velocity: vel,
+                },
             };
             let mut p = Dwa::new(DwaConfig::default(), &robot(), [14.0, 4.0]).unwrap();
-            let r = testkit::run(&mut p, &map, &robot(), at(1.0, 4.0, 0.0), [14.0, 4.0], &[mover], 150.0, 0.3);
+            let r = testkit::run(
+                &mut p,
+                &map,
+                &robot(),
+                at(1.0, 4.0, 0.0),
+                [14.0, 4.0],
+                &[mover],
+                150.0,
+                0.3,
+            );
             assert_ne!(r.end, End::Collision, "mover from {start:?}");
             assert!(r.min_clearance > 0.0);
         }
@@ -1137,7 +1216,11 @@ mod tests {
         assert!(res.admissible > 0);
         // Held speed: the v axis collapses.
         let s2 = RobotState { v: 0.3, ..s };
-        let obs2 = Observation { state: &s2, movers: &[], ..obs };
+        let obs2 = Observation {
+            state: &s2,
+            movers: &[],
+            ..obs
+        };
         let res = core.plan(
             &obs2,
             &StepRequest {

@@ -12,6 +12,7 @@
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
+use super::dwa::{Dwa, DwaConfig, DWA_FIELDS};
 use super::pursuit::{Pursuit, PursuitConfig};
 use super::{LocalError, LocalPlanner};
 use crate::world::{RobotSpec, RobotState, StaticMap};
@@ -80,14 +81,25 @@ pub struct PlannerInfo {
 
 /// Every registered planner, in a fixed order.
 pub fn list() -> Vec<PlannerInfo> {
-    vec![PlannerInfo {
-        name: "pursuit".into(),
-        paper: "none (test baseline)".into(),
-        summary: "Naive baseline: steers straight at the goal with a braking profile; \
+    vec![
+        PlannerInfo {
+            name: "dwa".into(),
+            paper: "[T] Wu 2022 §3.1, eq 3-1…3-5 (Fox, Burgard & Thrun 1997); SPEC §4.1".into(),
+            summary: "Baseline dynamic window approach straight to the final goal: \
+                      window V_s ∩ V_d ∩ V_a, rollouts, normalised heading / clearance / \
+                      velocity critics."
+                .into(),
+            fields: field_infos::<DwaConfig>(DWA_FIELDS),
+        },
+        PlannerInfo {
+            name: "pursuit".into(),
+            paper: "none (test baseline)".into(),
+            summary: "Naive baseline: steers straight at the goal with a braking profile; \
                   no obstacle avoidance."
-            .into(),
-        fields: field_infos::<PursuitConfig>(PursuitConfig::FIELDS),
-    }]
+                .into(),
+            fields: field_infos::<PursuitConfig>(PursuitConfig::FIELDS),
+        },
+    ]
 }
 
 /// Builds the planner `choice` names for `robot` on `map`, starting at
@@ -102,6 +114,11 @@ pub fn build(
 ) -> Result<Box<dyn LocalPlanner>, LocalError> {
     let _ = (map, start);
     match choice.name.as_str() {
+        "dwa" => Ok(Box::new(Dwa::new(
+            parse_config(&choice.name, &choice.config)?,
+            robot,
+            goal,
+        )?)),
         "pursuit" => Ok(Box::new(Pursuit::new(
             parse_config(&choice.name, &choice.config)?,
             robot,
