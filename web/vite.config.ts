@@ -1,8 +1,51 @@
-import { defineConfig } from 'vite';
+import { defineConfig, type Plugin } from 'vite';
+import { readdirSync, readFileSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const here = fileURLToPath(new URL('.', import.meta.url));
+const scenarios = resolve(here, '../assets/scenarios');
+
+/**
+ * `virtual:robot-presets`: the scenarios in assets/scenarios that have a
+ * `local_planner` section (file, name, description, planner), read at build
+ * time, since a static page cannot list a directory. The robot page fetches
+ * the chosen file from ./scenarios/ like any other asset.
+ */
+function robotPresets(): Plugin {
+  const id = 'virtual:robot-presets';
+  const resolved = '\0' + id;
+  return {
+    name: 'planlab-robot-presets',
+    resolveId: (source) => (source === id ? resolved : null),
+    load(source) {
+      if (source !== resolved) return null;
+      const out: { file: string; name: string; description: string; planner: string }[] = [];
+      for (const f of readdirSync(scenarios).filter((f) => f.endsWith('.json')).sort()) {
+        const path = resolve(scenarios, f);
+        this.addWatchFile(path);
+        let s: Record<string, unknown>;
+        try {
+          s = JSON.parse(readFileSync(path, 'utf8'));
+        } catch (e) {
+          this.warn(`assets/scenarios/${f}: not JSON (${(e as Error).message}); left out of the robot presets`);
+          continue;
+        }
+        const lp = s.local_planner as { name?: unknown } | undefined;
+        if (!lp || typeof lp.name !== 'string') continue;
+        out.push({
+          file: f,
+          name: typeof s.name === 'string' && s.name ? s.name : f,
+          description: typeof s.description === 'string' ? s.description : '',
+          planner: lp.name,
+        });
+      }
+      // The demo first: it is what the page opens with.
+      out.sort((a, b) => Number(b.file === 'dwa-demo.json') - Number(a.file === 'dwa-demo.json'));
+      return `export default ${JSON.stringify(out)};`;
+    },
+  };
+}
 
 // The served site is web/dist and nothing outside it, so the preset maps in
 // ../assets are copied in as the public dir (served at ./maps/...), and the
@@ -10,6 +53,7 @@ const here = fileURLToPath(new URL('.', import.meta.url));
 export default defineConfig({
   base: './',
   publicDir: resolve(here, '../assets'),
+  plugins: [robotPresets()],
   build: {
     outDir: 'dist',
     emptyOutDir: true,
@@ -17,6 +61,7 @@ export default defineConfig({
     rollupOptions: {
       input: {
         main: resolve(here, 'index.html'),
+        robot: resolve(here, 'robot.html'),
         bench: resolve(here, 'bench.html'),
       },
     },

@@ -16,10 +16,18 @@
 //!   per-query boundary overhead; the same [`batch::Batch`] runs natively in
 //!   `examples/bench_native.rs` for the wasm-vs-native comparison.
 //!
+//! - [`SimHandle`] runs one robot episode (core `sim::Episode`) for the
+//!   robot page: steps, live edits (goal, movers, planner and its
+//!   parameters) and everything drawn or plotted as typed arrays; see
+//!   [`sim`].
+//!
 //! Cell kinds cross as bytes: 0 free, 1 occupied, 2 unknown
 //! ([`Cell`]'s `repr(u8)`).
 
 pub mod batch;
+pub mod sim;
+
+pub use sim::{planners, SimHandle};
 
 use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};
 use planlab_core::global::{GridPos, PlanGrid};
@@ -291,22 +299,29 @@ impl ScenarioHandle {
     /// its base name, since the browser gives no directories.
     #[wasm_bindgen(js_name = loadMap)]
     pub fn load_map(&self, files: &js_sys::Object) -> Result<MapHandle, JsError> {
-        let mut read = |path: &str| -> Result<Vec<u8>, String> {
-            let base = path.rsplit(['/', '\\']).next().unwrap_or(path);
-            let v = js_sys::Reflect::get(files, &JsValue::from_str(base))
-                .map_err(|_| format!("cannot look up {base}"))?;
-            if v.is_undefined() {
-                return Err(format!(
-                    "not among the opened files: open {base} together with the scenario"
-                ));
-            }
-            v.dyn_into::<js_sys::Uint8Array>()
-                .map(|a| a.to_vec())
-                .map_err(|_| format!("{base} was not passed as bytes"))
-        };
         Ok(MapHandle {
-            grid: self.scenario.load_grid(&mut read)?,
+            grid: self.scenario.load_grid(&mut files_reader(files))?,
         })
+    }
+}
+
+/// Reads a file a scenario refers to from `files` (`{"name": Uint8Array}`),
+/// by base name since the browser gives no directories.
+pub(crate) fn files_reader(
+    files: &js_sys::Object,
+) -> impl FnMut(&str) -> Result<Vec<u8>, String> + '_ {
+    move |path: &str| {
+        let base = path.rsplit(['/', '\\']).next().unwrap_or(path);
+        let v = js_sys::Reflect::get(files, &JsValue::from_str(base))
+            .map_err(|_| format!("cannot look up {base}"))?;
+        if v.is_undefined() {
+            return Err(format!(
+                "not among the opened files: open {base} together with the scenario"
+            ));
+        }
+        v.dyn_into::<js_sys::Uint8Array>()
+            .map(|a| a.to_vec())
+            .map_err(|_| format!("{base} was not passed as bytes"))
     }
 }
 

@@ -10,7 +10,7 @@ pub mod robot;
 pub mod static_map;
 pub mod terrain;
 
-pub use movers::{MotionModel, MoverSpec, MoverState, ScriptSample};
+pub use movers::{MotionModel, MoverSpec, MoverState, Placement, ScriptSample};
 pub use robot::{Command, Drive, Footprint, RobotLimits, RobotSpec, RobotState};
 pub use static_map::StaticMap;
 pub use terrain::{Terrain, TerrainSpec, TerrainStep};

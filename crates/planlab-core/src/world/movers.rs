@@ -254,6 +254,114 @@ fn scripted(samples: &[ScriptSample], t: f64) -> MoverState {
     }
 }
 
+/// The motion model of a mover placed by hand while an episode runs (the
+/// page's "press = position, drag = velocity" gesture), see
+/// [`MoverSpec::placed`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Placement {
+    /// Straight on at the given velocity, stopping at the map edge.
+    ConstantVelocity,
+    /// Along the velocity for `span` metres, back, and again.
+    BackAndForth,
+    /// Around a square of side `span` turning left, the drop point in the
+    /// middle of the side run along the velocity.
+    WaypointLoop,
+}
+
+impl MoverSpec {
+    /// A mover that is at `pos` moving with `vel` at episode time `t` ≥ 0.
+    ///
+    /// Motion models run on episode time from t = 0, so a mover dropped in
+    /// mid-run needs its model shifted: the constant-velocity start is
+    /// `pos − vel·t`; the back-and-forth ends and the loop's first point are
+    /// chosen so that the model's phase at `t` is exactly `pos`, heading
+    /// along `vel`. `span` (m, > 0) is the back-and-forth length and the
+    /// loop's side; unused for constant velocity. A zero velocity gives a
+    /// mover standing at `pos`. Errors name the bad number.
+    pub fn placed(
+        id: u32,
+        radius: f64,
+        how: Placement,
+        pos: [f64; 2],
+        vel: [f64; 2],
+        span: f64,
+        t: f64,
+    ) -> Result<MoverSpec, WorldError> {
+        let who = format!("mover {id}");
+        check_positive(&format!("{who} radius (m)"), radius)?;
+        check_point(&format!("{who} position"), pos)?;
+        check_point(&format!("{who} velocity"), vel)?;
+        check_min(&format!("{who} placement time (s)"), t, 0.0)?;
+        if how != Placement::ConstantVelocity {
+            check_positive(&format!("{who} span (m)"), span)?;
+        }
+        let speed = (vel[0] * vel[0] + vel[1] * vel[1]).sqrt();
+        let motion = if speed == 0.0 {
+            MotionModel::ConstantVelocity {
+                start: pos,
+                velocity: [0.0, 0.0],
+            }
+        } else {
+            let u = [vel[0] / speed, vel[1] / speed];
+            let at = |p: [f64; 2], d: [f64; 2], s: f64| [p[0] + d[0] * s, p[1] + d[1] * s];
+            match how {
+                Placement::ConstantVelocity => MotionModel::ConstantVelocity {
+                    start: [pos[0] - vel[0] * t, pos[1] - vel[1] * t],
+                    velocity: vel,
+                },
+                Placement::BackAndForth => {
+                    // The same phase the model computes: s in [0, 2·span).
+                    let s = (speed * t) % (2.0 * span);
+                    let (a, b) = if s < span {
+                        // Outbound leg: s past `a`, heading for `b` along u.
+                        let a = at(pos, u, -s);
+                        (a, at(a, u, span))
+                    } else {
+                        // Return leg runs b → a, so b → a must point along u.
+                        let a = at(pos, u, 2.0 * span - s);
+                        (a, at(a, u, -span))
+                    };
+                    MotionModel::BackAndForth { a, b, speed }
+                }
+                Placement::WaypointLoop => {
+                    let n = [-u[1], u[0]];
+                    // Corners in travel order; `pos` is the middle of the
+                    // first side (not a corner, where the heading is
+                    // ambiguous), at arc length span/2.
+                    let q0 = at(pos, u, -0.5 * span);
+                    let q1 = at(q0, u, span);
+                    let q2 = at(q1, n, span);
+                    let q3 = at(q0, n, span);
+                    let corners = [q0, q1, q2, q3];
+                    // At t the model has gone s along the loop from its first
+                    // point, so that point lies s before `pos`.
+                    let total = 4.0 * span;
+                    let s = (speed * t) % total;
+                    let back = (0.5 * span - s).rem_euclid(total);
+                    let k = ((back / span) as usize).min(3);
+                    let f = back - k as f64 * span;
+                    let q = corners[k];
+                    let e = corners[(k + 1) % 4];
+                    let first = [q[0] + (e[0] - q[0]) * f / span, q[1] + (e[1] - q[1]) * f / span];
+                    let mut points = vec![first];
+                    for j in 1..=4 {
+                        let c = corners[(k + j) % 4];
+                        // Skip a corner the first point sits on.
+                        if j < 4 || f > 0.0 {
+                            points.push(c);
+                        }
+                    }
+                    MotionModel::WaypointLoop { points, speed }
+                }
+            }
+        };
+        let m = MoverSpec { id, radius, motion };
+        m.validate()?;
+        Ok(m)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -371,5 +479,49 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("mover 3 radius"));
+    }
+
+    #[test]
+    fn placed_movers_are_where_they_were_dropped() {
+        let big: Bounds = [-100.0, -100.0, 100.0, 100.0];
+        let pos = [3.0, -2.0];
+        let vel = [0.6, 0.8];
+        for how in [
+            Placement::ConstantVelocity,
+            Placement::BackAndForth,
+            Placement::WaypointLoop,
+        ] {
+            for t in [0.0, 0.1, 1.7, 2.5, 4.0, 13.3, 57.9] {
+                let m = MoverSpec::placed(4, 0.3, how, pos, vel, 2.0, t).unwrap();
+                let s = m.state_at(t, big);
+                let (dx, dy) = (s.pos[0] - pos[0], s.pos[1] - pos[1]);
+                assert!(dx.abs() < 1e-9 && dy.abs() < 1e-9, "{how:?} t={t}: {:?}", s.pos);
+                let (ex, ey) = (s.vel[0] - vel[0], s.vel[1] - vel[1]);
+                assert!(ex.abs() < 1e-9 && ey.abs() < 1e-9, "{how:?} t={t}: vel {:?}", s.vel);
+                // It keeps moving along its velocity just afterwards.
+                let later = m.state_at(t + 0.01, big);
+                let (lx, ly) = (later.pos[0] - pos[0] - 0.006, later.pos[1] - pos[1] - 0.008);
+                assert!(lx.abs() < 1e-9 && ly.abs() < 1e-9, "{how:?} t={t}: {:?}", later.pos);
+            }
+        }
+        // Back-and-forth turns around within `span`; the loop comes back
+        // to the drop point after 4·span.
+        let m = MoverSpec::placed(1, 0.3, Placement::BackAndForth, pos, vel, 2.0, 7.0).unwrap();
+        let s = m.state_at(7.0 + 2.0 / 1.0 + 0.5, big);
+        assert!(s.vel[0] < 0.0 && s.vel[1] < 0.0, "{s:?}");
+        let m = MoverSpec::placed(1, 0.3, Placement::WaypointLoop, pos, vel, 2.0, 7.0).unwrap();
+        let s = m.state_at(7.0 + 8.0, big);
+        assert!((s.pos[0] - pos[0]).abs() < 1e-9 && (s.pos[1] - pos[1]).abs() < 1e-9);
+        // Standing still, and bad numbers.
+        let m = MoverSpec::placed(2, 0.3, Placement::WaypointLoop, pos, [0.0, 0.0], 2.0, 5.0).unwrap();
+        assert_eq!(m.state_at(9.0, big).pos, pos);
+        let e = MoverSpec::placed(2, 0.3, Placement::BackAndForth, pos, vel, 0.0, 1.0).unwrap_err();
+        assert!(e.to_string().contains("span"), "{e}");
+        let e = MoverSpec::placed(2, f64::NAN, Placement::BackAndForth, pos, vel, 1.0, 1.0)
+            .unwrap_err();
+        assert!(e.to_string().contains("radius"), "{e}");
+        let e = MoverSpec::placed(2, 0.3, Placement::ConstantVelocity, pos, [f64::INFINITY, 0.0], 1.0, 1.0)
+            .unwrap_err();
+        assert!(e.to_string().contains("velocity"), "{e}");
     }
 }

@@ -1,0 +1,81 @@
+//! Live changes to a running episode beyond goal and movers: swapping or
+//! re-tuning the local planner (the page's planner select and sliders).
+
+use super::{Episode, SimError};
+use crate::local::registry::{self, PlannerChoice};
+
+impl Episode {
+    /// Replaces the local planner with `choice`, built at the robot's
+    /// current state for the current goal (a re-tuned weight takes effect
+    /// from the next step). On error (unknown name, bad config naming the
+    /// field, no global path from here) the old planner stays in force.
+    /// [`Episode::setup`] then restarts with the new choice.
+    pub fn set_planner(&mut self, choice: PlannerChoice) -> Result<(), SimError> {
+        let mut planner = registry::build(&choice, &self.robot, &self.map, &self.state, self.goal)?;
+        planner.set_record_rollouts(self.config.record_rollouts);
+        self.planner = planner;
+        self.choice = choice;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::io::scenario::Scenario;
+    use crate::map::OccupancyGrid;
+    use crate::sim::Outcome;
+
+    fn episode(planner: &str) -> Episode {
+        // A 4 × 2 m room, start on the left, goal on the right.
+        let wall = "#".repeat(20);
+        let inside = format!("#{}#", ".".repeat(18));
+        let mut cells = vec![wall.clone()];
+        cells.extend(std::iter::repeat_n(inside, 8));
+        cells.push(wall);
+        let text = serde_json::json!({
+            "version": 1,
+            "map": {"width": 20, "height": 10, "resolution": 0.2, "cells": cells},
+            "start": {"col": 2, "row": 5},
+            "goal": {"col": 17, "row": 5},
+            "local_planner": {"name": planner},
+        })
+        .to_string();
+        let sc = Scenario::from_json(&text).unwrap();
+        let grid: OccupancyGrid = sc.load_grid(&mut |_| Err("inline".into())).unwrap();
+        Episode::from_scenario(&sc, grid).unwrap()
+    }
+
+    #[test]
+    fn set_planner_swaps_keeps_state_and_refuses_bad_configs() {
+        let name = registry::list()
+            .first()
+            .map(|p| p.name.clone())
+            .expect("a registered planner");
+        let mut ep = episode(&name);
+        for _ in 0..5 {
+            ep.step();
+        }
+        let (t, s) = (ep.time(), *ep.state());
+        ep.set_planner(PlannerChoice::named(name.clone())).unwrap();
+        // Same place and time; the episode goes on from there.
+        assert_eq!((ep.time(), *ep.state()), (t, s));
+        assert_eq!(ep.planner_choice().name, name);
+        let e = ep
+            .set_planner(PlannerChoice {
+                name: name.clone(),
+                config: serde_json::json!({"no_such_field": 1}),
+            })
+            .unwrap_err();
+        assert!(e.to_string().contains("no_such_field"), "{e}");
+        let e = ep
+            .set_planner(PlannerChoice::named("teleport"))
+            .unwrap_err();
+        assert!(e.to_string().contains("teleport"), "{e}");
+        // The old planner is still in force and drives to the goal.
+        assert_eq!(ep.planner_choice().name, name);
+        assert_eq!(ep.run(), Outcome::Reached);
+        // A restart keeps the chosen planner.
+        assert_eq!(ep.setup().planner.name, name);
+    }
+}

@@ -1,0 +1,505 @@
+//! The robot simulation for the page: a [`SimHandle`] wraps one core
+//! [`Episode`] and converts at the boundary (DESIGN.md conventions 4–5).
+//!
+//! - Bulk data leaves as typed arrays: movers (stride 6), the DWA fan
+//!   (points flat + offsets, scores, admissible flags), paths, the trail and
+//!   the plot series since a given row, so a frame costs a handful of
+//!   boundary calls whatever the number of rollouts.
+//! - Setups, movers and planner configs cross as JSON text in the core's
+//!   serde formats; errors are `JsError`s with the core's message.
+//! - The page draws; everything it draws (rollouts and their scores, goals,
+//!   obstacle classes, clearance, metrics) is computed by the core.
+
+use planlab_core::local::registry::{self, PlannerChoice};
+use planlab_core::local::{GoalKind, ObstacleClass};
+use planlab_core::map::io::scenario::Scenario;
+use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::sim::{Episode, EpisodeSetup, Outcome, SimConfig};
+use planlab_core::world::{
+    MoverSpec, Placement, RobotSpec, RobotState, StaticMap, TerrainSpec,
+};
+use serde::Deserialize;
+use wasm_bindgen::prelude::*;
+
+use crate::{files_reader, MapHandle};
+
+/// What [`SimHandle::from_map`] reads besides the map: the simulation
+/// sections of a scenario, with start and goal in world metres.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PageSetup {
+    /// Start position (x, y), m.
+    start: [f64; 2],
+    /// Start heading, rad.
+    #[serde(default)]
+    start_yaw: f64,
+    /// Goal (x, y), m.
+    goal: [f64; 2],
+    #[serde(default)]
+    robot: RobotSpec,
+    #[serde(default)]
+    movers: Vec<MoverSpec>,
+    #[serde(default)]
+    local_planner: PlannerChoice,
+    #[serde(default)]
+    sim: SimConfig,
+    #[serde(default)]
+    terrain: TerrainSpec,
+    #[serde(default)]
+    seed: u64,
+}
+
+fn outcome_str(o: Outcome) -> String {
+    o.as_str().to_string()
+}
+
+fn json_err(what: &str, e: serde_json::Error) -> JsError {
+    JsError::new(&format!("{what}: {e}"))
+}
+
+/// One running episode, owned on the wasm side.
+#[wasm_bindgen]
+pub struct SimHandle {
+    ep: Episode,
+    /// Record the rollouts of the last step of each `step(n)` for drawing.
+    draw_fan: bool,
+}
+
+impl SimHandle {
+    fn wrap(mut ep: Episode) -> SimHandle {
+        ep.set_record_rollouts(true);
+        SimHandle { ep, draw_fan: true }
+    }
+
+    /// The wrapped episode (for Rust callers and tests).
+    pub fn episode(&self) -> &Episode {
+        &self.ep
+    }
+}
+
+#[wasm_bindgen]
+impl SimHandle {
+    /// Builds the episode a scenario JSON describes. A map given by file
+    /// name is looked up by base name in `files` (`{"room.map": Uint8Array}`,
+    /// may be `undefined` for inline maps).
+    #[wasm_bindgen(js_name = fromScenario)]
+    pub fn from_scenario(json: &str, files: Option<js_sys::Object>) -> Result<SimHandle, JsError> {
+        let scenario = Scenario::from_json(json)?;
+        let files = files.unwrap_or_default();
+        let grid = scenario.load_grid(&mut files_reader(&files))?;
+        Ok(SimHandle::wrap(Episode::from_scenario(&scenario, grid)?))
+    }
+
+    /// Builds an episode on `map` (e.g. one the page edited) from a setup
+    /// JSON: `{"start": [x, y], "goal": [x, y]}` plus the optional scenario
+    /// sections `start_yaw`, `robot`, `movers`, `local_planner`, `sim`,
+    /// `terrain`, `seed`.
+    #[wasm_bindgen(js_name = fromMap)]
+    pub fn from_map(map: &MapHandle, setup: &str) -> Result<SimHandle, JsError> {
+        let s: PageSetup =
+            serde_json::from_str(setup).map_err(|e| json_err("invalid simulation setup", e))?;
+        let static_map = StaticMap::new(map.grid.clone(), s.sim.unknown_is_obstacle)?;
+        let ep = Episode::new(EpisodeSetup {
+            map: static_map,
+            robot: s.robot,
+            start: RobotState {
+                x: s.start[0],
+                y: s.start[1],
+                theta: s.start_yaw,
+                ..Default::default()
+            },
+            goal: s.goal,
+            movers: s.movers,
+            planner: s.local_planner,
+            config: s.sim,
+            terrain: s.terrain,
+            seed: s.seed,
+        })?;
+        Ok(SimHandle::wrap(ep))
+    }
+
+    /// Runs up to `n` control steps (fewer when the episode ends) and
+    /// returns the outcome: `running`, `reached`, `collision`, `timeout` or
+    /// `stuck`. Only the last step records its rollouts for drawing.
+    pub fn step(&mut self, n: u32) -> String {
+        for i in 0..n {
+            if self.draw_fan {
+                self.ep.set_record_rollouts(i + 1 == n);
+            }
+            if self.ep.step() != Outcome::Running {
+                break;
+            }
+        }
+        if self.draw_fan {
+            self.ep.set_record_rollouts(true);
+        }
+        outcome_str(self.ep.outcome())
+    }
+
+    /// The outcome so far.
+    #[wasm_bindgen(getter)]
+    pub fn outcome(&self) -> String {
+        outcome_str(self.ep.outcome())
+    }
+
+    /// Simulated time, s.
+    #[wasm_bindgen(getter)]
+    pub fn time(&self) -> f64 {
+        self.ep.time()
+    }
+
+    /// Control steps taken.
+    #[wasm_bindgen(getter)]
+    pub fn steps(&self) -> f64 {
+        self.ep.steps() as f64
+    }
+
+    /// Control period, s.
+    #[wasm_bindgen(getter)]
+    pub fn dt(&self) -> f64 {
+        self.ep.config().dt
+    }
+
+    /// The robot now: `[x, y, theta, v, vy, w]` (m, rad, m/s, rad/s).
+    pub fn state(&self) -> Vec<f64> {
+        let s = self.ep.state();
+        vec![s.x, s.y, s.theta, s.v, s.vy, s.w]
+    }
+
+    /// The start pose `[x, y, theta]`.
+    pub fn start(&self) -> Vec<f64> {
+        self.ep
+            .trace()
+            .steps
+            .first()
+            .map_or_else(Vec::new, |r| vec![r.x, r.y, r.theta])
+    }
+
+    /// The final goal `[x, y]`, m.
+    pub fn goal(&self) -> Vec<f64> {
+        self.ep.goal().to_vec()
+    }
+
+    /// The robot (drive, footprint, limits) as JSON.
+    pub fn robot(&self) -> Result<String, JsError> {
+        serde_json::to_string(self.ep.robot()).map_err(|e| json_err("robot", e))
+    }
+
+    /// A copy of the static map, for drawing.
+    pub fn map(&self) -> MapHandle {
+        MapHandle {
+            grid: self.ep.map().grid().clone(),
+        }
+    }
+
+    /// Every mover now, stride 6: `id, radius, x, y, vx, vy`.
+    pub fn movers(&self) -> Vec<f64> {
+        let now = self.ep.movers_now();
+        let mut out = Vec::with_capacity(now.len() * 6);
+        for (id, r, s) in now {
+            out.extend_from_slice(&[f64::from(id), r, s.pos[0], s.pos[1], s.vel[0], s.vel[1]]);
+        }
+        out
+    }
+
+    /// The movers' specs (id, radius, motion model) as JSON.
+    #[wasm_bindgen(js_name = moversJson)]
+    pub fn movers_json(&self) -> Result<String, JsError> {
+        serde_json::to_string(self.ep.movers()).map_err(|e| json_err("movers", e))
+    }
+
+    /// Replaces the movers with a JSON array of mover specs.
+    #[wasm_bindgen(js_name = setMovers)]
+    pub fn set_movers(&mut self, json: &str) -> Result<(), JsError> {
+        let movers: Vec<MoverSpec> =
+            serde_json::from_str(json).map_err(|e| json_err("invalid movers JSON", e))?;
+        Ok(self.ep.set_movers(movers)?)
+    }
+
+    /// Adds a mover that is at (x, y) moving with (vx, vy) now, following
+    /// `model` (`constant-velocity`, `back-and-forth`, `waypoint-loop`;
+    /// `span` m is the back-and-forth length / loop side). Returns its id.
+    #[wasm_bindgen(js_name = placeMover)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn place_mover(
+        &mut self,
+        model: &str,
+        radius: f64,
+        x: f64,
+        y: f64,
+        vx: f64,
+        vy: f64,
+        span: f64,
+    ) -> Result<u32, JsError> {
+        let how: Placement = serde_json::from_value(serde_json::Value::String(model.into()))
+            .map_err(|_| {
+                JsError::new(&format!(
+                    "unknown motion model `{model}`: expected constant-velocity, back-and-forth or waypoint-loop"
+                ))
+            })?;
+        let id = self.ep.movers().iter().map(|m| m.id + 1).max().unwrap_or(1);
+        let spec = MoverSpec::placed(id, radius, how, [x, y], [vx, vy], span, self.ep.time())?;
+        let mut movers = self.ep.movers().to_vec();
+        movers.push(spec);
+        self.ep.set_movers(movers)?;
+        Ok(id)
+    }
+
+    /// Moves the goal to (x, y), m.
+    #[wasm_bindgen(js_name = setGoal)]
+    pub fn set_goal(&mut self, x: f64, y: f64) -> Result<(), JsError> {
+        Ok(self.ep.set_goal([x, y])?)
+    }
+
+    /// Swaps in planner `name` with `config` (JSON object; `{}` = the
+    /// paper's defaults), built at the robot's current state.
+    #[wasm_bindgen(js_name = setPlanner)]
+    pub fn set_planner(&mut self, name: &str, config: &str) -> Result<(), JsError> {
+        let config: serde_json::Value = serde_json::from_str(config)
+            .map_err(|e| json_err(&format!("invalid {name} config JSON"), e))?;
+        self.ep.set_planner(PlannerChoice {
+            name: name.into(),
+            config,
+        })?;
+        Ok(())
+    }
+
+    /// The planner in force: `{"name", "config"}` JSON.
+    #[wasm_bindgen(js_name = plannerChoice)]
+    pub fn planner_choice(&self) -> Result<String, JsError> {
+        serde_json::to_string(self.ep.planner_choice()).map_err(|e| json_err("planner", e))
+    }
+
+    /// Record the rollouts for drawing (on by default) or not (faster).
+    #[wasm_bindgen(js_name = setRecordRollouts)]
+    pub fn set_record_rollouts(&mut self, on: bool) {
+        self.draw_fan = on;
+        self.ep.set_record_rollouts(on);
+    }
+
+    /// Rollout points of the last step, `x, y` flat, rollout after rollout.
+    #[wasm_bindgen(js_name = fanPoints)]
+    pub fn fan_points(&self) -> Vec<f32> {
+        let rs = &self.ep.planner_debug().rollouts;
+        let n: usize = rs.iter().map(|r| r.points.len()).sum();
+        let mut out = Vec::with_capacity(2 * n);
+        for r in rs {
+            for p in &r.points {
+                out.push(p[0] as f32);
+                out.push(p[1] as f32);
+            }
+        }
+        out
+    }
+
+    /// Rollout k owns points `[offsets[k], offsets[k+1])` of
+    /// [`SimHandle::fan_points`] (counted in points); length rollouts + 1.
+    #[wasm_bindgen(js_name = fanOffsets)]
+    pub fn fan_offsets(&self) -> Vec<u32> {
+        let rs = &self.ep.planner_debug().rollouts;
+        let mut out = Vec::with_capacity(rs.len() + 1);
+        let mut k = 0u32;
+        out.push(0);
+        for r in rs {
+            k += r.points.len() as u32;
+            out.push(k);
+        }
+        out
+    }
+
+    /// Total score per rollout (higher is better).
+    #[wasm_bindgen(js_name = fanScores)]
+    pub fn fan_scores(&self) -> Vec<f32> {
+        self.ep
+            .planner_debug()
+            .rollouts
+            .iter()
+            .map(|r| r.score as f32)
+            .collect()
+    }
+
+    /// 1 per admissible rollout, 0 per rejected one.
+    #[wasm_bindgen(js_name = fanAdmissible)]
+    pub fn fan_admissible(&self) -> Vec<u8> {
+        self.ep
+            .planner_debug()
+            .rollouts
+            .iter()
+            .map(|r| u8::from(r.admissible))
+            .collect()
+    }
+
+    /// Index of the chosen rollout, −1 when none.
+    #[wasm_bindgen(getter)]
+    pub fn chosen(&self) -> i32 {
+        let d = self.ep.planner_debug();
+        d.chosen
+            .filter(|&i| i < d.rollouts.len())
+            .map_or(-1, |i| i as i32)
+    }
+
+    /// Critic names of the planner, JSON array.
+    pub fn critics(&self) -> Result<String, JsError> {
+        serde_json::to_string(&self.ep.planner_debug().critics).map_err(|e| json_err("critics", e))
+    }
+
+    /// The planner's global path, `x, y` flat (empty without one).
+    #[wasm_bindgen(js_name = globalPath)]
+    pub fn global_path(&self) -> Vec<f64> {
+        self.ep
+            .planner_debug()
+            .global_path
+            .iter()
+            .flatten()
+            .copied()
+            .collect()
+    }
+
+    /// Key points / feature nodes, `x, y` flat.
+    pub fn keypoints(&self) -> Vec<f64> {
+        self.ep
+            .planner_debug()
+            .keypoints
+            .iter()
+            .flatten()
+            .copied()
+            .collect()
+    }
+
+    /// The goal the last step steered to, `[x, y]` (the final goal before
+    /// the first step).
+    #[wasm_bindgen(js_name = currentGoal)]
+    pub fn current_goal(&self) -> Vec<f64> {
+        let g = match self.ep.trace().steps.last() {
+            Some(r) if self.ep.steps() > 0 => r.goal,
+            _ => self.ep.goal(),
+        };
+        g.to_vec()
+    }
+
+    /// What that goal is: `final`, `intermediate` or `virtual`.
+    #[wasm_bindgen(getter, js_name = goalKind)]
+    pub fn goal_kind(&self) -> String {
+        let k = match self.ep.trace().steps.last() {
+            Some(r) if self.ep.steps() > 0 => r.goal_kind,
+            _ => GoalKind::Final,
+        };
+        match k {
+            GoalKind::Final => "final",
+            GoalKind::Intermediate => "intermediate",
+            GoalKind::Virtual => "virtual",
+        }
+        .to_string()
+    }
+
+    /// The planner's strategy in force ("" before the first step).
+    #[wasm_bindgen(getter)]
+    pub fn mode(&self) -> String {
+        if self.ep.steps() == 0 {
+            String::new()
+        } else {
+            self.ep.planner_debug().mode.clone()
+        }
+    }
+
+    /// Obstacle classes of the perceived movers, pairs `id, class` with
+    /// class 0 ordinary dynamic, 1 ordinary static, 2 special.
+    pub fn classes(&self) -> Vec<u32> {
+        let mut out = Vec::new();
+        if self.ep.steps() == 0 {
+            return out;
+        }
+        for (id, c) in &self.ep.planner_debug().classes {
+            out.push(*id);
+            out.push(match c {
+                ObstacleClass::OrdinaryDynamic => 0,
+                ObstacleClass::OrdinaryStatic => 1,
+                ObstacleClass::Special => 2,
+            });
+        }
+        out
+    }
+
+    /// Rows in the trace (start row included).
+    #[wasm_bindgen(getter, js_name = traceLen)]
+    pub fn trace_len(&self) -> u32 {
+        self.ep.trace().steps.len() as u32
+    }
+
+    /// Driven positions `x, y` flat from trace row `from` on.
+    pub fn trail(&self, from: u32) -> Vec<f64> {
+        let rows = self.ep.trace().steps.get(from as usize..).unwrap_or(&[]);
+        let mut out = Vec::with_capacity(rows.len() * 2);
+        for r in rows {
+            out.push(r.x);
+            out.push(r.y);
+        }
+        out
+    }
+
+    /// Plot series from trace row `from` on, stride 4:
+    /// `t (s), v (m/s), ω (rad/s), clearance (m)`.
+    pub fn series(&self, from: u32) -> Vec<f64> {
+        let rows = self.ep.trace().steps.get(from as usize..).unwrap_or(&[]);
+        let mut out = Vec::with_capacity(rows.len() * 4);
+        for r in rows {
+            out.extend_from_slice(&[r.t, r.v, r.w, r.clearance]);
+        }
+        out
+    }
+
+    /// The episode's metrics so far as JSON (the fields of `planlab run
+    /// --json`).
+    #[wasm_bindgen(js_name = metricsJson)]
+    pub fn metrics_json(&self) -> Result<String, JsError> {
+        let m = EpisodeMetrics::from_trace(
+            self.ep.trace(),
+            &self.ep.planner_debug().global_path,
+            self.ep.outcome(),
+            DEFAULT_LOAD_THRESHOLD_N,
+        );
+        serde_json::to_string(&m).map_err(|e| json_err("metrics", e))
+    }
+
+    /// The trace as CSV.
+    #[wasm_bindgen(js_name = traceCsv)]
+    pub fn trace_csv(&self) -> String {
+        self.ep.trace().to_csv()
+    }
+
+    /// The trace hash (u64) as a decimal string, to compare with `planlab
+    /// run --json`'s `trace_hash`.
+    #[wasm_bindgen(js_name = traceHash)]
+    pub fn trace_hash(&self) -> String {
+        self.ep.trace().hash().to_string()
+    }
+}
+
+/// Every registered local planner as JSON: name, paper, summary and config
+/// fields (name, unit, default, doc) plus each field's `kind` (`int`,
+/// `float`, `bool`, `string`, `json`) from its default, for the page's
+/// parameter panel.
+#[wasm_bindgen]
+pub fn planners() -> Result<String, JsError> {
+    let mut v = serde_json::to_value(registry::list()).map_err(|e| json_err("planners", e))?;
+    if let Some(list) = v.as_array_mut() {
+        for p in list {
+            let Some(fields) = p.get_mut("fields").and_then(|f| f.as_array_mut()) else {
+                continue;
+            };
+            for f in fields {
+                let kind = match f.get("default") {
+                    Some(d) if d.is_u64() || d.is_i64() => "int",
+                    Some(d) if d.is_f64() => "float",
+                    Some(d) if d.is_boolean() => "bool",
+                    Some(d) if d.is_string() => "string",
+                    _ => "json",
+                };
+                if let Some(o) = f.as_object_mut() {
+                    o.insert("kind".into(), kind.into());
+                }
+            }
+        }
+    }
+    serde_json::to_string(&v).map_err(|e| json_err("planners", e))
+}

@@ -1,0 +1,245 @@
+// End-to-end tests of the robot simulation page in headless Chromium: the
+// demo preset runs to the goal with metrics shown, the goal moves mid-run,
+// movers are placed by dragging and removed, errors land in the message
+// bar without killing the page, the page's trace hash equals the native
+// CLI's for the same scenario, and the frame time on a crowded scene
+// (20 movers, DWA with 20 × 40 samples) is measured and printed.
+
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import { REPO, startSession, screenshot, errorText } from './harness.mjs';
+
+const DEMO = 'dwa-demo.json';
+const CROWD = 'dwa-crowd.json';
+const CLI = path.join(REPO, 'target/release/planlab');
+
+let session;
+before(async () => {
+  session = await startSession();
+});
+after(async () => {
+  await session?.close();
+});
+
+/** Opens the robot page on a preset and waits until its episode is built. */
+async function openRobot(scenario = DEMO) {
+  const page = await session.context.newPage();
+  const problems = [];
+  page.on('console', (m) => {
+    if (m.type() === 'error') problems.push(`console.error: ${m.text()}`);
+  });
+  page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
+  await page.goto(`${session.base}robot.html?scenario=${scenario}`);
+  await page.waitForFunction(() => ['ready', 'error'].includes(document.body.dataset.state), null, { timeout: 30_000 });
+  assert.equal(await errorText(page), null, 'no error after loading');
+  return { page, problems };
+}
+
+const hooks = (page, fn, ...args) => page.evaluate(([f, a]) => window.planlabRobot[f](...a), [fn, args]);
+const bodyData = (page, key) => page.evaluate((k) => document.body.dataset[k], key);
+
+async function setSpeed(page, x) {
+  await page.selectOption('#speed', String(x));
+}
+
+async function waitOutcome(page, timeout = 120_000) {
+  await page.waitForFunction(() => document.body.dataset.outcome && document.body.dataset.outcome !== 'running', null, {
+    timeout,
+  });
+  return bodyData(page, 'outcome');
+}
+
+async function waitTime(page, t) {
+  await page.waitForFunction((tt) => Number(document.body.dataset.time) >= tt, t, { timeout: 60_000 });
+}
+
+async function metric(page, name) {
+  const v = await page.getAttribute(`#metric-${name}`, 'data-value');
+  return v === null ? null : Number(v);
+}
+
+/** Client coordinates of a world point (m). */
+const screenOf = (page, x, y) => hooks(page, 'toScreen', x, y);
+
+test('demo preset: play runs DWA to the goal, draws the fan and shows the metrics', async () => {
+  const { page, problems } = await openRobot();
+  assert.equal(await page.inputValue('#preset'), DEMO);
+  // Pages link to each other.
+  assert.equal(await page.getAttribute('#nav-grid', 'href'), './index.html');
+  const scenario = JSON.parse(fs.readFileSync(path.join(REPO, 'assets/scenarios', DEMO), 'utf8'));
+  assert.equal(await page.inputValue('#planner'), scenario.local_planner.name);
+  // The parameter panel is generated from the registry's fields.
+  const fields = await page.$$eval('#params .param', (els) => els.map((e) => e.dataset.field));
+  assert.ok(fields.length > 0, 'parameter controls generated');
+  await setSpeed(page, 8);
+  await page.click('#play');
+  await waitTime(page, 1.0);
+  // Mid-run: the fan of rollouts is there, with a chosen one.
+  assert.ok((await hooks(page, 'rollouts')) > 10, 'rollouts drawn');
+  await screenshot(page, 'robot-01-demo-running.png');
+  assert.equal(await waitOutcome(page), 'reached');
+  assert.equal(await page.getAttribute('#metric-outcome', 'data-outcome'), 'reached');
+  const time = await metric(page, 'time');
+  const length = await metric(page, 'length');
+  const clearance = await metric(page, 'clearance');
+  const straight = Math.hypot(11.05 - 1.05, 8.05 - 1.05);
+  assert.ok(time > 0, `time ${time}`);
+  assert.ok(length >= straight - 0.25, `path length ${length} vs straight line ${straight}`);
+  assert.ok(clearance > 0, `min clearance ${clearance}`);
+  assert.ok((await metric(page, 'turn')) >= 0);
+  assert.ok((await metric(page, 'drops')) >= 0);
+  // The robot ended within the goal tolerance, per the page's own state.
+  const [x, y] = await hooks(page, 'state');
+  assert.ok(Math.hypot(x - 11.05, y - 8.05) <= 0.2 + 1e-9, `final position ${x}, ${y}`);
+  // The plots have the whole episode.
+  const plotted = await page.$$eval('#plots canvas', (cs) => cs.length);
+  assert.ok(plotted >= 3, 'three uPlot charts');
+  await screenshot(page, 'robot-02-demo-reached.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('the goal moves while the robot runs and the robot goes there instead', async () => {
+  const { page, problems } = await openRobot();
+  await setSpeed(page, 4);
+  await page.click('#play');
+  await waitTime(page, 2.0);
+  await page.click('#tool-goal');
+  const newGoal = [10.6, 1.2];
+  const p = await screenOf(page, ...newGoal);
+  await page.mouse.click(p.x, p.y);
+  const [gx, gy] = (await bodyData(page, 'goal')).split(',').map(Number);
+  assert.ok(Math.hypot(gx - newGoal[0], gy - newGoal[1]) < 0.05, `goal set to ${gx}, ${gy}`);
+  assert.equal(await errorText(page), null);
+  assert.equal(await bodyData(page, 'playing'), 'true', 'still running after the goal moved');
+  assert.equal(await waitOutcome(page), 'reached');
+  const [x, y] = await hooks(page, 'state');
+  assert.ok(Math.hypot(x - gx, y - gy) <= 0.2 + 1e-9, `ended at ${x}, ${y}, goal ${gx}, ${gy}`);
+  // A goal inside a wall is refused with the core's message; the old one stays.
+  await page.click('#reset');
+  const wall = await screenOf(page, 4.0, 3.0);
+  await page.mouse.click(wall.x, wall.y);
+  assert.match((await errorText(page)) ?? '', /wall|blocked/i);
+  await screenshot(page, 'robot-03-goal-moved.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('a mover is placed by dragging (press = position, drag = velocity) and removed', async () => {
+  const { page, problems } = await openRobot();
+  const before = (await hooks(page, 'movers')).length / 6;
+  await page.click('#tool-mover');
+  await page.selectOption('#motion-model', 'back-and-forth');
+  await page.fill('#mover-radius', '0.35');
+  const from = [2.5, 4.5];
+  const vel = [0.6, -0.3];
+  const a = await screenOf(page, ...from);
+  const b = await screenOf(page, from[0] + vel[0], from[1] + vel[1]);
+  await page.mouse.move(a.x, a.y);
+  await page.mouse.down();
+  await page.mouse.move(b.x, b.y, { steps: 12 });
+  await screenshot(page, 'robot-04-mover-drag.png');
+  await page.mouse.up();
+  const movers = await hooks(page, 'movers');
+  assert.equal(movers.length / 6, before + 1, 'one more mover');
+  const m = movers.slice(-6);
+  const [, radius, mx, my, vx, vy] = m;
+  const k = Number(await page.getAttribute('#sim-canvas', 'data-scale'));
+  const tol = 2 / k; // two pixels, in metres
+  assert.equal(radius, 0.35);
+  assert.ok(Math.hypot(mx - from[0], my - from[1]) < tol, `placed at ${mx}, ${my}`);
+  assert.ok(Math.hypot(vx - vel[0], vy - vel[1]) < 2 * tol, `velocity ${vx}, ${vy}`);
+  assert.equal(await page.$$eval('#mover-list li', (l) => l.length), before + 1);
+  // It moves along its drag once the episode runs.
+  await page.click('#step');
+  await page.click('#step');
+  const moved = (await hooks(page, 'movers')).slice(-6);
+  assert.ok(moved[2] > mx && moved[3] < my, `mover moved along its velocity: ${moved[2]}, ${moved[3]}`);
+  // Reset puts it back where it was dropped, at t = 0.
+  await page.click('#reset');
+  const again = (await hooks(page, 'movers')).slice(-6);
+  assert.ok(Math.hypot(again[2] - from[0], again[3] - from[1]) < tol, 'placed mover survives reset');
+  // Remove it with the remove tool.
+  await page.click('#tool-remove');
+  const c = await screenOf(page, again[2], again[3]);
+  await page.mouse.click(c.x, c.y);
+  assert.equal((await hooks(page, 'movers')).length / 6, before, 'mover removed');
+  assert.equal(await errorText(page), null);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('bad input lands in the message bar and the page keeps working', async () => {
+  const { page, problems } = await openRobot();
+  // A parameter the core refuses (negative) shows its message; the old
+  // planner keeps driving.
+  const box = page.locator('#params .param input[type="number"]').first();
+  const field = await page.locator('#params .param').first().getAttribute('data-field');
+  await box.fill('-5');
+  await page.waitForFunction(() => !document.getElementById('error').hidden, null, { timeout: 5000 });
+  const msg = await errorText(page);
+  assert.ok(msg && msg.length > 0, 'error shown');
+  console.log(`negative ${field}: ${msg}`);
+  // A scenario that is not JSON, and one with NaN-like limits.
+  await page.setInputFiles('#file-input', { name: 'broken.json', mimeType: 'application/json', buffer: Buffer.from('{"version": 1, "map": ') });
+  await page.waitForFunction(() => /broken\.json/.test(document.getElementById('error').textContent));
+  const scenario = JSON.parse(fs.readFileSync(path.join(REPO, 'assets/scenarios', DEMO), 'utf8'));
+  scenario.robot.limits.v_max = -1;
+  await page.setInputFiles('#file-input', { name: 'negative.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(scenario)) });
+  await page.waitForFunction(() => /negative\.json.*v_max/.test(document.getElementById('error').textContent));
+  // Still alive: stepping works and time advances.
+  const t0 = Number(await bodyData(page, 'time'));
+  await page.click('#step');
+  assert.ok(Number(await bodyData(page, 'time')) > t0, 'stepping still works');
+  await screenshot(page, 'robot-05-error.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('determinism: the page and the native CLI give the same trace hash', async () => {
+  assert.ok(fs.existsSync(CLI), 'build target/release/planlab first (cargo build --release -p planlab-cli)');
+  const run = spawnSync(CLI, ['run', path.join(REPO, 'assets/scenarios', DEMO), '--json'], { encoding: 'utf8', timeout: 120_000 });
+  assert.equal(run.status, 0, run.stderr);
+  const native = JSON.parse(run.stdout);
+  assert.ok(native.trace_hash, `planlab run --json has trace_hash: ${run.stdout}`);
+  const { page, problems } = await openRobot();
+  await setSpeed(page, 8);
+  await page.click('#play');
+  const outcome = await waitOutcome(page);
+  assert.equal(outcome, native.outcome);
+  const hash = await bodyData(page, 'traceHash');
+  console.log(`trace hash: native ${native.trace_hash}, wasm ${hash} (${outcome}, ${native.time_s} s)`);
+  assert.equal(hash, String(native.trace_hash));
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('frame time on the crowded scene (20 movers, DWA 20 × 40 samples)', async () => {
+  const { page, problems } = await openRobot(CROWD);
+  assert.equal((await hooks(page, 'movers')).length / 6, 20, '20 movers');
+  await page.click('#play');
+  await waitTime(page, 0.5);
+  assert.equal(await hooks(page, 'rollouts'), 800, '20 × 40 rollouts drawn');
+  const results = {};
+  for (const speed of [1, 8]) {
+    await setSpeed(page, speed);
+    await hooks(page, 'resetMeter');
+    await page.waitForTimeout(4000);
+    const s = await hooks(page, 'frameStats');
+    results[`${speed}x`] = s;
+    const f = (o) => `median ${o.median.toFixed(2)} ms, p95 ${o.p95.toFixed(2)} ms`;
+    console.log(
+      `frame stats at ${speed}×: ${s.frames} frames; interval ${f(s.interval)}; work ${f(s.work)}; sim ${f(s.sim)}; paint ${f(s.paint)}`,
+    );
+    if ((await bodyData(page, 'outcome')) !== 'running') break;
+  }
+  await screenshot(page, 'robot-06-crowd.png');
+  fs.mkdirSync(path.join(REPO, 'tests/e2e/screenshots'), { recursive: true });
+  fs.writeFileSync(path.join(REPO, 'tests/e2e/screenshots/robot-frame-stats.json'), JSON.stringify(results, null, 2));
+  assert.ok(Object.keys(results).length > 0);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

@@ -1,0 +1,891 @@
+// Robot page wiring: loads a scenario into a wasm SimHandle, steps it from
+// the animation frame at the chosen speed, and paints what it reports (DWA
+// fan, paths, goals, movers with their classes, the robot, its trail) plus
+// the v/ω/clearance plots and the metrics. User edits (goal, movers,
+// planner and its parameters) go to the SimHandle as scenario edits; this
+// file plans, collides and measures nothing itself.
+
+import init, { SimHandle, planners as plannerListJson } from '../../pkg/planlab_wasm.js';
+import presets from 'virtual:robot-presets';
+import { RobotView, emptyScene, CLASS_NAMES, COLORS, type RobotShape } from './view';
+import { SeriesPlots } from './plots';
+import { ParamPanel, type PlannerInfo } from './params';
+
+type Tool = 'goal' | 'mover' | 'remove';
+
+/** A mover the user placed, kept so that Reset puts it back (at t = 0). */
+interface Placement {
+  id: number;
+  model: string;
+  radius: number;
+  x: number;
+  y: number;
+  vx: number;
+  vy: number;
+  span: number;
+}
+
+interface MoverJson {
+  id: number;
+  radius: number;
+  motion: { model: string };
+}
+
+/** Most control steps run in one animation frame (8× on a 0.1 s step is
+ *  80 steps/s, about 1.3 a frame); beyond it the sim runs slower than asked
+ *  instead of freezing the page. */
+const MAX_STEPS_PER_FRAME = 8;
+/** Metrics, mover list and status refresh interval while running, ms. */
+const SLOW_REFRESH_MS = 250;
+
+function el<T extends HTMLElement = HTMLElement>(id: string): T {
+  const e = document.getElementById(id);
+  if (!e) throw new Error(`page is missing #${id}`);
+  return e as T;
+}
+
+function messageOf(e: unknown): string {
+  if (e instanceof Error) return e.message;
+  if (typeof e === 'string') return e;
+  try {
+    return JSON.stringify(e);
+  } catch {
+    return String(e);
+  }
+}
+
+const ui = {
+  body: document.body,
+  hint: el('hint'),
+  preset: el<HTMLSelectElement>('preset'),
+  file: el<HTMLInputElement>('file-input'),
+  description: el('scenario-description'),
+  mapSize: el('map-size'),
+  robotDesc: el('robot-desc'),
+  simDt: el('sim-dt'),
+  play: el<HTMLButtonElement>('play'),
+  step: el<HTMLButtonElement>('step'),
+  reset: el<HTMLButtonElement>('reset'),
+  speed: el<HTMLSelectElement>('speed'),
+  speedOut: el<HTMLOutputElement>('speed-out'),
+  showFan: el<HTMLInputElement>('show-fan'),
+  showPath: el<HTMLInputElement>('show-path'),
+  showTrail: el<HTMLInputElement>('show-trail'),
+  planner: el<HTMLSelectElement>('planner'),
+  plannerSummary: el('planner-summary'),
+  params: el('params'),
+  paramsDefault: el<HTMLButtonElement>('params-default'),
+  tools: Array.from(document.querySelectorAll<HTMLButtonElement>('#tools [data-tool]')),
+  motionModel: el<HTMLSelectElement>('motion-model'),
+  moverRadius: el<HTMLInputElement>('mover-radius'),
+  moverSpan: el<HTMLInputElement>('mover-span'),
+  spanField: el('span-field'),
+  moverList: el<HTMLUListElement>('mover-list'),
+  clearMovers: el<HTMLButtonElement>('clear-movers'),
+  error: el('error'),
+  status: el('status'),
+  canvas: el<HTMLCanvasElement>('sim-canvas'),
+  hover: el('hover'),
+  metric: {
+    outcome: el('metric-outcome'),
+    time: el('metric-time'),
+    length: el('metric-length'),
+    clearance: el('metric-clearance'),
+    turn: el('metric-turn'),
+    drops: el('metric-drops'),
+    tracking: el('metric-tracking'),
+    mode: el('metric-mode'),
+  },
+};
+
+// ------------------------------------------------------------------ errors
+function showError(text: string): void {
+  ui.error.textContent = text;
+  ui.error.title = text;
+  ui.error.hidden = false;
+  ui.body.dataset.error = 'true';
+}
+
+function clearError(): void {
+  ui.error.hidden = true;
+  ui.error.textContent = '';
+  delete ui.body.dataset.error;
+}
+
+window.addEventListener('error', (ev) => showError(`Unexpected error: ${messageOf(ev.error ?? ev.message)}`));
+window.addEventListener('unhandledrejection', (ev) => showError(`Unexpected error: ${messageOf(ev.reason)}`));
+
+function guard<A extends unknown[]>(fn: (...args: A) => void | Promise<void>): (...args: A) => void {
+  return (...args: A) => {
+    try {
+      const r = fn(...args);
+      if (r instanceof Promise) r.catch((e) => showError(messageOf(e)));
+    } catch (e) {
+      showError(messageOf(e));
+    }
+  };
+}
+
+// ------------------------------------------------------------------- state
+const view = new RobotView(ui.canvas);
+const plots = new SeriesPlots([el('plot-v'), el('plot-w'), el('plot-clearance')]);
+let sim: SimHandle | null = null;
+let infos = new Map<string, PlannerInfo>();
+/** The loaded scenario's text and label, for Reset. */
+let scenarioText = '';
+let scenarioLabel = '';
+/** Edits made since loading, replayed by Reset. */
+let goalEdit: [number, number] | null = null;
+let plannerEdit: { name: string; config: Record<string, unknown> } | null = null;
+let placed: Placement[] = [];
+let removed = new Set<number>();
+let tool: Tool = 'goal';
+let playing = false;
+let speed = 1;
+let accum = 0;
+let lastFrame = 0;
+let lastSlow = 0;
+let dt = 0.1;
+let outcome = 'running';
+let drag: { x: number; y: number; pointer: number } | null = null;
+let panning: { x: number; y: number } | null = null;
+let plannerQueued = false;
+
+/** Frame meter: rAF intervals and per-frame work (sim + paint), ms. */
+const meter = {
+  intervals: [] as number[],
+  work: [] as number[],
+  sim: [] as number[],
+  paint: [] as number[],
+  reset() {
+    this.intervals.length = 0;
+    this.work.length = 0;
+    this.sim.length = 0;
+    this.paint.length = 0;
+  },
+};
+let paintMs = 0;
+view.onPaint = (ms) => (paintMs = ms);
+
+const params = new ParamPanel(ui.params, (config) => {
+  if (!sim) return;
+  plannerEdit = { name: ui.planner.value, config };
+  schedulePlanner();
+});
+
+// ------------------------------------------------------------------ scene
+function robotShape(json: string): [RobotShape, string] {
+  const r = JSON.parse(json) as {
+    drive?: string;
+    footprint?: { shape?: string; radius?: number; length?: number; width?: number };
+    limits?: { v_max?: number };
+  };
+  const fp = r.footprint ?? {};
+  const shape: RobotShape =
+    fp.shape === 'rectangle'
+      ? { kind: 'rect', length: fp.length ?? 0.4, width: fp.width ?? 0.3 }
+      : { kind: 'circle', radius: fp.radius ?? 0.2 };
+  const size = shape.kind === 'circle' ? `⌀ ${(2 * shape.radius).toFixed(2)} m` : `${shape.length}×${shape.width} m`;
+  const vmax = r.limits?.v_max;
+  return [shape, `${r.drive ?? '?'} · ${size}${vmax !== undefined ? ` · ≤ ${vmax} m/s` : ''}`];
+}
+
+/** Copies what the SimHandle reports into the scene (after steps/edits). */
+function pull(): void {
+  if (!sim) return;
+  const S = view.scene;
+  S.state = sim.state();
+  S.movers = sim.movers();
+  S.goal = toPair(sim.goal());
+  S.currentGoal = toPair(sim.currentGoal());
+  S.goalKind = sim.goalKind;
+  const cls = sim.classes();
+  S.classes.clear();
+  for (let i = 0; i + 1 < cls.length; i += 2) S.classes.set(cls[i], cls[i + 1]);
+  if (S.show.fan) {
+    S.fan = {
+      points: sim.fanPoints(),
+      offsets: sim.fanOffsets(),
+      scores: sim.fanScores(),
+      admissible: sim.fanAdmissible(),
+      chosen: sim.chosen,
+    };
+  }
+  S.globalPath = sim.globalPath();
+  S.keypoints = sim.keypoints();
+  // Trail and series grow: fetch only the rows since the last pull.
+  const rows = sim.trail(S.trailLen);
+  const m = rows.length / 2;
+  if (m > 0) {
+    if (S.trailLen + m > S.trail.length / 2) {
+      const t = new Float64Array(Math.max(S.trail.length * 2, (S.trailLen + m) * 2, 1024));
+      t.set(S.trail.subarray(0, S.trailLen * 2));
+      S.trail = t;
+    }
+    S.trail.set(rows, S.trailLen * 2);
+    S.trailLen += m;
+  }
+  plots.append(sim.series(plots.length));
+  outcome = sim.outcome;
+  ui.body.dataset.outcome = outcome;
+  ui.body.dataset.steps = String(sim.steps);
+  ui.body.dataset.time = String(sim.time);
+}
+
+function toPair(a: Float64Array): [number, number] {
+  return [a[0] ?? 0, a[1] ?? 0];
+}
+
+// ----------------------------------------------------------------- metrics
+function setMetric(e: HTMLElement, text: string, value: number | null): void {
+  e.textContent = text;
+  if (value === null) delete e.dataset.value;
+  else e.dataset.value = String(value);
+}
+
+function clearMetrics(): void {
+  for (const e of Object.values(ui.metric)) setMetric(e, '—', null);
+  delete ui.metric.outcome.dataset.outcome;
+}
+
+interface Metrics {
+  outcome: string;
+  time_s: number;
+  path_length_m: number;
+  min_clearance_m: number;
+  mean_clearance_m: number;
+  total_turn_rad: number;
+  max_turn_rad: number;
+  speed_drops: number;
+  mean_tracking_error_m: number | null;
+  max_tracking_error_m: number | null;
+}
+
+function refreshSlow(): void {
+  if (!sim) return;
+  const m = JSON.parse(sim.metricsJson()) as Metrics;
+  setMetric(ui.metric.outcome, m.outcome, null);
+  ui.metric.outcome.dataset.outcome = m.outcome;
+  setMetric(ui.metric.time, `${m.time_s.toFixed(1)} s`, m.time_s);
+  setMetric(ui.metric.length, `${m.path_length_m.toFixed(2)} m`, m.path_length_m);
+  setMetric(ui.metric.clearance, `${m.min_clearance_m.toFixed(2)} / ${m.mean_clearance_m.toFixed(2)}`, m.min_clearance_m);
+  ui.metric.clearance.dataset.mean = String(m.mean_clearance_m);
+  setMetric(ui.metric.turn, `${m.total_turn_rad.toFixed(2)} / ${m.max_turn_rad.toFixed(2)}`, m.total_turn_rad);
+  ui.metric.turn.dataset.max = String(m.max_turn_rad);
+  setMetric(ui.metric.drops, String(m.speed_drops), m.speed_drops);
+  if (m.mean_tracking_error_m === null || m.max_tracking_error_m === null) setMetric(ui.metric.tracking, 'n/a', null);
+  else {
+    setMetric(ui.metric.tracking, `${m.mean_tracking_error_m.toFixed(2)} / ${m.max_tracking_error_m.toFixed(2)}`, m.mean_tracking_error_m);
+    ui.metric.tracking.dataset.max = String(m.max_tracking_error_m);
+  }
+  const mode = sim.mode;
+  setMetric(ui.metric.mode, `${mode || '—'} · ${sim.goalKind}`, null);
+  ui.metric.mode.title = ui.metric.mode.textContent ?? '';
+  const s = view.scene.state;
+  ui.status.textContent =
+    `t = ${sim.time.toFixed(1)} s · v = ${s[3].toFixed(2)} m/s · ω = ${s[5].toFixed(2)} rad/s · ` +
+    `${view.scene.movers.length / 6} movers · ${Math.max(0, view.scene.fan.offsets.length - 1)} rollouts` +
+    (outcome === 'running' ? (playing ? ' · playing' : ' · paused') : ` · ${describeOutcome(outcome)}`);
+  renderMoverList();
+}
+
+function describeOutcome(o: string): string {
+  switch (o) {
+    case 'reached':
+      return 'goal reached';
+    case 'collision':
+      return 'collision';
+    case 'timeout':
+      return 'time out';
+    case 'stuck':
+      return 'stuck (no progress)';
+    default:
+      return o;
+  }
+}
+
+function renderMoverList(): void {
+  if (!sim) return;
+  const movers = JSON.parse(sim.moversJson()) as MoverJson[];
+  const items = movers.map((m) => {
+    const li = document.createElement('li');
+    li.dataset.id = String(m.id);
+    const dot = document.createElement('i');
+    dot.className = 'dot';
+    const cls = view.scene.classes.get(m.id);
+    dot.style.background = COLORS.classes[cls ?? 3];
+    const text = document.createElement('span');
+    text.textContent = `#${m.id} · ${m.motion.model} · r ${m.radius} m${cls !== undefined ? ` · ${CLASS_NAMES[cls]}` : ''}`;
+    const b = document.createElement('button');
+    b.type = 'button';
+    b.textContent = '×';
+    b.title = `Remove mover ${m.id}`;
+    b.addEventListener('click', guard(() => removeMover(m.id)));
+    li.append(dot, text, b);
+    return li;
+  });
+  ui.moverList.replaceChildren(...items);
+}
+
+// ------------------------------------------------------------- simulation
+function setPlaying(on: boolean): void {
+  playing = on && !!sim && outcome === 'running';
+  ui.play.textContent = playing ? '❚❚ Pause' : '▶ Play';
+  ui.play.dataset.playing = String(playing);
+  ui.body.dataset.playing = String(playing);
+  if (playing) {
+    lastFrame = performance.now();
+    accum = 0;
+    meter.reset();
+    requestAnimationFrame(frame);
+  }
+}
+
+/** Runs `n` control steps and refreshes everything that follows from them. */
+function advance(n: number): void {
+  if (!sim || n <= 0) return;
+  outcome = sim.step(n);
+  pull();
+  if (outcome !== 'running') finish();
+}
+
+function finish(): void {
+  setPlaying(false);
+  plots.flush(true);
+  refreshSlow();
+  if (sim) ui.body.dataset.traceHash = sim.traceHash();
+  ui.body.dataset.state = 'done';
+  ui.hint.textContent = `Episode over: ${describeOutcome(outcome)}. Reset to run it again.`;
+}
+
+function frame(now: number): void {
+  if (!playing || !sim) return;
+  requestAnimationFrame(frame);
+  const interval = now - lastFrame;
+  lastFrame = now;
+  const t0 = performance.now();
+  try {
+    accum += (Math.min(interval, 100) / 1000) * speed;
+    let n = Math.floor(accum / dt + 1e-9);
+    if (n > MAX_STEPS_PER_FRAME) {
+      n = MAX_STEPS_PER_FRAME;
+      accum = 0;
+    } else accum -= n * dt;
+    if (n > 0) advance(n);
+    const t1 = performance.now();
+    plots.flush();
+    view.paint();
+    if (now - lastSlow > SLOW_REFRESH_MS) {
+      lastSlow = now;
+      refreshSlow();
+    }
+    const t2 = performance.now();
+    if (meter.intervals.length < 100000) {
+      meter.intervals.push(interval);
+      meter.sim.push(t1 - t0);
+      meter.paint.push(paintMs);
+      meter.work.push(t2 - t0);
+    }
+  } catch (e) {
+    setPlaying(false);
+    showError(messageOf(e));
+  }
+}
+
+function install(next: SimHandle): void {
+  setPlaying(false);
+  sim?.free();
+  sim = next;
+  dt = sim.dt;
+  const map = sim.map();
+  try {
+    const origin = map.origin();
+    view.scene = { ...emptyScene(), show: view.scene.show };
+    view.setMap({
+      width: map.width,
+      height: map.height,
+      resolution: map.resolution,
+      originX: origin[0],
+      originY: origin[1],
+      cells: map.cells(),
+    });
+    ui.mapSize.textContent = `${map.width} × ${map.height} · ${map.resolution} m`;
+  } finally {
+    map.free();
+  }
+  const [shape, desc] = robotShape(sim.robot());
+  view.scene.robot = shape;
+  const st = sim.start();
+  view.scene.start = [st[0], st[1], st[2]];
+  ui.robotDesc.textContent = desc;
+  ui.robotDesc.title = desc;
+  ui.simDt.textContent = `${dt} s`;
+  const choice = JSON.parse(sim.plannerChoice()) as { name: string; config: Record<string, unknown> };
+  selectPlanner(choice.name, choice.config);
+  plots.clear();
+  clearMetrics();
+  delete ui.body.dataset.traceHash;
+  outcome = sim.outcome;
+  pull();
+  refreshSlow();
+  plots.flush(true);
+  view.request();
+  ui.body.dataset.state = 'ready';
+  ui.body.dataset.loadSeq = String(Number(ui.body.dataset.loadSeq ?? 0) + 1);
+  ui.hint.textContent = hintForTool();
+}
+
+/** Loads scenario JSON as a fresh episode (edits forgotten). */
+function loadScenario(text: string, label: string): void {
+  const next = SimHandle.fromScenario(text);
+  scenarioText = text;
+  scenarioLabel = label;
+  goalEdit = null;
+  plannerEdit = null;
+  placed = [];
+  removed = new Set();
+  clearError();
+  try {
+    const s = JSON.parse(text) as { name?: string; description?: string };
+    ui.description.textContent = s.description || s.name || label;
+    ui.description.title = s.description ?? '';
+  } catch {
+    ui.description.textContent = label;
+  }
+  install(next);
+}
+
+/** Restarts from the scenario with the goal, movers and planner edits. */
+function resetEpisode(): void {
+  if (!scenarioText) return;
+  const next = SimHandle.fromScenario(scenarioText);
+  const problems: string[] = [];
+  const attempt = (what: string, f: () => void) => {
+    try {
+      f();
+    } catch (e) {
+      problems.push(`${what}: ${messageOf(e)}`);
+    }
+  };
+  if (plannerEdit) {
+    const p = plannerEdit;
+    attempt('planner', () => next.setPlanner(p.name, JSON.stringify(p.config)));
+  }
+  if (goalEdit) {
+    const g = goalEdit;
+    attempt('goal', () => next.setGoal(g[0], g[1]));
+  }
+  if (removed.size) {
+    const keep = (JSON.parse(next.moversJson()) as MoverJson[]).filter((m) => !removed.has(m.id));
+    attempt('movers', () => next.setMovers(JSON.stringify(keep)));
+  }
+  for (const p of placed) {
+    attempt(`mover ${p.id}`, () => {
+      p.id = next.placeMover(p.model, p.radius, p.x, p.y, p.vx, p.vy, p.span);
+    });
+  }
+  install(next);
+  if (problems.length) showError(problems.join(' · '));
+  else clearError();
+  void scenarioLabel;
+}
+
+// --------------------------------------------------------------- planners
+function selectPlanner(name: string, config: Record<string, unknown>): void {
+  if (!Array.from(ui.planner.options).some((o) => o.value === name)) {
+    const o = document.createElement('option');
+    o.value = name;
+    o.textContent = name;
+    ui.planner.append(o);
+  }
+  ui.planner.value = name;
+  const info = infos.get(name) ?? { name, paper: '', summary: '', fields: [] };
+  ui.plannerSummary.textContent = [info.summary, info.paper].filter(Boolean).join(' — ') || '—';
+  params.show(info, config);
+}
+
+function schedulePlanner(): void {
+  if (plannerQueued) return;
+  plannerQueued = true;
+  requestAnimationFrame(() => {
+    plannerQueued = false;
+    if (!sim || !plannerEdit) return;
+    try {
+      sim.setPlanner(plannerEdit.name, JSON.stringify(plannerEdit.config));
+      clearError();
+      pull();
+      view.request();
+    } catch (e) {
+      showError(messageOf(e));
+    }
+  });
+}
+
+// ------------------------------------------------------------------ movers
+function removeMover(id: number): void {
+  if (!sim) return;
+  const keep = (JSON.parse(sim.moversJson()) as MoverJson[]).filter((m) => m.id !== id);
+  sim.setMovers(JSON.stringify(keep));
+  const before = placed.length;
+  placed = placed.filter((p) => p.id !== id);
+  if (placed.length === before) removed.add(id);
+  pull();
+  refreshSlow();
+  view.request();
+}
+
+function num(input: HTMLInputElement): number {
+  return input.value.trim() === '' ? Number.NaN : Number(input.value);
+}
+
+function placeMover(x: number, y: number, vx: number, vy: number): void {
+  if (!sim) return;
+  // A tiny drag is a click: a standing mover.
+  if (Math.hypot(vx, vy) < 0.02) {
+    vx = 0;
+    vy = 0;
+  }
+  const p: Placement = {
+    id: -1,
+    model: ui.motionModel.value,
+    radius: num(ui.moverRadius),
+    x,
+    y,
+    vx,
+    vy,
+    span: num(ui.moverSpan),
+  };
+  p.id = sim.placeMover(p.model, p.radius, p.x, p.y, p.vx, p.vy, p.span);
+  placed.push(p);
+  clearError();
+  pull();
+  refreshSlow();
+  view.request();
+  ui.body.dataset.movers = String(view.scene.movers.length / 6);
+}
+
+/** The mover under a canvas point (within its disc or 6 px of it). */
+function moverAt(cx: number, cy: number): number | null {
+  const m = view.scene.movers;
+  let best: number | null = null;
+  let bestD = Infinity;
+  for (let i = 0; i + 5 < m.length; i += 6) {
+    const [x, y] = view.toScreen(m[i + 2], m[i + 3]);
+    const d = Math.hypot(cx - x, cy - y) - m[i + 1] * view.scale;
+    if (d < 6 && d < bestD) {
+      bestD = d;
+      best = m[i];
+    }
+  }
+  return best;
+}
+
+// ------------------------------------------------------------------- input
+function hintForTool(): string {
+  switch (tool) {
+    case 'goal':
+      return 'Click the map to move the goal, even while the robot runs.';
+    case 'mover':
+      return 'Press where a mover should be and drag toward where it will be in 1 s.';
+    case 'remove':
+      return 'Click a mover to remove it.';
+  }
+}
+
+function setTool(t: Tool): void {
+  tool = t;
+  for (const b of ui.tools) b.setAttribute('aria-checked', String(b.dataset.tool === t));
+  ui.canvas.dataset.tool = t;
+  ui.hint.textContent = hintForTool();
+}
+
+function canvasPoint(ev: MouseEvent): [number, number] {
+  const r = ui.canvas.getBoundingClientRect();
+  return [ev.clientX - r.left, ev.clientY - r.top];
+}
+
+function moveGoal(x: number, y: number): void {
+  if (!sim) return;
+  sim.setGoal(x, y);
+  goalEdit = [x, y];
+  clearError();
+  pull();
+  view.request();
+  ui.body.dataset.goal = `${x},${y}`;
+}
+
+ui.canvas.addEventListener(
+  'pointerdown',
+  guard((ev: PointerEvent) => {
+    if (!sim) return;
+    if (ev.button === 1 || ev.button === 2 || (ev.button === 0 && ev.altKey)) {
+      panning = { x: ev.clientX, y: ev.clientY };
+      ui.canvas.classList.add('panning');
+      ui.canvas.setPointerCapture(ev.pointerId);
+      ev.preventDefault();
+      return;
+    }
+    if (ev.button !== 0) return;
+    const [cx, cy] = canvasPoint(ev);
+    const [x, y] = view.toWorld(cx, cy);
+    if (ev.shiftKey || tool === 'goal') {
+      moveGoal(x, y);
+    } else if (tool === 'mover') {
+      if (!view.onMap(x, y)) return;
+      drag = { x, y, pointer: ev.pointerId };
+      ui.canvas.setPointerCapture(ev.pointerId);
+      view.scene.preview = { x, y, vx: 0, vy: 0, radius: num(ui.moverRadius) || 0.1 };
+      view.request();
+    } else if (tool === 'remove') {
+      const id = moverAt(cx, cy);
+      if (id !== null) removeMover(id);
+    }
+  }),
+);
+
+ui.canvas.addEventListener(
+  'pointermove',
+  guard((ev: PointerEvent) => {
+    if (panning) {
+      view.panBy(ev.clientX - panning.x, ev.clientY - panning.y);
+      panning = { x: ev.clientX, y: ev.clientY };
+      return;
+    }
+    const [cx, cy] = canvasPoint(ev);
+    const [x, y] = view.toWorld(cx, cy);
+    ui.hover.textContent = view.onMap(x, y) ? `world (${x.toFixed(2)}, ${y.toFixed(2)}) m` : '—';
+    if (drag && view.scene.preview) {
+      view.scene.preview.vx = x - drag.x;
+      view.scene.preview.vy = y - drag.y;
+      view.request();
+    }
+  }),
+);
+
+const endPointer = guard((ev: PointerEvent) => {
+  panning = null;
+  ui.canvas.classList.remove('panning');
+  if (ui.canvas.hasPointerCapture(ev.pointerId)) ui.canvas.releasePointerCapture(ev.pointerId);
+  if (drag && ev.pointerId === drag.pointer) {
+    const d = drag;
+    drag = null;
+    const p = view.scene.preview;
+    view.scene.preview = null;
+    view.request();
+    if (ev.type === 'pointerup' && p) placeMover(d.x, d.y, p.vx, p.vy);
+  }
+});
+ui.canvas.addEventListener('pointerup', endPointer);
+ui.canvas.addEventListener('pointercancel', endPointer);
+ui.canvas.addEventListener('pointerleave', () => (ui.hover.textContent = '—'));
+ui.canvas.addEventListener('contextmenu', (ev) => ev.preventDefault());
+ui.canvas.addEventListener(
+  'wheel',
+  (ev) => {
+    ev.preventDefault();
+    const [x, y] = canvasPoint(ev);
+    view.zoomAt(x, y, Math.exp(-ev.deltaY * 0.0015));
+  },
+  { passive: false },
+);
+
+for (const b of ui.tools) b.addEventListener('click', () => setTool(b.dataset.tool as Tool));
+
+ui.play.addEventListener(
+  'click',
+  guard(() => {
+    if (!playing && outcome !== 'running') resetEpisode();
+    setPlaying(!playing);
+  }),
+);
+ui.step.addEventListener(
+  'click',
+  guard(() => {
+    setPlaying(false);
+    advance(1);
+    plots.flush(true);
+    refreshSlow();
+    view.request();
+  }),
+);
+ui.reset.addEventListener('click', guard(() => resetEpisode()));
+ui.speed.addEventListener('input', () => {
+  speed = Number(ui.speed.value) || 1;
+  ui.speedOut.textContent = `${speed}×`;
+});
+for (const [box, key] of [
+  [ui.showFan, 'fan'],
+  [ui.showPath, 'path'],
+  [ui.showTrail, 'trail'],
+] as const) {
+  box.addEventListener(
+    'change',
+    guard(() => {
+      view.scene.show[key] = box.checked;
+      if (key === 'fan') sim?.setRecordRollouts(box.checked);
+      pull();
+      view.request();
+    }),
+  );
+}
+ui.planner.addEventListener(
+  'change',
+  guard(() => {
+    if (!sim) return;
+    const name = ui.planner.value;
+    const prev = JSON.parse(sim.plannerChoice()) as { name: string; config: Record<string, unknown> };
+    try {
+      sim.setPlanner(name, '{}');
+    } catch (e) {
+      selectPlanner(prev.name, prev.config);
+      throw e;
+    }
+    plannerEdit = { name, config: {} };
+    selectPlanner(name, {});
+    clearError();
+    pull();
+    view.request();
+  }),
+);
+ui.paramsDefault.addEventListener('click', guard(() => params.resetDefaults()));
+ui.motionModel.addEventListener('input', () => {
+  ui.spanField.dataset.dim = String(ui.motionModel.value === 'constant-velocity');
+});
+ui.clearMovers.addEventListener(
+  'click',
+  guard(() => {
+    if (!sim) return;
+    for (const m of JSON.parse(sim.moversJson()) as MoverJson[]) {
+      if (!placed.some((p) => p.id === m.id)) removed.add(m.id);
+    }
+    placed = [];
+    sim.setMovers('[]');
+    pull();
+    refreshSlow();
+    view.request();
+  }),
+);
+
+async function fetchText(path: string): Promise<string> {
+  const r = await fetch(new URL(path, document.baseURI));
+  if (!r.ok) throw new Error(`cannot load ${path}: HTTP ${r.status}`);
+  return r.text();
+}
+
+async function loadPreset(file: string): Promise<void> {
+  const text = await fetchText(`scenarios/${file}`);
+  try {
+    loadScenario(text, file);
+  } catch (e) {
+    throw new Error(`${file}: ${messageOf(e)}`);
+  }
+}
+
+ui.preset.addEventListener(
+  'change',
+  guard(async () => {
+    if (ui.preset.value) await loadPreset(ui.preset.value);
+  }),
+);
+ui.file.addEventListener(
+  'change',
+  guard(async () => {
+    const f = ui.file.files?.[0];
+    ui.file.value = '';
+    if (!f) return;
+    try {
+      loadScenario(await f.text(), f.name);
+    } catch (e) {
+      throw new Error(`${f.name}: ${messageOf(e)}`);
+    }
+    ui.preset.value = '';
+  }),
+);
+
+window.addEventListener('keydown', (ev) => {
+  const t = ev.target as HTMLElement | null;
+  if (t && (t.tagName === 'INPUT' || t.tagName === 'SELECT' || t.tagName === 'TEXTAREA')) return;
+  if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
+  const k = ev.key.toLowerCase();
+  const tools: Record<string, Tool> = { g: 'goal', m: 'mover', x: 'remove' };
+  if (tools[k]) setTool(tools[k]);
+  else if (k === ' ') {
+    ev.preventDefault();
+    ui.play.click();
+  } else if (k === '.') ui.step.click();
+  else if (k === 'r') ui.reset.click();
+  else if (k === 'f') view.fit();
+});
+
+// ------------------------------------------------------------ test hooks
+function quantile(xs: number[], q: number): number {
+  if (!xs.length) return Number.NaN;
+  const s = [...xs].sort((a, b) => a - b);
+  return s[Math.min(s.length - 1, Math.floor(q * (s.length - 1) + 0.5))];
+}
+
+/** For the e2e tests and the curious: frame statistics and the trace. */
+(window as unknown as { planlabRobot: unknown }).planlabRobot = {
+  frameStats() {
+    const f = (xs: number[]) => ({ median: quantile(xs, 0.5), p95: quantile(xs, 0.95), max: Math.max(...xs) });
+    return {
+      frames: meter.intervals.length,
+      interval: f(meter.intervals.slice(1)),
+      work: f(meter.work),
+      sim: f(meter.sim),
+      paint: f(meter.paint),
+    };
+  },
+  resetMeter: () => meter.reset(),
+  traceHash: () => sim?.traceHash() ?? null,
+  traceCsv: () => sim?.traceCsv() ?? null,
+  metrics: () => (sim ? JSON.parse(sim.metricsJson()) : null),
+  toScreen: (x: number, y: number) => {
+    const r = ui.canvas.getBoundingClientRect();
+    const [sx, sy] = view.toScreen(x, y);
+    return { x: r.left + sx, y: r.top + sy };
+  },
+  state: () => (sim ? Array.from(sim.state()) : null),
+  movers: () => (sim ? Array.from(sim.movers()) : null),
+  rollouts: () => Math.max(0, view.scene.fan.offsets.length - 1),
+};
+
+// -------------------------------------------------------------------- boot
+async function boot(): Promise<void> {
+  setTool('goal');
+  clearMetrics();
+  ui.spanField.dataset.dim = 'true';
+  for (const p of presets) {
+    const o = document.createElement('option');
+    o.value = p.file;
+    o.textContent = `${p.name} — ${p.planner}`;
+    o.title = p.description;
+    ui.preset.append(o);
+  }
+  const hidden = document.createElement('option');
+  hidden.value = '';
+  hidden.disabled = true;
+  hidden.hidden = true;
+  hidden.textContent = 'Opened from disk';
+  ui.preset.append(hidden);
+  await init();
+  const list = JSON.parse(plannerListJson()) as PlannerInfo[];
+  infos = new Map(list.map((p) => [p.name, p]));
+  for (const p of list) {
+    const o = document.createElement('option');
+    o.value = p.name;
+    o.textContent = p.name;
+    o.title = p.summary;
+    ui.planner.append(o);
+  }
+  const q = new URLSearchParams(location.search).get('scenario');
+  const first = q && presets.some((p) => p.file === q) ? q : presets[0]?.file;
+  if (!first) throw new Error('no robot presets (assets/scenarios/*.json with a local_planner)');
+  ui.preset.value = first;
+  await loadPreset(first);
+}
+
+boot().catch((e) => {
+  ui.body.dataset.state = 'error';
+  showError(`Could not start the robot playground: ${messageOf(e)}`);
+});
