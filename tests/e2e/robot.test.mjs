@@ -210,9 +210,16 @@ test('determinism: the page and the native CLI give the same trace hash', async 
   await page.click('#play');
   const outcome = await waitOutcome(page);
   assert.equal(outcome, native.outcome);
+  // The CLI prints the u64 in hex, the page in decimal.
   const hash = await bodyData(page, 'traceHash');
-  console.log(`trace hash: native ${native.trace_hash}, wasm ${hash} (${outcome}, ${native.time_s} s)`);
-  assert.equal(hash, String(native.trace_hash));
+  const nativeDec = BigInt(`0x${native.trace_hash}`).toString();
+  console.log(`trace hash: native ${native.trace_hash} (= ${nativeDec}), wasm ${hash} (${outcome}, ${native.steps} steps)`);
+  assert.equal(hash, nativeDec);
+  // The page's metrics are the CLI's.
+  const pageMetrics = await hooks(page, 'metrics');
+  for (const k of ['time_s', 'path_length_m', 'min_clearance_m', 'mean_clearance_m', 'total_turn_rad', 'speed_drops']) {
+    assert.equal(pageMetrics[k], native[k], k);
+  }
   assert.deepEqual(problems, []);
   await page.close();
 });

@@ -15,9 +15,7 @@ use planlab_core::local::{GoalKind, ObstacleClass};
 use planlab_core::map::io::scenario::Scenario;
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
 use planlab_core::sim::{Episode, EpisodeSetup, Outcome, SimConfig};
-use planlab_core::world::{
-    MoverSpec, Placement, RobotSpec, RobotState, StaticMap, TerrainSpec,
-};
+use planlab_core::world::{MoverSpec, Placement, RobotSpec, RobotState, StaticMap, TerrainSpec};
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 

@@ -192,3 +192,172 @@ fn scenario_inline_and_file_reference() {
     assert_eq!((map.width(), map.height()), (7, 5));
     assert_eq!(map.cells()[2 * 7 + 4], 0);
 }
+
+// ------------------------------------------------------------ robot sim
+
+/// A 4 × 2 m room (0.2 m cells) with a wall stub; start left, goal right.
+fn room_json(planner: &str, extra: &str) -> String {
+    let wall = "#".repeat(20);
+    let inside = format!("\"#{}#\"", ".".repeat(18));
+    let mut rows = vec![format!("\"{wall}\"")];
+    rows.extend(vec![inside; 8]);
+    rows.push(format!("\"{wall}\""));
+    format!(
+        r#"{{"version": 1, "name": "room",
+        "map": {{"width": 20, "height": 10, "resolution": 0.2, "cells": [{}]}},
+        "start": {{"col": 2, "row": 5}}, "goal": {{"col": 17, "row": 5}},
+        "local_planner": {{"name": "{planner}"}}{extra}}}"#,
+        rows.join(",")
+    )
+}
+
+#[wasm_bindgen_test]
+fn episode_runs_to_reached_with_typed_arrays() {
+    use planlab_wasm::SimHandle;
+    let mut sim = SimHandle::from_scenario(&room_json("pursuit", ""), None).unwrap();
+    assert_eq!(sim.outcome(), "running");
+    assert_eq!(sim.trace_len(), 1);
+    let goal = sim.goal();
+    let mut guard = 0;
+    while sim.step(7) == "running" {
+        guard += 1;
+        assert!(guard < 1000, "episode does not end");
+    }
+    assert_eq!(sim.outcome(), "reached");
+    let s = sim.state();
+    assert_eq!(s.len(), 6);
+    assert!((s[0] - goal[0]).hypot(s[1] - goal[1]) <= 0.2);
+    // Series and trail: one row per step plus the start row, from any row.
+    let n = sim.trace_len() as usize;
+    assert_eq!(n as f64, sim.steps() + 1.0);
+    assert_eq!(sim.series(0).len(), 4 * n);
+    assert_eq!(sim.trail(0).len(), 2 * n);
+    assert_eq!(sim.trail(n as u32 - 2).len(), 4);
+    assert!(sim.trail(n as u32 + 5).is_empty());
+    // The fan arrays agree with each other.
+    let offsets = sim.fan_offsets();
+    assert_eq!(offsets.len(), sim.fan_scores().len() + 1);
+    assert_eq!(sim.fan_admissible().len(), sim.fan_scores().len());
+    assert_eq!(
+        sim.fan_points().len() as u32,
+        2 * offsets[offsets.len() - 1]
+    );
+    // Metrics and hash as the CLI reports them.
+    let m: serde_json::Value = serde_json::from_str(&sim.metrics_json().unwrap()).unwrap();
+    assert_eq!(m["outcome"], "reached");
+    assert!(m["path_length_m"].as_f64().unwrap() > 2.5);
+    assert!(sim.trace_hash().parse::<u64>().is_ok());
+    assert!(sim.trace_csv().lines().count() == n + 1);
+    // The same scenario replays to the same hash.
+    let mut again = SimHandle::from_scenario(&room_json("pursuit", ""), None).unwrap();
+    while again.step(1000) == "running" {}
+    assert_eq!(again.trace_hash(), sim.trace_hash());
+}
+
+#[wasm_bindgen_test]
+fn bad_scenarios_are_errors_not_panics() {
+    use planlab_wasm::SimHandle;
+    let err = |r: Result<SimHandle, wasm_bindgen::JsError>| message(r.err().expect("an error"));
+    assert!(!err(SimHandle::from_scenario("{\"version\": 1, \"map\": ", None)).is_empty());
+    let e = err(SimHandle::from_scenario(
+        &room_json("pursuit", r#", "robot": {"limits": {"v_max": -1}}"#),
+        None,
+    ));
+    assert!(e.contains("v_max"), "{e}");
+    let e = err(SimHandle::from_scenario(&room_json("teleport", ""), None));
+    assert!(e.contains("teleport"), "{e}");
+    let e = err(SimHandle::from_scenario(
+        &room_json("pursuit", r#", "start_yaw": 0, "sim": {"dt": 0}"#),
+        None,
+    ));
+    assert!(e.contains("sim.dt"), "{e}");
+    // A map given by file name that was not passed.
+    let e = err(SimHandle::from_scenario(
+        r#"{"version": 1, "map": {"file": "maps/room.map"},
+            "start": {"col": 1, "row": 1}, "goal": {"col": 2, "row": 2},
+            "local_planner": {"name": "pursuit"}}"#,
+        None,
+    ));
+    assert!(e.contains("room.map"), "{e}");
+    // Still alive.
+    assert!(SimHandle::from_scenario(&room_json("pursuit", ""), None).is_ok());
+}
+
+#[wasm_bindgen_test]
+fn live_edits_and_their_errors() {
+    use planlab_wasm::SimHandle;
+    let mut sim = SimHandle::from_scenario(&room_json("pursuit", ""), None).unwrap();
+    sim.step(5);
+    // Goal: a free point is taken, a wall refused with the core's message.
+    sim.set_goal(3.0, 0.6).unwrap();
+    assert_eq!(sim.goal(), vec![3.0, 0.6]);
+    let e = message(sim.set_goal(0.1, 0.1).unwrap_err());
+    assert!(e.contains("wall"), "{e}");
+    assert_eq!(sim.goal(), vec![3.0, 0.6]);
+    // Movers: placed now, at the drop point with the drag's velocity.
+    let id = sim
+        .place_mover("back-and-forth", 0.2, 2.0, 1.5, 0.3, 0.0, 1.0)
+        .unwrap();
+    let m = sim.movers();
+    assert_eq!(m.len(), 6);
+    assert_eq!(m[0], f64::from(id));
+    assert!((m[2] - 2.0).abs() < 1e-9 && (m[3] - 1.5).abs() < 1e-9);
+    assert!((m[4] - 0.3).abs() < 1e-9 && m[5].abs() < 1e-9);
+    let e = message(
+        sim.place_mover("teleport", 0.2, 2.0, 1.5, 0.3, 0.0, 1.0)
+            .unwrap_err(),
+    );
+    assert!(e.contains("teleport"), "{e}");
+    let e = message(
+        sim.place_mover("waypoint-loop", -1.0, 2.0, 1.5, 0.3, 0.0, 1.0)
+            .unwrap_err(),
+    );
+    assert!(e.contains("radius"), "{e}");
+    let json = sim.movers_json().unwrap();
+    sim.set_movers("[]").unwrap();
+    assert!(sim.movers().is_empty());
+    sim.set_movers(&json).unwrap();
+    assert_eq!(sim.movers().len(), 6);
+    assert!(message(sim.set_movers("[{\"radius\": 1}]").unwrap_err()).contains("movers"));
+    // Planner: re-tuned live; a bad value names the field and the old one stays.
+    sim.set_planner("pursuit", r#"{"k_w": 2.0}"#).unwrap();
+    assert!(sim.planner_choice().unwrap().contains("2.0"));
+    let e = message(sim.set_planner("pursuit", r#"{"k_w": -1}"#).unwrap_err());
+    assert!(e.contains("k_w"), "{e}");
+    let e = message(sim.set_planner("pursuit", "{").unwrap_err());
+    assert!(e.contains("config JSON"), "{e}");
+    assert!(sim.planner_choice().unwrap().contains("2.0"));
+    assert_eq!(sim.step(1), "running");
+}
+
+#[wasm_bindgen_test]
+fn from_map_and_planner_list() {
+    use planlab_wasm::{planners, SimHandle};
+    let map = MapHandle::from_ascii("..........\n..........\n..........\n").unwrap();
+    let mut sim = SimHandle::from_map(
+        &map,
+        r#"{"start": [1.5, 1.5], "goal": [8.5, 1.5], "local_planner": {"name": "pursuit"}}"#,
+    )
+    .unwrap();
+    while sim.step(50) == "running" {}
+    assert_eq!(sim.outcome(), "reached");
+    let e = message(
+        SimHandle::from_map(
+            &map,
+            r#"{"start": [1.5, 1.5], "goal": [8.5, 1.5], "wings": 2}"#,
+        )
+        .err()
+        .unwrap(),
+    );
+    assert!(e.contains("wings"), "{e}");
+    let list: serde_json::Value = serde_json::from_str(&planners().unwrap()).unwrap();
+    let pursuit = list
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "pursuit")
+        .expect("pursuit is registered");
+    for f in pursuit["fields"].as_array().unwrap() {
+        assert!(f["kind"].is_string() && !f["doc"].as_str().unwrap().is_empty());
+    }
+}

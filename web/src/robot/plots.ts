@@ -36,7 +36,19 @@ export class SeriesPlots {
           height: Math.max(80, el.clientHeight - 34),
           legend: { show: false },
           cursor: { drag: { x: false, y: false } },
-          scales: { x: { time: false } },
+          // Fixed-from-zero ranges: one row does not blow the axes up to
+          // uPlot's defaults, and the time axis grows with the episode.
+          scales: {
+            x: { time: false, range: (_u, _lo, hi) => [0, Math.max(5, hi ?? 0)] },
+            y: {
+              range: (_u, lo, hi) => {
+                const a = Math.min(0, lo ?? 0);
+                const b = Math.max(0, hi ?? 0);
+                const pad = Math.max(0.05, (b - a) * 0.08);
+                return [a < 0 ? a - pad : 0, b + pad];
+              },
+            },
+          },
           axes: [
             { ...AXIS, size: 22, values: (_u, ticks) => ticks.map((t) => `${t}s`) },
             { ...AXIS, label: undefined },

@@ -581,7 +581,12 @@ export class RobotView {
     ctx.font = '600 12px system-ui, sans-serif';
     ctx.textAlign = 'left';
     ctx.textBaseline = 'bottom';
+    const text = `${speed.toFixed(2)} m/s`;
+    ctx.strokeStyle = 'rgba(255,255,255,0.92)';
+    ctx.lineWidth = 4;
+    ctx.lineJoin = 'round';
+    ctx.strokeText(text, ex + 6, ey - 4);
     ctx.fillStyle = '#312e81';
-    ctx.fillText(`${speed.toFixed(2)} m/s`, ex + 6, ey - 4);
+    ctx.fillText(text, ex + 6, ey - 4);
   }
 }

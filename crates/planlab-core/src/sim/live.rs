@@ -31,7 +31,7 @@ mod tests {
         let wall = "#".repeat(20);
         let inside = format!("#{}#", ".".repeat(18));
         let mut cells = vec![wall.clone()];
-        cells.extend(std::iter::repeat_n(inside, 8));
+        cells.extend(vec![inside; 8]);
         cells.push(wall);
         let text = serde_json::json!({
             "version": 1,

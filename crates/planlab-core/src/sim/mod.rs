@@ -18,6 +18,7 @@
 //! all trigonometry goes through [`crate::num`], so the same setup and seed
 //! give a bit-identical [`Trace`] natively and in WebAssembly.
 
+mod live;
 mod trace;
 
 pub use trace::{Trace, TraceStep, CSV_HEADER};

@@ -343,7 +343,10 @@ impl MoverSpec {
                     let f = back - k as f64 * span;
                     let q = corners[k];
                     let e = corners[(k + 1) % 4];
-                    let first = [q[0] + (e[0] - q[0]) * f / span, q[1] + (e[1] - q[1]) * f / span];
+                    let first = [
+                        q[0] + (e[0] - q[0]) * f / span,
+                        q[1] + (e[1] - q[1]) * f / span,
+                    ];
                     let mut points = vec![first];
                     for j in 1..=4 {
                         let c = corners[(k + j) % 4];
@@ -495,13 +498,25 @@ mod tests {
                 let m = MoverSpec::placed(4, 0.3, how, pos, vel, 2.0, t).unwrap();
                 let s = m.state_at(t, big);
                 let (dx, dy) = (s.pos[0] - pos[0], s.pos[1] - pos[1]);
-                assert!(dx.abs() < 1e-9 && dy.abs() < 1e-9, "{how:?} t={t}: {:?}", s.pos);
+                assert!(
+                    dx.abs() < 1e-9 && dy.abs() < 1e-9,
+                    "{how:?} t={t}: {:?}",
+                    s.pos
+                );
                 let (ex, ey) = (s.vel[0] - vel[0], s.vel[1] - vel[1]);
-                assert!(ex.abs() < 1e-9 && ey.abs() < 1e-9, "{how:?} t={t}: vel {:?}", s.vel);
+                assert!(
+                    ex.abs() < 1e-9 && ey.abs() < 1e-9,
+                    "{how:?} t={t}: vel {:?}",
+                    s.vel
+                );
                 // It keeps moving along its velocity just afterwards.
                 let later = m.state_at(t + 0.01, big);
                 let (lx, ly) = (later.pos[0] - pos[0] - 0.006, later.pos[1] - pos[1] - 0.008);
-                assert!(lx.abs() < 1e-9 && ly.abs() < 1e-9, "{how:?} t={t}: {:?}", later.pos);
+                assert!(
+                    lx.abs() < 1e-9 && ly.abs() < 1e-9,
+                    "{how:?} t={t}: {:?}",
+                    later.pos
+                );
             }
         }
         // Back-and-forth turns around within `span`; the loop comes back
@@ -513,15 +528,24 @@ mod tests {
         let s = m.state_at(7.0 + 8.0, big);
         assert!((s.pos[0] - pos[0]).abs() < 1e-9 && (s.pos[1] - pos[1]).abs() < 1e-9);
         // Standing still, and bad numbers.
-        let m = MoverSpec::placed(2, 0.3, Placement::WaypointLoop, pos, [0.0, 0.0], 2.0, 5.0).unwrap();
+        let m =
+            MoverSpec::placed(2, 0.3, Placement::WaypointLoop, pos, [0.0, 0.0], 2.0, 5.0).unwrap();
         assert_eq!(m.state_at(9.0, big).pos, pos);
         let e = MoverSpec::placed(2, 0.3, Placement::BackAndForth, pos, vel, 0.0, 1.0).unwrap_err();
         assert!(e.to_string().contains("span"), "{e}");
         let e = MoverSpec::placed(2, f64::NAN, Placement::BackAndForth, pos, vel, 1.0, 1.0)
             .unwrap_err();
         assert!(e.to_string().contains("radius"), "{e}");
-        let e = MoverSpec::placed(2, 0.3, Placement::ConstantVelocity, pos, [f64::INFINITY, 0.0], 1.0, 1.0)
-            .unwrap_err();
+        let e = MoverSpec::placed(
+            2,
+            0.3,
+            Placement::ConstantVelocity,
+            pos,
+            [f64::INFINITY, 0.0],
+            1.0,
+            1.0,
+        )
+        .unwrap_err();
         assert!(e.to_string().contains("velocity"), "{e}");
     }
 }
