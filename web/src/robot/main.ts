@@ -32,9 +32,12 @@ interface MoverJson {
 }
 
 /** Most control steps run in one animation frame (8× on a 0.1 s step is
- *  80 steps/s, about 1.3 a frame); beyond it the sim runs slower than asked
- *  instead of freezing the page. */
+ *  80 steps/s, about 1.3 a frame). */
 const MAX_STEPS_PER_FRAME = 8;
+/** Simulation time budget per frame, ms: when the steps due would take
+ *  longer (a slow machine, a heavy planner) the sim runs slower than the
+ *  chosen speed instead of dropping frames. */
+const SIM_BUDGET_MS = 9;
 /** Metrics, mover list and status refresh interval while running, ms. */
 const SLOW_REFRESH_MS = 250;
 
@@ -341,12 +344,25 @@ function setPlaying(on: boolean): void {
   }
 }
 
-/** Runs `n` control steps and refreshes everything that follows from them. */
-function advance(n: number): void {
-  if (!sim || n <= 0) return;
-  outcome = sim.step(n);
+/** Running mean of one control step's cost, ms (for the frame budget). */
+let stepMs = 1;
+
+/** Runs up to `n` control steps (at least one) within the frame budget and
+ *  refreshes everything that follows from them; returns how many ran. */
+function advance(n: number, budgetMs = Infinity): number {
+  if (!sim || n <= 0) return 0;
+  const t0 = performance.now();
+  let done = 0;
+  while (done < n && outcome === 'running') {
+    if (done > 0 && performance.now() - t0 + stepMs > budgetMs) break;
+    const t = performance.now();
+    outcome = sim.step(1);
+    stepMs = 0.8 * stepMs + 0.2 * (performance.now() - t);
+    done += 1;
+  }
   pull();
   if (outcome !== 'running') finish();
+  return done;
 }
 
 function finish(): void {
@@ -366,12 +382,11 @@ function frame(now: number): void {
   const t0 = performance.now();
   try {
     accum += (Math.min(interval, 100) / 1000) * speed;
-    let n = Math.floor(accum / dt + 1e-9);
-    if (n > MAX_STEPS_PER_FRAME) {
-      n = MAX_STEPS_PER_FRAME;
-      accum = 0;
-    } else accum -= n * dt;
-    if (n > 0) advance(n);
+    const due = Math.floor(accum / dt + 1e-9);
+    const n = Math.min(due, MAX_STEPS_PER_FRAME);
+    const ran = n > 0 ? advance(n, SIM_BUDGET_MS) : 0;
+    // Steps that did not fit are dropped, not owed: the sim slows down.
+    accum = ran < due ? 0 : accum - ran * dt;
     const t1 = performance.now();
     plots.flush();
     view.paint();
