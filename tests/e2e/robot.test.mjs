@@ -191,6 +191,26 @@ test('bad input lands in the message bar and the page keeps working', async () =
   scenario.robot.limits.v_max = -1;
   await page.setInputFiles('#file-input', { name: 'negative.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(scenario)) });
   await page.waitForFunction(() => /negative\.json.*v_max/.test(document.getElementById('error').textContent));
+  // A scenario whose map is a file: refused alone (naming the file), loaded
+  // when the map is opened with it.
+  const rows = ['..........', '..........', '..........', '..........'];
+  const mapText = `type octile\nheight 4\nwidth 10\nmap\n${rows.join('\n')}\n`;
+  const byRef = JSON.stringify({
+    version: 1,
+    name: 'by reference',
+    map: { file: '../maps/strip.map' },
+    start: { col: 1, row: 2 },
+    goal: { col: 8, row: 2 },
+    local_planner: { name: 'dwa' },
+  });
+  const refFile = { name: 'strip.json', mimeType: 'application/json', buffer: Buffer.from(byRef) };
+  await page.setInputFiles('#file-input', refFile);
+  await page.waitForFunction(() => /strip\.json.*strip\.map/.test(document.getElementById('error').textContent));
+  const loads = Number(await bodyData(page, 'loadSeq'));
+  await page.setInputFiles('#file-input', [refFile, { name: 'strip.map', mimeType: 'text/plain', buffer: Buffer.from(mapText) }]);
+  await page.waitForFunction((n) => Number(document.body.dataset.loadSeq) > n, loads);
+  assert.equal(await errorText(page), null);
+  assert.match(await page.textContent('#map-size'), /^10 × 4/);
   // Still alive: stepping works and time advances.
   const t0 = Number(await bodyData(page, 'time'));
   await page.click('#step');

@@ -5,7 +5,7 @@
 // planner and its parameters) go to the SimHandle as scenario edits; this
 // file plans, collides and measures nothing itself.
 
-import init, { SimHandle, planners as plannerListJson } from '../../pkg/planlab_wasm.js';
+import init, { SimHandle, planners as plannerListJson, rosImageName } from '../../pkg/planlab_wasm.js';
 import presets from 'virtual:robot-presets';
 import { RobotView, emptyScene, CLASS_NAMES, COLORS, type RobotShape } from './view';
 import { SeriesPlots } from './plots';
@@ -137,6 +137,7 @@ let infos = new Map<string, PlannerInfo>();
 /** The loaded scenario's text and label, for Reset. */
 let scenarioText = '';
 let scenarioLabel = '';
+let scenarioFiles: Record<string, Uint8Array> = {};
 /** Edits made since loading, replayed by Reset. */
 let goalEdit: [number, number] | null = null;
 let plannerEdit: { name: string; config: Record<string, unknown> } | null = null;
@@ -307,9 +308,17 @@ function describeOutcome(o: string): string {
   }
 }
 
+/** What the mover list shows, to rebuild it only when that changes (a
+ *  rebuild under the pointer would swallow a click on ×). */
+let moverListKey = '';
+
 function renderMoverList(): void {
   if (!sim) return;
-  const movers = JSON.parse(sim.moversJson()) as MoverJson[];
+  const json = sim.moversJson();
+  const key = `${json}|${Array.from(view.scene.classes).join(';')}`;
+  if (key === moverListKey) return;
+  moverListKey = key;
+  const movers = JSON.parse(json) as MoverJson[];
   const items = movers.map((m) => {
     const li = document.createElement('li');
     li.dataset.id = String(m.id);
@@ -450,10 +459,12 @@ function install(next: SimHandle): void {
   ui.hint.textContent = hintForTool();
 }
 
-/** Loads scenario JSON as a fresh episode (edits forgotten). */
-function loadScenario(text: string, label: string): void {
-  const next = SimHandle.fromScenario(text);
+/** Loads scenario JSON as a fresh episode (edits forgotten); `files` holds
+ *  the map files it refers to, by base name. */
+function loadScenario(text: string, label: string, files: Record<string, Uint8Array> = {}): void {
+  const next = SimHandle.fromScenario(text, files);
   scenarioText = text;
+  scenarioFiles = files;
   scenarioLabel = label;
   goalEdit = null;
   plannerEdit = null;
@@ -473,7 +484,7 @@ function loadScenario(text: string, label: string): void {
 /** Restarts from the scenario with the goal, movers and planner edits. */
 function resetEpisode(): void {
   if (!scenarioText) return;
-  const next = SimHandle.fromScenario(scenarioText);
+  const next = SimHandle.fromScenario(scenarioText, scenarioFiles);
   const problems: string[] = [];
   const attempt = (what: string, f: () => void) => {
     try {
@@ -787,10 +798,39 @@ async function fetchText(path: string): Promise<string> {
   return r.text();
 }
 
-async function loadPreset(file: string): Promise<void> {
-  const text = await fetchText(`scenarios/${file}`);
+async function fetchBytes(url: URL): Promise<Uint8Array> {
+  const r = await fetch(url);
+  if (!r.ok) throw new Error(`cannot load ${url.pathname}: HTTP ${r.status}`);
+  return new Uint8Array(await r.arrayBuffer());
+}
+
+const baseName = (p: string) => p.split(/[\\/]/).pop() ?? p;
+
+/** The map files a preset refers to (a ROS yaml brings its image), fetched
+ *  relative to the scenario, keyed by base name as SimHandle looks them up. */
+async function mapFilesOf(text: string, scenarioUrl: URL): Promise<Record<string, Uint8Array>> {
+  let ref: unknown;
   try {
-    loadScenario(text, file);
+    ref = (JSON.parse(text) as { map?: { file?: unknown } }).map?.file;
+  } catch {
+    return {}; // SimHandle reports the JSON error with its position
+  }
+  if (typeof ref !== 'string') return {};
+  const files: Record<string, Uint8Array> = {};
+  const url = new URL(ref, scenarioUrl);
+  files[baseName(ref)] = await fetchBytes(url);
+  if (/\.ya?ml$/i.test(ref)) {
+    const image = rosImageName(new TextDecoder().decode(files[baseName(ref)]));
+    files[baseName(image)] = await fetchBytes(new URL(image, url));
+  }
+  return files;
+}
+
+async function loadPreset(file: string): Promise<void> {
+  const url = new URL(`scenarios/${file}`, document.baseURI);
+  try {
+    const text = await fetchText(`scenarios/${file}`);
+    loadScenario(text, file, await mapFilesOf(text, url));
   } catch (e) {
     throw new Error(`${file}: ${messageOf(e)}`);
   }
@@ -805,11 +845,18 @@ ui.preset.addEventListener(
 ui.file.addEventListener(
   'change',
   guard(async () => {
-    const f = ui.file.files?.[0];
+    const picked = Array.from(ui.file.files ?? []);
     ui.file.value = '';
-    if (!f) return;
+    const f = picked.find((x) => x.name.toLowerCase().endsWith('.json'));
+    if (!f) {
+      if (picked.length) throw new Error(`Open a scenario .json (with the map files it refers to), not ${picked.map((x) => x.name).join(', ')}.`);
+      return;
+    }
+    // The map files it refers to may be among the others.
+    const files: Record<string, Uint8Array> = {};
+    for (const x of picked) if (x !== f) files[x.name] = new Uint8Array(await x.arrayBuffer());
     try {
-      loadScenario(await f.text(), f.name);
+      loadScenario(await f.text(), f.name, files);
     } catch (e) {
       throw new Error(`${f.name}: ${messageOf(e)}`);
     }

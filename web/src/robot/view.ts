@@ -133,6 +133,25 @@ function offscreen(w: number, h: number): [HTMLCanvasElement, CanvasRenderingCon
   return [c, ctx];
 }
 
+/** Known-cell bounding box [c0, r0, c1, r1) padded by a few cells; the
+ *  whole map when every cell is unknown. */
+function knownBox(m: MapInfo): [number, number, number, number] {
+  const { width: w, height: h, cells } = m;
+  let [c0, r0, c1, r1] = [w, h, -1, -1];
+  for (let r = 0; r < h; r++) {
+    for (let c = 0; c < w; c++) {
+      if (cells[r * w + c] === 2) continue;
+      if (c < c0) c0 = c;
+      if (c > c1) c1 = c;
+      if (r < r0) r0 = r;
+      if (r > r1) r1 = r;
+    }
+  }
+  if (c1 < 0) return [0, 0, w, h];
+  const pad = Math.max(2, Math.round(0.04 * Math.max(c1 - c0, r1 - r0)));
+  return [Math.max(0, c0 - pad), Math.max(0, r0 - pad), Math.min(w, c1 + 1 + pad), Math.min(h, r1 + 1 + pad)];
+}
+
 export class RobotView {
   readonly canvas: HTMLCanvasElement;
   private ctx: CanvasRenderingContext2D;
@@ -143,6 +162,8 @@ export class RobotView {
   private ox = 0;
   private oy = 0;
   private fitted = true;
+  /** Cell box [c0, r0, c1, r1) of the known (not unknown) cells. */
+  private known: [number, number, number, number] = [0, 0, 1, 1];
   private cssW = 0;
   private cssH = 0;
   private pending = false;
@@ -178,6 +199,7 @@ export class RobotView {
     }
     ctx.putImageData(img, 0, 0);
     this.base = c;
+    this.known = knownBox(m);
     this.fit();
   }
 
@@ -198,12 +220,20 @@ export class RobotView {
     return this.map ? this.map.originY + this.mapH : 0;
   }
 
+  /**
+   * Fits the known part of the map into the canvas with a small margin
+   * (ROS maps are mostly unknown space around the explored area).
+   */
   fit(): void {
     if (!this.map || !this.cssW || !this.cssH) return;
     const margin = 16;
-    this.k = Math.max(1e-3, Math.min((this.cssW - 2 * margin) / this.mapW, (this.cssH - 2 * margin) / this.mapH));
-    this.ox = (this.cssW - this.mapW * this.k) / 2;
-    this.oy = (this.cssH - this.mapH * this.k) / 2;
+    const res = this.map.resolution;
+    const [c0, r0, c1, r1] = this.known;
+    const bw = (c1 - c0) * res;
+    const bh = (r1 - r0) * res;
+    this.k = Math.max(1e-3, Math.min((this.cssW - 2 * margin) / bw, (this.cssH - 2 * margin) / bh));
+    this.ox = (this.cssW - bw * this.k) / 2 - c0 * res * this.k;
+    this.oy = (this.cssH - bh * this.k) / 2 - r0 * res * this.k;
     this.fitted = true;
     this.publishView();
     this.request();
