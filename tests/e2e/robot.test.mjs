@@ -173,6 +173,42 @@ test('a mover is placed by dragging (press = position, drag = velocity) and remo
   await page.close();
 });
 
+test('sliders re-tune the running planner; the planner select swaps it', async () => {
+  const { page, problems } = await openRobot();
+  await setSpeed(page, 2);
+  await page.click('#play');
+  await waitTime(page, 1.0);
+  // Drag a slider with the keyboard (real input events), and type a value.
+  const slider = page.locator('#params .param[data-field="gamma"] input[type="range"]');
+  await slider.focus();
+  for (let i = 0; i < 10; i++) await page.keyboard.press('ArrowRight');
+  await page.fill('#params .param[data-field="alpha"] input[type="number"]', '0.08');
+  await page.waitForFunction(() => window.planlabRobot.plannerChoice().config.alpha === 0.08);
+  const choice = await hooks(page, 'plannerChoice');
+  assert.equal(choice.name, 'dwa');
+  assert.ok(choice.config.gamma > 0.1, `gamma re-tuned: ${choice.config.gamma}`);
+  assert.equal(await page.getAttribute('#params .param[data-field="alpha"]', 'data-changed'), 'true');
+  assert.equal(await bodyData(page, 'playing'), 'true', 'still running');
+  assert.equal(await errorText(page), null);
+  // Paper defaults puts every field back, still live.
+  await page.click('#params-default');
+  await page.waitForFunction(() => window.planlabRobot.plannerChoice().config.alpha === 0.05);
+  // Another planner: its own fields, same running episode.
+  const names = await page.$$eval('#planner option', (os) => os.map((o) => o.value));
+  const other = names.find((n) => n !== 'dwa');
+  assert.ok(other, `another planner to pick among ${names}`);
+  const t = Number(await bodyData(page, 'time'));
+  await page.selectOption('#planner', other);
+  assert.equal((await hooks(page, 'plannerChoice')).name, other);
+  assert.equal(await errorText(page), null);
+  assert.ok(Number(await bodyData(page, 'time')) >= t, 'the episode went on');
+  const fields = await page.$$eval('#params .param', (els) => els.map((e) => e.dataset.field));
+  assert.deepEqual(fields, await hooks(page, 'plannerFields', other), `the panel shows ${other}'s fields`);
+  await screenshot(page, 'robot-07-retuned.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 test('bad input lands in the message bar and the page keeps working', async () => {
   const { page, problems } = await openRobot();
   // A parameter the core refuses (negative) shows its message; the old

@@ -398,7 +398,10 @@ function frame(now: number): void {
     accum = ran < due ? 0 : accum - ran * dt;
     const t1 = performance.now();
     plots.flush();
-    view.paint();
+    // Everything drawn changes only when the sim steps (edits and view
+    // changes ask for their own paint), so frames without a step are free.
+    paintMs = 0;
+    if (ran > 0) view.paint();
     if (now - lastSlow > SLOW_REFRESH_MS) {
       lastSlow = now;
       refreshSlow();
@@ -407,7 +410,7 @@ function frame(now: number): void {
     if (meter.intervals.length < 100000) {
       meter.intervals.push(interval);
       meter.sim.push(t1 - t0);
-      meter.paint.push(paintMs);
+      if (ran > 0) meter.paint.push(paintMs);
       meter.work.push(t2 - t0);
     }
   } catch (e) {
@@ -908,6 +911,8 @@ function quantile(xs: number[], q: number): number {
     return { x: r.left + sx, y: r.top + sy };
   },
   state: () => (sim ? Array.from(sim.state()) : null),
+  plannerChoice: () => (sim ? JSON.parse(sim.plannerChoice()) : null),
+  plannerFields: (name: string) => infos.get(name)?.fields.map((f) => f.name) ?? null,
   movers: () => (sim ? Array.from(sim.movers()) : null),
   rollouts: () => Math.max(0, view.scene.fan.offsets.length - 1),
 };
