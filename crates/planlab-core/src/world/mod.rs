@@ -13,7 +13,7 @@ pub mod terrain;
 pub use movers::{MotionModel, MoverSpec, MoverState, Placement, ScriptSample};
 pub use robot::{Command, Drive, Footprint, RobotLimits, RobotSpec, RobotState};
 pub use static_map::StaticMap;
-pub use terrain::{Terrain, TerrainSpec, TerrainStep};
+pub use terrain::{Road, SlipSpec, Terrain, TerrainSpec, TerrainStep, VehicleSpec};
 
 use thiserror::Error;
 
