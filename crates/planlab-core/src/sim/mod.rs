@@ -253,6 +253,19 @@ pub fn footprint_disc_distance(
     }
 }
 
+/// Exact distance (m) from the footprint at `pose` to the nearest wall or
+/// the map edge, capped at [`CLEARANCE_CAP`]. The O(1) clearance field
+/// bounds the exact value from above (centre distance − inscribed radius,
+/// plus the field's error of under a cell), so the exact parry2d search
+/// never looks further than that bound.
+pub fn static_clearance(map: &StaticMap, footprint: &Footprint, pose: &RobotState) -> f64 {
+    let bound =
+        map.clearance(pose.x, pose.y) + map.grid().resolution() - footprint.inscribed_radius();
+    let look = CLEARANCE_CAP.min(bound.max(0.0));
+    map.footprint_distance(footprint, pose, look)
+        .clamp(0.0, CLEARANCE_CAP)
+}
+
 /// One running episode.
 pub struct Episode {
     map: StaticMap,
@@ -530,16 +543,7 @@ impl Episode {
     fn clearance(&self, movers: &[MoverState]) -> f64 {
         let fp = &self.robot.footprint;
         let s = &self.state;
-        // The clearance field bounds the exact distance from above (centre
-        // distance − inscribed radius, plus the field's error), so the exact
-        // search never needs to look further than that.
-        let bound =
-            self.map.clearance(s.x, s.y) + self.map.grid().resolution() - fp.inscribed_radius();
-        let look = CLEARANCE_CAP.min(bound.max(0.0));
-        let mut c = self.map.footprint_distance(fp, s, look);
-        if c >= look {
-            c = CLEARANCE_CAP.min(c);
-        }
+        let mut c = static_clearance(&self.map, fp, s);
         for (m, ms) in self.movers.iter().zip(movers) {
             c = c.min(footprint_disc_distance(fp, s, ms.pos, m.radius));
         }
@@ -819,6 +823,46 @@ mod tests {
         let circle = Footprint::Circle { radius: 0.3 };
         let d = footprint_disc_distance(&circle, &RobotState::default(), [1.0, 0.0], 0.2);
         assert!((d - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bounded_clearance_equals_the_full_search() {
+        let g = crate::map::OccupancyGrid::from_ascii(
+            "....................\n....#...............\n....#.......##......\n\
+             ....#.......##......\n....................\n..........#.........\n\
+             ..........#.........\n....................\n",
+        )
+        .unwrap()
+        .with_frame(0.25, crate::map::Pose2::default())
+        .unwrap();
+        let map = StaticMap::new(g, true).unwrap();
+        let mut rng = crate::num::Rng::new(11);
+        let shapes = [
+            Footprint::Circle { radius: 0.2 },
+            Footprint::Rectangle {
+                length: 0.5,
+                width: 0.3,
+            },
+        ];
+        let mut checked = 0;
+        for _ in 0..2000 {
+            let pose = RobotState {
+                x: rng.range(0.0, 5.0),
+                y: rng.range(0.0, 2.0),
+                theta: rng.range(-3.2, 3.2),
+                ..Default::default()
+            };
+            for fp in &shapes {
+                let full = map.footprint_distance(fp, &pose, CLEARANCE_CAP);
+                let fast = static_clearance(&map, fp, &pose);
+                assert!(
+                    (full - fast).abs() < 1e-12,
+                    "{pose:?} {fp:?}: {full} vs {fast}"
+                );
+                checked += usize::from(full > 0.0);
+            }
+        }
+        assert!(checked > 1000);
     }
 
     #[test]
