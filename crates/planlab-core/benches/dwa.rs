@@ -103,6 +103,7 @@ fn bench(c: &mut Criterion) {
         weights: cfg.weights(),
         rho: 1.0,
         hold_v: None,
+        braking: false,
     };
     let obs = Observation {
         time: 0.0,

@@ -18,9 +18,9 @@
 //!    (constant velocity, the default), else at its current position.
 //!    A rollout whose clearance reaches 0 collides and is discarded (early
 //!    exit); so is one breaking V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b)
-//!    with dist its smallest clearance to what stands still (the map, and
-//!    the movers when they are not predicted: braking does not help against
-//!    a mover that keeps coming, the collision test covers those).
+//!    with dist its smallest clearance to what is sensed now (the map and
+//!    the movers where they stand, as in Fox et al.; a mover's motion is
+//!    the predicted collision test's business).
 //! 5. **Critics** on the admissible rollouts: heading = π − |bearing error
 //!    to the goal at the rollout end|, dist = smallest clearance capped at
 //!    `dist_cap`, velocity = v. Each is divided by its sum over the
@@ -29,7 +29,10 @@
 //!
 //! With no admissible sample the robot brakes at its largest deceleration
 //! and, for a circular footprint, turns in place toward the goal (mode
-//! `"no-admissible"`); nothing here panics or returns NaN.
+//! `"no-admissible"`) — unless that braking manoeuvre itself would be hit
+//! within the horizon (a mover that keeps coming): then the collision-free
+//! sample with the most clearance is taken (`"no-admissible-evade"`).
+//! Nothing here panics or returns NaN.
 //!
 //! **Defaults.** \[T\] gives no numeric DWA parameters (its tables list only
 //! map and APF settings). Its simulations, like \[S\]'s (whose §5 values
@@ -47,6 +50,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug, Rollout};
 use crate::num::{atan2, cos, hypot, sin, wrap_angle};
+use crate::world::robot::integrate;
 use crate::world::{Command, Footprint, RobotSpec, RobotState, StaticMap};
 
 /// Critic names, in the order of [`Rollout::raw`] and [`Rollout::normalised`].
@@ -55,6 +59,10 @@ pub const CRITICS: [&str; 3] = ["heading", "dist", "velocity"];
 /// Most samples on one axis of the window (a tiny resolution cannot make a
 /// step take forever).
 pub const MAX_SAMPLES_PER_AXIS: usize = 1001;
+
+/// A braking rollout's rest point must stay out of every mover's predicted
+/// path for this many rollout horizons.
+pub const REST_HORIZONS: f64 = 4.0;
 
 /// Most integration steps in one rollout (`predict_time / sim_dt`).
 pub const MAX_ROLLOUT_STEPS: usize = 10_000;
@@ -286,6 +294,11 @@ pub struct StepRequest {
     /// normal window. When no sample at the held speed is admissible the
     /// normal window is used instead.
     pub hold_v: Option<f64>,
+    /// Also roll out braking manoeuvres: from the window's lowest speed
+    /// down to a stop at the largest deceleration, one per sampled ω (the
+    /// deceleration strategy of \[T\] Table 3-1: constant-speed rollouts
+    /// cannot show that slowing down now avoids a mover later).
+    pub braking: bool,
 }
 
 /// What one step of the engine chose.
@@ -309,6 +322,10 @@ struct Cand {
     /// heading, dist (capped), velocity.
     raw: [f64; 3],
     admissible: bool,
+    /// Collides within the horizon.
+    collided: bool,
+    /// Smallest clearance along the rollout (up to the collision), m.
+    clear: f64,
 }
 
 /// The DWA engine: window, sampling, rollouts, clearance, critics. Reused by
@@ -330,6 +347,17 @@ pub struct DwaCore {
     mover_pos: Vec<[f64; 2]>,
     mover_rad: Vec<f64>,
     kept: Vec<usize>,
+    /// Rows of the mover table beyond the horizon: one control period, for
+    /// braking checks that start after it.
+    extra_rows: usize,
+    /// Every perceived mover (position, velocity, radius), for rest checks.
+    all_movers: Vec<([f64; 2], [f64; 2], f64)>,
+    /// Collision threshold and clearance horizon of the last evaluation.
+    last_limit: f64,
+    last_horizon: f64,
+    last_dt: f64,
+    /// Half a map cell: allowance for the clearance field's error, m.
+    slack: f64,
     points: Vec<[f64; 2]>,
     debug: PlannerDebug,
 }
@@ -359,6 +387,12 @@ impl DwaCore {
             mover_pos: Vec::new(),
             mover_rad: Vec::new(),
             kept: Vec::new(),
+            extra_rows: 1,
+            all_movers: Vec::new(),
+            last_limit: 0.0,
+            last_horizon: 0.0,
+            last_dt: 0.1,
+            slack: 0.0,
             points: Vec::new(),
             debug,
         })
@@ -437,11 +471,109 @@ impl DwaCore {
             res.hold_released = true;
         }
         if res.admissible == 0 {
-            res.cmd = self.fallback(&s, req.goal, dt);
-            self.debug.mode = "no-admissible".into();
             self.debug.chosen = None;
+            let evade = if self.braking_collides(obs.map, &s) {
+                // Braking will not avoid it (a mover keeps coming): take the
+                // collision-free sample with the most clearance, if any.
+                self.cands
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, c)| !c.collided)
+                    .fold(None::<(usize, f64)>, |b, (i, c)| match b {
+                        Some((_, bc)) if bc >= c.clear => b,
+                        _ => Some((i, c.clear)),
+                    })
+            } else {
+                None
+            };
+            match evade {
+                Some((i, _)) => {
+                    let c = self.cands[i];
+                    res.cmd = Command {
+                        v: c.v,
+                        vy: 0.0,
+                        w: c.w,
+                    };
+                    self.debug.mode = "no-admissible-evade".into();
+                    if self.record {
+                        self.debug.chosen = Some(i);
+                    }
+                }
+                None => {
+                    res.cmd = self.fallback(&s, req.goal, dt);
+                    self.debug.mode = "no-admissible".into();
+                }
+            }
         }
         res
+    }
+
+    /// Number of rows in the movers' position table.
+    fn mover_rows(&self) -> usize {
+        self.mover_pos
+            .len()
+            .checked_div(self.mover_rad.len())
+            .unwrap_or(self.steps + self.extra_rows + 1)
+    }
+
+    /// Whether a robot standing at (x, y) lies in the predicted path of a
+    /// mover within [`REST_HORIZONS`] rollout horizons: stopping is only safe
+    /// out of the way of what keeps coming. Without mover prediction the
+    /// movers stand still and only overlap counts.
+    fn rest_unsafe(&self, x: f64, y: f64) -> bool {
+        let t_rest = if self.cfg.predict_movers {
+            REST_HORIZONS * self.steps as f64 * self.cfg.sim_dt
+        } else {
+            0.0
+        };
+        self.all_movers.iter().any(|&(p, v, r)| {
+            // Distance from (x, y) to the segment p + v·t, t ∈ [0, t_rest].
+            let (dx, dy) = (v[0] * t_rest, v[1] * t_rest);
+            let len2 = dx * dx + dy * dy;
+            let t = if len2 > 0.0 {
+                (((x - p[0]) * dx + (y - p[1]) * dy) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            hypot(p[0] + t * dx - x, p[1] + t * dy - y) - r - self.r_eff <= self.last_limit
+        })
+    }
+
+    /// Whether braking at the largest deceleration (turn rate to 0 as well)
+    /// from `s` hits something within the horizon, movers predicted as in
+    /// the last evaluation.
+    fn braking_collides(&self, map: &StaticMap, s: &RobotState) -> bool {
+        self.braking_collides_from(map, s, 0)
+    }
+
+    /// As [`Self::braking_collides`], starting `row0` rollout steps into the
+    /// movers' predicted future.
+    fn braking_collides_from(&self, map: &StaticMap, s: &RobotState, row0: usize) -> bool {
+        let l = &self.robot.limits;
+        let h = self.cfg.sim_dt;
+        let (mut st, mut v, mut w) = (*s, s.v, s.w);
+        let rows = self.mover_rows();
+        let toward_zero = |x: f64, d: f64| {
+            if x > 0.0 {
+                (x - d).max(0.0)
+            } else {
+                (x + d).min(0.0)
+            }
+        };
+        for k in 1..=self.steps {
+            v = toward_zero(v, l.acc_v * h);
+            w = toward_zero(w, l.acc_w * h);
+            st = integrate(&st, Command { v, vy: 0.0, w }, h);
+            let stat = map.clearance(st.x, st.y) - self.r_eff - self.slack;
+            let row = (k + row0).min(rows.saturating_sub(1));
+            if self.mover_clearance(stat, st.x, st.y, row, self.last_horizon) <= self.last_limit {
+                return true;
+            }
+            if v == 0.0 && w == 0.0 && self.mover_rad.is_empty() {
+                break;
+            }
+        }
+        self.rest_unsafe(st.x, st.y)
     }
 
     /// Braking fallback: v toward 0 at the largest deceleration; a round
@@ -547,13 +679,20 @@ impl DwaCore {
             .max(w_abs * w_abs / (2.0 * l.acc_w))
             + 1e-6;
         let t_total = self.steps as f64 * self.cfg.sim_dt;
-        self.prepare_movers(obs, &s, v_abs * t_total, horizon);
+        self.extra_rows = ((dt / self.cfg.sim_dt).round() as usize).clamp(1, MAX_ROLLOUT_STEPS);
+        self.prepare_movers(obs, &s, v_abs * (t_total + dt), horizon);
 
         // Threshold of collision: 0, or the current clearance when the
         // robot already sits inside the margin (it may leave, not go deeper).
-        let stat0 = obs.map.clearance(s.x, s.y) - self.r_eff;
+        // The clearance field may exceed the exact distance by up to about
+        // a third of a cell: keep half a cell in hand so rollouts never touch.
+        self.slack = 0.5 * obs.map.grid().resolution();
+        let stat0 = obs.map.clearance(s.x, s.y) - self.r_eff - self.slack;
         let c0 = self.mover_clearance(stat0, s.x, s.y, 0, horizon);
         let limit = c0.min(0.0);
+        self.last_limit = limit;
+        self.last_dt = dt;
+        self.last_horizon = horizon;
 
         let (s0, c0t) = (sin(s.theta), cos(s.theta));
         let record = self.record;
@@ -561,9 +700,29 @@ impl DwaCore {
             self.debug.rollouts.clear();
         }
         self.cands.clear();
-        for &v in &vs {
-            for &w in &ws {
-                let cand = self.rollout(obs.map, &s, (s0, c0t), v, w, (limit, stat0), horizon, req);
+        let brake_v = if req.braking && v_lo > 0.0 {
+            Some(v_lo)
+        } else {
+            None
+        };
+        let pairs = vs.len() * ws.len();
+        let extra = if brake_v.is_some() { ws.len() } else { 0 };
+        for i in 0..pairs + extra {
+            let (v, w, decel) = if i < pairs {
+                (vs[i / ws.len()], ws[i % ws.len()], 0.0)
+            } else {
+                (brake_v.unwrap_or(0.0), ws[i - pairs], l.acc_v)
+            };
+            {
+                let cand = self.rollout(
+                    obs.map,
+                    &s,
+                    (s0, c0t),
+                    (v, w, decel),
+                    (limit, stat0),
+                    horizon,
+                    req,
+                );
                 self.cands.push(cand);
                 if record {
                     let mut r = Rollout {
@@ -651,7 +810,8 @@ impl DwaCore {
     fn prepare_movers(&mut self, obs: &Observation<'_>, s: &RobotState, reach: f64, horizon: f64) {
         self.mover_pos.clear();
         self.mover_rad.clear();
-        let t_total = self.steps as f64 * self.cfg.sim_dt;
+        self.all_movers.clear();
+        let t_total = (self.steps + self.extra_rows) as f64 * self.cfg.sim_dt;
         let predict = self.cfg.predict_movers;
         let mut kept = std::mem::take(&mut self.kept);
         kept.clear();
@@ -661,6 +821,7 @@ impl DwaCore {
             if !finite {
                 continue;
             }
+            self.all_movers.push((m.pos, m.vel, m.radius));
             let d0 = hypot(m.pos[0] - s.x, m.pos[1] - s.y) - m.radius - self.r_eff;
             let travel = if predict {
                 hypot(m.vel[0], m.vel[1]) * t_total
@@ -678,8 +839,9 @@ impl DwaCore {
         }
         self.mover_rad
             .extend(kept.iter().map(|&j| obs.movers[j].radius));
-        self.mover_pos.resize((self.steps + 1) * n, [0.0, 0.0]);
-        for k in 0..=self.steps {
+        let rows = self.steps + self.extra_rows + 1;
+        self.mover_pos.resize(rows * n, [0.0, 0.0]);
+        for k in 0..rows {
             let t = if predict {
                 k as f64 * self.cfg.sim_dt
             } else {
@@ -722,8 +884,7 @@ impl DwaCore {
         map: &StaticMap,
         s: &RobotState,
         (sin0, cos0): (f64, f64),
-        v: f64,
-        w: f64,
+        (v, w, decel): (f64, f64, f64),
         (limit, stat0): (f64, f64),
         horizon: f64,
         req: &StepRequest,
@@ -740,7 +901,6 @@ impl DwaCore {
         let (mut sn, mut cs) = (sin0, cos0);
         let (mut x, mut y) = (s.x, s.y);
         let mut min_c = f64::INFINITY;
-        let mut min_static = f64::INFINITY;
         let mut collided = false;
         // Skipping map lookups far from walls: the clearance field is
         // √2-Lipschitz (bilinear over samples 1-Lipschitz per axis) up to a
@@ -750,12 +910,18 @@ impl DwaCore {
         // critic, V_a, collision) is the same as with the exact value.
         let res = map.grid().resolution();
         let skip_above = horizon + res;
-        let step_len = v.abs() * h * (1.0 + 1e-9);
+        let mut vk = v;
+        // Smallest clearance to the map and the movers' current positions.
+        let mut min_now = f64::INFINITY;
         let mut last = stat0;
         let mut since = 0.0;
         for k in 1..=self.steps {
-            x += v * cs * h;
-            y += v * sn * h;
+            x += vk * cs * h;
+            y += vk * sn * h;
+            let step_len = vk.abs() * h * (1.0 + 1e-9);
+            if decel > 0.0 {
+                vk = (vk - decel * h).max(0.0);
+            }
             let (ns, nc) = (sn * cd + cs * sd, cs * cd - sn * sd);
             sn = ns;
             cs = nc;
@@ -766,32 +932,55 @@ impl DwaCore {
             let stat = if last - std::f64::consts::SQRT_2 * since > skip_above {
                 skip_above
             } else {
-                last = map.clearance(x, y) - self.r_eff;
+                last = map.clearance(x, y) - self.r_eff - self.slack;
                 since = 0.0;
                 last
             };
             let c = self.mover_clearance(stat, x, y, k, horizon);
             min_c = min_c.min(c);
-            min_static = min_static.min(stat);
+            // Braking distance (V_a): movers where they are now (row 0).
+            let snap = if self.cfg.predict_movers {
+                self.mover_clearance(stat, x, y, 0, horizon)
+            } else {
+                c
+            };
+            min_now = min_now.min(snap);
             if c <= limit {
                 collided = true;
                 break;
             }
         }
+        if decel > 0.0 && !collided && self.rest_unsafe(x, y) {
+            // Stopping here would leave the robot in a mover's way.
+            collided = true;
+        }
+        // A constant-speed rollout that does not get the robot out of every
+        // mover's way is only worth taking if the robot can still brake
+        // safely after it: DWA re-plans every period, and a run of ever
+        // slower "safe" choices must not end standing in a mover's path.
+        let mut stranded = false;
+        if decel == 0.0
+            && !collided
+            && self.cfg.predict_movers
+            && !self.all_movers.is_empty()
+            && self.rest_unsafe(x, y)
+        {
+            let next = integrate(s, Command { v, vy: 0.0, w }, self.last_dt);
+            stranded = self.braking_collides_from(map, &next, self.extra_rows);
+        }
         let theta = wrap_angle(s.theta + w * h * self.steps as f64);
         let dist = min_c.max(0.0);
-        // V_a is about stopping before an obstacle: static ones, and movers
-        // when they are taken as standing still. Predicted movers are
-        // handled by the collision test (stopping does not help against a
-        // mover that keeps coming).
-        let brake_dist = if self.cfg.predict_movers {
-            min_static.max(0.0)
-        } else {
-            dist
-        };
+        // V_a (Fox et al.): able to stop before what is sensed now — the
+        // map and the movers where they stand. Movers' motion is covered by
+        // the predicted collision test and, when decelerating, by braking
+        // rollouts that must come to rest out of every mover's way.
+        let brake_dist = min_now.max(0.0);
         let l = &self.robot.limits;
+        // A braking rollout stops by construction: V_a does not apply.
         let admissible = !collided
-            && (!self.cfg.admissible_window
+            && !stranded
+            && (decel > 0.0
+                || !self.cfg.admissible_window
                 || (v.abs() <= (2.0 * brake_dist * l.acc_v).sqrt() + 1e-12
                     && w.abs() <= (2.0 * brake_dist * l.acc_w).sqrt() + 1e-12));
         let bearing = atan2(req.goal[1] - y, req.goal[0] - x);
@@ -801,6 +990,8 @@ impl DwaCore {
             w,
             raw: [heading, dist.min(self.cfg.dist_cap), v.max(0.0)],
             admissible,
+            collided,
+            clear: min_c,
         }
     }
 }
@@ -818,6 +1009,8 @@ pub struct Guidance {
     pub rho: f64,
     /// Held linear speed (\[S\] dual-velocity model), or `None`.
     pub hold_v: Option<f64>,
+    /// Also roll out braking manoeuvres (deceleration strategy).
+    pub braking: bool,
     /// Strategy name for the trace ("normal", "decelerate", …).
     pub mode: &'static str,
 }
@@ -859,6 +1052,7 @@ impl GoalProvider for FinalGoal {
             weights: base,
             rho: 1.0,
             hold_v: None,
+            braking: false,
             mode: "normal",
         }
     }
@@ -943,6 +1137,7 @@ impl<G: GoalProvider> LocalPlanner for DwaPlanner<G> {
                 1.0
             },
             hold_v: g.hold_v,
+            braking: g.braking,
         };
         let res = self.core.plan(obs, &req);
         let d = self.core.debug_mut();
@@ -1210,6 +1405,7 @@ mod tests {
             weights: Weights::default(),
             rho: 1.0,
             hold_v: None,
+            braking: false,
         };
         let res = core.plan(&obs, &req);
         assert_eq!(core.mover_rad.len(), 1, "only the near mover is kept");

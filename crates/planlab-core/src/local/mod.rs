@@ -7,8 +7,10 @@
 //! their observed velocities). They never read the simulator's future.
 
 pub mod dwa;
+pub mod improved;
 pub mod pursuit;
 pub mod registry;
+pub mod route;
 #[cfg(test)]
 pub(crate) mod testkit;
 

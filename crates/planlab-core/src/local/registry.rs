@@ -13,6 +13,9 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
 use super::dwa::{Dwa, DwaConfig, DWA_FIELDS};
+use super::improved::{
+    fusion53_fields, improved_fields, Fusion53Config, ImprovedConfig, ImprovedDwa,
+};
 use super::pursuit::{Pursuit, PursuitConfig};
 use super::{LocalError, LocalPlanner};
 use crate::world::{RobotSpec, RobotState, StaticMap};
@@ -92,6 +95,23 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<DwaConfig>(DWA_FIELDS),
         },
         PlannerInfo {
+            name: "improved-dwa".into(),
+            paper: "[T] Wu 2022 §3.2 (Table 3-1, eq 3-7/3-8); SPEC §4.2".into(),
+            summary: "A* key points as intermediate goals; movers classified ordinary \
+                      dynamic / static / special with deceleration or detour weights and \
+                      virtual goals; relative distance factor ρ near the goal."
+                .into(),
+            fields: owned_field_infos::<ImprovedConfig>(&improved_fields()),
+        },
+        PlannerInfo {
+            name: "fusion-53".into(),
+            paper: "[T] Wu 2022 §3.2–3.3, its reference [53]; SPEC §4.2 baseline".into(),
+            summary: "Baseline fusion: A* key points + DWA with the deceleration weights \
+                      whenever a mover is near; no classification, virtual goal or ρ."
+                .into(),
+            fields: owned_field_infos::<Fusion53Config>(&fusion53_fields()),
+        },
+        PlannerInfo {
             name: "pursuit".into(),
             paper: "none (test baseline)".into(),
             summary: "Naive baseline: steers straight at the goal with a braking profile; \
@@ -112,11 +132,24 @@ pub fn build(
     start: &RobotState,
     goal: [f64; 2],
 ) -> Result<Box<dyn LocalPlanner>, LocalError> {
-    let _ = (map, start);
     match choice.name.as_str() {
         "dwa" => Ok(Box::new(Dwa::new(
             parse_config(&choice.name, &choice.config)?,
             robot,
+            goal,
+        )?)),
+        "improved-dwa" => Ok(Box::new(ImprovedDwa::improved(
+            parse_config(&choice.name, &choice.config)?,
+            robot,
+            map,
+            start,
+            goal,
+        )?)),
+        "fusion-53" => Ok(Box::new(ImprovedDwa::fusion53(
+            parse_config(&choice.name, &choice.config)?,
+            robot,
+            map,
+            start,
             goal,
         )?)),
         "pursuit" => Ok(Box::new(Pursuit::new(
@@ -215,6 +248,18 @@ pub fn field_infos<T: Serialize + Default>(table: &[(&str, &str, &str)]) -> Vec<
         }
     }
     out
+}
+
+/// [`field_infos`] for a table of owned strings (tables built at run time,
+/// e.g. a nested engine's fields under a prefix).
+pub fn owned_field_infos<T: Serialize + Default>(
+    table: &[(String, String, String)],
+) -> Vec<FieldInfo> {
+    let refs: Vec<(&str, &str, &str)> = table
+        .iter()
+        .map(|(n, u, d)| (n.as_str(), u.as_str(), d.as_str()))
+        .collect();
+    field_infos::<T>(&refs)
 }
 
 /// Checks a planner parameter is finite and ≥ `min` (or > `min` when
