@@ -258,27 +258,32 @@ test('bad input lands in the message bar and the page keeps working', async () =
 
 test('determinism: the page and the native CLI give the same trace hash', async () => {
   assert.ok(fs.existsSync(CLI), 'build target/release/planlab first (cargo build --release -p planlab-cli)');
-  const run = spawnSync(CLI, ['run', path.join(REPO, 'assets/scenarios', DEMO), '--json'], { encoding: 'utf8', timeout: 120_000 });
-  assert.equal(run.status, 0, run.stderr);
-  const native = JSON.parse(run.stdout);
-  assert.ok(native.trace_hash, `planlab run --json has trace_hash: ${run.stdout}`);
-  const { page, problems } = await openRobot();
-  await setSpeed(page, 8);
-  await page.click('#play');
-  const outcome = await waitOutcome(page);
-  assert.equal(outcome, native.outcome);
-  // The CLI prints the u64 in hex, the page in decimal.
-  const hash = await bodyData(page, 'traceHash');
-  const nativeDec = BigInt(`0x${native.trace_hash}`).toString();
-  console.log(`trace hash: native ${native.trace_hash} (= ${nativeDec}), wasm ${hash} (${outcome}, ${native.steps} steps)`);
-  assert.equal(hash, nativeDec);
-  // The page's metrics are the CLI's.
-  const pageMetrics = await hooks(page, 'metrics');
-  for (const k of ['time_s', 'path_length_m', 'min_clearance_m', 'mean_clearance_m', 'total_turn_rad', 'speed_drops']) {
-    assert.equal(pageMetrics[k], native[k], k);
+  // The demo (baseline DWA), and an improved-DWA reproduction preset when
+  // there is one (global path, classes, virtual goals all go into the trace).
+  const cases = [DEMO, 'T-fig3-11.json'].filter((f) => fs.existsSync(path.join(REPO, 'assets/scenarios', f)));
+  for (const file of cases) {
+    const run = spawnSync(CLI, ['run', path.join(REPO, 'assets/scenarios', file), '--json'], { encoding: 'utf8', timeout: 120_000 });
+    assert.equal(run.status, 0, run.stderr);
+    const native = JSON.parse(run.stdout);
+    assert.ok(native.trace_hash, `planlab run --json has trace_hash: ${run.stdout}`);
+    const { page, problems } = await openRobot(file);
+    await setSpeed(page, 8);
+    await page.click('#play');
+    const outcome = await waitOutcome(page);
+    assert.equal(outcome, native.outcome, file);
+    // The CLI prints the u64 in hex, the page in decimal.
+    const hash = await bodyData(page, 'traceHash');
+    const nativeDec = BigInt(`0x${native.trace_hash}`).toString();
+    console.log(`${file} (${native.planner}): trace hash native ${native.trace_hash} (= ${nativeDec}), wasm ${hash}; ${outcome} after ${native.steps} steps`);
+    assert.equal(hash, nativeDec, file);
+    // The page's metrics are the CLI's.
+    const pageMetrics = await hooks(page, 'metrics');
+    for (const k of ['time_s', 'path_length_m', 'min_clearance_m', 'mean_clearance_m', 'total_turn_rad', 'speed_drops', 'mean_tracking_error_m']) {
+      assert.equal(pageMetrics[k], native[k], `${file}: ${k}`);
+    }
+    assert.deepEqual(problems, []);
+    await page.close();
   }
-  assert.deepEqual(problems, []);
-  await page.close();
 });
 
 test('frame time on the crowded scene (20 movers, DWA 20 × 40 samples)', async () => {

@@ -345,6 +345,11 @@ function setPlaying(on: boolean): void {
   ui.play.textContent = playing ? '❚❚ Pause' : '▶ Play';
   ui.play.dataset.playing = String(playing);
   ui.body.dataset.playing = String(playing);
+  // The status line and metrics say what state the run is in right away.
+  if (sim) {
+    refreshSlow();
+    plots.flush(true);
+  }
   if (playing) {
     lastFrame = performance.now();
     accum = 0;
