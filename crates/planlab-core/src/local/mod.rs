@@ -6,6 +6,7 @@
 //! state, the goal, the static map and the movers within sensing range (with
 //! their observed velocities). They never read the simulator's future.
 
+pub mod cleaning;
 pub mod dwa;
 pub mod improved;
 pub mod pursuit;

@@ -12,6 +12,7 @@
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
+use super::cleaning;
 use super::dwa::{Dwa, DwaConfig, DWA_FIELDS};
 use super::improved::{
     fusion53_fields, improved_fields, Fusion53Config, ImprovedConfig, ImprovedDwa,
@@ -119,6 +120,23 @@ pub fn list() -> Vec<PlannerInfo> {
                 .into(),
             fields: field_infos::<PursuitConfig>(PursuitConfig::FIELDS),
         },
+        PlannerInfo {
+            name: "cleaning-dwa".into(),
+            paper: "[C] Zhang et al. 2020 §2–3; SPEC §4.4".into(),
+            summary: "Cleaning-robot DWA (omnidirectional v_x, v_y, ω) along an A* path: \
+                      costmap + Manhattan goal / path costs, vertical-load acceleration \
+                      limit, least-squares odometry compensation."
+                .into(),
+            fields: cleaning::field_list(false),
+        },
+        PlannerInfo {
+            name: "traditional-dwa".into(),
+            paper: "[C] Zhang et al. 2020 baseline; SPEC §4.4".into(),
+            summary: "[C]'s traditional DWA: the cleaning DWA's cost without the load \
+                      limit and without odometry compensation."
+                .into(),
+            fields: cleaning::field_list(true),
+        },
     ]
 }
 
@@ -157,6 +175,21 @@ pub fn build(
             robot,
             goal,
         )?)),
+        name @ ("cleaning-dwa" | "traditional-dwa") => {
+            let name = if name == "cleaning-dwa" {
+                "cleaning-dwa"
+            } else {
+                "traditional-dwa"
+            };
+            Ok(Box::new(cleaning::CleaningDwa::new(
+                name,
+                cleaning::parse(name, &choice.config)?,
+                robot,
+                map,
+                start,
+                goal,
+            )?))
+        }
         _ => Err(LocalError::UnknownPlanner(choice.name.clone())),
     }
 }

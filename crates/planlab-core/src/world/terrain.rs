@@ -14,7 +14,7 @@
 //!   the spectrum move with speed as a road profile's does; scaling by s
 //!   makes a parked robot quiet. Presets (σ at v_ref, v_ref, corr_length):
 //!   `flat` 0; `asphalt` 0.35 m/s² at 0.4 m/s over 0.10 m (small
-//!   vibration); `hollow-brick` 1.1 m/s² at 0.3 m/s over 0.08 m (bricks with
+//!   vibration); `hollow-brick` 1.3 m/s² at 0.3 m/s over 0.08 m (bricks with
 //!   holes ~ 0.1 m apart: large, fast bumps).
 //! - **Slip** ([C] eq 15–17): the true body-frame increment of a step is
 //!   K_true·u + e, where u = (v_x, v_y, ω)·dt is the commanded (wheel
@@ -24,6 +24,11 @@
 //!   ‖(u_x, u_y)‖. K_true = identity and zero noise (the default) is "no
 //!   slip". When slip is on, every step reports the wheel and the true
 //!   ("laser odometry") increments, which the cleaning DWA fits K from.
+//! - **Bump drag**: hitting bumps costs speed. A step whose a_z is positive
+//!   (the wheels unload, [C] §4.3: "颠簸打滑") loses `bump_drag`·a_z·dt of
+//!   translational speed, in the true motion and in the wheel velocities the
+//!   robot reports, so a planner must accelerate back — in the middle of the
+//!   bumpy stretch. Default 0 (off).
 //! - **Vehicle** ([C] eq 8, Table 1): the four wheel vertical loads from the
 //!   body accelerations (a_x, a_y, a_z). a_x, a_y are the change of the true
 //!   velocity between consecutive steps, in the body frame (what an IMU on
@@ -34,8 +39,9 @@
 //!
 //! The robot's reported velocities (`RobotState::v, vy, w`) stay the wheel
 //! (commanded) velocities: that is what the motor controllers hold and what
-//! a planner's dynamic window starts from. Only the pose moves by the true
-//! increment.
+//! a ROS DWA centres its dynamic window on (wheel odometry). Only the pose
+//! moves by the true increment, and the wheel loads use the true
+//! accelerations (an IMU's).
 
 use serde::{Deserialize, Serialize};
 
@@ -67,7 +73,7 @@ impl Road {
         match self {
             Road::Flat => (0.0, 1.0, 0.1),
             Road::Asphalt => (0.35, 0.4, 0.10),
-            Road::HollowBrick => (1.1, 0.3, 0.08),
+            Road::HollowBrick => (1.3, 0.3, 0.08),
         }
     }
 }
@@ -221,6 +227,9 @@ pub struct TerrainSpec {
     pub accel_z_corr_length: Option<f64>,
     /// Wheel slip (default: none).
     pub slip: SlipSpec,
+    /// Speed a bump takes away: a step with a_z > 0 loses
+    /// `bump_drag`·a_z·dt of translational speed (wheels and body), 1.
+    pub bump_drag: f64,
     /// Vehicle model for the wheel loads (default: none, no loads).
     pub vehicle: Option<VehicleSpec>,
 }
@@ -249,6 +258,7 @@ impl TerrainSpec {
             check_positive("terrain.accel_z_corr_length (m)", l)?;
         }
         self.slip.validate()?;
+        check_min("terrain.bump_drag (1)", self.bump_drag, 0.0)?;
         if let Some(v) = &self.vehicle {
             v.validate("terrain.vehicle")?;
         }
@@ -316,9 +326,27 @@ impl Terrain {
 
     /// Applies `cmd` (already limited to what the motors can do) for `dt`.
     pub fn step(&mut self, state: &RobotState, cmd: Command, dt: f64) -> TerrainStep {
-        let (next, odometry) = if self.slip_on && dt > 0.0 {
-            let u = [cmd.v * dt, cmd.vy * dt, cmd.w * dt];
-            let truth = self.slipped(u);
+        let dt_ok = dt > 0.0;
+        let u = [cmd.v * dt, cmd.vy * dt, cmd.w * dt];
+        let mut truth = if self.slip_on && dt_ok {
+            self.slipped(u)
+        } else {
+            u
+        };
+        // Road: a_z over this step at the speed actually driven.
+        let trans = (truth[0] * truth[0] + truth[1] * truth[1]).sqrt();
+        let speed = if dt_ok { trans / dt } else { 0.0 };
+        let accel_z = self.road_step(speed, dt);
+        // Bumps sap speed: the wheels slow with the body.
+        let mut keep = 1.0;
+        let drag = self.spec.bump_drag;
+        if drag > 0.0 && accel_z > 0.0 && speed > 0.0 {
+            keep = (1.0 - drag * accel_z * dt / speed).max(0.0);
+            truth[0] *= keep;
+            truth[1] *= keep;
+        }
+        let modelled = self.slip_on || drag > 0.0;
+        let (next, odometry) = if modelled && dt_ok {
             let moved = integrate(
                 state,
                 Command {
@@ -328,9 +356,12 @@ impl Terrain {
                 },
                 dt,
             );
+            // The velocities stay the wheel ones (what the motors hold,
+            // after a bump slowed them): ROS's DWA centres its window on
+            // wheel odometry.
             let next = RobotState {
-                v: cmd.v,
-                vy: cmd.vy,
+                v: cmd.v * keep,
+                vy: cmd.vy * keep,
                 w: cmd.w,
                 ..moved
             };
@@ -347,7 +378,7 @@ impl Terrain {
         // True world-frame velocity of this step (Euler: the step moves
         // along the heading it started with).
         let (s0, c0) = (sin(state.theta), cos(state.theta));
-        let vel = if dt > 0.0 {
+        let vel = if dt_ok {
             [(next.x - state.x) / dt, (next.y - state.y) / dt]
         } else {
             [0.0, 0.0]
@@ -356,9 +387,8 @@ impl Terrain {
             .prev_vel
             .unwrap_or([state.v * c0 - state.vy * s0, state.v * s0 + state.vy * c0]);
         self.prev_vel = Some(vel);
-        let accel_z = self.road_step(vel, dt);
         let wheel_loads = self.spec.vehicle.map(|veh| {
-            let (a_x, a_y) = if dt > 0.0 {
+            let (a_x, a_y) = if dt_ok {
                 let (ax_w, ay_w) = ((vel[0] - prev[0]) / dt, (vel[1] - prev[1]) / dt);
                 // Into the body frame at the step's start heading.
                 (c0 * ax_w + s0 * ay_w, -s0 * ax_w + c0 * ay_w)
@@ -399,14 +429,13 @@ impl Terrain {
         out
     }
 
-    /// Advances the road process over the step driven at world velocity
-    /// `vel` and returns a_z.
-    fn road_step(&mut self, vel: [f64; 2], dt: f64) -> f64 {
+    /// Advances the road process over a step driven at `speed` and returns
+    /// a_z.
+    fn road_step(&mut self, speed: f64, dt: f64) -> f64 {
         let (sigma, v_ref, corr) = self.road;
         if sigma == 0.0 {
             return 0.0;
         }
-        let speed = (vel[0] * vel[0] + vel[1] * vel[1]).sqrt();
         let ds = speed * dt.max(0.0);
         let rho = exp(-ds / corr);
         let n = self.road_rng.normal();
@@ -537,6 +566,34 @@ mod tests {
     }
 
     #[test]
+    fn bumps_sap_speed_in_motion_and_wheels() {
+        let spec = TerrainSpec {
+            road: Road::HollowBrick,
+            bump_drag: 1.0,
+            ..Default::default()
+        };
+        let mut t = Terrain::new(spec, 3).unwrap();
+        let mut s = RobotState::default();
+        let (mut lost, mut bumps) = (0.0, 0);
+        for _ in 0..200 {
+            let c = cmd(0.3, 0.0, 0.0);
+            let r = t.step(&s, c, 0.1);
+            let o = r.odometry.expect("bump drag reports odometry");
+            let want = if r.accel_z > 0.0 {
+                bumps += 1;
+                (0.3 - r.accel_z * 0.1).max(0.0)
+            } else {
+                0.3
+            };
+            assert!((r.next.v - want).abs() < 1e-12, "{} vs {want}", r.next.v);
+            assert!((o.laser[0] - want * 0.1).abs() < 1e-12);
+            lost += 0.3 - r.next.v;
+            s = r.next;
+        }
+        assert!(bumps > 50 && lost > 1.0, "{bumps} {lost}");
+    }
+
+    #[test]
     fn noise_is_seeded_and_deterministic() {
         let spec = TerrainSpec {
             road: Road::HollowBrick,
@@ -590,7 +647,7 @@ mod tests {
         let a = stats(Road::Asphalt, 0.4);
         let b = stats(Road::HollowBrick, 0.3);
         assert!((a - 0.35).abs() < 0.05, "asphalt rms {a}");
-        assert!((b - 1.1).abs() < 0.1, "brick rms {b}");
+        assert!((b - 1.3).abs() < 0.1, "brick rms {b}");
         // Amplitude grows with speed.
         assert!(stats(Road::HollowBrick, 0.15) < 0.7 * b);
     }
@@ -633,6 +690,13 @@ mod tests {
                 ..Default::default()
             },
             "terrain.slip.noise_xy",
+        );
+        bad(
+            TerrainSpec {
+                bump_drag: f64::NAN,
+                ..Default::default()
+            },
+            "terrain.bump_drag",
         );
         bad(
             TerrainSpec {
