@@ -1,7 +1,7 @@
 //! Experiments of \[C\] Zhang et al. 2020 (cleaning-robot DWA): ids `C-tab3`,
 //! `C-tab5`.
 //!
-//! Both run the same scene ([C] Fig 7, no obstacles): the omnidirectional
+//! Both run the same scene (\[C\] Fig 7, no obstacles): the omnidirectional
 //! cleaning robot follows a polyline A* path across an open yard, stopping
 //! at eight cleaning target points, with wheel slip, road vibration and bump
 //! drag (see [`crate::world::terrain`]), once with `cleaning-dwa` (load limit

@@ -1,7 +1,7 @@
 //! Ground truth of motion: how a command becomes the robot's true motion.
 //!
 //! Flat ground with no slip by default: the true motion is exactly the
-//! commanded one ([`super::robot::integrate`]). The cleaning-robot paper [C]
+//! commanded one ([`super::robot::integrate`]). The cleaning-robot paper \[C\]
 //! adds three things, all optional and all seeded:
 //!
 //! - **Road model** (vertical acceleration a_z from road roughness). The
@@ -16,7 +16,7 @@
 //!   `flat` 0; `asphalt` 0.35 m/s² at 0.4 m/s over 0.10 m (small
 //!   vibration); `hollow-brick` 1.3 m/s² at 0.3 m/s over 0.08 m (bricks with
 //!   holes ~ 0.1 m apart: large, fast bumps).
-//! - **Slip** ([C] eq 15–17): the true body-frame increment of a step is
+//! - **Slip** (\[C\] eq 15–17): the true body-frame increment of a step is
 //!   K_true·u + e, where u = (v_x, v_y, ω)·dt is the commanded (wheel
 //!   odometry) increment and e is Gaussian noise whose standard deviation
 //!   grows with the motion: σ_xy = `noise_xy`·‖(u_x, u_y)‖ on each
@@ -25,16 +25,16 @@
 //!   slip". When slip is on, every step reports the wheel and the true
 //!   ("laser odometry") increments, which the cleaning DWA fits K from.
 //! - **Bump drag**: hitting bumps costs speed. A step whose a_z is positive
-//!   (the wheels unload, [C] §4.3: "颠簸打滑") loses `bump_drag`·a_z·dt of
+//!   (the wheels unload, \[C\] §4.3: "颠簸打滑") loses `bump_drag`·a_z·dt of
 //!   translational speed, in the true motion and in the wheel velocities the
 //!   robot reports, so a planner must accelerate back — in the middle of the
 //!   bumpy stretch. Default 0 (off).
-//! - **Vehicle** ([C] eq 8, Table 1): the four wheel vertical loads from the
+//! - **Vehicle** (\[C\] eq 8, Table 1): the four wheel vertical loads from the
 //!   body accelerations (a_x, a_y, a_z). a_x, a_y are the change of the true
 //!   velocity between consecutive steps, in the body frame (what an IMU on
 //!   the body measures, so turning adds its centripetal part).
 //!
-//! Sign of a_z: [C] eq 1 writes the force balance as ΣF_z = m(g − a_z), so
+//! Sign of a_z: \[C\] eq 1 writes the force balance as ΣF_z = m(g − a_z), so
 //! a positive a_z *lightens* the wheels; we keep the paper's convention.
 //!
 //! The robot's reported velocities (`RobotState::v, vy, w`) stay the wheel
