@@ -435,13 +435,14 @@ impl SimHandle {
         out
     }
 
-    /// Plot series from trace row `from` on, stride 4:
-    /// `t (s), v (m/s), ω (rad/s), clearance (m)`.
+    /// Plot series from trace row `from` on, stride 5:
+    /// `t (s), v (m/s), v_y (m/s, 0 unless omnidirectional), ω (rad/s),
+    /// clearance (m)`.
     pub fn series(&self, from: u32) -> Vec<f64> {
         let rows = self.ep.trace().steps.get(from as usize..).unwrap_or(&[]);
-        let mut out = Vec::with_capacity(rows.len() * 4);
+        let mut out = Vec::with_capacity(rows.len() * 5);
         for r in rows {
-            out.extend_from_slice(&[r.t, r.v, r.w, r.clearance]);
+            out.extend_from_slice(&[r.t, r.v, r.vy, r.w, r.clearance]);
         }
         out
     }

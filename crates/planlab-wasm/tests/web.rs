@@ -230,7 +230,7 @@ fn episode_runs_to_reached_with_typed_arrays() {
     // Series and trail: one row per step plus the start row, from any row.
     let n = sim.trace_len() as usize;
     assert_eq!(n as f64, sim.steps() + 1.0);
-    assert_eq!(sim.series(0).len(), 4 * n);
+    assert_eq!(sim.series(0).len(), 5 * n);
     assert_eq!(sim.trail(0).len(), 2 * n);
     assert_eq!(sim.trail(n as u32 - 2).len(), 4);
     assert!(sim.trail(n as u32 + 5).is_empty());

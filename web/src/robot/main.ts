@@ -37,7 +37,7 @@ const MAX_STEPS_PER_FRAME = 8;
 /** Simulation time budget per frame, ms: when the steps due would take
  *  longer (a slow machine, a heavy planner) the sim runs slower than the
  *  chosen speed instead of dropping frames. */
-const SIM_BUDGET_MS = 9;
+const SIM_BUDGET_MS = 6;
 /** Metrics, mover list and status refresh interval while running, ms. */
 const SLOW_REFRESH_MS = 250;
 
@@ -178,7 +178,8 @@ const params = new ParamPanel(ui.params, (config) => {
 });
 
 // ------------------------------------------------------------------ scene
-function robotShape(json: string): [RobotShape, string] {
+/** Footprint, a one-line description and whether the drive is omnidirectional. */
+function robotShape(json: string): [RobotShape, string, boolean] {
   const r = JSON.parse(json) as {
     drive?: string;
     footprint?: { shape?: string; radius?: number; length?: number; width?: number };
@@ -191,7 +192,7 @@ function robotShape(json: string): [RobotShape, string] {
       : { kind: 'circle', radius: fp.radius ?? 0.2 };
   const size = shape.kind === 'circle' ? `⌀ ${(2 * shape.radius).toFixed(2)} m` : `${shape.length}×${shape.width} m`;
   const vmax = r.limits?.v_max;
-  return [shape, `${r.drive ?? '?'} · ${size}${vmax !== undefined ? ` · ≤ ${vmax} m/s` : ''}`];
+  return [shape, `${r.drive ?? '?'} · ${size}${vmax !== undefined ? ` · ≤ ${vmax} m/s` : ''}`, r.drive === 'omnidirectional'];
 }
 
 /** Copies what the SimHandle reports into the scene (after steps/edits). */
@@ -445,7 +446,7 @@ function install(next: SimHandle): void {
   } finally {
     map.free();
   }
-  const [shape, desc] = robotShape(sim.robot());
+  const [shape, desc, omni] = robotShape(sim.robot());
   view.scene.robot = shape;
   const st = sim.start();
   view.scene.start = [st[0], st[1], st[2]];
@@ -454,7 +455,7 @@ function install(next: SimHandle): void {
   ui.simDt.textContent = `${dt} s`;
   const choice = JSON.parse(sim.plannerChoice()) as { name: string; config: Record<string, unknown> };
   selectPlanner(choice.name, choice.config);
-  plots.clear();
+  plots.clear(omni);
   clearMetrics();
   delete ui.body.dataset.traceHash;
   outcome = sim.outcome;
