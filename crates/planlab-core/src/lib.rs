@@ -12,6 +12,7 @@
 //!   §3.2.1 and Bottom-Up segmentation of Ge & Li §4.1 (SPEC §2).
 #![warn(missing_docs)]
 
+pub mod apf;
 pub mod global;
 pub mod local;
 pub mod map;
