@@ -171,7 +171,58 @@ def t_tab3_2():
         g, (1.0, 2.0), (18.5, 9.5), 0.0, movers, "improved-dwa", 300.0, stuck_time=60.0)
 
 
+def s_map(res):
+    """[S]-style grid map (Fig 2, 10): two long thin walls make the safe A*
+    path an S (up past wall A, down under wall B, up to the goal); two
+    blocks sit in the open, off the path. 24 × 16 m."""
+    g = Grid(24, 16, res)
+    g.rect(7.0, 0.0, 7.5, 10.5)     # wall A, from the bottom
+    g.rect(15.0, 5.5, 15.5, 16.0)   # wall B, from the top
+    g.rect(11.0, 12.0, 12.0, 13.0)  # block in the middle corridor
+    g.rect(19.0, 5.5, 20.0, 6.5)    # block in the last corridor
+    return g
+
+
+S_START, S_GOAL = (2.0, 2.0), (22.0, 13.5)
+
+
+def s_fig6():
+    return scenario(
+        "[S] Fig 6: Bottom-Up feature nodes",
+        "The [S] map at 0.05 m: safe A* (24-neighbourhood, ε 100) finds a path of a few "
+        "hundred nodes; Bottom-Up keeps a handful of feature nodes as temporary goals "
+        "([S] Fig 6: 80 → 7).",
+        s_map(0.05), S_START, S_GOAL, 0.0, [], "safe-dual-dwa", 200.0, robot=ROBOT_S)
+
+
+def s_tab1():
+    return scenario(
+        "[S] Table 1 / Fig 10–11: dual velocity vs preliminary fusion",
+        "The [S] map as a coarse grid (0.5 m cells, like the paper's): the preliminary "
+        "fusion steers to every safe A* node and slows for each; the dual-velocity DWA "
+        "steers to the Bottom-Up feature nodes and holds its speed near them.",
+        s_map(0.5), S_START, S_GOAL, 0.0, [], "safe-dual-dwa", 400.0, robot=ROBOT_S,
+        stuck_time=60.0)
+
+
+def s_fig12():
+    movers = [
+        pacing(1, [1.0, 8.0], [6.0, 8.0], 0.3, 0.3),     # across the climb past wall A
+        pacing(2, [11.5, 2.0], [11.5, 8.0], 0.3, 0.3),   # across the run under wall B
+        pacing(3, [17.0, 10.0], [23.0, 10.0], 0.3, 0.3),  # across the climb to the goal
+    ]
+    return scenario(
+        "[S] Fig 12: three back-and-forth movers",
+        "The [S] Table 1 map with three discs pacing back and forth across the path "
+        "(0.3 m/s, radius 0.3 m).",
+        s_map(0.5), S_START, S_GOAL, 0.0, movers, "safe-dual-dwa", 400.0, robot=ROBOT_S,
+        stuck_time=60.0)
+
+
 SCENES = {
+    "S-fig6": s_fig6,
+    "S-tab1": s_tab1,
+    "S-fig12": s_fig12,
     "T-fig3-2": t_fig3_2,
     "T-fig3-11": t_fig3_11,
     "T-fig3-13a": lambda: t_fig3_13("a"),

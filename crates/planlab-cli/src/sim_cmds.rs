@@ -293,6 +293,14 @@ fn experiment_table(r: &ExperimentResult) -> String {
         s.truncate(s.trim_end_matches(' ').len());
         s.push('\n');
     }
+    for (k, v) in &r.figures {
+        let v = if v.fract() == 0.0 && v.abs() < 1e15 {
+            format!("{v:.0}")
+        } else {
+            format!("{v:.4}")
+        };
+        s.push_str(&format!("  {k}: {v}\n"));
+    }
     s.push_str(&format!(
         "  relation: {}\n  holds: {}\n\n",
         r.relation,

@@ -7,6 +7,7 @@
 //! their observed velocities). They never read the simulator's future.
 
 pub mod cleaning;
+pub mod dual;
 pub mod dwa;
 pub mod improved;
 pub mod pursuit;

@@ -13,6 +13,7 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
 use super::cleaning;
+use super::dual::{dual_fields, preliminary_fields, DualConfig, PreliminaryConfig, SafeDualDwa};
 use super::dwa::{Dwa, DwaConfig, DWA_FIELDS};
 use super::improved::{
     fusion53_fields, improved_fields, Fusion53Config, ImprovedConfig, ImprovedDwa,
@@ -113,6 +114,23 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: owned_field_infos::<Fusion53Config>(&fusion53_fields()),
         },
         PlannerInfo {
+            name: "safe-dual-dwa".into(),
+            paper: "[S] Ge & Li 2022 §2–4 (eq 9–12, §4.2, §5); SPEC §4.3".into(),
+            summary: "Safe A* path → Bottom-Up feature nodes as temporary goals; dual \
+                      velocity model (speed held within d of a temporary goal); detour \
+                      replanning (θa ≥ 90° → next temporary goal)."
+                .into(),
+            fields: owned_field_infos::<DualConfig>(&dual_fields()),
+        },
+        PlannerInfo {
+            name: "preliminary-fusion".into(),
+            paper: "[S] Ge & Li 2022 §2.4 baseline; SPEC §4.3".into(),
+            summary: "Baseline fusion: every safe A* path node a temporary goal, the normal \
+                      DWA window (the robot slows at each)."
+                .into(),
+            fields: owned_field_infos::<PreliminaryConfig>(&preliminary_fields()),
+        },
+        PlannerInfo {
             name: "pursuit".into(),
             paper: "none (test baseline)".into(),
             summary: "Naive baseline: steers straight at the goal with a braking profile; \
@@ -164,6 +182,20 @@ pub fn build(
             goal,
         )?)),
         "fusion-53" => Ok(Box::new(ImprovedDwa::fusion53(
+            parse_config(&choice.name, &choice.config)?,
+            robot,
+            map,
+            start,
+            goal,
+        )?)),
+        "safe-dual-dwa" => Ok(Box::new(SafeDualDwa::safe_dual(
+            parse_config(&choice.name, &choice.config)?,
+            robot,
+            map,
+            start,
+            goal,
+        )?)),
+        "preliminary-fusion" => Ok(Box::new(SafeDualDwa::preliminary(
             parse_config(&choice.name, &choice.config)?,
             robot,
             map,

@@ -70,6 +70,10 @@ pub struct ExperimentResult {
     pub relation: String,
     /// Whether it holds.
     pub holds: bool,
+    /// Figures beyond the runs' metrics (e.g. the node counts of `S-fig6`),
+    /// by name; left out of the JSON when there are none.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub figures: BTreeMap<String, f64>,
 }
 
 /// Every experiment, in a fixed order (\[T\], \[S\], \[C\]).
@@ -134,6 +138,7 @@ pub fn run(exp: &Experiment) -> Result<ExperimentResult, SimError> {
         holds: (exp.holds)(&runs),
         runs,
         relation: exp.relation.to_string(),
+        figures: s_dual::figures(exp.id)?,
     })
 }
 
