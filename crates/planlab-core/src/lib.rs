@@ -13,6 +13,7 @@
 #![warn(missing_docs)]
 
 pub mod apf;
+pub mod arm;
 pub mod global;
 pub mod local;
 pub mod map;

@@ -1,0 +1,119 @@
+//! A 7-DOF arm beside a moving human hand (SPEC §5 "Arm", \[T\] §2.4 and
+//! §5.3.3).
+//!
+//! - [`model`]: the URDF-style arm file (`assets/arm/tiago.json`), parsed
+//!   with typed errors.
+//! - [`kinematics`]: forward kinematics of every joint frame, the positional
+//!   Jacobian, damped-least-squares IK with joint limits.
+//! - [`geometry`]: links as capsules, distance and collision against sphere
+//!   and capsule obstacles (parry3d).
+//! - [`hand`]: the moving hand and forearm with scripted reaching motions.
+
+pub mod geometry;
+pub mod hand;
+pub mod kinematics;
+pub mod model;
+
+pub use geometry::{link_capsules, min_distance, LinkCapsule, Obstacle3};
+pub use hand::{HandMotion, HandPreset, HandSpec};
+pub use kinematics::{Frames, IkConfig, IkReport};
+pub use model::{ArmModel, ArmSpec, Frame, JointSpec};
+
+use thiserror::Error;
+
+/// Why an arm file, arm scenario or arm target is unusable.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum ArmError {
+    /// Malformed JSON, a wrong type, a missing or unknown field.
+    #[error("arm JSON error: {0}")]
+    Json(String),
+    /// The chain has no joints.
+    #[error("the arm has no joints: `joints` needs at least one")]
+    NoJoints,
+    /// The chain has more joints than supported.
+    #[error("the arm has {found} joints; at most {max} are supported")]
+    TooManyJoints {
+        /// Joints in the file.
+        found: usize,
+        /// [`model::MAX_JOINTS`].
+        max: usize,
+    },
+    /// A number is NaN or infinite (names the field).
+    #[error("{0} is not a finite number")]
+    NotFinite(String),
+    /// A joint's lower limit exceeds its upper limit.
+    #[error("joint {joint}: lower limit {min} rad exceeds upper limit {max} rad")]
+    LimitsInverted {
+        /// Joint name.
+        joint: String,
+        /// Lower limit, rad.
+        min: f64,
+        /// Upper limit, rad.
+        max: f64,
+    },
+    /// A joint axis has zero length.
+    #[error("joint {0}: the axis must not be zero")]
+    ZeroAxis(String),
+    /// A joint vector has the wrong number of entries.
+    #[error("{what} has {found} joint values; the arm has {expected} joints")]
+    WrongJointCount {
+        /// What vector.
+        what: String,
+        /// Joints of the arm.
+        expected: usize,
+        /// Values given.
+        found: usize,
+    },
+    /// A joint value lies outside its limits.
+    #[error("joint {joint}: {value} rad is outside its limits [{min}, {max}] rad")]
+    OutsideLimits {
+        /// Joint name.
+        joint: String,
+        /// The value, rad.
+        value: f64,
+        /// Lower limit, rad.
+        min: f64,
+        /// Upper limit, rad.
+        max: f64,
+    },
+    /// A target lies beyond the arm's reach.
+    #[error("{what} {target:?} is out of reach: {distance:.3} m from the shoulder, the arm reaches {reach:.3} m")]
+    OutOfReach {
+        /// Which target (`goal`, `start`).
+        what: String,
+        /// The point, m.
+        target: [f64; 3],
+        /// Its distance from joint 1, m.
+        distance: f64,
+        /// The chain's reach, m.
+        reach: f64,
+    },
+    /// A target lies inside an obstacle.
+    #[error("{what} {target:?} lies inside an obstacle ({obstacle})")]
+    InsideObstacle {
+        /// Which target (`goal`, `start`).
+        what: String,
+        /// The point, m.
+        target: [f64; 3],
+        /// Which obstacle.
+        obstacle: String,
+    },
+    /// IK could not bring the tool to a target (joint limits, or a pocket
+    /// of the workspace the chain cannot enter).
+    #[error("{what} {target:?} cannot be reached: IK stops {error_m:.3} m away")]
+    IkFailed {
+        /// Which target.
+        what: String,
+        /// The point, m.
+        target: [f64; 3],
+        /// Remaining error, m.
+        error_m: f64,
+    },
+    /// Any other out-of-range or inconsistent value (names the field).
+    #[error("invalid arm setting: {0}")]
+    Invalid(String),
+}
+
+#[cfg(test)]
+mod tests;
