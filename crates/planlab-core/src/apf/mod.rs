@@ -11,6 +11,8 @@
 //!   α‖F_attr‖ + β‖F_rep‖), the relative distance rule (§4.2.2) and dynamic
 //!   obstacle prediction at t+1 and t+2 (§4.2.3).
 //! - [`predict`]: the [`Predictor`] trait, [`ConstantVelocity`].
+//! - [`local`]: the 2D APF as a [`crate::local::LocalPlanner`] (`apf`,
+//!   `sampling-apf`).
 //!
 //! ```
 //! use glam::DVec2;
@@ -29,6 +31,7 @@
 //! ```
 
 pub mod field;
+pub mod local;
 pub mod planner;
 pub mod predict;
 pub mod vector;

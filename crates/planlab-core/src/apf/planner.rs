@@ -34,7 +34,8 @@ pub struct ObstacleObs<V> {
     /// Radius, m (0 for a point).
     pub radius: f64,
     /// Velocity if the sensor measures it, m/s (else tracks difference
-    /// positions).
+    /// positions). A measured velocity of exactly zero marks a static
+    /// obstacle: it gets no track and no predicted copies.
     pub velocity: Option<V>,
 }
 
@@ -190,7 +191,7 @@ impl<V: ApfVector> Apf<V> {
     /// Records the obstacles observed at time `t` (s) in their tracks;
     /// [`Apf::step`] does this itself.
     pub fn observe(&mut self, t: f64, obstacles: &[ObstacleObs<V>]) {
-        for o in obstacles {
+        for o in obstacles.iter().filter(|o| o.velocity != Some(V::ZERO)) {
             let vel = o.velocity.map(|v| v.to_xyz());
             match self.tracks.iter_mut().find(|(id, _)| *id == o.id) {
                 Some((_, tr)) => tr.push(t, o.centre.to_xyz(), vel),
@@ -202,8 +203,11 @@ impl<V: ApfVector> Apf<V> {
             }
         }
         // Obstacles no longer seen lose their track.
-        self.tracks
-            .retain(|(id, _)| obstacles.iter().any(|o| o.id == *id));
+        self.tracks.retain(|(id, _)| {
+            obstacles
+                .iter()
+                .any(|o| o.id == *id && o.velocity != Some(V::ZERO))
+        });
     }
 
     /// Predicted obstacles (t+1, t+2) of the current tracks.

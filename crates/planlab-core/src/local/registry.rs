@@ -20,6 +20,7 @@ use super::improved::{
 };
 use super::pursuit::{Pursuit, PursuitConfig};
 use super::{LocalError, LocalPlanner};
+use crate::apf::local::{self as apf_local, ApfLocal, ApfLocalConfig};
 use crate::world::{RobotSpec, RobotState, StaticMap};
 
 /// The planner a scenario without a `local_planner` section uses.
@@ -155,6 +156,24 @@ pub fn list() -> Vec<PlannerInfo> {
                 .into(),
             fields: cleaning::field_list(true),
         },
+        PlannerInfo {
+            name: "apf".into(),
+            paper: "[T] Wu 2022 §4.1, eq 4-1…4-4; SPEC §5".into(),
+            summary: "Basic artificial potential field: one fixed step along the resultant of \
+                      goal attraction and mover / nearest-wall repulsion, pursued within the \
+                      robot's limits."
+                .into(),
+            fields: owned_field_infos::<ApfLocalConfig>(&apf_local::field_table()),
+        },
+        PlannerInfo {
+            name: "sampling-apf".into(),
+            paper: "[T] Wu 2022 §4.2, eq 4-5…4-14; SPEC §5".into(),
+            summary: "Sampling-based improved APF: 13 directions ±90° around the resultant, \
+                      cost 0.3‖F_attr‖ + 0.7‖F_rep‖, relative distance rule, predicted movers \
+                      (t+1, t+2) with virtual repulsion; the APF point is pursued."
+                .into(),
+            fields: owned_field_infos::<ApfLocalConfig>(&apf_local::field_table()),
+        },
     ]
 }
 
@@ -222,6 +241,12 @@ pub fn build(
                 goal,
             )?))
         }
+        name @ ("apf" | "sampling-apf") => Ok(Box::new(ApfLocal::new(
+            name == "apf",
+            parse_config(&choice.name, &choice.config)?,
+            robot,
+            goal,
+        )?)),
         _ => Err(LocalError::UnknownPlanner(choice.name.clone())),
     }
 }

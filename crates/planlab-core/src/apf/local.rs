@@ -1,0 +1,325 @@
+//! The 2D APF as a local planner (`apf`, `sampling-apf`) for the simulator
+//! and for navigators that need a motion planner under them (\[L\] sims
+//! 8–9).
+//!
+//! Every control period the planner takes one APF step from the robot's
+//! centre toward the observation's goal — movers as discs (with their
+//! observed velocities, so prediction has tracks), the nearest static wall
+//! as a point obstacle found from the map's clearance field (the point at
+//! the clearance distance down its gradient) — and then pursues that APF
+//! point within the robot's limits: heading error e to the step direction,
+//! ω = k_w·e clamped to ω_max, v = min(v_max, √(2·b·a_v·(d − tol)))·cos e,
+//! 0 while |e| > `turn_angle` (turn first). The robot's circumscribed
+//! radius is added to every distance.
+
+use glam::DVec2;
+use serde::{Deserialize, Serialize};
+
+use super::planner::{Apf, ObstacleObs, StepKind};
+use super::{ApfConfig, ApfMode, APF_FIELDS};
+use crate::local::registry::check_param;
+use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug, Rollout};
+use crate::num::{atan2, cos, wrap_angle};
+use crate::world::{Command, RobotSpec, RobotState, StaticMap};
+
+/// Id given to the nearest-wall point obstacle.
+pub const WALL_ID: u32 = u32::MAX;
+
+/// Settings of the `apf` / `sampling-apf` local planners.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ApfLocalConfig {
+    /// The potential field (`mode` is forced to `basic` by `apf`; the
+    /// robot's radius replaces `robot_radius`). Defaults scaled for a
+    /// mobile robot: step 0.25 m, p₀ 0.5 m, ρ 1 m, k_r 0.02.
+    pub apf: ApfConfig,
+    /// Heading gain k_w: ω = k_w · heading error, 1/s.
+    pub k_w: f64,
+    /// Above this heading error the robot turns in place, rad.
+    pub turn_angle: f64,
+    /// Stop when the goal is this close, m.
+    pub stop_distance: f64,
+    /// Share of the deceleration limit the braking profile plans with, 1.
+    pub brake_fraction: f64,
+    /// The robot also brakes to stop this far from the nearest obstacle
+    /// surface, m.
+    pub safety_margin: f64,
+}
+
+impl Default for ApfLocalConfig {
+    fn default() -> Self {
+        Self {
+            apf: ApfConfig {
+                step: 0.25,
+                p0: 0.5,
+                rho: 1.0,
+                k_r: 0.02,
+                ..ApfConfig::default()
+            },
+            k_w: 2.0,
+            turn_angle: std::f64::consts::FRAC_PI_3,
+            stop_distance: 0.05,
+            brake_fraction: 0.8,
+            safety_margin: 0.05,
+        }
+    }
+}
+
+/// (name, unit, doc) of every field, nested APF fields dotted.
+pub fn field_table() -> Vec<(String, String, String)> {
+    let mut v: Vec<(String, String, String)> = APF_FIELDS
+        .iter()
+        .map(|(n, u, d)| (format!("apf.{n}"), u.to_string(), d.to_string()))
+        .collect();
+    for (n, u, d) in [
+        ("k_w", "1/s", "heading gain: ω = k_w · heading error"),
+        (
+            "turn_angle",
+            "rad",
+            "turn in place while the heading error exceeds this",
+        ),
+        ("stop_distance", "m", "stop when the goal is this close"),
+        (
+            "brake_fraction",
+            "1",
+            "share of the deceleration limit the braking profile plans with (0–1]",
+        ),
+        (
+            "safety_margin",
+            "m",
+            "brake to stop this far from the nearest obstacle surface",
+        ),
+    ] {
+        v.push((n.into(), u.into(), d.into()));
+    }
+    v
+}
+
+/// The 2D APF local planner (see the module doc).
+#[derive(Debug)]
+pub struct ApfLocal {
+    name: &'static str,
+    cfg: ApfLocalConfig,
+    apf: Apf<DVec2>,
+    robot: RobotSpec,
+    goal: [f64; 2],
+    debug: PlannerDebug,
+    record: bool,
+}
+
+impl ApfLocal {
+    /// `apf` (basic, `basic = true`) or `sampling-apf` (the config's mode,
+    /// which must then not be `basic`) for `robot`, heading for `goal`.
+    pub fn new(
+        basic: bool,
+        mut cfg: ApfLocalConfig,
+        robot: &RobotSpec,
+        goal: [f64; 2],
+    ) -> Result<Self, LocalError> {
+        let name = if basic { "apf" } else { "sampling-apf" };
+        if basic {
+            cfg.apf.mode = ApfMode::Basic;
+        } else if cfg.apf.mode == ApfMode::Basic {
+            return Err(LocalError::InvalidParameter(
+                "sampling-apf.apf.mode = basic: use the planner `apf` for the basic field".into(),
+            ));
+        }
+        check_param(name, "k_w (1/s)", cfg.k_w, 0.0, true)?;
+        check_param(name, "turn_angle (rad)", cfg.turn_angle, 0.0, true)?;
+        check_param(name, "stop_distance (m)", cfg.stop_distance, 0.0, false)?;
+        check_param(name, "brake_fraction", cfg.brake_fraction, 0.0, true)?;
+        check_param(name, "safety_margin (m)", cfg.safety_margin, 0.0, false)?;
+        if cfg.brake_fraction > 1.0 {
+            return Err(LocalError::InvalidParameter(format!(
+                "{name}.brake_fraction = {}: must be ≤ 1",
+                cfg.brake_fraction
+            )));
+        }
+        if !(goal[0].is_finite() && goal[1].is_finite()) {
+            return Err(LocalError::InvalidParameter(format!(
+                "goal ({}, {}) must be finite",
+                goal[0], goal[1]
+            )));
+        }
+        cfg.apf.robot_radius = robot.footprint.circumscribed_radius();
+        let apf =
+            Apf::new(cfg.apf).map_err(|e| LocalError::InvalidParameter(format!("{name}: {e}")))?;
+        Ok(Self {
+            name,
+            cfg,
+            apf,
+            robot: *robot,
+            goal,
+            debug: PlannerDebug {
+                critics: vec!["attraction".into(), "repulsion".into()],
+                current_goal: goal,
+                goal_kind: GoalKind::Final,
+                mode: "start".into(),
+                ..Default::default()
+            },
+            record: true,
+        })
+    }
+
+    /// The obstacles the field sees: movers, then the nearest wall point.
+    fn obstacles(&self, obs: &Observation<'_>) -> Vec<ObstacleObs<DVec2>> {
+        let s = obs.state;
+        let mut out: Vec<ObstacleObs<DVec2>> = obs
+            .movers
+            .iter()
+            .map(|m| ObstacleObs::moving(m.id, DVec2::from(m.pos), m.radius, DVec2::from(m.vel)))
+            .collect();
+        if let Some(w) = nearest_wall(obs.map, s.x, s.y) {
+            let reach = self.cfg.apf.p0 + self.cfg.apf.robot_radius;
+            if (w - DVec2::new(s.x, s.y)).length() <= reach {
+                // A measured zero velocity marks it static: no prediction.
+                out.push(ObstacleObs::moving(WALL_ID, w, 0.0, DVec2::ZERO));
+            }
+        }
+        out
+    }
+}
+
+/// The nearest static-obstacle point to (x, y) from the map's clearance
+/// field: the clearance distance down its (central-difference) gradient.
+/// `None` when the gradient vanishes (far from walls or exactly between).
+pub fn nearest_wall(map: &StaticMap, x: f64, y: f64) -> Option<DVec2> {
+    let h = 0.5 * map.grid().resolution();
+    let c = map.clearance(x, y);
+    let gx = (map.clearance(x + h, y) - map.clearance(x - h, y)) / (2.0 * h);
+    let gy = (map.clearance(x, y + h) - map.clearance(x, y - h)) / (2.0 * h);
+    let g = DVec2::new(gx, gy);
+    let n = g.length();
+    if n.is_nan() || n <= 1e-9 || !c.is_finite() {
+        return None;
+    }
+    Some(DVec2::new(x, y) - g * (c / n))
+}
+
+/// Free distance from `pos` along the unit `heading` before a disc of
+/// radius `r` touches a static obstacle (sphere tracing the clearance
+/// field), at most `max`, m.
+pub fn free_ahead(map: &StaticMap, pos: DVec2, heading: DVec2, r: f64, max: f64) -> f64 {
+    let min_step = 0.25 * map.grid().resolution();
+    let mut s = 0.0;
+    while s < max {
+        let p = pos + heading * s;
+        let gap = map.clearance(p.x, p.y) - r;
+        if gap <= 0.0 {
+            return s;
+        }
+        s += gap.max(min_step);
+    }
+    max
+}
+
+impl LocalPlanner for ApfLocal {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn step(&mut self, obs: &Observation<'_>) -> Command {
+        self.goal = obs.goal;
+        let s = obs.state;
+        let pos = DVec2::new(s.x, s.y);
+        let goal = DVec2::from(self.goal);
+        let d = (goal - pos).length();
+        self.debug.current_goal = self.goal;
+        self.debug.rollouts.clear();
+        self.debug.chosen = None;
+        if d <= self.cfg.stop_distance {
+            self.debug.mode = "arrived".into();
+            return Command::default();
+        }
+        let obstacles = self.obstacles(obs);
+        let step = match self.apf.step(obs.time, pos, goal, &obstacles) {
+            Ok(st) => st,
+            Err(e) => {
+                // Non-finite observations: stop rather than panic.
+                self.debug.mode = format!("error: {e}");
+                return Command::default();
+            }
+        };
+        self.debug.mode = match step.kind {
+            StepKind::Resultant => "resultant",
+            StepKind::Sampled => "sampled",
+            StepKind::RelativeDistance => "relative-distance",
+            StepKind::Stalled => "stalled",
+            StepKind::Arrived => "arrived",
+        }
+        .into();
+        if self.record {
+            self.debug.rollouts = step
+                .candidates
+                .iter()
+                .map(|c| Rollout {
+                    cmd: Command::default(),
+                    points: vec![[pos.x, pos.y], [c.point.x, c.point.y]],
+                    admissible: true,
+                    raw: vec![c.attraction, c.repulsion],
+                    normalised: vec![],
+                    score: -c.cost,
+                })
+                .collect();
+            self.debug.chosen = step.chosen;
+        }
+        if step.direction == DVec2::ZERO {
+            return Command::default();
+        }
+        let l = &self.robot.limits;
+        let err = wrap_angle(atan2(step.direction.y, step.direction.x) - s.theta);
+        let w = (self.cfg.k_w * err).clamp(-l.w_max, l.w_max);
+        let v = if err.abs() > self.cfg.turn_angle {
+            0.0
+        } else {
+            // Brake for the goal, and for what lies ahead along the heading:
+            // walls by sphere tracing the clearance field, movers as discs
+            // (the pursuit lags the field while turning, and a fast robot
+            // must see a wall before the field's range does).
+            let heading = DVec2::new(cos(s.theta), crate::num::sin(s.theta));
+            let r = self.cfg.apf.robot_radius;
+            let horizon = l.v_max * l.v_max / (2.0 * self.cfg.brake_fraction * l.acc_v).max(1e-9)
+                + self.cfg.safety_margin
+                + 0.5;
+            let mut ahead = free_ahead(obs.map, pos, heading, r, horizon);
+            for o in &obstacles {
+                let off = o.centre - pos;
+                let along = off.dot(heading);
+                let side = (off - heading * along).length();
+                let reach = o.radius + r;
+                if along > 0.0 && side < reach {
+                    ahead = ahead.min(along - (reach * reach - side * side).sqrt());
+                }
+            }
+            let room = (d - self.cfg.stop_distance).min(ahead - self.cfg.safety_margin);
+            let brake = 2.0 * self.cfg.brake_fraction * l.acc_v * room;
+            l.v_max.min(brake.max(0.0).sqrt()) * cos(err).max(0.0)
+        };
+        Command { v, vy: 0.0, w }
+    }
+
+    fn set_goal(
+        &mut self,
+        _map: &StaticMap,
+        _state: &RobotState,
+        goal: [f64; 2],
+    ) -> Result<(), LocalError> {
+        if !(goal[0].is_finite() && goal[1].is_finite()) {
+            return Err(LocalError::InvalidParameter(format!(
+                "goal ({}, {}) must be finite",
+                goal[0], goal[1]
+            )));
+        }
+        self.goal = goal;
+        self.debug.current_goal = goal;
+        Ok(())
+    }
+
+    fn debug(&self) -> &PlannerDebug {
+        &self.debug
+    }
+
+    fn set_record_rollouts(&mut self, on: bool) {
+        self.record = on;
+    }
+}
