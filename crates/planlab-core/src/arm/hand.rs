@@ -60,11 +60,11 @@ impl HandPreset {
     fn geometry(self) -> ([f64; 3], [f64; 3], [f64; 3], [f64; 3], f64) {
         match self {
             HandPreset::ReachAcross | HandPreset::ReachRetract | HandPreset::Wave => (
-                [1.0, 0.45, 0.86],
-                [0.5, -0.05, 0.86],
-                [0.0, 0.0, 0.06],
+                [1.0, 0.45, 0.9],
+                [0.6, 0.05, 0.92],
+                [0.0, 0.0, 0.05],
                 [1.35, 0.45, 1.0],
-                3.0,
+                4.0,
             ),
             HandPreset::ReachToward => (
                 [1.05, 0.2, 0.9],

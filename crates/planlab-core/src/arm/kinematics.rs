@@ -102,6 +102,11 @@ pub struct IkConfig {
     pub max_joint_step_rad: f64,
     /// Gain of the null-space pull towards mid-range, 1/iteration.
     pub nullspace_gain: f64,
+    /// Gain of the null-space turn of the gripper (last joint → tool point)
+    /// towards pointing away from the shoulder horizontally, so the hand
+    /// leads and the wrist trails as in a natural reach (0 = off),
+    /// 1/iteration.
+    pub approach_gain: f64,
 }
 
 impl Default for IkConfig {
@@ -113,6 +118,7 @@ impl Default for IkConfig {
             tolerance_m: 1e-4,
             max_joint_step_rad: 0.2,
             nullspace_gain: 0.05,
+            approach_gain: 0.3,
         }
     }
 }
@@ -135,6 +141,12 @@ impl IkConfig {
             return Err(ArmError::Invalid(format!(
                 "ik.nullspace_gain must be in [0, 1], got {}",
                 self.nullspace_gain
+            )));
+        }
+        if !self.approach_gain.is_finite() || !(0.0..=1.0).contains(&self.approach_gain) {
+            return Err(ArmError::Invalid(format!(
+                "ik.approach_gain must be in [0, 1], got {}",
+                self.approach_gain
             )));
         }
         if self.max_iters == 0 {
@@ -176,6 +188,16 @@ impl ArmModel {
         let frames = self.fk(q);
         let e = target - frames.tool;
         let mut cols = self.jacobian(&frames);
+        let axes = self.joint_axes(&frames);
+        let e_approach = match frames.joints.last() {
+            Some(last) if cfg.approach_gain > 0.0 => {
+                let have = (frames.tool - last.pos).normalize_or_zero();
+                let mut want = frames.tool - self.shoulder();
+                want.z = 0.0;
+                have.cross(want.normalize_or_zero())
+            }
+            _ => DVec3::ZERO,
+        };
         let mut dq = [0.0; super::model::MAX_JOINTS];
         for _pass in 0..2 {
             // A = J Jᵀ + λ² I (3×3), λ growing as the manipulability w
@@ -203,6 +225,10 @@ impl ArmModel {
             let mut jz = DVec3::ZERO;
             for i in 0..n {
                 z[i] = cfg.nullspace_gain * (self.rest[i] - q[i]);
+                // Gradient step of the approach alignment: the rotation
+                // vector taking the gripper axis onto the wanted one,
+                // projected on each joint axis (J_ωᵀ e_ω).
+                z[i] += cfg.approach_gain * axes[i].dot(e_approach);
                 jz += cols[i] * z[i];
             }
             let u = a_inv * jz;

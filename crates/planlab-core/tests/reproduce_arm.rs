@@ -1,0 +1,109 @@
+//! [T] Table 5-3: the arm's end effector planned by the sampling APF among
+//! a moving hand keeps a larger minimum distance to the hand with obstacle
+//! prediction than without; plus the arm scenario's error cases.
+
+use planlab_core::arm::{ArmEpisode, ArmError, ArmPredictor, ArmScenario, HandPreset};
+use planlab_core::sim::Outcome;
+
+const PRESET: &str = include_str!("../../../assets/scenarios/T-tab5-3.json");
+
+fn run(pred: ArmPredictor, seed: u64) -> planlab_core::arm::ArmMetrics {
+    let s = ArmScenario::from_json(PRESET).unwrap();
+    let mut scene = s.arm.clone();
+    pred.apply(&mut scene.apf);
+    let mut ep = ArmEpisode::new(scene, seed).unwrap();
+    ep.run().unwrap();
+    ep.metrics()
+}
+
+#[test]
+fn prediction_keeps_the_arm_farther_from_the_hand() {
+    // The preset's seed and seven more variations of the hand's reach.
+    for seed in 0..8 {
+        let none = run(ArmPredictor::None, seed);
+        let cv = run(ArmPredictor::ConstantVelocity, seed);
+        for m in [&none, &cv] {
+            assert_eq!(m.outcome, Outcome::Reached, "seed {seed}: {m:?}");
+            assert!(m.min_obstacle_distance_m > 0.0);
+            // 0.04 m steps: the path has about length / 0.04 points.
+            let steps = (m.path_points - 1) as f64;
+            assert!(m.path_length_m <= steps * 0.04 + 1e-9, "{m:?}");
+        }
+        assert!(
+            cv.min_obstacle_distance_m > none.min_obstacle_distance_m,
+            "seed {seed}: with prediction {cv:?}, without {none:?}"
+        );
+    }
+}
+
+#[test]
+fn episodes_are_deterministic() {
+    let a = run(ArmPredictor::ConstantVelocity, 3);
+    let b = run(ArmPredictor::ConstantVelocity, 3);
+    assert_eq!(a, b);
+}
+
+fn scene_with(f: impl Fn(&mut serde_json::Value)) -> Result<ArmEpisode, ArmError> {
+    let mut v: serde_json::Value = serde_json::from_str(PRESET).unwrap();
+    f(&mut v);
+    let s = ArmScenario::from_value(&v)?;
+    ArmEpisode::from_scenario(&s)
+}
+
+#[test]
+fn unreachable_targets_are_typed_errors() {
+    let far = scene_with(|v| v["arm"]["goal"] = serde_json::json!([2.0, 0.0, 0.9])).unwrap_err();
+    assert!(
+        matches!(far, ArmError::OutOfReach { ref what, .. } if what == "goal"),
+        "{far}"
+    );
+    assert!(far.to_string().contains("out of reach"));
+    // The hand rests at its reach's end: a goal there is inside it.
+    let inside = scene_with(|v| {
+        v["arm"]["hand"]["jitter_m"] = serde_json::json!(0.0);
+        v["arm"]["goal"] = serde_json::json!([0.6, 0.05, 0.92]);
+    })
+    .unwrap_err();
+    assert!(
+        matches!(inside, ArmError::InsideObstacle { ref what, .. } if what == "goal"),
+        "{inside}"
+    );
+    // Within the sphere of reach but behind the robot's own shoulder, where
+    // joint limits keep the tool out.
+    let behind =
+        scene_with(|v| v["arm"]["goal"] = serde_json::json!([-0.3, -0.3, 0.9])).unwrap_err();
+    assert!(matches!(behind, ArmError::IkFailed { .. }), "{behind}");
+    let start = scene_with(|v| {
+        v["arm"]["hand"]["preset"] = serde_json::json!(HandPreset::Still.name());
+        v["arm"]["hand"]["start"] = serde_json::json!([0.45, -0.05, 1.0]);
+    })
+    .unwrap_err();
+    assert!(
+        matches!(start, ArmError::InsideObstacle { ref what, .. } if what == "start"),
+        "{start}"
+    );
+}
+
+#[test]
+fn bad_arm_scenarios_are_errors_not_panics() {
+    type Edit = Box<dyn Fn(&mut serde_json::Value)>;
+    let cases: Vec<Edit> = vec![
+        Box::new(|v| v["version"] = serde_json::json!(7)),
+        Box::new(|v| v["arm"]["sim"]["plan_period_s"] = serde_json::json!(0.0)),
+        Box::new(|v| v["arm"]["sim"]["max_time_s"] = serde_json::json!(-1.0)),
+        Box::new(|v| v["arm"]["ik"]["damping"] = serde_json::json!(0.0)),
+        Box::new(|v| v["arm"]["apf"]["step"] = serde_json::json!(-0.04)),
+        Box::new(|v| v["arm"]["hand"]["speed"] = serde_json::json!(0.0)),
+        Box::new(|v| v["arm"]["hand"]["preset"] = serde_json::json!("juggle")),
+        Box::new(|v| v["arm"]["goal"] = serde_json::json!([0.5, 0.1])),
+        Box::new(|v| v["arm"]["start_q"] = serde_json::json!([0.0, 0.0])),
+        Box::new(|v| {
+            v["arm"]["model"] =
+                serde_json::json!({"base_link_radius": 0.05, "joints": [], "tool": {}})
+        }),
+        Box::new(|v| v["arm"]["typo"] = serde_json::json!(1)),
+    ];
+    for (i, f) in cases.iter().enumerate() {
+        assert!(scene_with(f).is_err(), "case {i} was accepted");
+    }
+}
