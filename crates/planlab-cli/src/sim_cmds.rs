@@ -13,6 +13,19 @@ use serde::Serialize;
 
 use crate::load;
 
+/// Writes `text` to stdout. A closed pipe (`planlab reproduce --json | head
+/// -1`) ends the program quietly with success: the reader has what it
+/// wanted. Other write errors are returned.
+pub(crate) fn emit(text: &str) -> Result<(), String> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => std::process::exit(0),
+        Err(e) => Err(format!("writing to stdout: {e}")),
+    }
+}
+
 /// Options of `planlab run`.
 pub struct RunArgs<'a> {
     /// Replaces `local_planner.name`.
@@ -107,20 +120,17 @@ pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
         metrics: &m,
     };
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string(&report).map_err(|e| e.to_string())?
-        );
+        emit(&(serde_json::to_string(&report).map_err(|e| e.to_string())? + "\n"))?;
     } else {
         let title = if scenario.name.is_empty() {
             path.display().to_string()
         } else {
             scenario.name.clone()
         };
-        println!("{title} — planner {}, seed {}", report.planner, report.seed);
-        print!("{}", metrics_table(&m));
-        println!("{:<22}{}", "steps", report.steps);
-        println!("{:<22}{}", "trace hash", report.trace_hash);
+        emit(&(format!("{title} — planner {}, seed {}", report.planner, report.seed) + "\n"))?;
+        emit(&metrics_table(&m))?;
+        emit(&(format!("{:<22}{}", "steps", report.steps) + "\n"))?;
+        emit(&(format!("{:<22}{}", "trace hash", report.trace_hash) + "\n"))?;
     }
     Ok(())
 }
@@ -161,15 +171,12 @@ fn metrics_table(m: &EpisodeMetrics) -> String {
 pub fn planners(json: bool) -> Result<(), String> {
     let list = registry::list();
     if json {
-        println!(
-            "{}",
-            serde_json::to_string(&list).map_err(|e| e.to_string())?
-        );
+        emit(&(serde_json::to_string(&list).map_err(|e| e.to_string())? + "\n"))?;
         return Ok(());
     }
     for p in &list {
-        println!("{} — {}", p.name, p.summary);
-        println!("  paper: {}", p.paper);
+        emit(&(format!("{} — {}", p.name, p.summary) + "\n"))?;
+        emit(&(format!("  paper: {}", p.paper) + "\n"))?;
         let w = p.fields.iter().map(|f| f.name.len()).max().unwrap_or(0);
         for f in &p.fields {
             let default = match f.default.as_f64() {
@@ -189,9 +196,9 @@ pub fn planners(json: bool) -> Result<(), String> {
             } else {
                 format!(" {}", f.unit)
             };
-            println!("  {:<w$}  {:>10}{unit:<7}  {}", f.name, default, f.doc);
+            emit(&(format!("  {:<w$}  {:>10}{unit:<7}  {}", f.name, default, f.doc) + "\n"))?;
         }
-        println!();
+        emit("\n")?;
     }
     Ok(())
 }
@@ -219,9 +226,9 @@ pub fn reproduce(id: Option<&str>, json: bool) -> Result<(), String> {
     for exp in &chosen {
         let r = reproduce::run(exp).map_err(|e| format!("{}: {e}", exp.id))?;
         if json {
-            println!("{}", serde_json::to_string(&r).map_err(|e| e.to_string())?);
+            emit(&(serde_json::to_string(&r).map_err(|e| e.to_string())? + "\n"))?;
         } else {
-            print!("{}", experiment_table(&r));
+            emit(&experiment_table(&r))?;
         }
         if !r.holds {
             failed.push(r.id.clone());

@@ -271,3 +271,23 @@ fn reproduce_refuses_unknown_ids() {
         &["unknown experiment `T-fig9-99`"],
     );
 }
+
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    // `planlab reproduce --json | head -1`: the reader goes away; planlab
+    // must neither panic nor report an error.
+    use std::process::Stdio;
+    for args in [&["reproduce", "S-tab1", "--json"][..], &["planners"][..]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_planlab"))
+            .args(args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("run planlab");
+        drop(child.stdout.take());
+        let out = child.wait_with_output().expect("wait");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{args:?}: {:?} {err}", out.status);
+        assert!(err.is_empty(), "{args:?}: {err}");
+    }
+}

@@ -245,7 +245,7 @@ impl Costmap {
                 Cell::Unknown => NO_INFORMATION,
                 Cell::Free if d2 <= inflation2 => {
                     let excess = (d2.sqrt() * res - inscribed_radius_m).max(0.0);
-                    let factor = (-cost_scaling_factor * excess).exp();
+                    let factor = crate::num::exp(-cost_scaling_factor * excess);
                     // Truncation, as ROS's cast to unsigned char.
                     (f64::from(INSCRIBED - 1) * factor) as u8
                 }
