@@ -530,8 +530,25 @@ impl DwaCore {
             // Distance from (x, y) to the segment p + v·t, t ∈ [0, t_rest].
             let (dx, dy) = (v[0] * t_rest, v[1] * t_rest);
             let len2 = dx * dx + dy * dy;
+            // Cheap rejections first (no division or root; the margin dwarfs
+            // rounding, so the answer is the exact test's): the segment lies
+            // within L/2 of its midpoint and on its line.
+            let reach = r + self.r_eff + self.last_limit + 1e-9;
+            if reach < 0.0 {
+                return false;
+            }
+            let (ex, ey) = (x - p[0], y - p[1]);
+            let (mx, my) = (ex - 0.5 * dx, ey - 0.5 * dy);
+            let disc = reach + 0.5 * len2.sqrt();
+            if mx * mx + my * my > disc * disc {
+                return false;
+            }
+            let cross = ex * dy - ey * dx;
+            if cross * cross > reach * reach * len2 * (1.0 + 1e-9) {
+                return false;
+            }
             let t = if len2 > 0.0 {
-                (((x - p[0]) * dx + (y - p[1]) * dy) / len2).clamp(0.0, 1.0)
+                ((ex * dx + ey * dy) / len2).clamp(0.0, 1.0)
             } else {
                 0.0
             };
