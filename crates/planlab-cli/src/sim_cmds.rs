@@ -4,10 +4,12 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use planlab_core::apf::{AnyApfRun, ApfMetrics};
 use planlab_core::local::registry;
 use planlab_core::map::io::scenario::{set_json_path, set_planner_name, Scenario};
+use planlab_core::map::OccupancyGrid;
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
-use planlab_core::reproduce::{self, ExperimentResult};
+use planlab_core::reproduce::{self, ExperimentResult, PathExperimentResult};
 use planlab_core::sim::Episode;
 use serde::Serialize;
 
@@ -95,9 +97,90 @@ fn edited_scenario(
     Ok((scenario, grid))
 }
 
-/// `planlab run`: one episode, metrics on stdout.
+/// What `planlab run --json` prints for a scenario with an `apf` section.
+#[derive(Serialize)]
+struct ApfRunReport<'a> {
+    scenario: &'a str,
+    planner: String,
+    dims: usize,
+    steps: u64,
+    #[serde(flatten)]
+    metrics: &'a ApfMetrics,
+}
+
+/// `planlab run` of an APF scenario: the kinematic run and its metrics
+/// (`--trace` writes the path points as CSV).
+fn run_apf(
+    path: &Path,
+    scenario: &Scenario,
+    grid: &OccupancyGrid,
+    args: &RunArgs<'_>,
+) -> Result<(), String> {
+    let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let mut r = reproduce::apf_run_of(scenario, grid).map_err(|e| at(&e))?;
+    let m = r.run().map_err(|e| at(&e))?;
+    let pts = r.path_xyz();
+    let dims = match r {
+        AnyApfRun::D2(_) => 2,
+        AnyApfRun::D3(_) => 3,
+    };
+    if let Some(t) = args.trace {
+        let mut csv = String::from("i,x,y,z\n");
+        for (i, p) in pts.iter().enumerate() {
+            csv.push_str(&format!("{i},{},{},{}\n", p.x, p.y, p.z));
+        }
+        std::fs::write(t, csv).map_err(|e| format!("cannot write {}: {e}", t.display()))?;
+    }
+    let report = ApfRunReport {
+        scenario: &scenario.name,
+        planner: format!("apf:{}", r.mode_label()),
+        dims,
+        steps: r.steps(),
+        metrics: &m,
+    };
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        let title = if scenario.name.is_empty() {
+            path.display().to_string()
+        } else {
+            scenario.name.clone()
+        };
+        println!("{title} — {} ({dims}D)", report.planner);
+        print!("{}", apf_metrics_table(&m));
+        println!("{:<22}{}", "steps", report.steps);
+    }
+    Ok(())
+}
+
+/// APF metrics as `name value unit` lines.
+fn apf_metrics_table(m: &ApfMetrics) -> String {
+    format!(
+        "{:<22}{}\n{:<22}{:.3} m\n{:<22}{}\n{:<22}{}\n{:<22}{:.3} m\n{:<22}{:.2} s\n",
+        "outcome",
+        m.outcome,
+        "path length",
+        m.path_length_m,
+        "path points",
+        m.path_points,
+        "spikes (> 30°)",
+        m.spikes,
+        "min obstacle dist",
+        m.min_obstacle_distance_m,
+        "time",
+        m.time_s
+    )
+}
+
+/// `planlab run`: one episode (or APF run), metrics on stdout.
 pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
     let (scenario, grid) = edited_scenario(path, args)?;
+    if scenario.apf.is_some() {
+        return run_apf(path, &scenario, &grid, args);
+    }
     let mut ep =
         Episode::from_scenario(&scenario, grid).map_err(|e| format!("{}: {e}", path.display()))?;
     let outcome = ep.run();
@@ -207,19 +290,27 @@ pub fn planners(json: bool) -> Result<(), String> {
 /// relation does not hold.
 pub fn reproduce(id: Option<&str>, json: bool) -> Result<(), String> {
     let all = reproduce::all();
-    let chosen: Vec<_> = match id {
-        None => all,
+    let paths = reproduce::path_experiments();
+    let (chosen, chosen_paths): (Vec<_>, Vec<_>) = match id {
+        None => (all, paths),
         Some(id) => {
-            let ids: Vec<&str> = all.iter().map(|e| e.id).collect();
-            let Some(e) = all.iter().find(|e| e.id == id) else {
+            let ids: Vec<&str> = all
+                .iter()
+                .map(|e| e.id)
+                .chain(paths.iter().map(|e| e.id))
+                .collect();
+            if let Some(e) = all.iter().find(|e| e.id == id) {
+                (vec![e.clone()], vec![])
+            } else if let Some(e) = paths.iter().find(|e| e.id == id) {
+                (vec![], vec![e.clone()])
+            } else {
                 let known = if ids.is_empty() {
                     "none are registered".to_string()
                 } else {
                     format!("known ids: {}", ids.join(", "))
                 };
                 return Err(format!("unknown experiment `{id}`; {known}"));
-            };
-            vec![e.clone()]
+            }
         }
     };
     let mut failed = Vec::new();
@@ -234,16 +325,55 @@ pub fn reproduce(id: Option<&str>, json: bool) -> Result<(), String> {
             failed.push(r.id.clone());
         }
     }
+    for exp in &chosen_paths {
+        let r = reproduce::run_path(exp).map_err(|e| format!("{}: {e}", exp.id))?;
+        if json {
+            println!("{}", serde_json::to_string(&r).map_err(|e| e.to_string())?);
+        } else {
+            print!("{}", path_experiment_table(&r));
+        }
+        if !r.holds {
+            failed.push(r.id.clone());
+        }
+    }
+    let total = chosen.len() + chosen_paths.len();
     if failed.is_empty() {
         Ok(())
     } else {
         Err(format!(
             "{} of {} relations do not hold: {}",
             failed.len(),
-            chosen.len(),
+            total,
             failed.join(", ")
         ))
     }
+}
+
+/// A paper-style table of one path experiment (\[T\] Table 4-1 columns).
+fn path_experiment_table(r: &PathExperimentResult) -> String {
+    let mut s = format!("{} — {}\n  {}\n", r.id, r.paper, r.what);
+    s.push_str(&format!(
+        "  {:<22}{:<11}{:>10}{:>8}{:>8}{:>12}{:>9}\n",
+        "run", "outcome", "length m", "points", "spikes", "min dist m", "time s"
+    ));
+    for (name, m) in &r.runs {
+        s.push_str(&format!(
+            "  {:<22}{:<11}{:>10.3}{:>8}{:>8}{:>12.3}{:>9.2}\n",
+            name,
+            m.outcome.to_string(),
+            m.path_length_m,
+            m.path_points,
+            m.spikes,
+            m.min_obstacle_distance_m,
+            m.time_s
+        ));
+    }
+    s.push_str(&format!(
+        "  relation: {}\n  holds: {}\n\n",
+        r.relation,
+        if r.holds { "yes" } else { "NO" }
+    ));
+    s
 }
 
 /// A paper-style table of one experiment: runs as rows, metrics as columns.

@@ -31,7 +31,7 @@ pub const WALL_ID: u32 = u32::MAX;
 pub struct ApfLocalConfig {
     /// The potential field (`mode` is forced to `basic` by `apf`; the
     /// robot's radius replaces `robot_radius`). Defaults scaled for a
-    /// mobile robot: step 0.25 m, p₀ 0.5 m, ρ 1 m, k_r 0.02.
+    /// mobile robot: step 0.25 m, p₀ 0.5 m, ρ 1 m, k_a 1, k_r 0.02.
     pub apf: ApfConfig,
     /// Heading gain k_w: ω = k_w · heading error, 1/s.
     pub k_w: f64,
@@ -53,6 +53,7 @@ impl Default for ApfLocalConfig {
                 step: 0.25,
                 p0: 0.5,
                 rho: 1.0,
+                k_a: 1.0,
                 k_r: 0.02,
                 ..ApfConfig::default()
             },

@@ -11,6 +11,8 @@
 //!   α‖F_attr‖ + β‖F_rep‖), the relative distance rule (§4.2.2) and dynamic
 //!   obstacle prediction at t+1 and t+2 (§4.2.3).
 //! - [`predict`]: the [`Predictor`] trait, [`ConstantVelocity`].
+//! - [`scene`]: a kinematic APF run of a point robot among (moving)
+//!   spheres / discs, the `apf` section of a scenario, and [`ApfMetrics`].
 //! - [`local`]: the 2D APF as a [`crate::local::LocalPlanner`] (`apf`,
 //!   `sampling-apf`).
 //!
@@ -34,6 +36,7 @@ pub mod field;
 pub mod local;
 pub mod planner;
 pub mod predict;
+pub mod scene;
 pub mod vector;
 
 use serde::{Deserialize, Serialize};
@@ -41,6 +44,7 @@ use thiserror::Error;
 
 pub use planner::{Apf, ApfStep, Candidate, ObstacleObs, StepKind, VirtualObstacle};
 pub use predict::{ConstantVelocity, Predictor, PredictorKind, Track};
+pub use scene::{AnyApfRun, ApfMetrics, ApfRun, ApfScene, SceneObstacle};
 pub use vector::{ApfVector, Sampling};
 
 /// Errors of the APF planners, predictors and scenes.
@@ -161,8 +165,8 @@ impl Default for ApfConfig {
     fn default() -> Self {
         Self {
             mode: ApfMode::SamplingPrediction,
-            k_a: 1.0,
-            rho: 0.3,
+            k_a: 5.0,
+            rho: 1.0,
             k_r: 0.002,
             p0: 0.15,
             step: 0.04,

@@ -11,12 +11,15 @@
 //!    centres at t+1 = now + Δ and t+2 = now + 2Δ (Δ =
 //!    [`ApfConfig::predict_dt`]) with ranges s·R and s²·R (R = radius +
 //!    robot radius + p₀, s = 0.75) and linear virtual repulsion;
-//! 2. while no repulsion (real or virtual) acts at the robot, step along
-//!    the resultant (which is then the attraction);
-//! 3. otherwise sample the directions around the resultant, cost each
-//!    candidate point c by α‖F_attr(c)‖ + β‖F_rep(c)‖ (eq 4-11) and step to
-//!    the cheapest; ties go to the smallest deviation, counter-clockwise /
-//!    upward first;
+//! 2. sample the directions around the resultant, cost each candidate
+//!    point c by α‖F_attr(c)‖ + β‖F_rep(c)‖ (eq 4-11) and step to the
+//!    cheapest; ties go to the smallest deviation, counter-clockwise /
+//!    upward first. Where no candidate feels repulsion this is the step
+//!    along the resultant (reported as [`StepKind::Resultant`]). Sampling
+//!    every step, rather than only once repulsion acts at the robot,
+//!    keeps the path on the edge of the repulsion range instead of
+//!    zig-zagging across it (**Decision**, the thesis leaves the trigger
+//!    open);
 //! 4. relative distance rule: while the goal is nearer than every obstacle
 //!    surface, β = 0 and the sampling is centred on the attraction.
 
@@ -323,7 +326,7 @@ impl<V: ApfVector> Apf<V> {
         }
         let len = self.cfg.step.min(to_goal);
         let rn = resultant.norm();
-        if self.cfg.mode == ApfMode::Basic || fr.norm() <= 0.0 {
+        if self.cfg.mode == ApfMode::Basic {
             if rn <= self.cfg.stall_force {
                 out.kind = StepKind::Stalled;
                 return Ok(out);
@@ -377,7 +380,10 @@ impl<V: ApfVector> Apf<V> {
         out.chosen = Some(i);
         out.direction = out.candidates[i].direction;
         out.next = out.candidates[i].point;
-        out.kind = if relative {
+        let felt = fr.norm() > 0.0 || out.candidates.iter().any(|c| c.repulsion > 0.0);
+        out.kind = if !felt {
+            StepKind::Resultant
+        } else if relative {
             StepKind::RelativeDistance
         } else {
             StepKind::Sampled

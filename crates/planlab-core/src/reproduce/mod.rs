@@ -12,12 +12,14 @@
 
 pub mod c_clean;
 pub mod s_dual;
+pub mod t_apf;
 pub mod t_dwa;
 
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use crate::apf::{AnyApfRun, ApfMetrics};
 use crate::map::io::scenario::{set_json_path, set_planner_name, Scenario, ScenarioError};
 use crate::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
 use crate::sim::{Episode, SimError};
@@ -139,6 +141,100 @@ pub fn run(exp: &Experiment) -> Result<ExperimentResult, SimError> {
         runs,
         relation: exp.relation.to_string(),
         figures: s_dual::figures(exp.id)?,
+    })
+}
+
+/// A paper's experiment over kinematic path runs (potential fields; \[T\]
+/// ch. 4–5): like [`Experiment`], with [`ApfMetrics`] per run. Each run's
+/// scenario has an `apf` section; variants are chosen with `set` (e.g.
+/// `("apf.config.mode", "basic")`).
+#[derive(Debug, Clone)]
+pub struct PathExperiment {
+    /// Stable id, e.g. `T-fig4-6`.
+    pub id: &'static str,
+    /// Paper and figure / table.
+    pub paper: &'static str,
+    /// What the scene is.
+    pub what: &'static str,
+    /// The relation in words (what [`PathExperiment::holds`] checks).
+    pub relation: &'static str,
+    /// The runs, each reported under its name.
+    pub runs: Vec<RunSpec>,
+    /// Whether the relation holds for the runs' metrics.
+    pub holds: fn(&BTreeMap<String, ApfMetrics>) -> bool,
+}
+
+/// The result of one [`PathExperiment`]; the same JSON shape as
+/// [`ExperimentResult`], with [`ApfMetrics`] per run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PathExperimentResult {
+    /// [`PathExperiment::id`].
+    pub id: String,
+    /// [`PathExperiment::paper`].
+    pub paper: String,
+    /// [`PathExperiment::what`].
+    pub what: String,
+    /// Metrics of every run by name.
+    pub runs: BTreeMap<String, ApfMetrics>,
+    /// [`PathExperiment::relation`].
+    pub relation: String,
+    /// Whether it holds.
+    pub holds: bool,
+}
+
+/// Every path experiment, in a fixed order.
+pub fn path_experiments() -> Vec<PathExperiment> {
+    t_apf::experiments()
+}
+
+/// The path experiment with this id.
+pub fn find_path(id: &str) -> Option<PathExperiment> {
+    path_experiments().into_iter().find(|e| e.id == id)
+}
+
+/// Builds the APF run of a scenario with an `apf` section (2D start / goal
+/// default to the scenario's world points).
+pub fn apf_run_of(
+    scenario: &Scenario,
+    grid: &crate::map::OccupancyGrid,
+) -> Result<AnyApfRun, SimError> {
+    let apf = scenario.apf.as_ref().ok_or_else(|| {
+        SimError::Scenario(ScenarioError::Invalid(
+            "the scenario has no `apf` section".into(),
+        ))
+    })?;
+    let s = scenario.start_world(grid);
+    let g = scenario.goal_world(grid);
+    AnyApfRun::new(apf, &s, &g).map_err(|e| SimError::InvalidConfig(e.to_string()))
+}
+
+/// Runs one path run to its end: its metrics.
+pub fn run_path_spec(spec: &RunSpec) -> Result<ApfMetrics, SimError> {
+    let scenario = scenario_of(spec)?;
+    let grid = scenario.inline_grid()?.ok_or_else(|| {
+        SimError::Scenario(ScenarioError::Invalid(format!(
+            "run `{}`: an embedded preset needs an inline map",
+            spec.name
+        )))
+    })?;
+    apf_run_of(&scenario, &grid)?
+        .run()
+        .map_err(|e| SimError::InvalidConfig(e.to_string()))
+}
+
+/// Runs every run of `exp` and checks its relation.
+pub fn run_path(exp: &PathExperiment) -> Result<PathExperimentResult, SimError> {
+    let mut runs = BTreeMap::new();
+    for spec in &exp.runs {
+        runs.insert(spec.name.to_string(), run_path_spec(spec)?);
+    }
+    Ok(PathExperimentResult {
+        id: exp.id.to_string(),
+        paper: exp.paper.to_string(),
+        what: exp.what.to_string(),
+        holds: (exp.holds)(&runs),
+        runs,
+        relation: exp.relation.to_string(),
     })
 }
 

@@ -466,6 +466,11 @@ pub struct Scenario {
     /// Seed of the episode's random streams (default 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seed: Option<u64>,
+    /// A kinematic potential-field run (\[T\] ch. 4) instead of a robot
+    /// episode: `planlab run` runs it when present (see
+    /// [`crate::apf::scene`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub apf: Option<crate::apf::ApfScene>,
 }
 
 /// Sets the value at dotted `path` (`sim.dt`, `movers.0.radius`) in a
@@ -738,6 +743,7 @@ impl Scenario {
             sim: None,
             terrain: None,
             seed: None,
+            apf: None,
         }
     }
 
@@ -938,6 +944,9 @@ impl Scenario {
         }
         if let Some(c) = &self.sim {
             c.validate().map_err(|e| invalid(&e))?;
+        }
+        if let Some(a) = &self.apf {
+            a.config.validate().map_err(|e| invalid(&e))?;
         }
         if let Some(p) = &self.local_planner {
             if !registry::is_registered(&p.name) {
