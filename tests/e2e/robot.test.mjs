@@ -260,8 +260,9 @@ test('determinism: the page and the native CLI give the same trace hash', async 
   assert.ok(fs.existsSync(CLI), 'build target/release/planlab first (cargo build --release -p planlab-cli)');
   // The demo (baseline DWA), and when present an improved-DWA preset (global
   // path, classes, virtual goals go into the trace) and a cleaning-robot one
-  // (omnidirectional, seeded road vibration and slip, wheel loads).
-  const cases = [DEMO, 'T-fig3-11.json', 'C-tab5-hollow-brick.json'].filter((f) => fs.existsSync(path.join(REPO, 'assets/scenarios', f)));
+  // (omnidirectional, seeded road vibration and slip, wheel loads), and an
+  // [S] one (safe-dual-dwa: safe A* feature nodes, held speed) run to reached.
+  const cases = [DEMO, 'T-fig3-11.json', 'S-tab1.json', 'C-tab5-hollow-brick.json'].filter((f) => fs.existsSync(path.join(REPO, 'assets/scenarios', f)));
   for (const file of cases) {
     const run = spawnSync(CLI, ['run', path.join(REPO, 'assets/scenarios', file), '--json'], { encoding: 'utf8', timeout: 120_000 });
     assert.equal(run.status, 0, run.stderr);

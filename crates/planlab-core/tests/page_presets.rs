@@ -1,9 +1,11 @@
 //! The robot page's own presets (`assets/scenarios/dwa-demo.json`, the page
 //! opens with it; `dwa-crowd.json`, its frame-rate scene) keep doing what
 //! the page and its browser tests rely on, checked natively so a change in
-//! a planner that breaks them shows up in `cargo test`.
+//! a planner that breaks them shows up in `cargo test`; the [S] presets the
+//! page lists run to the goal with `safe-dual-dwa` and show its feature nodes.
 
 use planlab_core::local::registry::PlannerChoice;
+use planlab_core::local::GoalKind;
 use planlab_core::map::io::scenario::Scenario;
 use planlab_core::sim::{Episode, Outcome};
 
@@ -52,4 +54,21 @@ fn crowd_has_20_movers_and_a_20_by_40_fan() {
     assert!(d.rollouts.iter().all(|r| !r.points.is_empty()));
     // Every mover is within sensing range, so the planner sees all 20.
     assert!(ep.config().sensing_range >= 30.0);
+}
+
+#[test]
+fn s_presets_reach_with_safe_dual_dwa_and_draw_the_feature_nodes() {
+    // The page lists the [S] presets (they name safe-dual-dwa); it draws the
+    // planner's global path, feature nodes and current temporary goal.
+    for file in ["S-tab1.json", "S-fig12.json"] {
+        let mut ep = episode(file);
+        assert_eq!(ep.planner_choice().name, "safe-dual-dwa", "{file}");
+        ep.step();
+        let d = ep.planner_debug();
+        assert!(d.global_path.len() > d.keypoints.len(), "{file}");
+        assert!(d.keypoints.len() >= 3, "{file}: {:?}", d.keypoints);
+        assert_eq!(d.goal_kind, GoalKind::Intermediate, "{file}");
+        assert!(d.keypoints.contains(&d.current_goal), "{file}");
+        assert_eq!(ep.run(), Outcome::Reached, "{file}");
+    }
 }
