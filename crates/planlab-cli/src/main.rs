@@ -3,6 +3,7 @@
 //! Every failure prints one line `planlab: error: …` on stderr and exits
 //! non-zero; usage errors exit 2 (clap's convention).
 
+mod batch_cmd;
 mod bench;
 mod grid_cmds;
 mod load;
@@ -201,6 +202,31 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Run N seeded variants of a scenario (start, goal and movers
+    /// jittered) with several planners in parallel; print the success rate
+    /// and the mean, median and 95% confidence interval of every metric.
+    Batch {
+        /// Scenario JSON (a referenced map file is found relative to it).
+        scenario: PathBuf,
+        /// Comma-separated planner names [default: the scenario's].
+        #[arg(long, value_delimiter = ',')]
+        planners: Vec<String>,
+        /// Number of variants; variant 0 is the scenario as written.
+        #[arg(long, default_value_t = 20)]
+        variants: u32,
+        /// Seed of the variants (and of their episodes).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Largest shift of start, goal and each mover path per axis, metres.
+        #[arg(long, default_value_t = 0.3, allow_hyphen_values = true)]
+        jitter: f64,
+        /// Write one CSV row per episode to this file.
+        #[arg(long, value_name = "FILE.csv")]
+        csv: Option<PathBuf>,
+        /// JSON lines: one summary per planner, then a footer.
+        #[arg(long)]
+        json: bool,
+    },
     /// Benchmarks.
     Bench {
         #[command(subcommand)]
@@ -241,6 +267,25 @@ fn run(cli: Cli) -> Result<(), String> {
             },
         ),
         Command::Planners { json } => sim_cmds::planners(json),
+        Command::Batch {
+            scenario,
+            planners,
+            variants,
+            seed,
+            jitter,
+            csv,
+            json,
+        } => batch_cmd::batch(
+            &scenario,
+            &batch_cmd::BatchArgs {
+                planners: &planners,
+                variants,
+                seed,
+                jitter,
+                csv: csv.as_deref(),
+                json,
+            },
+        ),
         Command::Reproduce { id, json } => sim_cmds::reproduce(id.as_deref(), json),
         Command::Scen {
             map,

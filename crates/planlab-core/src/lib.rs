@@ -14,6 +14,7 @@
 
 pub mod apf;
 pub mod arm;
+pub mod batch;
 pub mod global;
 pub mod local;
 pub mod map;

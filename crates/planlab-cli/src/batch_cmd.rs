@@ -1,0 +1,246 @@
+//! `planlab batch`: seeded variants of one scenario run by several planners
+//! in parallel (rayon), summarised per planner.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use planlab_core::batch::{self, metric_values, PlannerSummary};
+use planlab_core::local::registry::{self, PlannerChoice};
+use planlab_core::map::io::scenario::Scenario;
+use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::sim::Episode;
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::load;
+
+/// Options of `planlab batch`.
+pub struct BatchArgs<'a> {
+    /// Planner names; empty = the scenario's own.
+    pub planners: &'a [String],
+    /// Number of variants (≥ 1).
+    pub variants: u32,
+    /// Batch seed.
+    pub seed: u64,
+    /// Jitter radius, metres.
+    pub jitter: f64,
+    /// Per-run CSV output.
+    pub csv: Option<&'a Path>,
+    /// JSON lines instead of a table.
+    pub json: bool,
+}
+
+/// One episode's result.
+struct RunRow {
+    variant: u32,
+    planner: usize,
+    seed: u64,
+    steps: u64,
+    hash: u64,
+    metrics: EpisodeMetrics,
+}
+
+/// The last JSON line: what was run.
+#[derive(Serialize)]
+struct BatchFooter<'a> {
+    scenario: &'a str,
+    variants: u32,
+    planners: Vec<&'a str>,
+    seed: u64,
+    jitter_m: f64,
+    episodes: usize,
+    threads: usize,
+    seconds: f64,
+}
+
+/// `planlab batch`.
+pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
+    if args.variants == 0 {
+        return Err("--variants must be at least 1".into());
+    }
+    let text = load::read_text(path)?;
+    let base = Scenario::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let grid = load::grid_of(path, &base)?;
+    let own = base.local_planner.clone().unwrap_or_default();
+    let choices: Vec<PlannerChoice> = if args.planners.is_empty() {
+        vec![own.clone()]
+    } else {
+        let known: Vec<String> = registry::list().into_iter().map(|p| p.name).collect();
+        let mut out: Vec<PlannerChoice> = Vec::new();
+        for name in args.planners {
+            let name = name.trim();
+            if !known.iter().any(|k| k == name) {
+                return Err(format!(
+                    "--planners: unknown planner `{name}`; known: {}",
+                    known.join(", ")
+                ));
+            }
+            if out.iter().any(|c| c.name == name) {
+                return Err(format!("--planners: `{name}` is listed twice"));
+            }
+            // The scenario's own planner keeps its tuning; others start
+            // from their papers' defaults, as `planlab run --planner` does.
+            out.push(if own.name == name {
+                own.clone()
+            } else {
+                PlannerChoice::named(name)
+            });
+        }
+        out
+    };
+    let started = Instant::now();
+    // Variants first (cheap, and identical for every planner), then every
+    // (variant, planner) episode in parallel.
+    let variants: Vec<Scenario> = (0..args.variants)
+        .into_par_iter()
+        .map(|i| batch::variant(&base, &grid, i, args.seed, args.jitter))
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let jobs: Vec<(u32, usize)> = (0..args.variants)
+        .flat_map(|v| (0..choices.len()).map(move |p| (v, p)))
+        .collect();
+    let rows: Vec<RunRow> = jobs
+        .par_iter()
+        .map(|&(v, p)| {
+            let mut s = variants[v as usize].clone();
+            s.local_planner = Some(choices[p].clone());
+            let mut ep = Episode::from_scenario(&s, grid.clone()).map_err(|e| {
+                format!(
+                    "{}: variant {v}, planner {}: {e}",
+                    path.display(),
+                    choices[p].name
+                )
+            })?;
+            let outcome = ep.run();
+            let metrics = EpisodeMetrics::from_trace(
+                ep.trace(),
+                &ep.planner_debug().global_path,
+                outcome,
+                DEFAULT_LOAD_THRESHOLD_N,
+            );
+            Ok(RunRow {
+                variant: v,
+                planner: p,
+                seed: s.seed.unwrap_or(0),
+                steps: ep.steps(),
+                hash: ep.trace().hash(),
+                metrics,
+            })
+        })
+        .collect::<Result<_, String>>()?;
+    let seconds = started.elapsed().as_secs_f64();
+
+    let summaries: Vec<PlannerSummary> = choices
+        .iter()
+        .enumerate()
+        .map(|(p, c)| {
+            let runs: Vec<EpisodeMetrics> = rows
+                .iter()
+                .filter(|r| r.planner == p)
+                .map(|r| r.metrics.clone())
+                .collect();
+            batch::summarise(&c.name, &runs)
+        })
+        .collect();
+
+    if let Some(csv) = args.csv {
+        std::fs::write(csv, runs_csv(&rows, &choices))
+            .map_err(|e| format!("cannot write {}: {e}", csv.display()))?;
+    }
+    let footer = BatchFooter {
+        scenario: if base.name.is_empty() {
+            path.to_str().unwrap_or("")
+        } else {
+            &base.name
+        },
+        variants: args.variants,
+        planners: choices.iter().map(|c| c.name.as_str()).collect(),
+        seed: args.seed,
+        jitter_m: args.jitter,
+        episodes: rows.len(),
+        threads: rayon::current_num_threads(),
+        seconds,
+    };
+    let mut out = String::new();
+    if args.json {
+        for s in &summaries {
+            out += &serde_json::to_string(s).map_err(|e| e.to_string())?;
+            out.push('\n');
+        }
+        out += &serde_json::to_string(&footer).map_err(|e| e.to_string())?;
+        out.push('\n');
+    } else {
+        out = table(&summaries, &footer);
+    }
+    // A closed pipe (`| head`) is not an error worth a panic.
+    let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), out.as_bytes());
+    Ok(())
+}
+
+/// One CSV row per episode.
+fn runs_csv(rows: &[RunRow], choices: &[PlannerChoice]) -> String {
+    let mut s = format!(
+        "variant,planner,seed,steps,trace_hash,outcome,{}\n",
+        batch::METRIC_NAMES.join(",")
+    );
+    for r in rows {
+        let _ = write!(
+            s,
+            "{},{},{},{},{:016x},{}",
+            r.variant,
+            choices[r.planner].name,
+            r.seed,
+            r.steps,
+            r.hash,
+            r.metrics.outcome.as_str()
+        );
+        for (_, v) in metric_values(&r.metrics) {
+            match v {
+                Some(v) => {
+                    let _ = write!(s, ",{v}");
+                }
+                None => s.push(','),
+            }
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// Per planner: success and each metric's mean, median and 95% interval.
+fn table(summaries: &[PlannerSummary], f: &BatchFooter<'_>) -> String {
+    let mut s = format!(
+        "{} — {} variants (seed {}, jitter {} m), {} episodes on {} threads in {:.1} s\n",
+        f.scenario, f.variants, f.seed, f.jitter_m, f.episodes, f.threads, f.seconds
+    );
+    for p in summaries {
+        let outcomes: Vec<String> = p.outcomes.iter().map(|(k, n)| format!("{k} {n}")).collect();
+        let _ = writeln!(
+            s,
+            "\n{}: success {:.1}% ({}/{}; {})",
+            p.planner,
+            100.0 * p.success_rate,
+            p.reached,
+            p.runs,
+            outcomes.join(", ")
+        );
+        if p.metrics.is_empty() {
+            s += "  no run reached the goal: no metric statistics\n";
+            continue;
+        }
+        let _ = writeln!(
+            s,
+            "  {:<22}{:>10}{:>10}  {:<22}  (over {} reached runs)",
+            "metric", "mean", "median", "95% CI of the mean", p.reached
+        );
+        for (k, st) in &p.metrics {
+            let _ = writeln!(
+                s,
+                "  {k:<22}{:>10.3}{:>10.3}  [{:.3}, {:.3}]",
+                st.mean, st.median, st.ci95[0], st.ci95[1]
+            );
+        }
+    }
+    s
+}
