@@ -44,7 +44,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::dwa::{
-    check, check_goal, DwaConfig, DwaCore, DwaPlanner, GoalProvider, Guidance, Weights, DWA_FIELDS,
+    check, check_goal, prefixed_fields, DwaConfig, DwaCore, DwaPlanner, GoalProvider, Guidance,
+    Weights,
 };
 use super::route::{dist, plan_route, Route, Waypoints};
 use super::{GoalKind, LocalError, Observation, PlannerDebug};
@@ -147,13 +148,6 @@ impl Default for PreliminaryConfig {
     }
 }
 
-fn prefixed(prefix: &str) -> Vec<(String, String, String)> {
-    DWA_FIELDS
-        .iter()
-        .map(|(n, u, d)| (format!("{prefix}.{n}"), u.to_string(), d.to_string()))
-        .collect()
-}
-
 const COMMON_FIELDS: [(&str, &str, &str); 4] = [
     (
         "inflate_margin",
@@ -185,7 +179,7 @@ fn owned(t: &[(&str, &str, &str)]) -> Vec<(String, String, String)> {
 
 /// `(name, unit, doc)` of every [`DualConfig`] field.
 pub fn dual_fields() -> Vec<(String, String, String)> {
-    let mut v = prefixed("dwa");
+    let mut v = prefixed_fields("dwa");
     v.extend(owned(&COMMON_FIELDS));
     v.extend(owned(&[
         (
@@ -215,7 +209,7 @@ pub fn dual_fields() -> Vec<(String, String, String)> {
 
 /// `(name, unit, doc)` of every [`PreliminaryConfig`] field.
 pub fn preliminary_fields() -> Vec<(String, String, String)> {
-    let mut v = prefixed("dwa");
+    let mut v = prefixed_fields("dwa");
     v.extend(owned(&COMMON_FIELDS));
     v
 }
@@ -578,6 +572,25 @@ mod tests {
         }
     }
 
+    const GOAL: [f64; 2] = [11.0, 1.0];
+
+    fn planner(map: &StaticMap) -> SafeDualDwa {
+        SafeDualDwa::safe_dual(DualConfig::default(), &robot(), map, &at(1.0, 1.0), GOAL).unwrap()
+    }
+
+    fn obs<'a>(s: &'a RobotState, map: &'a StaticMap) -> Observation<'a> {
+        Observation {
+            time: 0.0,
+            dt: 0.1,
+            state: s,
+            goal: GOAL,
+            map,
+            movers: &[],
+            odometry: None,
+            accel_z: 0.0,
+        }
+    }
+
     #[test]
     fn theta_a_is_the_angle_at_the_robot() {
         let t = DualGuide::theta_a([0.0, 0.0], [1.0, 0.0], [0.0, 2.0]);
@@ -608,14 +621,7 @@ mod tests {
     #[test]
     fn detour_replanning_skips_a_passed_goal() {
         let map = room();
-        let mut p = SafeDualDwa::safe_dual(
-            DualConfig::default(),
-            &robot(),
-            &map,
-            &at(1.0, 1.0),
-            [11.0, 1.0],
-        )
-        .unwrap();
+        let mut p = planner(&map);
         let wps = p.guide().route().waypoints.clone();
         assert!(wps.len() >= 2, "{wps:?}");
         // Put the robot beyond the first temporary goal, on the way to the
@@ -623,17 +629,7 @@ mod tests {
         let (a, b) = (wps[0], wps[1]);
         let beyond = [a[0] + 0.6 * (b[0] - a[0]), a[1] + 0.6 * (b[1] - a[1])];
         let s = at(beyond[0], beyond[1]);
-        let obs = Observation {
-            time: 0.0,
-            dt: 0.1,
-            state: &s,
-            goal: [11.0, 1.0],
-            map: &map,
-            movers: &[],
-            odometry: None,
-            accel_z: 0.0,
-        };
-        p.step(&obs);
+        p.step(&obs(&s, &map));
         assert!(p.guide().waypoint_index() >= 1);
         assert_eq!(p.debug().current_goal, wps[p.guide().waypoint_index()]);
         assert_eq!(p.debug().goal_kind, GoalKind::Intermediate);
@@ -642,14 +638,7 @@ mod tests {
     #[test]
     fn held_speed_near_a_temporary_goal_and_nan_config_refused() {
         let map = room();
-        let mut p = SafeDualDwa::safe_dual(
-            DualConfig::default(),
-            &robot(),
-            &map,
-            &at(1.0, 1.0),
-            [11.0, 1.0],
-        )
-        .unwrap();
+        let mut p = planner(&map);
         let wp = p.guide().route().waypoints[0];
         // 2 m short of the first temporary goal at 0.35 m/s: v stays 0.35.
         let (dx, dy) = (wp[0] - 1.0, wp[1] - 1.0);
@@ -659,17 +648,7 @@ mod tests {
             theta: crate::num::atan2(dy, dx),
             ..at(wp[0] - 2.0 * dx / l, wp[1] - 2.0 * dy / l)
         };
-        let obs = Observation {
-            time: 0.0,
-            dt: 0.1,
-            state: &s,
-            goal: [11.0, 1.0],
-            map: &map,
-            movers: &[],
-            odometry: None,
-            accel_z: 0.0,
-        };
-        let c = p.step(&obs);
+        let c = p.step(&obs(&s, &map));
         assert_eq!(p.debug().mode, "hold-v", "{wp:?}");
         assert_eq!(c.v, 0.35);
         let e = SafeDualDwa::safe_dual(

@@ -216,6 +216,14 @@ pub const DWA_FIELDS: &[(&str, &str, &str)] = &[
     ),
 ];
 
+/// [`DWA_FIELDS`] under `prefix.` (an engine nested in a planner's config).
+pub fn prefixed_fields(prefix: &str) -> Vec<(String, String, String)> {
+    DWA_FIELDS
+        .iter()
+        .map(|(n, u, d)| (format!("{prefix}.{n}"), u.to_string(), d.to_string()))
+        .collect()
+}
+
 /// Checks `value` is finite and ≥ `min` (> when `strict`); errors name
 /// `prefix.field`.
 pub(crate) fn check(

@@ -47,7 +47,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::dwa::{
-    check, check_goal, DwaConfig, DwaCore, DwaPlanner, GoalProvider, Guidance, Weights, DWA_FIELDS,
+    check, check_goal, prefixed_fields, DwaConfig, DwaCore, DwaPlanner, GoalProvider, Guidance,
+    Weights,
 };
 use super::route::{dist, plan_route, Route, Waypoints};
 use super::{GoalKind, LocalError, Observation, ObservedMover, ObstacleClass, PlannerDebug};
@@ -139,13 +140,6 @@ impl Default for Fusion53Config {
     }
 }
 
-fn prefixed(prefix: &str) -> Vec<(String, String, String)> {
-    DWA_FIELDS
-        .iter()
-        .map(|(n, u, d)| (format!("{prefix}.{n}"), u.to_string(), d.to_string()))
-        .collect()
-}
-
 fn weight_fields(name: &str, what: &str) -> Vec<(String, String, String)> {
     ["alpha", "beta", "gamma"]
         .iter()
@@ -161,7 +155,7 @@ fn weight_fields(name: &str, what: &str) -> Vec<(String, String, String)> {
 
 /// `(name, unit, doc)` of every [`ImprovedConfig`] field.
 pub fn improved_fields() -> Vec<(String, String, String)> {
-    let mut v = prefixed("dwa");
+    let mut v = prefixed_fields("dwa");
     for (n, u, d) in [
         (
             "inflate_margin",
@@ -210,7 +204,7 @@ pub fn improved_fields() -> Vec<(String, String, String)> {
 
 /// `(name, unit, doc)` of every [`Fusion53Config`] field.
 pub fn fusion53_fields() -> Vec<(String, String, String)> {
-    let mut v = prefixed("dwa");
+    let mut v = prefixed_fields("dwa");
     for (n, u, d) in [
         (
             "inflate_margin",
