@@ -162,6 +162,8 @@ struct Search<'a, E, Q> {
     /// Open word of cost 0 (see [`SearchSpace::open_word`]).
     tag: u64,
     est: E,
+    /// `f` of the node being expanded.
+    f_now: u64,
 }
 
 impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
@@ -229,20 +231,27 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
 
     /// Diagonal jump from `(x, y)` (cost `g`) in direction `(DX, DY)`.
     ///
-    /// As in plain JPS, the jump stops at the goal or at the first cell from
-    /// which a straight jump along either component finds a jump point, and
-    /// opens that cell. Those straight jump points are relaxed right away,
-    /// reusing the scans that found them (a form of Harabor & Grastien's
-    /// 2014 intermediate-point pruning), so when the cell is expanded later
-    /// only the diagonal continues (see [`Search::expand`]). Monomorphised
+    /// As in plain JPS, a cell of the jump from which a straight jump along
+    /// either component finds a jump point is a jump point itself. Those
+    /// straight jump points are relaxed right away, reusing the scans that
+    /// found them (Harabor & Grastien's 2014 intermediate-point pruning).
+    /// The cell itself would only continue the diagonal when expanded (see
+    /// [`Search::expand`]); when it is no worse than the node being expanded
+    /// (`f` ≤ `f_now`, the usual case heading towards the goal), the open
+    /// list would hand it back next anyway, so the jump records it and goes
+    /// on instead of queueing it. Otherwise it is queued and the jump ends.
+    /// The jump also ends at the goal and at a blocked step. Monomorphised
     /// per direction: this is the innermost loop in open terrain.
     #[inline(never)]
     fn diagonal<const DX: isize, const DY: isize>(&mut self, x: usize, y: usize, g: u64) {
-        let jumper = &self.jumper;
-        let free = |i: usize| jumper.free.get(i).copied().unwrap_or(false);
-        let step_y = DY * jumper.stride as isize;
+        // Copies of the grid references, so `self` can be borrowed mutably
+        // inside the loop.
+        let cells: &[bool] = self.jumper.free;
+        let free = |i: usize| cells.get(i).copied().unwrap_or(false);
+        let (stride, t) = (self.jumper.stride, self.jumper.t);
+        let step_y = DY * stride as isize;
         let (mut x, mut y, mut n) = (x, y, 0u64);
-        let mut i = y * jumper.stride + x;
+        let mut i = y * stride + x;
         loop {
             let side_x = i.wrapping_add_signed(DX);
             let next = side_x.wrapping_add_signed(step_y);
@@ -253,22 +262,25 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
             x = x.wrapping_add_signed(DX);
             y = y.wrapping_add_signed(DY);
             n += 1;
-            if i == jumper.t {
+            if i == t {
                 break;
             }
-            let h = jumper.horizontal(x, y, DX);
-            let v = jumper.vertical(x, y, DY);
-            if h.is_some() || v.is_some() {
-                self.diagonal_hit::<DX, DY>(i, x, y, g + n * DIAG, h, v);
+            let h = self.jumper.horizontal(x, y, DX);
+            let v = self.jumper.vertical(x, y, DY);
+            if (h.is_some() || v.is_some())
+                && !self.diagonal_hit::<DX, DY>(i, x, y, g + n * DIAG, h, v)
+            {
                 return;
             }
         }
         self.relax(i, x, y, g + n * DIAG, dir_index(DX, DY));
     }
 
-    /// The end of a diagonal jump at `i` = `(x, y)` (cost `g`), where the
+    /// A jump point `i` = `(x, y)` (cost `g`) of a diagonal jump, where the
     /// straight jumps found `h` (a column) and/or `v` (a row): relaxes
-    /// them and the cell itself. Kept out of line so the sweep stays tight.
+    /// those, then records the cell and returns whether the jump goes on
+    /// past it, or queues it and returns `false` (see [`Search::diagonal`]).
+    /// Kept out of line so the sweep stays tight.
     #[inline(never)]
     fn diagonal_hit<const DX: isize, const DY: isize>(
         &mut self,
@@ -278,7 +290,7 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
         g: u64,
         h: Option<usize>,
         v: Option<usize>,
-    ) {
+    ) -> bool {
         let stride = self.jumper.stride;
         if let Some(jx) = h {
             let cost = STRAIGHT * jx.abs_diff(x) as u64;
@@ -288,7 +300,16 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
             let cost = STRAIGHT * jy.abs_diff(y) as u64;
             self.relax(jy * stride + x, x, jy, g + cost, dir_index(0, DY));
         }
-        self.relax(i, x, y, g, dir_index(DX, DY));
+        let (gx, gy) = (self.jumper.gx, self.jumper.gy);
+        let f = g.saturating_add(self.est.h(x.abs_diff(gx), y.abs_diff(gy)));
+        if f <= self.f_now {
+            // Stops, like a failed relax would, if the cell is already
+            // reached as cheaply (or expanded).
+            self.mark(i, g, dir_index(DX, DY))
+        } else {
+            self.relax(i, x, y, g, dir_index(DX, DY));
+            false
+        }
     }
 
     /// [`Search::diagonal`] for a direction known only at run time.
@@ -419,6 +440,7 @@ fn search<E: Estimate, Q: OpenList>(
         open,
         tag,
         est,
+        f_now: 0,
     };
     if let Some(w) = search.words.get_mut(s) {
         *w = tag;
@@ -447,6 +469,7 @@ fn search<E: Estimate, Q: OpenList>(
             return (true, expanded);
         }
         let (x, y) = xy(i, stride);
+        search.f_now = g.saturating_add(est.h(x.abs_diff(gx), y.abs_diff(gy)));
         search.expand(i, x, y, g, if i == s { 8 } else { dir });
     }
     (false, expanded)
