@@ -10,12 +10,16 @@
 //! - [`global`]: A* with four heuristics and a weight, Dijkstra, Jump Point
 //!   Search, safe A* of Ge & Li (2022) §1, key-point extraction of Wu (2022)
 //!   §3.2.1 and Bottom-Up segmentation of Ge & Li §4.1 (SPEC §2).
+//! - [`lidar`]: LiDAR heuristic navigation in unknown maps of Chang et al.
+//!   (2024): scan simulation, edges, gap and obstacle patterns, temporary
+//!   goals over a pluggable motion planner (SPEC §6).
 #![warn(missing_docs)]
 
 pub mod apf;
 pub mod arm;
 pub mod batch;
 pub mod global;
+pub mod lidar;
 pub mod local;
 pub mod map;
 pub mod metrics;

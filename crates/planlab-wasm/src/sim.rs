@@ -386,6 +386,7 @@ impl SimHandle {
             GoalKind::Final => "final",
             GoalKind::Intermediate => "intermediate",
             GoalKind::Virtual => "virtual",
+            GoalKind::Temporary => "temporary",
         }
         .to_string()
     }

@@ -78,6 +78,8 @@ pub enum GoalKind {
     Intermediate,
     /// A virtual goal placed beside a special obstacle (\[T\] §3.2).
     Virtual,
+    /// A temporary goal beside an obstacle pattern (\[L\] §3).
+    Temporary,
 }
 
 /// Obstacle class of \[T\] Fig 3-10 / Table 3-1.
@@ -132,6 +134,8 @@ pub struct PlannerDebug {
     pub classes: Vec<(u32, ObstacleClass)>,
     /// Strategy in force ("normal", "decelerate", "detour", "hold-v" …).
     pub mode: String,
+    /// What the LiDAR navigator saw and chose (\[L\]), for its planners.
+    pub lidar: Option<crate::lidar::LidarDebug>,
 }
 
 /// A local planner: called once per control period.

@@ -19,6 +19,9 @@ use super::improved::{
     fusion53_fields, improved_fields, Fusion53Config, ImprovedConfig, ImprovedDwa,
 };
 use super::pursuit::{Pursuit, PursuitConfig};
+use crate::lidar::planner::{
+    lidar_fields, motion_fields, LidarPlanner, LidarPlannerConfig, ScanBaselineConfig,
+};
 use super::{LocalError, LocalPlanner};
 use crate::apf::local::{self as apf_local, ApfLocal, ApfLocalConfig};
 use crate::world::{RobotSpec, RobotState, StaticMap};
@@ -174,6 +177,31 @@ pub fn list() -> Vec<PlannerInfo> {
                 .into(),
             fields: owned_field_infos::<ApfLocalConfig>(&apf_local::field_table()),
         },
+        PlannerInfo {
+            name: "lidar-dwa".into(),
+            paper: "[L] Chang et al. 2024 §2–4 (Alg. 1–2, eq 1–4, Table 1); SPEC §6".into(),
+            summary: "Unknown map, LiDAR only: edges, gap removal, obstacle patterns and \
+                      temporary goals around the OP blocking the goal; DWA drives to the \
+                      target on a local map built from the scan."
+                .into(),
+            fields: {
+                let mut f = lidar_fields(true);
+                f.extend(motion_fields(DWA_FIELDS));
+                owned_field_infos::<LidarPlannerConfig<DwaConfig>>(&f)
+            },
+        },
+        PlannerInfo {
+            name: "scan-dwa".into(),
+            paper: "[L] Chang et al. 2024 §4.2 baseline; SPEC §7".into(),
+            summary: "Plain DWA straight to the goal on an unknown map: only the scan's \
+                      local map, no temporary goals, no global path."
+                .into(),
+            fields: {
+                let mut f = lidar_fields(false);
+                f.extend(motion_fields(DWA_FIELDS));
+                owned_field_infos::<ScanBaselineConfig<DwaConfig>>(&f)
+            },
+        },
     ]
 }
 
@@ -246,6 +274,18 @@ pub fn build(
             parse_config(&choice.name, &choice.config)?,
             robot,
             goal,
+        )?)),
+        "lidar-dwa" => Ok(Box::new(LidarPlanner::with_nav(
+            "lidar-dwa",
+            "dwa",
+            &parse_config::<LidarPlannerConfig<DwaConfig>>(&choice.name, &choice.config)?,
+            robot,
+        )?)),
+        "scan-dwa" => Ok(Box::new(LidarPlanner::baseline(
+            "scan-dwa",
+            "dwa",
+            &parse_config::<ScanBaselineConfig<DwaConfig>>(&choice.name, &choice.config)?,
+            robot,
         )?)),
         _ => Err(LocalError::UnknownPlanner(choice.name.clone())),
     }

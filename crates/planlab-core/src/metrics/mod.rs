@@ -22,6 +22,11 @@
 //! - **tracking error**: distance from every trace position to the global
 //!   path polyline; mean, max and (population) variance. `None` without a
 //!   global path (\[C\] Tables 3–4).
+//! - **temporary-goal switches** (\[L\]): rows at which the steered-to
+//!   goal changes between the final goal and a temporary one, or a
+//!   temporary goal moves by more than [`TEMP_GOAL_JUMP_M`] from the
+//!   previous row's (a new temporary goal, not the same one sliding along
+//!   an obstacle as more of it comes into view).
 //! - **load share**: share of the rows carrying wheel loads in which every
 //!   wheel load exceeds the threshold (40 N in \[C\] Table 5); `None` without
 //!   a vehicle model.
@@ -33,6 +38,10 @@ use crate::sim::{Outcome, Trace};
 
 /// Arc-length step of the resampling used for turning angles, m.
 pub const TURN_RESAMPLE_M: f64 = 0.1;
+
+/// A temporary goal that moves farther than this between two rows is a
+/// new one (a switch), m.
+pub const TEMP_GOAL_JUMP_M: f64 = 1.0;
 
 /// A speed drop is a fall by more than this share of the episode's peak
 /// speed (then a rise by as much).
@@ -70,6 +79,8 @@ pub struct EpisodeMetrics {
     pub tracking_error_var_m2: Option<f64>,
     /// Share (0–1) of rows with every wheel load above the threshold.
     pub load_ok_share: Option<f64>,
+    /// Temporary-goal switches (\[L\]; 0 for planners without them).
+    pub temp_goal_switches: u32,
 }
 
 impl EpisodeMetrics {
@@ -123,8 +134,27 @@ impl EpisodeMetrics {
             } else {
                 Some(loads.iter().filter(|&&ok| ok).count() as f64 / loads.len() as f64)
             },
+            temp_goal_switches: temp_goal_switches(trace),
         }
     }
+}
+
+/// Number of temporary-goal switches in `trace` (see the module doc).
+pub fn temp_goal_switches(trace: &Trace) -> u32 {
+    use crate::local::GoalKind;
+    let mut n = 0;
+    for w in trace.steps.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        let (ta, tb) = (
+            a.goal_kind == GoalKind::Temporary,
+            b.goal_kind == GoalKind::Temporary,
+        );
+        let jump = hypot(b.goal[0] - a.goal[0], b.goal[1] - a.goal[1]) > TEMP_GOAL_JUMP_M;
+        if ta != tb || (ta && tb && jump) {
+            n += 1;
+        }
+    }
+    n
 }
 
 /// Points every `ds` of arc length along the polyline, from its start

@@ -62,6 +62,7 @@ fn goal_kind_str(k: GoalKind) -> &'static str {
         GoalKind::Final => "final",
         GoalKind::Intermediate => "intermediate",
         GoalKind::Virtual => "virtual",
+        GoalKind::Temporary => "temporary",
     }
 }
 

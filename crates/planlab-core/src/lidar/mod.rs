@@ -1,0 +1,62 @@
+//! LiDAR heuristic navigation in unknown maps (\[L\] Chang et al. 2024;
+//! SPEC §6).
+//!
+//! - [`scan`]: the 2D LiDAR — n beams over 360°, range limit, exact ray
+//!   casting against the grid (DDA) and the moving discs, seeded noise.
+//! - [`edges`]: edges SR / WR / SF / WF / Null (def. 1), Algorithm 1 (gap
+//!   pattern removal, with wrap-around), Algorithm 2 (obstacle pattern
+//!   extraction), expansion (eq 1).
+//! - [`nav`]: temporary goals — blocking condition (eq 2), two candidates,
+//!   cost (eq 3), iteration, extra switching condition (eq 4), hold period;
+//!   \[L\] Table 1 defaults in [`LidarNavConfig`].
+//! - [`planner`]: the navigator over a pluggable motion planner (DWA, APF)
+//!   fed a local map built from the scan alone, registered as local
+//!   planners `lidar-dwa`, `scan-dwa` (the plain baseline) and friends.
+//! - [`fog`]: the cells the robot has seen so far, from its scans.
+//!
+//! The navigator's input type [`NavInput`] holds the scan, the robot's
+//! velocity and the goal in the robot frame only, so neither the navigator
+//! nor the motion planner under it can read the map: only the simulated
+//! sensor does.
+
+pub mod edges;
+pub mod fog;
+pub mod nav;
+pub mod planner;
+pub mod scan;
+
+pub use edges::{Edge, GapPattern, ObstaclePattern};
+pub use nav::{LidarNavConfig, NavDebug, NavInput, Navigator, TargetKind, Velocity};
+pub use planner::{LidarDebug, LidarPlanner, LidarPlannerConfig, LocalMapConfig, ScanNavigation};
+pub use scan::{Lidar, LidarConfig, Scan};
+
+use thiserror::Error;
+
+/// Invalid LiDAR or navigator settings.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum LidarError {
+    /// A parameter is NaN, infinite or out of range; the text names it.
+    #[error("invalid LiDAR parameter: {0}")]
+    InvalidParameter(String),
+}
+
+/// Checks `value` is finite and ≥ `min` (> when `strict`); errors name
+/// `prefix.field`.
+pub(crate) fn check(
+    prefix: &str,
+    field: &str,
+    value: f64,
+    min: f64,
+    strict: bool,
+) -> Result<(), LidarError> {
+    let ok = value.is_finite() && if strict { value > min } else { value >= min };
+    if ok {
+        Ok(())
+    } else {
+        let rel = if strict { ">" } else { "≥" };
+        Err(LidarError::InvalidParameter(format!(
+            "{prefix}.{field} = {value}: must be a finite number {rel} {min}"
+        )))
+    }
+}

@@ -1,0 +1,692 @@
+//! The navigator over a pluggable motion planner, as local planners.
+//!
+//! [`ScanNavigation`] is the robot-side stack: it takes a [`NavInput`]
+//! (scan, velocity, goal in the robot frame) and returns a command. The
+//! navigator picks the target; the motion planner (any registered local
+//! planner, e.g. `dwa`) drives to it on a **local map built from the scan
+//! alone**: a grid in the robot frame centred on the robot whose occupied
+//! cells are the scan's hit points, consecutive hits closer than the robot's
+//! diameter joined (no robot fits between them and the beams' spacing must
+//! not look like a gap). The motion planner is called with the robot at
+//! the origin, heading 0, no movers: what moves is in the scan.
+//!
+//! [`LidarPlanner`] wraps it as a [`LocalPlanner`] for the simulator: its
+//! only use of the world is the simulated sensor ([`Lidar::scan`] on the map
+//! and the perceived movers) and the conversion of the goal into the robot
+//! frame; its debug output goes back to world coordinates for drawing.
+
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+
+use super::edges::Edge;
+use super::nav::{LidarNavConfig, NavInput, Navigator, TargetKind, Velocity};
+use super::scan::{beam_angle, polar, Disc, Lidar, LidarConfig, Scan};
+use super::LidarError;
+use crate::local::registry::{self, PlannerChoice};
+use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
+use crate::map::{Cell, OccupancyGrid, Pose2};
+use crate::num::{cos, hypot, sin};
+use crate::world::{Command, RobotSpec, RobotState, StaticMap};
+
+/// The local map the motion planner sees.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LocalMapConfig {
+    /// Half the side of the square local map around the robot, m (must
+    /// exceed the motion planner's reach; its edge counts as a wall).
+    pub half_size: f64,
+    /// Cell size, m.
+    pub resolution: f64,
+}
+
+impl Default for LocalMapConfig {
+    fn default() -> Self {
+        Self {
+            half_size: 5.0,
+            resolution: 0.05,
+        }
+    }
+}
+
+/// Most cells per side of the local map.
+pub const MAX_LOCAL_CELLS: f64 = 2000.0;
+
+impl LocalMapConfig {
+    fn validate(&self, prefix: &str) -> Result<(), LidarError> {
+        super::check(prefix, "half_size", self.half_size, 0.0, true)?;
+        super::check(prefix, "resolution", self.resolution, 0.0, true)?;
+        if 2.0 * self.half_size / self.resolution > MAX_LOCAL_CELLS {
+            return Err(LidarError::InvalidParameter(format!(
+                "{prefix}: 2·half_size / resolution = {}: at most {MAX_LOCAL_CELLS} cells per side",
+                2.0 * self.half_size / self.resolution
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Settings of a navigator planner (`lidar-dwa`, `lidar-apf`): sensor,
+/// navigator (\[L\] Table 1), local map and the motion planner's own config.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LidarPlannerConfig<M> {
+    /// The simulated LiDAR.
+    pub lidar: LidarConfig,
+    /// The temporary-goal navigator.
+    pub nav: LidarNavConfig,
+    /// The local map built from the scan.
+    pub local: LocalMapConfig,
+    /// The motion planner's config.
+    pub motion: M,
+}
+
+impl<M: Default> Default for LidarPlannerConfig<M> {
+    fn default() -> Self {
+        Self {
+            lidar: LidarConfig::default(),
+            nav: LidarNavConfig::default(),
+            local: LocalMapConfig::default(),
+            motion: M::default(),
+        }
+    }
+}
+
+/// Settings of a plain scan-only baseline (`scan-dwa`, `scan-apf`): the
+/// motion planner straight to the goal on the scan's local map.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ScanBaselineConfig<M> {
+    /// The simulated LiDAR.
+    pub lidar: LidarConfig,
+    /// The local map built from the scan.
+    pub local: LocalMapConfig,
+    /// The motion planner's config.
+    pub motion: M,
+}
+
+impl<M: Default> Default for ScanBaselineConfig<M> {
+    fn default() -> Self {
+        Self {
+            lidar: LidarConfig::default(),
+            local: LocalMapConfig::default(),
+            motion: M::default(),
+        }
+    }
+}
+
+/// `(name, unit, doc)` of the sensor, navigator and local-map fields.
+pub fn lidar_fields(with_nav: bool) -> Vec<(String, String, String)> {
+    let mut v: Vec<(String, String, String)> = Vec::new();
+    let mut push = |n: &str, u: &str, d: &str| v.push((n.into(), u.into(), d.into()));
+    push("lidar.beams", "1", "number of beams n over 360°");
+    push("lidar.range", "m", "range limit d_lidar");
+    push("lidar.noise_std", "m", "Gaussian range noise σ (0 = exact)");
+    push("lidar.noise_seed", "1", "seed of the noise stream");
+    if with_nav {
+        push("nav.t_gap", "m", "T_gap: weak edges and gap widths");
+        push("nav.theta_range", "rad", "θ_range: Algorithm 1 looks this far past a rising edge");
+        push("nav.d_oe", "m", "d_oe: obstacle expansion (eq 1)");
+        push("nav.d_te", "m", "d_te: temporary goal offset beyond an OP end");
+        push("nav.t_do", "m", "T_do (eq 4): switch when the blocking OP is nearer");
+        push("nav.t_theta_o", "rad", "T_θo (eq 4): … or wider than this");
+        push("nav.t_dc", "m", "T_dc: hold when the candidates' costs differ by less");
+        push("nav.t_h", "s", "t_h: hold period");
+        push("nav.max_iterations", "1", "most re-selections of a blocked temporary goal");
+        push("nav.switch_condition", "bool", "apply eq 4 before switching to a temporary goal");
+        push("nav.hold", "bool", "apply the hold period");
+        push("nav.lookahead", "m", "steer to a temporary goal at least this far along its bearing");
+    }
+    push("local.half_size", "m", "half side of the scan's local map (robot frame)");
+    push("local.resolution", "m", "cell size of the scan's local map");
+    v
+}
+
+/// `fields` of a motion planner under `motion.`.
+pub fn motion_fields(fields: &[(&str, &str, &str)]) -> Vec<(String, String, String)> {
+    fields
+        .iter()
+        .map(|(n, u, d)| (format!("motion.{n}"), u.to_string(), d.to_string()))
+        .collect()
+}
+
+fn lidar_err(e: LidarError) -> LocalError {
+    LocalError::InvalidParameter(e.to_string())
+}
+
+/// The robot-side stack: navigator (optional) + motion planner on the
+/// scan's local map. Sees nothing but [`NavInput`].
+pub struct ScanNavigation {
+    nav: Option<Navigator>,
+    motion: Box<dyn LocalPlanner>,
+    local: LocalMapConfig,
+    /// Consecutive hits closer than this are joined, m.
+    join: f64,
+    time: f64,
+    target: [f64; 2],
+    /// The point the motion planner steers to (the target, or further
+    /// along its bearing).
+    steer: [f64; 2],
+    kind: TargetKind,
+}
+
+impl std::fmt::Debug for ScanNavigation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ScanNavigation")
+            .field("motion", &self.motion.name())
+            .field("target", &self.target)
+            .finish_non_exhaustive()
+    }
+}
+
+impl ScanNavigation {
+    /// Builds the stack: `nav` (None = plain motion planner to the goal),
+    /// the motion planner `motion` (a registry choice) for `robot`.
+    pub fn new(
+        nav: Option<Navigator>,
+        motion: &PlannerChoice,
+        robot: &RobotSpec,
+        local: LocalMapConfig,
+    ) -> Result<ScanNavigation, LocalError> {
+        local.validate("local").map_err(lidar_err)?;
+        let origin = RobotState::default();
+        let empty = empty_local_map(&local)?;
+        let motion = registry::build(motion, robot, &empty, &origin, [1.0, 0.0])?;
+        Ok(ScanNavigation {
+            nav,
+            motion,
+            local,
+            join: 2.0 * robot.footprint.circumscribed_radius(),
+            time: 0.0,
+            target: [0.0, 0.0],
+            steer: [0.0, 0.0],
+            kind: TargetKind::Global,
+        })
+    }
+
+    /// One control period: the command.
+    pub fn step(&mut self, input: &NavInput<'_>) -> Command {
+        let target = match self.nav.as_mut() {
+            Some(n) => {
+                let t = n.step(input);
+                self.kind = n.debug().kind;
+                let d = hypot(t[0], t[1]);
+                let look = n.config().lookahead;
+                if self.kind != TargetKind::Global && d > 1e-9 && d < look {
+                    self.steer = [t[0] * look / d, t[1] * look / d];
+                } else {
+                    self.steer = t;
+                }
+                t
+            }
+            None => {
+                self.kind = TargetKind::Global;
+                self.steer = input.goal;
+                input.goal
+            }
+        };
+        let steer = self.steer;
+        let target = if target[0].is_finite() && target[1].is_finite() {
+            target
+        } else {
+            [0.0, 0.0]
+        };
+        self.target = target;
+        let Ok(map) = scan_local_map(input.scan, &self.local, self.join) else {
+            return Command::default();
+        };
+        let state = RobotState {
+            v: finite_or_zero(input.velocity.v),
+            vy: finite_or_zero(input.velocity.vy),
+            w: finite_or_zero(input.velocity.w),
+            ..Default::default()
+        };
+        let dt = if input.dt.is_finite() && input.dt > 0.0 {
+            input.dt
+        } else {
+            0.1
+        };
+        let obs = Observation {
+            time: self.time,
+            dt,
+            state: &state,
+            goal: if steer[0].is_finite() && steer[1].is_finite() {
+                steer
+            } else {
+                target
+            },
+            map: &map,
+            movers: &[],
+            odometry: None,
+            accel_z: 0.0,
+        };
+        self.time += dt;
+        self.motion.step(&obs)
+    }
+
+    /// The navigator, when there is one.
+    pub fn navigator(&self) -> Option<&Navigator> {
+        self.nav.as_ref()
+    }
+
+    /// The motion planner's debug (robot frame).
+    pub fn motion_debug(&self) -> &PlannerDebug {
+        self.motion.debug()
+    }
+
+    /// Target of the last step, robot frame, and its kind.
+    pub fn target(&self) -> ([f64; 2], TargetKind) {
+        (self.target, self.kind)
+    }
+
+    /// Forget the navigator's mode and hold (the goal moved).
+    pub fn reset(&mut self) {
+        if let Some(n) = self.nav.as_mut() {
+            n.reset();
+        }
+    }
+
+    /// Record the motion planner's rollouts or not.
+    pub fn set_record(&mut self, on: bool) {
+        self.motion.set_record_rollouts(on);
+    }
+}
+
+fn finite_or_zero(x: f64) -> f64 {
+    if x.is_finite() {
+        x
+    } else {
+        0.0
+    }
+}
+
+fn local_dims(cfg: &LocalMapConfig) -> usize {
+    ((2.0 * cfg.half_size / cfg.resolution).ceil() as usize).max(1)
+}
+
+fn empty_local_map(cfg: &LocalMapConfig) -> Result<StaticMap, LocalError> {
+    let n = local_dims(cfg);
+    let grid = OccupancyGrid::from_cells(n, n, vec![Cell::Free; n * n])
+        .and_then(|g| {
+            g.with_frame(
+                cfg.resolution,
+                Pose2 {
+                    x: -cfg.half_size,
+                    y: -cfg.half_size,
+                    yaw: 0.0,
+                },
+            )
+        })
+        .map_err(|e| LocalError::InvalidParameter(format!("local map: {e}")))?;
+    StaticMap::new(grid, true).map_err(|e| LocalError::InvalidParameter(format!("local map: {e}")))
+}
+
+/// The local map of a scan: robot frame, robot at the centre; hit points
+/// occupied, consecutive hits closer than `join` joined by a line.
+pub fn scan_local_map(scan: &Scan, cfg: &LocalMapConfig, join: f64) -> Result<StaticMap, LocalError> {
+    let n = local_dims(cfg);
+    let res = cfg.resolution;
+    let half = cfg.half_size;
+    let mut cells = vec![Cell::Free; n * n];
+    let mut mark = |p: [f64; 2]| {
+        let (c, u) = (((p[0] + half) / res).floor(), ((p[1] + half) / res).floor());
+        if c >= 0.0 && u >= 0.0 && (c as usize) < n && (u as usize) < n {
+            cells[(n - 1 - u as usize) * n + c as usize] = Cell::Occupied;
+        }
+    };
+    let m = scan.len();
+    let r = scan.ranges();
+    let pt = |i: usize| polar(beam_angle(i, m), r[i]);
+    for i in 0..m {
+        if !r[i].is_finite() {
+            continue;
+        }
+        let p = pt(i);
+        mark(p);
+        let j = (i + 1) % m;
+        if j != i && r[j].is_finite() {
+            let q = pt(j);
+            let len = super::scan::dist(p, q);
+            if len < join {
+                let steps = (len / (0.5 * res)).ceil() as usize;
+                for k in 1..steps {
+                    let f = k as f64 / steps as f64;
+                    mark([p[0] + (q[0] - p[0]) * f, p[1] + (q[1] - p[1]) * f]);
+                }
+            }
+        }
+    }
+    let grid = OccupancyGrid::from_cells(n, n, cells)
+        .and_then(|g| {
+            g.with_frame(
+                res,
+                Pose2 {
+                    x: -half,
+                    y: -half,
+                    yaw: 0.0,
+                },
+            )
+        })
+        .map_err(|e| LocalError::InvalidParameter(format!("local map: {e}")))?;
+    StaticMap::new(grid, true).map_err(|e| LocalError::InvalidParameter(format!("local map: {e}")))
+}
+
+/// An edge for drawing: beam, type and the in-range point it marks (world).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct EdgeMark {
+    /// Beam index i of e_i.
+    pub beam: usize,
+    /// Type.
+    pub kind: Edge,
+    /// The obstacle point on the edge's in-range side, m.
+    pub point: [f64; 2],
+}
+
+/// A temporary-goal candidate for drawing (world).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CandidateMark {
+    /// Position, m.
+    pub point: [f64; 2],
+    /// Cost (eq 3), m.
+    pub cost: f64,
+    /// Iteration (0 = around the OP blocking the goal).
+    pub iteration: u32,
+}
+
+/// What the LiDAR navigator saw and chose in its last step, world frame,
+/// for the page. `pose`, `ranges`, `returns`, `kind` and the hold timer are
+/// filled every step; the geometry only while rollouts are recorded.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct LidarDebug {
+    /// Sensor pose (x, y, θ) of the scan.
+    pub pose: [f64; 3],
+    /// Range limit, m.
+    pub max_range: f64,
+    /// Raw ranges, m; beams with no return hold `max_range`.
+    pub ranges: Vec<f64>,
+    /// Whether each beam returned.
+    pub returns: Vec<bool>,
+    /// Edges of the raw scan.
+    pub edges_raw: Vec<EdgeMark>,
+    /// Edges after gap removal (Algorithm 1).
+    pub edges: Vec<EdgeMark>,
+    /// Removed gap patterns: the straight line that replaced each.
+    pub gaps: Vec<[[f64; 2]; 2]>,
+    /// Obstacle patterns before expansion (polylines through their beams).
+    pub ops_raw: Vec<Vec<[f64; 2]>>,
+    /// Obstacle patterns after expansion (eq 1).
+    pub ops: Vec<Vec<[f64; 2]>>,
+    /// Index into `ops` of the OP blocking the goal.
+    pub blocking: Option<usize>,
+    /// Every temporary-goal candidate evaluated.
+    pub candidates: Vec<CandidateMark>,
+    /// The target steered to.
+    pub target: [f64; 2],
+    /// Its kind.
+    pub kind: TargetKind,
+    /// Time left in the hold period, s.
+    pub hold_remaining: f64,
+    /// The hold period t_h, s.
+    pub hold_period: f64,
+}
+
+/// The navigator stack as a simulator local planner (see the module doc).
+#[derive(Debug)]
+pub struct LidarPlanner {
+    name: &'static str,
+    lidar: Lidar,
+    stack: ScanNavigation,
+    record: bool,
+    debug: PlannerDebug,
+    /// Sensor pose and scan of the last step.
+    last: Option<([f64; 3], Scan)>,
+}
+
+impl LidarPlanner {
+    /// The navigator `nav` (None: plain baseline) over `motion` with the
+    /// sensor `lidar`, registered as `name`.
+    pub fn new(
+        name: &'static str,
+        lidar: LidarConfig,
+        nav: Option<LidarNavConfig>,
+        local: LocalMapConfig,
+        motion: &PlannerChoice,
+        robot: &RobotSpec,
+    ) -> Result<LidarPlanner, LocalError> {
+        let lidar = Lidar::new(lidar, "lidar").map_err(lidar_err)?;
+        let nav = nav
+            .map(|c| Navigator::new(c, "nav"))
+            .transpose()
+            .map_err(lidar_err)?;
+        let stack = ScanNavigation::new(nav, motion, robot, local)?;
+        Ok(LidarPlanner {
+            name,
+            lidar,
+            stack,
+            record: false,
+            debug: PlannerDebug::default(),
+            last: None,
+        })
+    }
+
+    /// Builds a navigator planner from its registry config.
+    pub fn with_nav<M: Serialize + DeserializeOwned + Default>(
+        name: &'static str,
+        motion: &str,
+        cfg: &LidarPlannerConfig<M>,
+        robot: &RobotSpec,
+    ) -> Result<LidarPlanner, LocalError> {
+        let choice = PlannerChoice {
+            name: motion.into(),
+            config: serde_json::to_value(&cfg.motion)
+                .map_err(|e| LocalError::InvalidParameter(format!("{name}.motion: {e}")))?,
+        };
+        Self::new(name, cfg.lidar, Some(cfg.nav), cfg.local, &choice, robot)
+    }
+
+    /// Builds a scan-only baseline from its registry config.
+    pub fn baseline<M: Serialize + DeserializeOwned + Default>(
+        name: &'static str,
+        motion: &str,
+        cfg: &ScanBaselineConfig<M>,
+        robot: &RobotSpec,
+    ) -> Result<LidarPlanner, LocalError> {
+        let choice = PlannerChoice {
+            name: motion.into(),
+            config: serde_json::to_value(&cfg.motion)
+                .map_err(|e| LocalError::InvalidParameter(format!("{name}.motion: {e}")))?,
+        };
+        Self::new(name, cfg.lidar, None, cfg.local, &choice, robot)
+    }
+
+    /// The robot-side stack.
+    pub fn stack(&self) -> &ScanNavigation {
+        &self.stack
+    }
+
+    /// The last scan and the pose it was taken from.
+    pub fn last_scan(&self) -> Option<&([f64; 3], Scan)> {
+        self.last.as_ref()
+    }
+
+    fn fill_debug(&mut self, pose: [f64; 3], scan: &Scan) {
+        let (c, s) = (cos(pose[2]), sin(pose[2]));
+        let world = |p: [f64; 2]| [pose[0] + c * p[0] - s * p[1], pose[1] + s * p[0] + c * p[1]];
+        let md = self.stack.motion_debug();
+        let d = &mut self.debug;
+        d.critics.clone_from(&md.critics);
+        d.chosen = md.chosen;
+        d.rollouts.clear();
+        if self.record {
+            for r in &md.rollouts {
+                let mut r = r.clone();
+                for p in &mut r.points {
+                    *p = world(*p);
+                }
+                d.rollouts.push(r);
+            }
+        }
+        let (target, kind) = self.stack.target();
+        d.current_goal = world(target);
+        d.goal_kind = match kind {
+            TargetKind::Global => GoalKind::Final,
+            TargetKind::Temporary | TargetKind::Held => GoalKind::Temporary,
+        };
+        let motion_mode = &md.mode;
+        d.mode = match kind {
+            TargetKind::Global => motion_mode.clone(),
+            TargetKind::Temporary => format!("temp-goal/{motion_mode}"),
+            TargetKind::Held => format!("hold/{motion_mode}"),
+        };
+        let mut ld = d.lidar.take().unwrap_or_default();
+        ld.pose = pose;
+        ld.max_range = scan.max_range();
+        ld.ranges.clear();
+        ld.returns.clear();
+        for &r in scan.ranges() {
+            ld.returns.push(r.is_finite());
+            ld.ranges.push(if r.is_finite() { r } else { scan.max_range() });
+        }
+        ld.target = d.current_goal;
+        ld.kind = kind;
+        ld.edges_raw.clear();
+        ld.edges.clear();
+        ld.gaps.clear();
+        ld.ops_raw.clear();
+        ld.ops.clear();
+        ld.candidates.clear();
+        ld.blocking = None;
+        ld.hold_remaining = 0.0;
+        ld.hold_period = 0.0;
+        if let Some(nav) = self.stack.navigator() {
+            let nd = nav.debug();
+            ld.hold_remaining = nd.hold_remaining;
+            ld.hold_period = if nav.config().hold { nav.config().t_h } else { 0.0 };
+            if self.record {
+                let n = scan.len();
+                let point = |r: &[f64], i: usize| {
+                    let i = i % n.max(1);
+                    world(polar(beam_angle(i, n), r[i]))
+                };
+                let marks = |edges: &[Edge], r: &[f64]| -> Vec<EdgeMark> {
+                    edges
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, e)| **e != Edge::Null)
+                        .map(|(i, &e)| EdgeMark {
+                            beam: i,
+                            kind: e,
+                            point: if e.is_rising() {
+                                point(r, i)
+                            } else {
+                                point(r, i + 1)
+                            },
+                        })
+                        .collect()
+                };
+                ld.edges_raw = marks(&nd.edges_raw, scan.ranges());
+                ld.edges = marks(&nd.edges_mdf, &nd.ranges_mdf);
+                ld.gaps = nd
+                    .gaps
+                    .iter()
+                    .map(|g| [point(scan.ranges(), g.rise), point(scan.ranges(), g.fall + 1)])
+                    .collect();
+                for op in &nd.ops {
+                    let pts: Vec<[f64; 2]> =
+                        op.points(&nd.ranges_mdf).into_iter().map(world).collect();
+                    let mut ext = Vec::with_capacity(pts.len() + 10);
+                    if !op.closed {
+                        let a0 = beam_angle(op.first, n);
+                        for k in (1..=4).rev() {
+                            let a = a0 - op.ext_start * k as f64 / 4.0;
+                            ext.push(world(polar(a, op.d_first)));
+                        }
+                    }
+                    ext.extend_from_slice(&pts);
+                    if !op.closed {
+                        let a1 = beam_angle(op.first + op.len - 1, n);
+                        for k in 1..=4 {
+                            let a = a1 + op.ext_end * k as f64 / 4.0;
+                            ext.push(world(polar(a, op.d_last)));
+                        }
+                    }
+                    ld.ops_raw.push(pts);
+                    ld.ops.push(ext);
+                }
+                ld.blocking = nd.blocking;
+                ld.candidates = nd
+                    .candidates
+                    .iter()
+                    .map(|c| CandidateMark {
+                        point: world(c.point),
+                        cost: c.cost,
+                        iteration: c.iteration,
+                    })
+                    .collect();
+            }
+        }
+        d.lidar = Some(ld);
+    }
+}
+
+impl LocalPlanner for LidarPlanner {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn step(&mut self, obs: &Observation<'_>) -> Command {
+        let s = obs.state;
+        let pose = [s.x, s.y, s.theta];
+        let discs: Vec<Disc> = obs
+            .movers
+            .iter()
+            .map(|m| Disc {
+                centre: m.pos,
+                radius: m.radius,
+            })
+            .collect();
+        let scan = self.lidar.scan(obs.map, pose, &discs);
+        // Assumption 2: the goal in the robot frame.
+        let (c, sn) = (cos(s.theta), sin(s.theta));
+        let (dx, dy) = (obs.goal[0] - s.x, obs.goal[1] - s.y);
+        let goal = [c * dx + sn * dy, -sn * dx + c * dy];
+        let input = NavInput {
+            scan: &scan,
+            velocity: Velocity {
+                v: s.v,
+                vy: s.vy,
+                w: s.w,
+            },
+            goal,
+            dt: obs.dt,
+        };
+        let cmd = self.stack.step(&input);
+        self.fill_debug(pose, &scan);
+        self.last = Some((pose, scan));
+        cmd
+    }
+
+    fn set_goal(
+        &mut self,
+        _map: &StaticMap,
+        _state: &RobotState,
+        goal: [f64; 2],
+    ) -> Result<(), LocalError> {
+        if !(goal[0].is_finite() && goal[1].is_finite()) {
+            return Err(LocalError::InvalidParameter(format!(
+                "goal = ({}, {}): must be finite",
+                goal[0], goal[1]
+            )));
+        }
+        self.stack.reset();
+        Ok(())
+    }
+
+    fn debug(&self) -> &PlannerDebug {
+        &self.debug
+    }
+
+    fn set_record_rollouts(&mut self, on: bool) {
+        self.record = on;
+        self.stack.set_record(on);
+    }
+}
