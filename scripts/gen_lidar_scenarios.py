@@ -109,33 +109,33 @@ def sim3():
 
 def sim4():
     g = Grid(26, 16, 0.1)
-    # Z channel: right along the bottom, left through the middle, right
-    # along the top. Walls 1-3 have 0.4 m holes (narrower than the robot,
-    # < T_gap), wall 4 is the map's edge.
-    wall(g, 0.0, 5.0, 17.0, 5.3, gaps=(4.0, 8.0, 12.0))        # wall 1
-    wall(g, 8.0, 10.0, 26.0, 10.3, gaps=(12.0, 16.0, 20.0))    # wall 2
-    wall(g, 20.0, 0.0, 20.3, 3.0, gaps=(1.5,))                 # wall 3: a spur below
+    # A Z-shaped channel (right, up, right) between two L-shaped walls.
+    # Obstacles 1-3 (the L's legs) have 0.4 m holes, narrower than the
+    # robot and than T_gap; obstacle 4 (the upper bar) is whole.
+    wall(g, 0.0, 5.0, 13.3, 5.3, gaps=(4.0, 8.0, 11.0))    # 1: lower floor
+    wall(g, 13.0, 5.0, 13.3, 16.0, gaps=(8.5, 12.5))       # 2: shaft, left side
+    wall(g, 17.0, 0.0, 17.3, 10.3, gaps=(3.0, 7.0))        # 3: shaft, right side
+    wall(g, 17.0, 10.0, 26.0, 10.3)                        # 4: upper bar
     return scenario(
         "[L] sim 4: Z channel with narrow holes",
-        "A Z-shaped channel: right under wall 1, back left between walls 1 and 2, right "
-        "above wall 2 ([L] Fig 14b). Walls 1-3 have 0.4 m holes, narrower than the robot "
-        "and than T_gap: Algorithm 1 removes them, the temporary goals ignore them; some "
-        "temporary goals need an iteration.",
-        g, (2.0, 2.5), (22.0, 13.0), 0.0, "lidar-dwa", 180.0, stuck_time=40.0)
+        "A Z-shaped channel between two L-shaped walls: right along the bottom, up the "
+        "shaft, right along the top ([L] Fig 14b). Obstacles 1-3 have 0.4 m holes, narrower "
+        "than the robot and than T_gap: Algorithm 1 removes them and the temporary goals "
+        "ignore them.",
+        g, (2.0, 2.5), (23.0, 13.0), 0.0, "lidar-dwa", 150.0)
 
 
 def sim5():
     g = Grid(24, 16, 0.1)
-    # [L] Fig 15 vs improved DWA [17]: a big concave obstacle across the way.
-    wall(g, 10.0, 3.0, 10.3, 12.0)
-    wall(g, 7.0, 11.7, 10.3, 12.0)
-    wall(g, 7.0, 3.0, 10.3, 3.3)
+    # [L] Fig 15 vs improved DWA [17]: a long wall hooked at its top end.
+    wall(g, 9.0, 2.5, 9.3, 12.5)
+    wall(g, 9.0, 12.2, 13.0, 12.5)
     return scenario(
-        "[L] sim 5: concave obstacle (vs DWA)",
-        "A large concave obstacle open toward the robot, offset from the start-goal line "
-        "([L] Fig 15). The navigator sees the whole obstacle and leaves for its lower "
-        "corner early; plain DWA on the same scan drives into the bay first.",
-        g, (2.0, 8.5), (21.0, 7.0), 0.0, "lidar-dwa", 150.0)
+        "[L] sim 5: long hooked wall (vs DWA)",
+        "A long wall across the way, hooked at its upper end, slightly offset from the "
+        "start-goal line ([L] Fig 15). The navigator sees the wall early and heads for its "
+        "lower end; plain DWA on the same scan meets it head-on and follows it.",
+        g, (2.0, 9.0), (21.0, 8.0), 0.0, "lidar-dwa", 150.0)
 
 
 def sim6():
@@ -152,19 +152,19 @@ def sim6():
 
 def sim7():
     g = Grid(20, 14, 0.1)
-    # [L] Fig 17 vs RL-RRT [2]: two offset walls, a slalom.
-    wall(g, 6.0, 0.0, 6.3, 9.0)
-    wall(g, 12.0, 5.0, 12.3, 14.0)
+    # [L] Fig 17 vs RL-RRT [2]: two offset free-standing walls.
+    wall(g, 6.0, 2.0, 6.3, 10.0)
+    wall(g, 12.0, 4.0, 12.3, 12.0)
     return scenario(
-        "[L] sim 7: offset walls (vs DWA)",
-        "Two walls from opposite edges make a slalom ([L] Fig 17).",
-        g, (2.0, 3.0), (18.0, 11.0), 0.0, "lidar-dwa", 150.0)
+        "[L] sim 7: two offset walls (vs DWA)",
+        "Two free-standing walls, offset, across the way ([L] Fig 17).",
+        g, (2.0, 6.0), (18.0, 8.0), 0.0, "lidar-dwa", 150.0)
 
 
 def sim8():
     g = Grid(26, 16, 0.1)
     # [L] Fig 18 vs RS-APF [11]: blocks and a wall; APF underneath.
-    for (x0, y0, x1, y1) in [(6, 4, 8, 12), (12, 7, 14, 15), (12, 0, 14, 3.5), (18, 3, 20, 10)]:
+    for (x0, y0, x1, y1) in [(6, 5, 8, 11), (12, 9, 14, 13), (12, 2, 14, 6), (18, 5, 20, 10)]:
         wall(g, x0, y0, x1, y1)
     return scenario(
         "[L] sim 8: blocks (vs APF)",

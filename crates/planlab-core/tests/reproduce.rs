@@ -4,7 +4,7 @@
 use planlab_core::reproduce;
 
 /// The ids `planlab reproduce` must know once every paper's file is filled.
-const ISSUE_IDS: [&str; 10] = [
+const ISSUE_IDS: [&str; 20] = [
     "T-fig3-2",
     "T-fig3-11",
     "T-fig3-13a",
@@ -15,6 +15,16 @@ const ISSUE_IDS: [&str; 10] = [
     "S-fig12",
     "C-tab3",
     "C-tab5",
+    "L-sim1",
+    "L-sim2",
+    "L-sim3",
+    "L-sim4",
+    "L-sim5",
+    "L-sim6",
+    "L-sim7",
+    "L-sim8",
+    "L-sim9",
+    "L-tab2",
 ];
 
 #[test]

@@ -139,7 +139,14 @@ pub fn remove_gaps(
             Some((k, q, dg)) => {
                 for m in 1..=k {
                     let idx = (i + m) % n;
-                    ranges[idx] = line_range(beam_angle(idx, n), p, q, ranges[i], ranges[(i + k + 1) % n], m as f64 / (k + 1) as f64);
+                    ranges[idx] = line_range(
+                        beam_angle(idx, n),
+                        p,
+                        q,
+                        ranges[i],
+                        ranges[(i + k + 1) % n],
+                        m as f64 / (k + 1) as f64,
+                    );
                 }
                 for m in 0..=k {
                     edges[(i + m) % n] = Edge::Null;
@@ -315,11 +322,11 @@ pub fn extract_ops(ranges: &[f64], edges: &[Edge], out: &mut Vec<ObstaclePattern
 
 /// Expansion angle of eq 1 for distance `d_oe` at range `d`, rad.
 pub fn expansion_angle(d_oe: f64, d: f64) -> f64 {
-    if !(d_oe > 0.0) || !d_oe.is_finite() {
+    if !d_oe.is_finite() || d_oe <= 0.0 {
         return 0.0;
     }
     let x = d_oe / (2.0 * d);
-    if !(x < 1.0) {
+    if x.is_nan() || x >= 1.0 {
         std::f64::consts::PI
     } else {
         2.0 * asin(x)

@@ -40,7 +40,13 @@ impl SeenCells {
     /// out to `ranges[i]` (m), plus the hit cell when `returns[i]`.
     /// Non-finite poses or ranges are skipped; a grid of another size
     /// resets the record.
-    pub fn update(&mut self, grid: &OccupancyGrid, pose: [f64; 3], ranges: &[f64], returns: &[bool]) {
+    pub fn update(
+        &mut self,
+        grid: &OccupancyGrid,
+        pose: [f64; 3],
+        ranges: &[f64],
+        returns: &[bool],
+    ) {
         if grid.width() != self.width || grid.height() != self.height {
             *self = SeenCells::new(grid);
         }

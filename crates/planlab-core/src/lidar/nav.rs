@@ -323,7 +323,7 @@ impl Navigator {
     /// The nearest OP blocking `p` (eq 2) and its range at p's bearing.
     fn blocking(&self, p: [f64; 2]) -> Option<(usize, f64)> {
         let d_tar = hypot(p[0], p[1]);
-        if !(d_tar > 0.0) {
+        if d_tar.is_nan() || d_tar <= 0.0 {
             return None;
         }
         let th = atan2(p[1], p[0]);

@@ -124,19 +124,51 @@ pub fn lidar_fields(with_nav: bool) -> Vec<(String, String, String)> {
     push("lidar.noise_seed", "1", "seed of the noise stream");
     if with_nav {
         push("nav.t_gap", "m", "T_gap: weak edges and gap widths");
-        push("nav.theta_range", "rad", "θ_range: Algorithm 1 looks this far past a rising edge");
+        push(
+            "nav.theta_range",
+            "rad",
+            "θ_range: Algorithm 1 looks this far past a rising edge",
+        );
         push("nav.d_oe", "m", "d_oe: obstacle expansion (eq 1)");
-        push("nav.d_te", "m", "d_te: temporary goal offset beyond an OP end");
-        push("nav.t_do", "m", "T_do (eq 4): switch when the blocking OP is nearer");
+        push(
+            "nav.d_te",
+            "m",
+            "d_te: temporary goal offset beyond an OP end",
+        );
+        push(
+            "nav.t_do",
+            "m",
+            "T_do (eq 4): switch when the blocking OP is nearer",
+        );
         push("nav.t_theta_o", "rad", "T_θo (eq 4): … or wider than this");
-        push("nav.t_dc", "m", "T_dc: hold when the candidates' costs differ by less");
+        push(
+            "nav.t_dc",
+            "m",
+            "T_dc: hold when the candidates' costs differ by less",
+        );
         push("nav.t_h", "s", "t_h: hold period");
-        push("nav.max_iterations", "1", "most re-selections of a blocked temporary goal");
-        push("nav.switch_condition", "bool", "apply eq 4 before switching to a temporary goal");
+        push(
+            "nav.max_iterations",
+            "1",
+            "most re-selections of a blocked temporary goal",
+        );
+        push(
+            "nav.switch_condition",
+            "bool",
+            "apply eq 4 before switching to a temporary goal",
+        );
         push("nav.hold", "bool", "apply the hold period");
-        push("nav.lookahead", "m", "steer to a temporary goal at least this far along its bearing");
+        push(
+            "nav.lookahead",
+            "m",
+            "steer to a temporary goal at least this far along its bearing",
+        );
     }
-    push("local.half_size", "m", "half side of the scan's local map (robot frame)");
+    push(
+        "local.half_size",
+        "m",
+        "half side of the scan's local map (robot frame)",
+    );
     push("local.resolution", "m", "cell size of the scan's local map");
     v
 }
@@ -322,7 +354,11 @@ fn empty_local_map(cfg: &LocalMapConfig) -> Result<StaticMap, LocalError> {
 
 /// The local map of a scan: robot frame, robot at the centre; hit points
 /// occupied, consecutive hits closer than `join` joined by a line.
-pub fn scan_local_map(scan: &Scan, cfg: &LocalMapConfig, join: f64) -> Result<StaticMap, LocalError> {
+pub fn scan_local_map(
+    scan: &Scan,
+    cfg: &LocalMapConfig,
+    join: f64,
+) -> Result<StaticMap, LocalError> {
     let n = local_dims(cfg);
     let res = cfg.resolution;
     let half = cfg.half_size;
@@ -544,7 +580,8 @@ impl LidarPlanner {
         ld.returns.clear();
         for &r in scan.ranges() {
             ld.returns.push(r.is_finite());
-            ld.ranges.push(if r.is_finite() { r } else { scan.max_range() });
+            ld.ranges
+                .push(if r.is_finite() { r } else { scan.max_range() });
         }
         ld.target = d.current_goal;
         ld.kind = kind;
@@ -560,7 +597,11 @@ impl LidarPlanner {
         if let Some(nav) = self.stack.navigator() {
             let nd = nav.debug();
             ld.hold_remaining = nd.hold_remaining;
-            ld.hold_period = if nav.config().hold { nav.config().t_h } else { 0.0 };
+            ld.hold_period = if nav.config().hold {
+                nav.config().t_h
+            } else {
+                0.0
+            };
             if self.record {
                 let n = scan.len();
                 let point = |r: &[f64], i: usize| {
@@ -588,7 +629,12 @@ impl LidarPlanner {
                 ld.gaps = nd
                     .gaps
                     .iter()
-                    .map(|g| [point(scan.ranges(), g.rise), point(scan.ranges(), g.fall + 1)])
+                    .map(|g| {
+                        [
+                            point(scan.ranges(), g.rise),
+                            point(scan.ranges(), g.fall + 1),
+                        ]
+                    })
                     .collect();
                 for op in &nd.ops {
                     let pts: Vec<[f64; 2]> =

@@ -206,7 +206,8 @@ pub fn cast_grid(map: &StaticMap, x: f64, y: f64, dx: f64, dy: f64, max: f64) ->
     let (lx, ly) = ((x - o.x) / res, (y - o.y) / res);
     let mut cx = lx.floor() as i64;
     let mut cu = ly.floor() as i64;
-    let blocked = |c: i64, u: i64| c < 0 || u < 0 || c >= w || u >= h || map.is_blocked(c, h - 1 - u);
+    let blocked =
+        |c: i64, u: i64| c < 0 || u < 0 || c >= w || u >= h || map.is_blocked(c, h - 1 - u);
     if blocked(cx, cu) {
         return 0.0;
     }

@@ -19,11 +19,11 @@ use super::improved::{
     fusion53_fields, improved_fields, Fusion53Config, ImprovedConfig, ImprovedDwa,
 };
 use super::pursuit::{Pursuit, PursuitConfig};
+use super::{LocalError, LocalPlanner};
+use crate::apf::local::{self as apf_local, ApfLocal, ApfLocalConfig};
 use crate::lidar::planner::{
     lidar_fields, motion_fields, LidarPlanner, LidarPlannerConfig, ScanBaselineConfig,
 };
-use super::{LocalError, LocalPlanner};
-use crate::apf::local::{self as apf_local, ApfLocal, ApfLocalConfig};
 use crate::world::{RobotSpec, RobotState, StaticMap};
 
 /// The planner a scenario without a `local_planner` section uses.

@@ -8,9 +8,11 @@
 //! different planner and `--set`-style overrides, and a predicate over their
 //! [`EpisodeMetrics`] that states the paper's relation. The experiments of
 //! each paper live in their own file: [`t_dwa`] (Wu 2022 ch. 3), [`s_dual`]
-//! (Ge & Li 2022), [`c_clean`] (Zhang et al. 2020).
+//! (Ge & Li 2022), [`c_clean`] (Zhang et al. 2020), [`l_lidar`] (Chang et
+//! al. 2024).
 
 pub mod c_clean;
+pub mod l_lidar;
 pub mod s_dual;
 pub mod t_apf;
 pub mod t_dwa;
@@ -78,11 +80,12 @@ pub struct ExperimentResult {
     pub figures: BTreeMap<String, f64>,
 }
 
-/// Every experiment, in a fixed order (\[T\], \[S\], \[C\]).
+/// Every experiment, in a fixed order (\[T\], \[S\], \[C\], \[L\]).
 pub fn all() -> Vec<Experiment> {
     let mut v = t_dwa::experiments();
     v.extend(s_dual::experiments());
     v.extend(c_clean::experiments());
+    v.extend(l_lidar::experiments());
     v
 }
 
