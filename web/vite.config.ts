@@ -62,6 +62,7 @@ export default defineConfig({
       input: {
         main: resolve(here, 'index.html'),
         robot: resolve(here, 'robot.html'),
+        arm: resolve(here, 'arm.html'),
         bench: resolve(here, 'bench.html'),
       },
     },

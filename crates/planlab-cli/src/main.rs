@@ -3,6 +3,7 @@
 //! Every failure prints one line `planlab: error: …` on stderr and exits
 //! non-zero; usage errors exit 2 (clap's convention).
 
+mod arm_cmds;
 mod batch_cmd;
 mod bench;
 mod grid_cmds;
@@ -164,7 +165,9 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Run one simulated episode of a scenario .json and print its metrics.
+    /// Run one simulated episode of a scenario .json and print its metrics
+    /// (an arm scenario, with an `arm` section, runs the arm episode;
+    /// `--planner` then picks its predictor: none, constant-velocity).
     Run {
         /// Scenario JSON (a referenced map file is found relative to it).
         scenario: PathBuf,

@@ -177,6 +177,12 @@ fn apf_metrics_table(m: &ApfMetrics) -> String {
 
 /// `planlab run`: one episode (or APF run), metrics on stdout.
 pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
+    // An arm scenario (`arm` section, no map) runs the arm episode.
+    if let Ok(tree) = serde_json::from_str::<serde_json::Value>(&load::read_text(path)?) {
+        if planlab_core::arm::ArmScenario::is_arm(&tree) {
+            return crate::arm_cmds::run(path, tree, args);
+        }
+    }
     let (scenario, grid) = edited_scenario(path, args)?;
     if scenario.apf.is_some() {
         return run_apf(path, &scenario, &grid, args);

@@ -21,12 +21,18 @@
 //!   parameters) and everything drawn or plotted as typed arrays; see
 //!   [`sim`].
 //!
+//! - [`ArmHandle`] runs one arm episode (core `arm::ArmEpisode`) for the
+//!   arm page: the 7-DOF arm's links, joint angles, tool and hand paths,
+//!   the hand's predicted positions and the minimum distance; see [`arm`].
+//!
 //! Cell kinds cross as bytes: 0 free, 1 occupied, 2 unknown
 //! ([`Cell`]'s `repr(u8)`).
 
+pub mod arm;
 pub mod batch;
 pub mod sim;
 
+pub use arm::{arm_choices, ArmHandle};
 pub use sim::{planners, SimHandle};
 
 use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};

@@ -424,6 +424,73 @@ impl ArmEpisode {
         })
     }
 
+    /// Moves the goal during the episode (the page's target drag): checked
+    /// like at the start (reach, inside the hand now or at rest, IK from
+    /// the current posture). A finished episode resumes.
+    pub fn set_goal(&mut self, goal: [f64; 3]) -> Result<(), ArmError> {
+        let g = DVec3::from_array(goal);
+        if !g.is_finite() {
+            return Err(ArmError::NotFinite("goal".into()));
+        }
+        let d = (g - self.model.shoulder()).length();
+        if d > self.model.reach() {
+            return Err(ArmError::OutOfReach {
+                what: "goal".into(),
+                target: goal,
+                distance: d,
+                reach: self.model.reach(),
+            });
+        }
+        let mut times = vec![self.time()];
+        if self.hand.end_time().is_finite() {
+            times.push(self.hand.end_time().max(self.time()));
+        }
+        for t in times {
+            for (i, o) in self.hand.obstacles_at(t).iter().enumerate() {
+                if o.point_distance(g) <= 0.0 {
+                    return Err(ArmError::InsideObstacle {
+                        what: "goal".into(),
+                        target: goal,
+                        obstacle: format!("{} at t = {t:.1} s", ["hand", "forearm"][i]),
+                    });
+                }
+            }
+        }
+        let mut q = self.q.clone();
+        let deep = IkConfig {
+            max_iters: self.scene.ik.max_iters.max(400),
+            ..self.scene.ik
+        };
+        let r = self.model.ik_solve(&mut q, g, &deep);
+        if !r.converged {
+            return Err(ArmError::IkFailed {
+                what: "goal".into(),
+                target: goal,
+                error_m: r.error_m,
+            });
+        }
+        self.scene.goal = goal;
+        if matches!(
+            self.outcome,
+            Outcome::Reached | Outcome::Stuck | Outcome::Timeout
+        ) {
+            self.outcome = Outcome::Running;
+        }
+        self.best_goal_dist = (self.model.tool_position(&self.q) - g).length();
+        self.best_at = self.time();
+        Ok(())
+    }
+
+    /// Switches the predictor during the episode (the APF is rebuilt; the
+    /// hand's track starts afresh).
+    pub fn set_predictor(&mut self, p: ArmPredictor) -> Result<(), ArmError> {
+        let mut cfg = self.scene.apf;
+        p.apply(&mut cfg);
+        self.apf = Apf::<DVec3>::new(cfg).map_err(|e| ArmError::Invalid(e.to_string()))?;
+        self.scene.apf = cfg;
+        Ok(())
+    }
+
     /// Time now, s.
     pub fn time(&self) -> f64 {
         self.tick as f64 * self.dt

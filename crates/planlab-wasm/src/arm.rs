@@ -1,0 +1,320 @@
+//! [`ArmHandle`]: one arm episode (core `arm::ArmEpisode`) for the arm
+//! page. Steps, live edits (goal, predictor; hand motion and speed restart
+//! the episode) and everything drawn as typed arrays. No kinematics or
+//! distances are computed here.
+
+use planlab_core::arm::{ArmEpisode, ArmPredictor, ArmScenario, HandPreset, Obstacle3};
+use serde::Serialize;
+use wasm_bindgen::prelude::*;
+
+fn js(e: impl std::fmt::Display) -> JsError {
+    JsError::new(&e.to_string())
+}
+
+/// One arm episode and the scenario it restarts from.
+#[wasm_bindgen]
+pub struct ArmHandle {
+    scenario: ArmScenario,
+    ep: ArmEpisode,
+}
+
+#[derive(Serialize)]
+struct Choices {
+    hand_presets: Vec<&'static str>,
+    predictors: Vec<&'static str>,
+}
+
+/// The hand presets and predictors the page offers, as JSON
+/// `{hand_presets: [...], predictors: [...]}`.
+#[wasm_bindgen(js_name = armChoices)]
+pub fn arm_choices() -> String {
+    serde_json::to_string(&Choices {
+        hand_presets: HandPreset::ALL.iter().map(|p| p.name()).collect(),
+        predictors: ArmPredictor::ALL.iter().map(|p| p.name()).collect(),
+    })
+    .unwrap_or_default()
+}
+
+fn push3(out: &mut Vec<f32>, p: [f64; 3]) {
+    out.extend(p.iter().map(|&x| x as f32));
+}
+
+#[wasm_bindgen]
+impl ArmHandle {
+    /// Reads an arm scenario (JSON with an `arm` section) and builds its
+    /// episode; errors carry the core's message.
+    #[wasm_bindgen(constructor)]
+    pub fn new(json: &str) -> Result<ArmHandle, JsError> {
+        let scenario = ArmScenario::from_json(json).map_err(js)?;
+        let ep = ArmEpisode::from_scenario(&scenario).map_err(js)?;
+        Ok(ArmHandle { scenario, ep })
+    }
+
+    /// Advances `n` samples (stops early at the end); returns the outcome.
+    pub fn step(&mut self, n: u32) -> Result<String, JsError> {
+        for _ in 0..n {
+            if self.ep.step().map_err(js)? != planlab_core::sim::Outcome::Running {
+                break;
+            }
+        }
+        Ok(self.ep.outcome().to_string())
+    }
+
+    /// Restarts from the scenario (with the edits made so far).
+    pub fn reset(&mut self) -> Result<(), JsError> {
+        self.ep = ArmEpisode::from_scenario(&self.scenario).map_err(js)?;
+        Ok(())
+    }
+
+    /// `running`, `reached`, `collision`, `timeout` or `stuck`.
+    #[wasm_bindgen(getter)]
+    pub fn outcome(&self) -> String {
+        self.ep.outcome().to_string()
+    }
+
+    /// Time now, s.
+    #[wasm_bindgen(getter)]
+    pub fn time(&self) -> f64 {
+        self.ep.time()
+    }
+
+    /// Sample period, s.
+    #[wasm_bindgen(getter)]
+    pub fn dt(&self) -> f64 {
+        self.scenario.arm.sim.sample_period_s
+    }
+
+    /// Link-to-hand distance now, m.
+    #[wasm_bindgen(getter, js_name = distanceNow)]
+    pub fn distance_now(&self) -> f64 {
+        self.ep.distance_now()
+    }
+
+    /// Smallest link-to-hand distance so far, m.
+    #[wasm_bindgen(getter, js_name = minDistance)]
+    pub fn min_distance(&self) -> f64 {
+        self.ep.min_distance()
+    }
+
+    /// The metrics so far as JSON (`planlab run --json` field names).
+    #[wasm_bindgen(js_name = metricsJson)]
+    pub fn metrics_json(&self) -> Result<String, JsError> {
+        serde_json::to_string(&self.ep.metrics()).map_err(js)
+    }
+
+    /// The current scenario (with the page's edits) as pretty JSON.
+    #[wasm_bindgen(js_name = scenarioJson)]
+    pub fn scenario_json(&self) -> Result<String, JsError> {
+        serde_json::to_string_pretty(&self.scenario).map_err(js)
+    }
+
+    /// Scenario name.
+    #[wasm_bindgen(getter)]
+    pub fn name(&self) -> String {
+        self.scenario.name.clone()
+    }
+
+    /// Joint names as JSON.
+    #[wasm_bindgen(js_name = jointNames)]
+    pub fn joint_names(&self) -> String {
+        serde_json::to_string(&self.ep.model().joint_names()).unwrap_or_default()
+    }
+
+    /// Joint angles now, rad.
+    #[wasm_bindgen(js_name = jointAngles)]
+    pub fn joint_angles(&self) -> Vec<f64> {
+        self.ep.q().to_vec()
+    }
+
+    /// Joint limits as `min, max` pairs, rad.
+    #[wasm_bindgen(js_name = jointLimits)]
+    pub fn joint_limits(&self) -> Vec<f64> {
+        let m = self.ep.model();
+        (0..m.dof())
+            .flat_map(|i| {
+                let (lo, hi) = m.limits(i);
+                [lo, hi]
+            })
+            .collect()
+    }
+
+    /// Link capsules now: `ax, ay, az, bx, by, bz, radius` per link.
+    pub fn links(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        for l in self.ep.links() {
+            push3(&mut out, l.a.to_array());
+            push3(&mut out, l.b.to_array());
+            out.push(l.radius as f32);
+        }
+        out
+    }
+
+    /// The tool's path at the planning instants, `x, y, z` per point.
+    #[wasm_bindgen(js_name = toolPath)]
+    pub fn tool_path(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        for p in self.ep.tool_path() {
+            push3(&mut out, p.to_array());
+        }
+        out
+    }
+
+    /// The hand centre at every sample so far, `x, y, z` per point.
+    #[wasm_bindgen(js_name = handPath)]
+    pub fn hand_path(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        for p in self.ep.hand_path() {
+            push3(&mut out, p.to_array());
+        }
+        out
+    }
+
+    /// The scripted hand path from 0 to the end of its motion (or 10 s),
+    /// `n` points, `x, y, z` each.
+    #[wasm_bindgen(js_name = handScript)]
+    pub fn hand_script(&self, n: u32) -> Vec<f32> {
+        let h = self.ep.hand();
+        let end = if h.end_time().is_finite() {
+            h.end_time().max(0.1)
+        } else {
+            10.0
+        };
+        let n = n.clamp(2, 2000);
+        let mut out = Vec::new();
+        for i in 0..n {
+            push3(
+                &mut out,
+                h.hand_at(end * i as f64 / (n - 1) as f64).to_array(),
+            );
+        }
+        out
+    }
+
+    /// The hand and forearm now: `cx, cy, cz, r` (hand sphere) then `ax,
+    /// ay, az, bx, by, bz, r` (forearm capsule).
+    pub fn hand(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        for o in self.ep.hand_obstacles() {
+            match o {
+                Obstacle3::Sphere { centre, radius } => {
+                    push3(&mut out, centre);
+                    out.push(radius as f32);
+                }
+                Obstacle3::Capsule { a, b, radius } => {
+                    push3(&mut out, a);
+                    push3(&mut out, b);
+                    out.push(radius as f32);
+                }
+            }
+        }
+        out
+    }
+
+    /// Predicted obstacle positions of the last planning step: `x, y, z,
+    /// range, k` per virtual obstacle (k = 1 for t+1, 2 for t+2; id 0 is
+    /// the hand, 1–3 the forearm).
+    pub fn predictions(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        if let Some(s) = self.ep.last_step() {
+            for v in &s.predicted {
+                push3(&mut out, v.centre.to_array());
+                out.push(v.range as f32);
+                out.push(v.k as f32);
+            }
+        }
+        out
+    }
+
+    /// The sampled candidate points of the last step, `x, y, z` each (the
+    /// chosen one is [`ArmHandle::chosen`]).
+    pub fn candidates(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        if let Some(s) = self.ep.last_step() {
+            for c in &s.candidates {
+                push3(&mut out, c.point.to_array());
+            }
+        }
+        out
+    }
+
+    /// Index of the chosen candidate, −1 for a resultant step.
+    #[wasm_bindgen(getter)]
+    pub fn chosen(&self) -> i32 {
+        self.ep
+            .last_step()
+            .and_then(|s| s.chosen)
+            .map_or(-1, |i| i as i32)
+    }
+
+    /// Goal `x, y, z`, m.
+    pub fn goal(&self) -> Vec<f64> {
+        self.ep.scene().goal.to_vec()
+    }
+
+    /// Start `x, y, z`, m.
+    pub fn start(&self) -> Vec<f64> {
+        self.ep.scene().start.to_vec()
+    }
+
+    /// Moves the goal (live; errors for unreachable targets leave it).
+    #[wasm_bindgen(js_name = setGoal)]
+    pub fn set_goal(&mut self, x: f64, y: f64, z: f64) -> Result<(), JsError> {
+        self.ep.set_goal([x, y, z]).map_err(js)?;
+        self.scenario.arm.goal = [x, y, z];
+        Ok(())
+    }
+
+    /// Switches the predictor (`none`, `constant-velocity`) live.
+    #[wasm_bindgen(js_name = setPredictor)]
+    pub fn set_predictor(&mut self, name: &str) -> Result<(), JsError> {
+        let p = ArmPredictor::parse(name).map_err(js)?;
+        self.ep.set_predictor(p).map_err(js)?;
+        p.apply(&mut self.scenario.arm.apf);
+        Ok(())
+    }
+
+    /// The predictor in use.
+    #[wasm_bindgen(getter)]
+    pub fn predictor(&self) -> String {
+        ArmPredictor::of(&self.ep.scene().apf).name().to_string()
+    }
+
+    /// Changes the hand's motion (preset name, speed factor, seed) and
+    /// restarts; on error nothing changes.
+    #[wasm_bindgen(js_name = setHand)]
+    pub fn set_hand(&mut self, preset: &str, speed: f64, seed: f64) -> Result<(), JsError> {
+        let p = HandPreset::ALL
+            .into_iter()
+            .find(|p| p.name() == preset)
+            .ok_or_else(|| JsError::new(&format!("unknown hand preset `{preset}`")))?;
+        if !(seed.is_finite() && seed >= 0.0) {
+            return Err(JsError::new("seed must be a non-negative number"));
+        }
+        let mut s = self.scenario.clone();
+        s.arm.hand.preset = p;
+        s.arm.hand.speed = speed;
+        s.seed = Some(seed as u64);
+        let ep = ArmEpisode::from_scenario(&s).map_err(js)?;
+        self.scenario = s;
+        self.ep = ep;
+        Ok(())
+    }
+
+    /// The hand's preset name.
+    #[wasm_bindgen(getter, js_name = handPreset)]
+    pub fn hand_preset(&self) -> String {
+        self.scenario.arm.hand.preset.name().to_string()
+    }
+
+    /// The hand's speed factor.
+    #[wasm_bindgen(getter, js_name = handSpeed)]
+    pub fn hand_speed(&self) -> f64 {
+        self.scenario.arm.hand.speed
+    }
+
+    /// The scenario's seed.
+    #[wasm_bindgen(getter)]
+    pub fn seed(&self) -> f64 {
+        self.scenario.seed.unwrap_or(0) as f64
+    }
+}
