@@ -230,6 +230,26 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Train the SimpleRNN obstacle predictor ([T] §5.2) on synthetic
+    /// hand-reaching trajectories (seeded) and write its weights; prints
+    /// the held-out MSE beside constant velocity's.
+    TrainPredictor {
+        /// Seed of the data, initial weights and shuffling.
+        #[arg(long, default_value_t = 7)]
+        seed: u64,
+        /// Passes over the training set.
+        #[arg(long, default_value_t = 60)]
+        epochs: u32,
+        /// Training trajectories (6 reaches each).
+        #[arg(long, default_value_t = 80)]
+        trajectories: usize,
+        /// Where to write the weights JSON.
+        #[arg(long, default_value = "assets/predictor/rnn.json")]
+        out: PathBuf,
+        /// The report as one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
     /// Benchmarks.
     Bench {
         #[command(subcommand)]
@@ -289,6 +309,13 @@ fn run(cli: Cli) -> Result<(), String> {
                 json,
             },
         ),
+        Command::TrainPredictor {
+            seed,
+            epochs,
+            trajectories,
+            out,
+            json,
+        } => sim_cmds::train_predictor(seed, epochs, trajectories, &out, json),
         Command::Reproduce { id, json } => sim_cmds::reproduce(id.as_deref(), json),
         Command::Scen {
             map,

@@ -45,6 +45,12 @@ pub fn exp(x: f64) -> f64 {
     libm::exp(x)
 }
 
+/// Hyperbolic tangent (deterministic across targets).
+#[inline]
+pub fn tanh(x: f64) -> f64 {
+    libm::tanh(x)
+}
+
 /// Natural logarithm (deterministic across targets).
 #[inline]
 pub fn ln(x: f64) -> f64 {

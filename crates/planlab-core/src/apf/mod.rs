@@ -10,7 +10,8 @@
 //!   resultant, in 3D in the vertical plane of the force, eq 4-6…4-12, cost
 //!   α‖F_attr‖ + β‖F_rep‖), the relative distance rule (§4.2.2) and dynamic
 //!   obstacle prediction at t+1 and t+2 (§4.2.3).
-//! - [`predict`]: the [`Predictor`] trait, [`ConstantVelocity`].
+//! - [`predict`]: the [`Predictor`] trait, [`ConstantVelocity`]; [`rnn`]:
+//!   the thesis's SimpleRNN (6 → 15 tanh → 3, §5.2) with native training.
 //! - [`scene`]: a kinematic APF run of a point robot among (moving)
 //!   spheres / discs, the `apf` section of a scenario, and [`ApfMetrics`].
 //! - [`local`]: the 2D APF as a [`crate::local::LocalPlanner`] (`apf`,
@@ -36,6 +37,7 @@ pub mod field;
 pub mod local;
 pub mod planner;
 pub mod predict;
+pub mod rnn;
 pub mod scene;
 pub mod vector;
 
@@ -44,6 +46,7 @@ use thiserror::Error;
 
 pub use planner::{Apf, ApfStep, Candidate, ObstacleObs, StepKind, VirtualObstacle};
 pub use predict::{ConstantVelocity, Predictor, PredictorKind, Track};
+pub use rnn::SimpleRnn;
 pub use scene::{AnyApfRun, ApfMetrics, ApfRun, ApfScene, SceneObstacle};
 pub use vector::{ApfVector, Sampling};
 

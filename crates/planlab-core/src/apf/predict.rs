@@ -3,11 +3,12 @@
 //! A [`Track`] is the observed history of one obstacle (time, 3D position;
 //! z = 0 in 2D). A [`Predictor`] answers "where will it be `ahead` seconds
 //! after the last observation?". Two are provided: [`ConstantVelocity`]
-//! (the thesis's recurrent network follows).
+//! and the thesis's recurrent network [`SimpleRnn`].
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
+use super::rnn::SimpleRnn;
 use super::ApfError;
 
 /// How many observations a track keeps (older ones are dropped).
@@ -139,6 +140,8 @@ pub enum PredictorKind {
     /// [`ConstantVelocity`].
     #[default]
     ConstantVelocity,
+    /// [`SimpleRnn`] with the shipped weights (`assets/predictor/rnn.json`).
+    Rnn,
 }
 
 impl PredictorKind {
@@ -147,6 +150,7 @@ impl PredictorKind {
     pub fn build(self) -> Result<Box<dyn Predictor>, ApfError> {
         Ok(match self {
             PredictorKind::ConstantVelocity => Box::new(ConstantVelocity),
+            PredictorKind::Rnn => Box::new(SimpleRnn::shipped()?),
         })
     }
 }

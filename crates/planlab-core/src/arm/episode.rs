@@ -66,17 +66,24 @@ pub enum ArmPredictor {
     None,
     /// Constant-velocity prediction at t+1, t+2.
     ConstantVelocity,
+    /// The SimpleRNN of \[T\] §5.2 (shipped weights) at t+1, t+2.
+    Rnn,
 }
 
 impl ArmPredictor {
     /// Every choice, in the page's order.
-    pub const ALL: [ArmPredictor; 2] = [ArmPredictor::None, ArmPredictor::ConstantVelocity];
+    pub const ALL: [ArmPredictor; 3] = [
+        ArmPredictor::None,
+        ArmPredictor::ConstantVelocity,
+        ArmPredictor::Rnn,
+    ];
 
     /// The kebab-case name.
     pub fn name(self) -> &'static str {
         match self {
             ArmPredictor::None => "none",
             ArmPredictor::ConstantVelocity => "constant-velocity",
+            ArmPredictor::Rnn => "rnn",
         }
     }
 
@@ -85,8 +92,9 @@ impl ArmPredictor {
         match s {
             "none" => Ok(ArmPredictor::None),
             "constant-velocity" | "cv" => Ok(ArmPredictor::ConstantVelocity),
+            "rnn" => Ok(ArmPredictor::Rnn),
             _ => Err(ArmError::Invalid(format!(
-                "unknown predictor `{s}`: use none or constant-velocity"
+                "unknown predictor `{s}`: use none, constant-velocity or rnn"
             ))),
         }
     }
@@ -103,6 +111,10 @@ impl ArmPredictor {
                 cfg.mode = ApfMode::SamplingPrediction;
                 cfg.predictor = PredictorKind::ConstantVelocity;
             }
+            ArmPredictor::Rnn => {
+                cfg.mode = ApfMode::SamplingPrediction;
+                cfg.predictor = PredictorKind::Rnn;
+            }
         }
     }
 
@@ -111,6 +123,7 @@ impl ArmPredictor {
         match cfg.mode {
             ApfMode::SamplingPrediction => match cfg.predictor {
                 PredictorKind::ConstantVelocity => ArmPredictor::ConstantVelocity,
+                PredictorKind::Rnn => ArmPredictor::Rnn,
             },
             _ => ArmPredictor::None,
         }
