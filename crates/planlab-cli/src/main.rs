@@ -102,7 +102,8 @@ enum BenchKind {
         map: PathBuf,
         /// Its .scen file.
         scen: PathBuf,
-        /// Repetitions of the whole row set per planner (best is kept).
+        /// Least repetitions of the whole row set per planner (more run until
+        /// each planner has been timed for 0.2 s; the fastest is kept).
         #[arg(long, default_value_t = 3)]
         reps: usize,
     },
