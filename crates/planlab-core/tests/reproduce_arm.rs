@@ -3,6 +3,7 @@
 //! prediction than without; plus the arm scenario's error cases.
 
 use planlab_core::arm::{ArmEpisode, ArmError, ArmPredictor, ArmScenario, HandPreset};
+use planlab_core::reproduce::{find_path, run_path};
 use planlab_core::sim::Outcome;
 
 const PRESET: &str = include_str!("../../../assets/scenarios/T-tab5-3.json");
@@ -33,6 +34,27 @@ fn prediction_keeps_the_arm_farther_from_the_hand() {
             cv.min_obstacle_distance_m > none.min_obstacle_distance_m,
             "seed {seed}: with prediction {cv:?}, without {none:?}"
         );
+    }
+}
+
+#[test]
+fn t_tab5_3_is_registered_and_holds() {
+    let exp = find_path("T-tab5-3").expect("T-tab5-3 registered");
+    let r = run_path(&exp).unwrap();
+    assert!(r.holds, "{r:?}");
+    let (p, n) = (&r.runs["prediction"], &r.runs["no-prediction"]);
+    assert_eq!(p, &run(ArmPredictor::ConstantVelocity, 0));
+    assert_eq!(n, &run(ArmPredictor::None, 0));
+    let line = serde_json::to_string(&r).unwrap();
+    for k in [
+        "outcome",
+        "path_length_m",
+        "path_points",
+        "spikes",
+        "min_obstacle_distance_m",
+        "time_s",
+    ] {
+        assert!(line.contains(&format!("\"{k}\"")), "{k} missing: {line}");
     }
 }
 

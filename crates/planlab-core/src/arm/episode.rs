@@ -18,16 +18,11 @@ use super::hand::{HandMotion, HandSpec};
 use super::kinematics::IkConfig;
 use super::model::{ArmModel, ArmSpec};
 use super::ArmError;
-use crate::apf::{Apf, ApfConfig, ApfMode, ApfStep, ObstacleObs, PredictorKind};
-use crate::num::acos;
+use crate::apf::{Apf, ApfConfig, ApfMetrics, ApfMode, ApfStep, ObstacleObs, PredictorKind};
 use crate::sim::Outcome;
 
 /// The arm scenario file's format version.
 pub const ARM_SCENARIO_VERSION: u32 = 1;
-
-/// A path point whose turning angle exceeds this is a spike (SPEC §5
-/// Decision), rad.
-pub const SPIKE_ANGLE_RAD: f64 = std::f64::consts::PI / 6.0;
 
 /// Timing and end conditions of an arm episode.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -215,47 +210,10 @@ impl ArmScenario {
     }
 }
 
-/// What one arm episode measured (`planlab run --json` /
-/// `planlab reproduce --json` field names).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct ArmMetrics {
-    /// How it ended.
-    pub outcome: Outcome,
-    /// Length of the tool's path, m.
-    pub path_length_m: f64,
-    /// Points of the tool's path (start and one per planning step).
-    pub path_points: u32,
-    /// Interior path points turning more than 30°.
-    pub spikes: u32,
-    /// Smallest distance from any link to the hand or forearm, m.
-    pub min_obstacle_distance_m: f64,
-    /// Time until the end, s.
-    pub time_s: f64,
-}
-
-/// Turning angle at every interior point of a polyline, rad (0 where a
-/// segment has no length).
-pub fn turning_angles(path: &[DVec3]) -> Vec<f64> {
-    path.windows(3)
-        .map(|w| {
-            let (a, b) = (w[1] - w[0], w[2] - w[1]);
-            let l = a.length() * b.length();
-            if l <= 1e-15 {
-                0.0
-            } else {
-                acos((a.dot(b) / l).clamp(-1.0, 1.0))
-            }
-        })
-        .collect()
-}
-
-/// Interior points of `path` turning more than [`SPIKE_ANGLE_RAD`].
-pub fn count_spikes(path: &[DVec3]) -> u32 {
-    turning_angles(path)
-        .into_iter()
-        .filter(|&a| a > SPIKE_ANGLE_RAD)
-        .count() as u32
-}
+/// What one arm episode measured: the APF metrics (`planlab run --json` /
+/// `planlab reproduce --json` field names), with the minimum distance
+/// taken between any link capsule and the hand or forearm.
+pub type ArmMetrics = ApfMetrics;
 
 /// One arm episode, stepped sample by sample.
 pub struct ArmEpisode {
@@ -619,18 +577,13 @@ impl ArmEpisode {
 
     /// The metrics so far (final after [`ArmEpisode::run`]).
     pub fn metrics(&self) -> ArmMetrics {
-        ArmMetrics {
-            outcome: self.outcome,
-            path_length_m: self.path.windows(2).map(|w| (w[1] - w[0]).length()).sum(),
-            path_points: self.path.len() as u32,
-            spikes: count_spikes(&self.path),
-            min_obstacle_distance_m: self.min_dist,
-            time_s: if self.outcome == Outcome::Running {
-                self.time()
-            } else {
-                self.end_time
-            },
-        }
+        let time_s = if self.outcome == Outcome::Running {
+            self.time()
+        } else {
+            self.end_time
+        };
+        // Spikes: path points turning more than 30° (SPEC §5 Decision).
+        ApfMetrics::of_path(&self.path, self.outcome, self.min_dist, time_s)
     }
 
     /// How it stands.

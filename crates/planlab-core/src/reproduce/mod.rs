@@ -9,12 +9,14 @@
 //! [`EpisodeMetrics`] that states the paper's relation. The experiments of
 //! each paper live in their own file: [`t_dwa`] (Wu 2022 ch. 3), [`s_dual`]
 //! (Ge & Li 2022), [`c_clean`] (Zhang et al. 2020), [`l_lidar`] (Chang et
-//! al. 2024).
+//! al. 2024). Path experiments ([`PathExperiment`], APF metrics) are in
+//! [`t_apf`] (Wu 2022 ch. 4) and [`t_arm`] (the arm of Wu 2022 ch. 5).
 
 pub mod c_clean;
 pub mod l_lidar;
 pub mod s_dual;
 pub mod t_apf;
+pub mod t_arm;
 pub mod t_dwa;
 
 use std::collections::BTreeMap;
@@ -187,7 +189,9 @@ pub struct PathExperimentResult {
 
 /// Every path experiment, in a fixed order.
 pub fn path_experiments() -> Vec<PathExperiment> {
-    t_apf::experiments()
+    let mut v = t_apf::experiments();
+    v.extend(t_arm::experiments());
+    v
 }
 
 /// The path experiment with this id.
@@ -211,8 +215,14 @@ pub fn apf_run_of(
     AnyApfRun::new(apf, &s, &g).map_err(|e| SimError::InvalidConfig(e.to_string()))
 }
 
-/// Runs one path run to its end: its metrics.
+/// Runs one path run to its end: its metrics. An arm scenario (an `arm`
+/// section) runs the arm episode, with `planner` naming its predictor.
 pub fn run_path_spec(spec: &RunSpec) -> Result<ApfMetrics, SimError> {
+    if let Ok(tree) = serde_json::from_str::<serde_json::Value>(spec.scenario_json) {
+        if crate::arm::ArmScenario::is_arm(&tree) {
+            return run_arm_spec(spec, tree);
+        }
+    }
     let scenario = scenario_of(spec)?;
     let grid = scenario.inline_grid()?.ok_or_else(|| {
         SimError::Scenario(ScenarioError::Invalid(format!(
@@ -223,6 +233,23 @@ pub fn run_path_spec(spec: &RunSpec) -> Result<ApfMetrics, SimError> {
     apf_run_of(&scenario, &grid)?
         .run()
         .map_err(|e| SimError::InvalidConfig(e.to_string()))
+}
+
+/// An arm run: `set` edits, then the predictor named by `planner`.
+fn run_arm_spec(spec: &RunSpec, mut tree: serde_json::Value) -> Result<ApfMetrics, SimError> {
+    use crate::arm::{ArmEpisode, ArmPredictor, ArmScenario};
+    for (path, value) in &spec.set {
+        set_json_path(&mut tree, path, value)?;
+    }
+    let arm =
+        |e: crate::arm::ArmError| SimError::InvalidConfig(format!("run `{}`: {e}", spec.name));
+    let mut s = ArmScenario::from_value(&tree).map_err(arm)?;
+    if let Some(p) = spec.planner {
+        ArmPredictor::parse(p).map_err(arm)?.apply(&mut s.arm.apf);
+    }
+    let mut ep = ArmEpisode::from_scenario(&s).map_err(arm)?;
+    ep.run().map_err(arm)?;
+    Ok(ep.metrics())
 }
 
 /// Runs every run of `exp` and checks its relation.
