@@ -20,7 +20,7 @@ struct ArmRunReport<'a> {
 }
 
 /// Runs the arm scenario `tree` (read from `path`) with the CLI's edits:
-/// `--planner` picks the predictor (`none`, `constant-velocity`), `--seed`
+/// `--planner` picks the predictor (`none`, `constant-velocity`, `rnn`), `--seed`
 /// the hand's variation, `--set` edits the tree; `--trace` writes the
 /// tool's path as CSV.
 pub fn run(path: &Path, mut tree: serde_json::Value, args: &RunArgs<'_>) -> Result<(), String> {

@@ -168,7 +168,7 @@ enum Command {
     },
     /// Run one simulated episode of a scenario .json and print its metrics
     /// (an arm scenario, with an `arm` section, runs the arm episode;
-    /// `--planner` then picks its predictor: none, constant-velocity).
+    /// `--planner` then picks its predictor: none, constant-velocity, rnn).
     Run {
         /// Scenario JSON (a referenced map file is found relative to it).
         scenario: PathBuf,

@@ -23,7 +23,12 @@ fn prediction_keeps_the_arm_farther_from_the_hand() {
     for seed in 0..8 {
         let none = run(ArmPredictor::None, seed);
         let cv = run(ArmPredictor::ConstantVelocity, seed);
-        for m in [&none, &cv] {
+        let rnn = run(ArmPredictor::Rnn, seed);
+        assert!(
+            rnn.min_obstacle_distance_m >= none.min_obstacle_distance_m,
+            "seed {seed}: rnn {rnn:?}, none {none:?}"
+        );
+        for m in [&none, &cv, &rnn] {
             assert_eq!(m.outcome, Outcome::Reached, "seed {seed}: {m:?}");
             assert!(m.min_obstacle_distance_m > 0.0);
             // 0.04 m steps: the path has about length / 0.04 points.

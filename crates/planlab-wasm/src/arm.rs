@@ -264,7 +264,7 @@ impl ArmHandle {
         Ok(())
     }
 
-    /// Switches the predictor (`none`, `constant-velocity`) live.
+    /// Switches the predictor (`none`, `constant-velocity`, `rnn`) live.
     #[wasm_bindgen(js_name = setPredictor)]
     pub fn set_predictor(&mut self, name: &str) -> Result<(), JsError> {
         let p = ArmPredictor::parse(name).map_err(js)?;
