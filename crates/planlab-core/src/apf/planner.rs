@@ -222,12 +222,11 @@ impl<V: ApfVector> Apf<V> {
             };
             let here = o.centre.to_xyz();
             let reach = o.radius + self.cfg.robot_radius + self.cfg.p0;
+            let dt = self.cfg.predict_dt;
+            let preds = self.predictor.predict_many(tr, &[dt, 2.0 * dt]);
             let mut scale = 1.0;
-            for k in 1..=2u8 {
+            for (k, p) in (1..=2u8).zip(preds) {
                 scale *= self.cfg.predict_scale;
-                let Some(p) = self.predictor.predict(tr, k as f64 * self.cfg.predict_dt) else {
-                    continue;
-                };
                 if !p.is_finite() || (p - here).length() < self.cfg.predict_min_motion {
                     continue;
                 }

@@ -111,6 +111,15 @@ pub trait Predictor: Send + Sync {
     /// Position `ahead` seconds after the newest observation of `track`;
     /// `None` when the track is empty.
     fn predict(&self, track: &Track, ahead: f64) -> Option<DVec3>;
+    /// Positions `ahead` seconds later for each of `aheads`, in order
+    /// (predictors that do one inference for several horizons override
+    /// it); empty when the track is empty.
+    fn predict_many(&self, track: &Track, aheads: &[f64]) -> Vec<DVec3> {
+        aheads
+            .iter()
+            .filter_map(|&a| self.predict(track, a))
+            .collect()
+    }
 }
 
 /// Constant velocity: p + v·ahead, with the sensor's velocity when given,

@@ -241,6 +241,17 @@ impl Predictor for SimpleRnn {
         let p = self.w.predict_window(&window);
         Some(last + (p - last) * (ahead / HORIZON))
     }
+    fn predict_many(&self, track: &Track, aheads: &[f64]) -> Vec<DVec3> {
+        let Some(ps) = track.resample(SAMPLE_DT, HISTORY + 1) else {
+            return ConstantVelocity.predict_many(track, aheads);
+        };
+        let Ok(window) = <[DVec3; HISTORY + 1]>::try_from(ps) else {
+            return Vec::new();
+        };
+        let last = window[HISTORY];
+        let d = self.w.predict_window(&window) - last;
+        aheads.iter().map(|a| last + d * (a / HORIZON)).collect()
+    }
 }
 
 /// One training / test example: 6 positions spaced by [`SAMPLE_DT`] and the
