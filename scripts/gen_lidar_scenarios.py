@@ -37,7 +37,8 @@ def scenario(name, desc, g, start, goal, yaw, planner, max_time, movers=(), conf
         "version": 1, "name": name, "description": desc, "map": g.json(),
         "start": g.point(*start), "goal": g.point(*goal),
         "robot": ROBOT_L, "start_yaw": yaw, "movers": list(movers),
-        "local_planner": {"name": planner, "config": dict(config or {}, motion=MOTION)},
+        "local_planner": {"name": planner, "config": dict(config or {}, **(
+            {"motion": MOTION} if planner.endswith("-dwa") else {}))},
         "sim": {"dt": 0.1, "max_time": max_time, "goal_tolerance": 0.3,
                 "stuck_time": stuck_time, "stuck_distance": 0.2, "sensing_range": 10.0,
                 "record_rollouts": False, "unknown_is_obstacle": True},
@@ -168,8 +169,9 @@ def sim8():
         wall(g, x0, y0, x1, y1)
     return scenario(
         "[L] sim 8: blocks (vs APF)",
-        "Blocks across the way ([L] Fig 18); the motion planner under the navigator is APF.",
-        g, (2.0, 8.0), (24.0, 8.0), 0.0, "lidar-dwa", 150.0)
+        "Blocks across the way ([L] Fig 18); the motion planner under the navigator is the "
+        "basic APF, compared with plain APF on the same scan.",
+        g, (2.0, 8.0), (24.0, 8.0), 0.0, "lidar-apf", 150.0)
 
 
 def sim9():
@@ -183,8 +185,8 @@ def sim9():
     return scenario(
         "[L] sim 9: three moving obstacles",
         "Three discs (r 0.5 m) move across the way: two pace up and down, one comes head-on "
-        "([L] Fig 19). Dynamic settings: d_oe 0.8 m, d_te 1 m, no extra switching conditions.",
-        g, (1.5, 7.0), (18.5, 7.0), 0.0, "lidar-dwa", 120.0, movers, dyn)
+        "([L] Fig 19); APF under the navigator. Dynamic settings: d_oe 0.8 m, d_te 1 m, no extra switching conditions.",
+        g, (1.5, 7.0), (18.5, 7.0), 0.0, "lidar-apf", 120.0, movers, dyn)
 
 
 SCENES = {

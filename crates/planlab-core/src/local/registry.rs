@@ -191,6 +191,38 @@ pub fn list() -> Vec<PlannerInfo> {
             },
         },
         PlannerInfo {
+            name: "lidar-apf".into(),
+            paper: "[L] Chang et al. 2024 §2–4, sims 8–9 (APF [9] underneath); SPEC §6".into(),
+            summary: "The LiDAR temporary-goal navigator over the basic APF (eq 4-1…4-4) \
+                      on a local map built from the scan."
+                .into(),
+            fields: {
+                let mut f = lidar_fields(true);
+                f.extend(
+                    apf_local::field_table()
+                        .into_iter()
+                        .map(|(n, u, d)| (format!("motion.{n}"), u, d)),
+                );
+                owned_field_infos::<LidarPlannerConfig<ApfLocalConfig>>(&f)
+            },
+        },
+        PlannerInfo {
+            name: "scan-apf".into(),
+            paper: "[L] Chang et al. 2024 §4.2 baseline (sim 8); SPEC §7".into(),
+            summary: "Plain APF straight to the goal on an unknown map: only the scan's \
+                      local map, no temporary goals, no global path."
+                .into(),
+            fields: {
+                let mut f = lidar_fields(false);
+                f.extend(
+                    apf_local::field_table()
+                        .into_iter()
+                        .map(|(n, u, d)| (format!("motion.{n}"), u, d)),
+                );
+                owned_field_infos::<ScanBaselineConfig<ApfLocalConfig>>(&f)
+            },
+        },
+        PlannerInfo {
             name: "scan-dwa".into(),
             paper: "[L] Chang et al. 2024 §4.2 baseline; SPEC §7".into(),
             summary: "Plain DWA straight to the goal on an unknown map: only the scan's \
@@ -279,6 +311,18 @@ pub fn build(
             "lidar-dwa",
             "dwa",
             &parse_config::<LidarPlannerConfig<DwaConfig>>(&choice.name, &choice.config)?,
+            robot,
+        )?)),
+        "lidar-apf" => Ok(Box::new(LidarPlanner::with_nav(
+            "lidar-apf",
+            "apf",
+            &parse_config::<LidarPlannerConfig<ApfLocalConfig>>(&choice.name, &choice.config)?,
+            robot,
+        )?)),
+        "scan-apf" => Ok(Box::new(LidarPlanner::baseline(
+            "scan-apf",
+            "apf",
+            &parse_config::<ScanBaselineConfig<ApfLocalConfig>>(&choice.name, &choice.config)?,
             robot,
         )?)),
         "scan-dwa" => Ok(Box::new(LidarPlanner::baseline(
