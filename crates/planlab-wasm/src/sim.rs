@@ -11,6 +11,8 @@
 //!   obstacle classes, clearance, metrics) is computed by the core.
 
 use planlab_core::local::registry::{self, PlannerChoice};
+use planlab_core::lidar::fog::SeenCells;
+use planlab_core::lidar::{LidarDebug, TargetKind};
 use planlab_core::local::{GoalKind, ObstacleClass};
 use planlab_core::map::io::scenario::Scenario;
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
@@ -61,12 +63,34 @@ pub struct SimHandle {
     ep: Episode,
     /// Record the rollouts of the last step of each `step(n)` for drawing.
     draw_fan: bool,
+    /// Cells the robot's scans have swept (LiDAR planners only).
+    seen: SeenCells,
 }
 
 impl SimHandle {
     fn wrap(mut ep: Episode) -> SimHandle {
         ep.set_record_rollouts(true);
-        SimHandle { ep, draw_fan: true }
+        let seen = SeenCells::new(ep.map().grid());
+        SimHandle {
+            ep,
+            draw_fan: true,
+            seen,
+        }
+    }
+
+    /// Adds the last step's scan to the seen cells.
+    fn note_scan(&mut self) {
+        if let Some(l) = self.ep.planner_debug().lidar.as_ref() {
+            self.seen
+                .update(self.ep.map().grid(), l.pose, &l.ranges, &l.returns);
+        }
+    }
+
+    fn lidar(&self) -> Option<&LidarDebug> {
+        if self.ep.steps() == 0 {
+            return None;
+        }
+        self.ep.planner_debug().lidar.as_ref()
     }
 
     /// The wrapped episode (for Rust callers and tests).
@@ -124,7 +148,9 @@ impl SimHandle {
             if self.draw_fan {
                 self.ep.set_record_rollouts(i + 1 == n);
             }
-            if self.ep.step() != Outcome::Running {
+            let o = self.ep.step();
+            self.note_scan();
+            if o != Outcome::Running {
                 break;
             }
         }
@@ -465,6 +491,132 @@ impl SimHandle {
     #[wasm_bindgen(js_name = traceCsv)]
     pub fn trace_csv(&self) -> String {
         self.ep.trace().to_csv()
+    }
+
+    /// Whether the planner reports LiDAR data (a `lidar-*` / `scan-*`
+    /// planner after its first step).
+    #[wasm_bindgen(getter, js_name = hasLidar)]
+    pub fn has_lidar(&self) -> bool {
+        self.lidar().is_some()
+    }
+
+    /// The last scan as rays: sensor `x, y`, then each beam's end point
+    /// `x, y` (the hit, or the range limit without a return).
+    #[wasm_bindgen(js_name = lidarRays)]
+    pub fn lidar_rays(&self) -> Vec<f32> {
+        let Some(l) = self.lidar() else {
+            return Vec::new();
+        };
+        let n = l.ranges.len();
+        let mut out = Vec::with_capacity(2 * n + 2);
+        out.push(l.pose[0] as f32);
+        out.push(l.pose[1] as f32);
+        for (i, &r) in l.ranges.iter().enumerate() {
+            let a = l.pose[2] + std::f64::consts::TAU * i as f64 / n as f64;
+            out.push((l.pose[0] + r * a.cos()) as f32);
+            out.push((l.pose[1] + r * a.sin()) as f32);
+        }
+        out
+    }
+
+    /// 1 per beam that returned, 0 per beam without a return.
+    #[wasm_bindgen(js_name = lidarReturns)]
+    pub fn lidar_returns(&self) -> Vec<u8> {
+        self.lidar()
+            .map(|l| l.returns.iter().map(|&b| u8::from(b)).collect())
+            .unwrap_or_default()
+    }
+
+    /// Edges, stride 3: `x, y, type` with type 1 SR, 2 WR, 3 SF, 4 WF;
+    /// `raw` = before gap removal (Algorithm 1), else after.
+    #[wasm_bindgen(js_name = lidarEdges)]
+    pub fn lidar_edges(&self, raw: bool) -> Vec<f32> {
+        let Some(l) = self.lidar() else {
+            return Vec::new();
+        };
+        let e = if raw { &l.edges_raw } else { &l.edges };
+        e.iter()
+            .flat_map(|m| [m.point[0] as f32, m.point[1] as f32, f32::from(m.kind.code())])
+            .collect()
+    }
+
+    /// Obstacle patterns as polylines, `x, y` flat, one after the other
+    /// (see [`SimHandle::lidar_op_offsets`]); `expanded` = after eq 1.
+    #[wasm_bindgen(js_name = lidarOps)]
+    pub fn lidar_ops(&self, expanded: bool) -> Vec<f32> {
+        let Some(l) = self.lidar() else {
+            return Vec::new();
+        };
+        let ops = if expanded { &l.ops } else { &l.ops_raw };
+        ops.iter()
+            .flatten()
+            .flat_map(|p| [p[0] as f32, p[1] as f32])
+            .collect()
+    }
+
+    /// OP k owns points `[offsets[k], offsets[k+1])` of
+    /// [`SimHandle::lidar_ops`]; length OPs + 1.
+    #[wasm_bindgen(js_name = lidarOpOffsets)]
+    pub fn lidar_op_offsets(&self, expanded: bool) -> Vec<u32> {
+        let Some(l) = self.lidar() else {
+            return Vec::new();
+        };
+        let ops = if expanded { &l.ops } else { &l.ops_raw };
+        let mut out = vec![0u32];
+        let mut k = 0u32;
+        for op in ops {
+            k += op.len() as u32;
+            out.push(k);
+        }
+        out
+    }
+
+    /// Index of the OP blocking the goal, −1 for none.
+    #[wasm_bindgen(getter, js_name = lidarBlocking)]
+    pub fn lidar_blocking(&self) -> i32 {
+        self.lidar()
+            .and_then(|l| l.blocking)
+            .map_or(-1, |b| b as i32)
+    }
+
+    /// Temporary-goal candidates, stride 4: `x, y, cost (m), iteration`.
+    #[wasm_bindgen(js_name = lidarCandidates)]
+    pub fn lidar_candidates(&self) -> Vec<f64> {
+        let Some(l) = self.lidar() else {
+            return Vec::new();
+        };
+        l.candidates
+            .iter()
+            .flat_map(|c| [c.point[0], c.point[1], c.cost, f64::from(c.iteration)])
+            .collect()
+    }
+
+    /// The navigator's target: `x, y, kind, hold left (s), hold period
+    /// (s)` with kind 0 the goal, 1 a temporary goal, 2 a held one.
+    #[wasm_bindgen(js_name = lidarTarget)]
+    pub fn lidar_target(&self) -> Vec<f64> {
+        let Some(l) = self.lidar() else {
+            return Vec::new();
+        };
+        let kind = match l.kind {
+            TargetKind::Global => 0.0,
+            TargetKind::Temporary => 1.0,
+            TargetKind::Held => 2.0,
+        };
+        vec![l.target[0], l.target[1], kind, l.hold_remaining, l.hold_period]
+    }
+
+    /// Cells the robot has seen so far (fog of war): 1 per seen cell,
+    /// row-major with row 0 at the top, like the map's cells.
+    #[wasm_bindgen(js_name = seenCells)]
+    pub fn seen_cells(&self) -> Vec<u8> {
+        self.seen.cells().to_vec()
+    }
+
+    /// Number of seen cells.
+    #[wasm_bindgen(getter, js_name = seenCount)]
+    pub fn seen_count(&self) -> u32 {
+        self.seen.count() as u32
     }
 
     /// The trace hash (u64) as a decimal string, to compare with `planlab

@@ -74,6 +74,9 @@ const ui = {
   showFan: el<HTMLInputElement>('show-fan'),
   showPath: el<HTMLInputElement>('show-path'),
   showTrail: el<HTMLInputElement>('show-trail'),
+  showLidar: el<HTMLInputElement>('show-lidar'),
+  showFog: el<HTMLInputElement>('show-fog'),
+  lidarLegend: el('lidar-legend'),
   planner: el<HTMLSelectElement>('planner'),
   plannerSummary: el('planner-summary'),
   params: el('params'),
@@ -218,6 +221,7 @@ function pull(): void {
   }
   S.globalPath = sim.globalPath();
   S.keypoints = sim.keypoints();
+  pullLidar();
   // Trail and series grow: fetch only the rows since the last pull.
   const rows = sim.trail(S.trailLen);
   const m = rows.length / 2;
@@ -235,6 +239,39 @@ function pull(): void {
   ui.body.dataset.outcome = outcome;
   ui.body.dataset.steps = String(sim.steps);
   ui.body.dataset.time = String(sim.time);
+}
+
+/** LiDAR layers and the fog of war (LiDAR planners only). */
+function pullLidar(): void {
+  if (!sim) return;
+  const S = view.scene;
+  const has = sim.hasLidar;
+  ui.lidarLegend.hidden = !has;
+  ui.body.dataset.lidar = has ? '1' : '0';
+  if (!has) {
+    S.lidar = null;
+    S.seen = null;
+    S.seenCount = 0;
+    return;
+  }
+  S.lidar = {
+    rays: sim.lidarRays(),
+    returns: sim.lidarReturns(),
+    edges: sim.lidarEdges(false),
+    opsRaw: sim.lidarOps(false),
+    opsRawOffsets: sim.lidarOpOffsets(false),
+    ops: sim.lidarOps(true),
+    opsOffsets: sim.lidarOpOffsets(true),
+    blocking: sim.lidarBlocking,
+    candidates: sim.lidarCandidates(),
+    target: sim.lidarTarget(),
+  };
+  const count = sim.seenCount;
+  if (count !== S.seenCount || S.seen === null) {
+    S.seen = sim.seenCells();
+    S.seenCount = count;
+  }
+  ui.body.dataset.seen = String(count);
 }
 
 function toPair(a: Float64Array): [number, number] {
@@ -752,6 +789,8 @@ for (const [box, key] of [
   [ui.showFan, 'fan'],
   [ui.showPath, 'path'],
   [ui.showTrail, 'trail'],
+  [ui.showLidar, 'lidar'],
+  [ui.showFog, 'fog'],
 ] as const) {
   box.addEventListener(
     'change',

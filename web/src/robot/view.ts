@@ -74,6 +74,35 @@ export interface Fan {
   chosen: number;
 }
 
+/** What the LiDAR navigator saw and chose in the last step (world frame);
+ *  every number comes from the core. */
+export interface LidarScene {
+  /** Sensor x, y, then each beam's end point x, y. */
+  rays: Float32Array;
+  /** 1 per beam that returned. */
+  returns: Uint8Array;
+  /** Stride 3: x, y, type (1 SR, 2 WR, 3 SF, 4 WF), after gap removal. */
+  edges: Float32Array;
+  opsRaw: Float32Array;
+  opsRawOffsets: Uint32Array;
+  ops: Float32Array;
+  opsOffsets: Uint32Array;
+  /** Index of the OP blocking the goal, -1 for none. */
+  blocking: number;
+  /** Stride 4: x, y, cost, iteration. */
+  candidates: Float64Array;
+  /** x, y, kind (0 goal, 1 temporary, 2 held), hold left s, hold period s. */
+  target: Float64Array;
+}
+
+/** Edge colours by type code (1 SR … 4 WF); the legend uses the same. */
+export const EDGE_COLOURS: Record<number, string> = {
+  1: '#dc2626',
+  2: '#f97316',
+  3: '#2563eb',
+  4: '#06b6d4',
+};
+
 /** What one frame shows; main.ts fills it from the SimHandle. */
 export interface Scene {
   robot: RobotShape;
@@ -95,7 +124,12 @@ export interface Scene {
   trailLen: number;
   /** The mover being placed by a drag: centre, velocity, radius. */
   preview: { x: number; y: number; vx: number; vy: number; radius: number } | null;
-  show: { fan: boolean; path: boolean; trail: boolean };
+  show: { fan: boolean; path: boolean; trail: boolean; lidar: boolean; fog: boolean };
+  /** LiDAR data of the last step (LiDAR planners only). */
+  lidar: LidarScene | null;
+  /** Seen cells (1) of the map, row 0 at the top; null = none reported. */
+  seen: Uint8Array | null;
+  seenCount: number;
 }
 
 export function emptyScene(): Scene {
@@ -120,7 +154,10 @@ export function emptyScene(): Scene {
     trail: new Float64Array(0),
     trailLen: 0,
     preview: null,
-    show: { fan: true, path: true, trail: true },
+    show: { fan: true, path: true, trail: true, lidar: true, fog: false },
+    lidar: null,
+    seen: null,
+    seenCount: 0,
   };
 }
 
@@ -157,6 +194,9 @@ export class RobotView {
   private ctx: CanvasRenderingContext2D;
   private map: MapInfo | null = null;
   private base: HTMLCanvasElement | null = null;
+  /** Fog overlay (unseen cells shaded) and the seen count it was built for. */
+  private fog: HTMLCanvasElement | null = null;
+  private fogCount = -1;
   /** CSS pixels per metre and CSS position of the map's top-left corner. */
   private k = 1;
   private ox = 0;
@@ -199,6 +239,8 @@ export class RobotView {
     }
     ctx.putImageData(img, 0, 0);
     this.base = c;
+    this.fog = null;
+    this.fogCount = -1;
     this.known = knownBox(m);
     this.fit();
   }
@@ -351,6 +393,12 @@ export class RobotView {
     ctx.restore();
     ctx.imageSmoothingEnabled = false;
     ctx.drawImage(this.base, this.ox, this.oy, w, h);
+    const fogged = S.show.fog && S.seen !== null;
+    if (fogged) {
+      const fog = this.fogImage();
+      if (fog) ctx.drawImage(fog, this.ox, this.oy, w, h);
+    }
+    this.canvas.dataset.fog = fogged ? 'on' : 'off';
 
     // World-space layers: widths in metres = CSS px / k.
     this.worldTransform();
@@ -363,14 +411,125 @@ export class RobotView {
     }
     if (S.show.trail && S.trailLen >= 2) this.polyline(S.trail, S.trailLen, COLORS.trail, 2.5 * px);
     if (S.show.fan) this.drawFan(px);
+    const lidarOn = S.show.lidar && S.lidar !== null;
+    if (lidarOn) this.drawLidar(px);
     this.drawRobot(px);
 
     // Screen-space layers: markers and labels stay readable at any zoom.
     this.screenTransform();
+    if (lidarOn) this.drawLidarMarkers();
+    this.canvas.dataset.lidarLayers = lidarOn ? this.lidarLayers() : '';
     if (S.show.path) this.drawKeypoints();
     this.drawMovers();
     this.drawGoals();
     this.drawPreview();
+  }
+
+  /** The fog overlay: unseen cells shaded (rebuilt when the count changes). */
+  private fogImage(): HTMLCanvasElement | null {
+    const S = this.scene;
+    if (!this.map || !S.seen || S.seen.length !== this.map.width * this.map.height) return null;
+    if (this.fog && this.fogCount === S.seenCount) return this.fog;
+    const [c, ctx] = offscreen(this.map.width, this.map.height);
+    const img = ctx.createImageData(this.map.width, this.map.height);
+    const px = img.data;
+    for (let i = 0; i < S.seen.length; i++) {
+      const o = i * 4;
+      // Unseen: a cool grey, lighter than the walls so they stay apart.
+      px[o] = 148;
+      px[o + 1] = 163;
+      px[o + 2] = 184;
+      px[o + 3] = S.seen[i] ? 0 : 230;
+    }
+    ctx.putImageData(img, 0, 0);
+    this.fog = c;
+    this.fogCount = S.seenCount;
+    return c;
+  }
+
+  /** Which LiDAR layers the last paint drew (for tests), comma-separated. */
+  private lidarLayers(): string {
+    const L = this.scene.lidar;
+    if (!L) return '';
+    const out: string[] = [];
+    if (L.rays.length > 2) out.push('rays');
+    if (L.edges.length > 0) out.push('edges');
+    if (L.opsRawOffsets.length > 1) out.push('ops-raw');
+    if (L.opsOffsets.length > 1) out.push('ops');
+    if (L.candidates.length > 0) out.push('candidates');
+    if (L.target.length >= 5 && L.target[2] > 0) out.push('temp-goal');
+    if (L.target.length >= 5 && L.target[3] > 0) out.push('hold');
+    return out.join(',');
+  }
+
+  /** Rays, then obstacle patterns before (thin) and after (wide) expansion. */
+  private drawLidar(px: number): void {
+    const L = this.scene.lidar;
+    if (!L) return;
+    const ctx = this.ctx;
+    const n = L.rays.length / 2 - 1;
+    const [sx, sy] = [L.rays[0], L.rays[1]];
+    for (const hit of [0, 1]) {
+      ctx.beginPath();
+      for (let i = 0; i < n; i++) {
+        if ((L.returns[i] ?? 0) !== hit) continue;
+        ctx.moveTo(sx, sy);
+        ctx.lineTo(L.rays[2 + 2 * i], L.rays[3 + 2 * i]);
+      }
+      ctx.strokeStyle = hit ? 'rgba(234, 88, 12, 0.22)' : 'rgba(148, 163, 184, 0.14)';
+      ctx.lineWidth = 1 * px;
+      ctx.stroke();
+    }
+    const polys = (xy: Float32Array, off: Uint32Array, colour: (k: number) => string, width: number) => {
+      for (let k = 0; k + 1 < off.length; k++) {
+        const sub = xy.subarray(2 * off[k], 2 * off[k + 1]);
+        this.polyline(sub, off[k + 1] - off[k], colour(k), width);
+      }
+    };
+    polys(L.ops, L.opsOffsets, (k) => (k === L.blocking ? 'rgba(190, 24, 93, 0.45)' : 'rgba(124, 58, 237, 0.3)'), 7 * px);
+    polys(L.opsRaw, L.opsRawOffsets, () => 'rgba(30, 41, 59, 0.9)', 2 * px);
+  }
+
+  /** Edge markers by type, candidates, the chosen temporary goal, hold timer. */
+  private drawLidarMarkers(): void {
+    const L = this.scene.lidar;
+    if (!L) return;
+    const ctx = this.ctx;
+    for (let i = 0; i + 2 < L.edges.length; i += 3) {
+      const [x, y] = this.toScreen(L.edges[i], L.edges[i + 1]);
+      ctx.beginPath();
+      ctx.arc(x, y, 3.5, 0, Math.PI * 2);
+      ctx.fillStyle = EDGE_COLOURS[L.edges[i + 2]] ?? '#000';
+      ctx.fill();
+    }
+    for (let i = 0; i + 3 < L.candidates.length; i += 4) {
+      const [x, y] = this.toScreen(L.candidates[i], L.candidates[i + 1]);
+      ctx.beginPath();
+      ctx.moveTo(x, y - 6);
+      ctx.lineTo(x + 5.5, y + 4);
+      ctx.lineTo(x - 5.5, y + 4);
+      ctx.closePath();
+      ctx.lineWidth = 1.5;
+      ctx.strokeStyle = L.candidates[i + 3] > 0 ? '#a855f7' : '#7c3aed';
+      ctx.stroke();
+    }
+    if (L.target.length >= 5 && L.target[2] > 0) {
+      const [x, y] = this.toScreen(L.target[0], L.target[1]);
+      star(ctx, x, y, 8, L.target[2] === 2 ? '#f59e0b' : '#16a34a');
+    }
+    if (L.target.length >= 5 && L.target[3] > 0 && L.target[4] > 0) {
+      const s = this.scene.state;
+      const [x, y] = this.toScreen(s[0], s[1]);
+      const frac = Math.min(1, L.target[3] / L.target[4]);
+      ctx.beginPath();
+      ctx.arc(x, y, 18, -Math.PI / 2, -Math.PI / 2 + frac * Math.PI * 2);
+      ctx.lineWidth = 3;
+      ctx.strokeStyle = '#f59e0b';
+      ctx.stroke();
+      ctx.font = '600 11px system-ui, sans-serif';
+      ctx.fillStyle = '#b45309';
+      ctx.fillText(`hold ${L.target[3].toFixed(1)} s`, x + 22, y - 12);
+    }
   }
 
   private polyline(xy: Float64Array | Float32Array, n: number, colour: string, width: number, from = 0): void {
@@ -619,4 +778,22 @@ export class RobotView {
     ctx.fillStyle = '#312e81';
     ctx.fillText(text, ex + 6, ey - 4);
   }
+}
+
+/** A five-pointed star marker (screen space). */
+function star(ctx: CanvasRenderingContext2D, x: number, y: number, r: number, fill: string): void {
+  ctx.beginPath();
+  for (let i = 0; i < 10; i++) {
+    const rr = i % 2 === 0 ? r : r * 0.45;
+    const a = -Math.PI / 2 + (i * Math.PI) / 5;
+    const [px, py] = [x + rr * Math.cos(a), y + rr * Math.sin(a)];
+    if (i === 0) ctx.moveTo(px, py);
+    else ctx.lineTo(px, py);
+  }
+  ctx.closePath();
+  ctx.fillStyle = fill;
+  ctx.fill();
+  ctx.lineWidth = 1.5;
+  ctx.strokeStyle = '#fff';
+  ctx.stroke();
 }
