@@ -10,9 +10,9 @@
 //! - The page draws; everything it draws (rollouts and their scores, goals,
 //!   obstacle classes, clearance, metrics) is computed by the core.
 
-use planlab_core::local::registry::{self, PlannerChoice};
 use planlab_core::lidar::fog::SeenCells;
 use planlab_core::lidar::{LidarDebug, TargetKind};
+use planlab_core::local::registry::{self, PlannerChoice};
 use planlab_core::local::{GoalKind, ObstacleClass};
 use planlab_core::map::io::scenario::Scenario;
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
@@ -536,7 +536,13 @@ impl SimHandle {
         };
         let e = if raw { &l.edges_raw } else { &l.edges };
         e.iter()
-            .flat_map(|m| [m.point[0] as f32, m.point[1] as f32, f32::from(m.kind.code())])
+            .flat_map(|m| {
+                [
+                    m.point[0] as f32,
+                    m.point[1] as f32,
+                    f32::from(m.kind.code()),
+                ]
+            })
             .collect()
     }
 
@@ -603,7 +609,13 @@ impl SimHandle {
             TargetKind::Temporary => 1.0,
             TargetKind::Held => 2.0,
         };
-        vec![l.target[0], l.target[1], kind, l.hold_remaining, l.hold_period]
+        vec![
+            l.target[0],
+            l.target[1],
+            kind,
+            l.hold_remaining,
+            l.hold_period,
+        ]
     }
 
     /// Cells the robot has seen so far (fog of war): 1 per seen cell,
