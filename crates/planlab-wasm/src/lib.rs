@@ -25,13 +25,19 @@
 //!   arm page: the 7-DOF arm's links, joint angles, tool and hand paths,
 //!   the hand's predicted positions and the minimum distance; see [`arm`].
 //!
+//! - [`ApfHandle`] runs one 2D potential-field scene (core `apf::ApfRun`)
+//!   for the APF page: path, obstacles, field lattice, sampled directions,
+//!   predictions; see [`apf`].
+//!
 //! Cell kinds cross as bytes: 0 free, 1 occupied, 2 unknown
 //! ([`Cell`]'s `repr(u8)`).
 
+pub mod apf;
 pub mod arm;
 pub mod batch;
 pub mod sim;
 
+pub use apf::ApfHandle;
 pub use arm::{arm_choices, ArmHandle};
 pub use sim::{planners, SimHandle};
 

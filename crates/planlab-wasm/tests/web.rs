@@ -361,3 +361,25 @@ fn from_map_and_planner_list() {
         assert!(f["kind"].is_string() && !f["doc"].as_str().unwrap().is_empty());
     }
 }
+
+#[wasm_bindgen_test]
+fn apf_handle_runs_a_preset_and_reports_what_the_page_draws() {
+    use planlab_wasm::ApfHandle;
+    let json = include_str!("../../../assets/scenarios/T-fig4-6.json");
+    let mut h = ApfHandle::new(json).unwrap();
+    h.set_mode("basic").unwrap();
+    assert_eq!(h.step(400).unwrap(), "stuck");
+    h.set_mode("sampling").unwrap();
+    assert_eq!(h.step(400).unwrap(), "reached");
+    assert!(h.path().len() / 2 > 20);
+    assert!(h.metrics().contains("\"path_points\""));
+    assert_eq!(h.field(8, 6).len(), 2 * 8 * 6);
+    h.reset().unwrap();
+    h.step(10).unwrap();
+    assert_eq!(h.candidates().len(), 13 * 3);
+    assert!(h.chosen() >= 0);
+    // A goal inside the disc is refused; the run keeps its goal.
+    assert!(h.set_goal(0.5, 0.0).is_err());
+    assert_eq!(h.endpoints()[2], 1.0);
+    assert!(h.set_mode("warp").is_err());
+}
