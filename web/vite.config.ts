@@ -63,6 +63,7 @@ export default defineConfig({
         main: resolve(here, 'index.html'),
         robot: resolve(here, 'robot.html'),
         arm: resolve(here, 'arm.html'),
+        apf: resolve(here, 'apf.html'),
         bench: resolve(here, 'bench.html'),
       },
     },
