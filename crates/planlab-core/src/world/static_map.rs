@@ -96,6 +96,19 @@ impl StaticMap {
         self.blocked[row as usize * self.grid.width() + col as usize]
     }
 
+    /// The per-cell clearance field at (col, row), metres: the distance
+    /// from the cell centre to the nearest blocked cell's centre less half
+    /// a cell (so at least `d − 0.92·res` from any point of the cell to any
+    /// blocked cell); 0 off the map. The map edge is not counted.
+    #[inline]
+    pub fn cell_clearance(&self, col: i64, row: i64) -> f64 {
+        if col < 0 || row < 0 || col >= self.grid.width() as i64 || row >= self.grid.height() as i64
+        {
+            return 0.0;
+        }
+        self.clear[row as usize * self.grid.width() + col as usize]
+    }
+
     /// Fractional cell coordinates of a world point (x right, y *up* from the
     /// bottom-left corner; not rows).
     #[inline]
