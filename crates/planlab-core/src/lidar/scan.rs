@@ -219,9 +219,10 @@ pub fn cast_grid(map: &StaticMap, x: f64, y: f64, dx: f64, dy: f64, max: f64) ->
     // Rays cross mostly open space, so this visits a few cells instead of
     // every one up to the range.
     let (wf, hf) = (w as f64, h as f64);
+    let (dxr, dyr) = (dx / res, dy / res);
     let mut t_cur = 0.0;
     loop {
-        let (px, pu) = (lx + t_cur * dx / res, ly + t_cur * dy / res);
+        let (px, pu) = (lx + t_cur * dxr, ly + t_cur * dyr);
         let edge = px.min(pu).min(wf - px).min(hf - pu) * res;
         let s = (map.cell_clearance(cx, h - 1 - cu) - 0.95 * res).min(edge - 0.05 * res);
         if s > 2.0 * res {
@@ -229,9 +230,12 @@ pub fn cast_grid(map: &StaticMap, x: f64, y: f64, dx: f64, dy: f64, max: f64) ->
             if t_cur > max {
                 return f64::INFINITY;
             }
-            let (qx, qu) = (lx + t_cur * dx / res, ly + t_cur * dy / res);
-            cx = qx.floor() as i64;
-            cu = qu.floor() as i64;
+            // Inside the map (the jump stops short of its edge), so the
+            // coordinates are positive and truncation is floor (no libm
+            // call on targets without SSE4.1).
+            let (qx, qu) = (lx + t_cur * dxr, ly + t_cur * dyr);
+            cx = qx as i64;
+            cu = qu as i64;
             tmx = next_crossing(qx, dx, res, t_cur);
             tmu = next_crossing(qu, dy, res, t_cur);
             continue;
@@ -257,13 +261,14 @@ pub fn cast_grid(map: &StaticMap, x: f64, y: f64, dx: f64, dy: f64, max: f64) ->
 }
 
 /// Ray distance of the first cell-boundary crossing on one axis after the
-/// point at ray distance `t` whose local coordinate is `q`.
+/// point at ray distance `t` whose local coordinate is `q` (≥ 0).
 #[inline]
 fn next_crossing(q: f64, d: f64, res: f64, t: f64) -> f64 {
+    let fl = (q as i64) as f64;
     if d > 0.0 {
-        t + (q.floor() + 1.0 - q) * res / d
+        t + (fl + 1.0 - q) * res / d
     } else if d < 0.0 {
-        t + (q - q.floor()) * res / -d
+        t + (q - fl) * res / -d
     } else {
         f64::INFINITY
     }
