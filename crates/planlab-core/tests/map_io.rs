@@ -1036,10 +1036,14 @@ fn schema_doc_examples_are_valid_scenarios() {
         .collect();
     assert_eq!(
         blocks.len(),
-        4,
-        "smallest, by reference, full example, simulated episode"
+        5,
+        "smallest, by reference, full example, simulated episode, arm episode"
     );
-    for block in &blocks {
+    // The arm example is an arm scenario, not a grid one.
+    let (grid_blocks, arm_block) = blocks.split_at(4);
+    planlab_core::arm::ArmScenario::from_json(arm_block[0])
+        .unwrap_or_else(|e| panic!("{e}\n{}", arm_block[0]));
+    for block in grid_blocks {
         let s = Scenario::from_json(block).unwrap_or_else(|e| panic!("{e}\n{block}"));
         // File references resolve relative to assets/scenarios/.
         let g = s
