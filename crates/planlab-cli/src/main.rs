@@ -231,7 +231,7 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Train the SimpleRNN obstacle predictor ([T] §5.2) on synthetic
+    /// Train the SimpleRNN obstacle predictor (Wu thesis §5.2) on synthetic
     /// hand-reaching trajectories (seeded) and write its weights; prints
     /// the held-out MSE beside constant velocity's.
     TrainPredictor {
