@@ -69,26 +69,7 @@ pub fn run(path: &Path, mut tree: serde_json::Value, args: &RunArgs<'_>) -> Resu
             scenario.name.clone()
         };
         println!("{title} — {}, seed {}", report.planner, report.seed);
-        print!("{}", metrics_table(&m));
+        print!("{}", crate::sim_cmds::apf_metrics_table(&m));
     }
     Ok(())
-}
-
-/// The arm metrics as `name value unit` lines.
-pub fn metrics_table(m: &ArmMetrics) -> String {
-    format!(
-        "{:<22}{}\n{:<22}{:.3} m\n{:<22}{}\n{:<22}{}\n{:<22}{:.3} m\n{:<22}{:.2} s\n",
-        "outcome",
-        m.outcome,
-        "path length",
-        m.path_length_m,
-        "path points",
-        m.path_points,
-        "spikes (> 30°)",
-        m.spikes,
-        "min obstacle dist",
-        m.min_obstacle_distance_m,
-        "time",
-        m.time_s
-    )
 }

@@ -156,8 +156,8 @@ fn run_apf(
     Ok(())
 }
 
-/// APF metrics as `name value unit` lines.
-fn apf_metrics_table(m: &ApfMetrics) -> String {
+/// APF (and arm) metrics as `name value unit` lines.
+pub fn apf_metrics_table(m: &ApfMetrics) -> String {
     format!(
         "{:<22}{}\n{:<22}{:.3} m\n{:<22}{}\n{:<22}{}\n{:<22}{:.3} m\n{:<22}{:.2} s\n",
         "outcome",
