@@ -47,13 +47,34 @@ function robotPresets(): Plugin {
   };
 }
 
+/**
+ * `virtual:gallery`: assets/gallery.json's experiments (one per
+ * `planlab reproduce` id; crates/planlab-core/tests/gallery.rs keeps it equal
+ * to the reproduce registry), read at build time.
+ */
+function gallery(): Plugin {
+  const id = 'virtual:gallery';
+  const resolved = '\0' + id;
+  const file = resolve(here, '../assets/gallery.json');
+  return {
+    name: 'planlab-gallery',
+    resolveId: (source) => (source === id ? resolved : null),
+    load(source) {
+      if (source !== resolved) return null;
+      this.addWatchFile(file);
+      const g = JSON.parse(readFileSync(file, 'utf8')) as { experiments: unknown[] };
+      return `export default ${JSON.stringify(g.experiments)};`;
+    },
+  };
+}
+
 // The served site is web/dist and nothing outside it, so the preset maps in
 // ../assets are copied in as the public dir (served at ./maps/...), and the
 // wasm module from ./pkg is bundled by Vite through its `new URL(...)` import.
 export default defineConfig({
   base: './',
   publicDir: resolve(here, '../assets'),
-  plugins: [robotPresets()],
+  plugins: [robotPresets(), gallery()],
   build: {
     outDir: 'dist',
     emptyOutDir: true,
@@ -61,6 +82,7 @@ export default defineConfig({
     rollupOptions: {
       input: {
         main: resolve(here, 'index.html'),
+        gallery: resolve(here, 'gallery.html'),
         robot: resolve(here, 'robot.html'),
         arm: resolve(here, 'arm.html'),
         apf: resolve(here, 'apf.html'),

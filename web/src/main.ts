@@ -12,6 +12,8 @@ import init, {
   rosImageName,
 } from '../pkg/planlab_wasm.js';
 import { MapView, type Cell } from './render';
+import { installShell } from './shell/help';
+import { gridHelp } from './shell/help-content';
 
 type Tool = 'start' | 'goal' | 'wall' | 'erase';
 
@@ -652,6 +654,8 @@ async function boot(): Promise<void> {
   ui.hint.textContent = hintForTool();
   await loadPreset(ui.preset.value || 'arena');
 }
+
+installShell(gridHelp());
 
 boot().catch((e) => {
   showError(`Could not start the playground: ${messageOf(e)}`);

@@ -6,6 +6,9 @@
 // edits; this file computes no forces.
 
 import init, { ApfHandle } from '../../pkg/planlab_wasm.js';
+import { applyRun, runParams } from '../shell/runlink';
+import { installShell } from '../shell/help';
+import { apfHelp } from '../shell/help-content';
 
 function el<T extends HTMLElement = HTMLElement>(id: string): T {
   const e = document.getElementById(id);
@@ -220,8 +223,8 @@ function tick(): void {
   requestAnimationFrame(tick);
 }
 
-async function load(file: string): Promise<void> {
-  const text = await (await fetch(`./scenarios/${file}`)).text();
+async function load(file: string, edit: (text: string) => string = (t) => t): Promise<void> {
+  const text = edit(await (await fetch(`./scenarios/${file}`)).text());
   handle?.free();
   handle = new ApfHandle(text);
   handle.setMode(ui.mode.value);
@@ -244,11 +247,18 @@ function guard(f: () => void): void {
 async function main(): Promise<void> {
   await init();
   const params = new URLSearchParams(location.search);
-  const sc = params.get('scenario');
-  if (sc) ui.preset.value = sc;
-  const mode = params.get('mode');
+  // A gallery link: preset, `--set` edits of a reproduce run (the variant
+  // is `apf.config.mode`), and `run=1`.
+  const link = runParams();
+  const sc = link.scenario;
+  if (sc) {
+    if (![...ui.preset.options].some((o) => o.value === sc)) ui.preset.add(new Option(sc.replace(/\.json$/, ''), sc));
+    ui.preset.value = sc;
+  }
+  const mode = link.set.find(([p]) => p === 'apf.config.mode')?.[1] ?? params.get('mode');
   if (mode) ui.mode.value = mode;
-  await load(ui.preset.value);
+  await load(ui.preset.value, sc ? (t) => applyRun(t, null, link.set) : undefined);
+  if (sc && link.run) setPlaying(true);
   ui.preset.addEventListener('change', () => void load(ui.preset.value).catch((e) => showError(messageOf(e))));
   ui.mode.addEventListener('change', () => guard(() => handle?.setMode(ui.mode.value)));
   ui.predictor.addEventListener('change', () => guard(() => handle?.setPredictor(ui.predictor.value)));
@@ -279,6 +289,8 @@ async function main(): Promise<void> {
   document.body.dataset.state = 'ready';
   requestAnimationFrame(tick);
 }
+
+installShell(apfHelp());
 
 main().catch((e) => {
   showError(messageOf(e));

@@ -5,6 +5,9 @@
 // and the predictor go to the handle as edits; this file computes no
 // kinematics, distances or plans.
 
+import { applyRun, runParams } from '../shell/runlink';
+import { installShell } from '../shell/help';
+import { armHelp } from '../shell/help-content';
 import init, { ArmHandle, armChoices } from '../../pkg/planlab_wasm.js';
 import { ArmView, type Frame } from './view';
 
@@ -221,12 +224,12 @@ function loop(ts: number): void {
   requestAnimationFrame(loop);
 }
 
-async function load(file: string): Promise<void> {
+async function load(file: string, edit: (text: string) => string = (t) => t): Promise<void> {
   ui.body.dataset.state = 'loading';
   setPlaying(false);
   const r = await fetch(`./scenarios/${file}`);
   if (!r.ok) throw new Error(`cannot load scenarios/${file}: HTTP ${r.status}`);
-  const text = await r.text();
+  const text = edit(await r.text());
   handle?.free();
   handle = new ArmHandle(text);
   const json = JSON.parse(text);
@@ -305,12 +308,20 @@ async function main(): Promise<void> {
     } else if (ev.key === '.') stepOnce(1);
     else if (ev.key === 'r' || ev.key === 'R') ui.reset.click();
   });
-  const q = new URLSearchParams(location.search).get('scenario');
+  // A gallery link: preset, `--set` edits, the run's predictor (a reproduce
+  // run's `planner`) and `run=1`.
+  const link = runParams();
+  const q = link.scenario;
   if (q) {
     if (![...ui.preset.options].some((o) => o.value === q)) ui.preset.add(new Option(q, q));
     ui.preset.value = q;
   }
-  await load(ui.preset.value);
+  await load(ui.preset.value, q ? (t) => applyRun(t, null, link.set) : undefined);
+  if (q && link.planner) {
+    ui.predictor.value = link.planner;
+    ui.predictor.dispatchEvent(new Event('change'));
+  }
+  if (q && link.run) setPlaying(true);
   ui.hint.textContent = 'Play to run; drag the target sliders, change the hand or the predictor at any time.';
   // Hooks for the end-to-end tests.
   (window as unknown as { planlabArm: unknown }).planlabArm = {
@@ -328,6 +339,8 @@ async function main(): Promise<void> {
   };
   requestAnimationFrame(loop);
 }
+
+installShell(armHelp());
 
 main().catch((e) => {
   ui.body.dataset.state = 'error';

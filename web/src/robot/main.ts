@@ -10,6 +10,9 @@ import presets from 'virtual:robot-presets';
 import { RobotView, emptyScene, CLASS_NAMES, COLORS, type RobotShape } from './view';
 import { SeriesPlots } from './plots';
 import { ParamPanel, type PlannerInfo } from './params';
+import { applyRun, runParams } from '../shell/runlink';
+import { installShell } from '../shell/help';
+import { robotHelp } from '../shell/help-content';
 
 type Tool = 'goal' | 'mover' | 'remove';
 
@@ -874,11 +877,11 @@ async function mapFilesOf(text: string, scenarioUrl: URL): Promise<Record<string
   return files;
 }
 
-async function loadPreset(file: string): Promise<void> {
+async function loadPreset(file: string, edit: (text: string) => string = (t) => t): Promise<void> {
   const url = new URL(`scenarios/${file}`, document.baseURI);
   try {
     const text = await fetchText(`scenarios/${file}`);
-    loadScenario(text, file, await mapFilesOf(text, url));
+    loadScenario(edit(text), file, await mapFilesOf(text, url));
   } catch (e) {
     throw new Error(`${file}: ${messageOf(e)}`);
   }
@@ -990,12 +993,18 @@ async function boot(): Promise<void> {
     o.title = p.summary;
     ui.planner.append(o);
   }
-  const q = new URLSearchParams(location.search).get('scenario');
+  // A gallery link: preset, planner and `--set` edits of a reproduce run, and `run=1`.
+  const link = runParams();
+  const q = link.scenario;
   const first = q && presets.some((p) => p.file === q) ? q : presets[0]?.file;
   if (!first) throw new Error('no robot presets (assets/scenarios/*.json with a local_planner)');
   ui.preset.value = first;
-  await loadPreset(first);
+  await loadPreset(first, first === q ? (t) => applyRun(t, link.planner, link.set) : undefined);
+  if (first === q && link.run) ui.play.click();
 }
+
+// Help overlay (planners and parameters from the wasm registry) and presentation mode.
+installShell(() => robotHelp([...infos.values()], ui.planner.value));
 
 boot().catch((e) => {
   ui.body.dataset.state = 'error';

@@ -1,0 +1,142 @@
+// What the help overlay says on each page. The robot page's planners and
+// parameters come from the wasm planner registry (name, paper, summary and
+// every config field's unit, default and doc), so they cannot drift from
+// the core; the other pages' controls are few and fixed, described here
+// with their paper sections (SPEC §2, §5).
+
+import type { HelpContent, HelpParam, HelpPlanner } from './help';
+
+/** The registry's planner info as the robot page receives it from wasm. */
+export interface RegistryPlanner {
+  name: string;
+  paper: string;
+  summary: string;
+  fields: { name: string; unit: string; default: unknown; doc: string }[];
+}
+
+/** The robot page: every registered local planner with its fields. */
+export function robotHelp(planners: RegistryPlanner[], current: string): HelpContent {
+  return {
+    page: 'robot',
+    intro:
+      'The robot simulation runs a local planner (the DWA family, the LiDAR navigator, the cleaning DWA, APF on a scan) on a scenario: a map, a robot, movers, a goal. Every control step the planner sees an observation and chooses a command; the core simulates the motion, checks collisions with the exact footprint and measures the run. Pick a planner and change its parameters in the Local planner card; the current planner is open below. Click the canvas to move the goal, drag to place a mover.',
+    planners: planners.map(
+      (p): HelpPlanner => ({
+        name: p.name,
+        paper: p.paper,
+        summary: p.summary,
+        params: p.fields.map((f) => ({ name: f.name, unit: f.unit, default: f.default, doc: f.doc })),
+      }),
+    ),
+    current,
+    params: [
+      { name: 'Speed', unit: '×', default: '1×', doc: 'Simulated seconds per real second; the sim slows down rather than drop frames when a step takes too long.' },
+      { name: 'Motion model', unit: '', default: 'constant velocity', doc: 'How a placed mover moves: straight on, back and forth over Span, or round a square.' },
+      { name: 'Radius', unit: 'm', default: 0.3, doc: 'Radius of the next mover placed.' },
+      { name: 'Span', unit: 'm', default: 3, doc: 'Back-and-forth distance of the next mover.' },
+    ],
+    shortcuts: [
+      { keys: 'Space', action: 'play / pause' },
+      { keys: '.', action: 'one control step' },
+      { keys: 'R', action: 'reset: restart with the current goal, movers and planner' },
+      { keys: 'G', action: 'tool: move the goal' },
+      { keys: 'M', action: 'tool: place a mover (drag gives its velocity)' },
+      { keys: 'X', action: 'tool: remove a mover' },
+      { keys: 'F', action: 'fit the map into the view' },
+      { keys: 'Shift + click', action: 'move the goal with any tool' },
+      { keys: 'wheel', action: 'zoom' },
+      { keys: 'right or middle drag', action: 'pan' },
+    ],
+  };
+}
+
+const GRID_PLANNERS: HelpPlanner[] = [
+  { name: 'A*', paper: '[T] Wu 2022 §3.2.1, eq 3-6', summary: 'Best-first search on f = g + h with a weight w on h (w = 1 is optimal). Diagonal moves cost √2 and may not cut corners by default (the Moving AI rule).' },
+  { name: 'Dijkstra', paper: 'baseline (not in the papers)', summary: 'A* with h = 0: optimal, expands every cell cheaper than the goal.' },
+  { name: 'Jump Point Search', paper: 'baseline (Harabor & Grastien 2011)', summary: 'The same optimal costs as A* on an 8-connected grid, expanding far fewer cells by jumping along straight lines.' },
+  { name: 'Safe A*', paper: '[S] Ge & Li 2022 §1', summary: "24-neighbourhood search with h′ = h + ε·L, L = k/s (k occupied cells in the 5×5 window, s the distance to the nearest): keeps the path away from walls. h′ is inadmissible by design; the admissible variant adds the safety cost to g instead." },
+  { name: 'Key points', paper: '[T] Wu 2022 §3.2.1, Fig 3-8/3-9', summary: 'Reduces a path to its turning points, then drops every point whose neighbours see each other on the inflated map (46 → 11 → 3 nodes in the thesis). The improved DWA uses them as intermediate goals.' },
+  { name: 'Bottom-Up segmentation', paper: '[S] Ge & Li 2022 §4.1, Fig 6', summary: "Keogh's Bottom-Up: merges adjacent path segments while the merged segment's largest perpendicular error stays below ε and it stays collision-free; the segment ends are the feature nodes (80 → 7 in [S] Fig 6)." },
+];
+
+/** The grid page (index.html). */
+export function gridHelp(): HelpContent {
+  return {
+    page: 'grid',
+    intro:
+      'The grid page plans global paths on an occupancy grid: Moving AI maps, ROS maps or scenario files. Place the start and goal, paint walls, and every change replans at once; the expanded cells, the path, its key points or feature nodes and the planner statistics are shown.',
+    planners: GRID_PLANNERS,
+    params: [
+      { name: 'Heuristic', unit: 'cells', default: 'octile', doc: 'A* / JPS distance estimate: octile (exact on 8-connected grids), Euclidean, Manhattan, Chebyshev or zero.' },
+      { name: 'Weight', unit: '—', default: 1, doc: 'w in f = g + w·h; above 1 the search is faster and the path at most w times longer.' },
+      { name: 'Diagonal moves', unit: '', default: 'no corner cutting', doc: 'Never (4-connected), no corner cutting (both orthogonal neighbours free), one side free, or always.' },
+      { name: 'Safety weight ε', unit: '—', default: 100, doc: '[S] §1: weight of the safety term L in h′ = h + ε·L; 0 gives plain A* over the 24-neighbourhood.' },
+      { name: 'Neighbourhood', unit: 'cells', default: 24, doc: '[S] §1: successors of a cell: the 5×5 block (24), 8 or 4; a move must cross free cells only.' },
+      { name: 'Inflate radius', unit: 'm', default: 0, doc: 'Grows walls by the robot radius before planning, so the path keeps that clearance.' },
+      { name: 'Allow unknown', unit: '', default: false, doc: 'Plan through unknown (?) cells.' },
+      { name: 'Bottom-Up ε', unit: 'cells', default: 1, doc: '[S] §4.1: largest perpendicular error a merged segment may have.' },
+    ],
+    shortcuts: [
+      { keys: 'S', action: 'tool: place the start' },
+      { keys: 'G', action: 'tool: place the goal' },
+      { keys: 'W', action: 'tool: paint walls' },
+      { keys: 'E', action: 'tool: erase walls' },
+      { keys: 'F', action: 'fit the map into the view' },
+      { keys: 'Shift + click', action: 'place the goal with any tool' },
+      { keys: 'wheel', action: 'zoom' },
+      { keys: 'right or middle drag', action: 'pan' },
+    ],
+  };
+}
+
+const APF_VARIANTS: HelpPlanner[] = [
+  { name: 'basic APF', paper: '[T] Wu 2022 §4.1, eq 4-1…4-4', summary: 'Steps a fixed length along the resultant of the attraction (quadratic within ρ of the goal, conic beyond) and the repulsion k_r(1/p − 1/p₀)/p² of every obstacle within p₀. Gets stuck in local minima and short of goals near obstacles.' },
+  { name: 'sampling APF', paper: '[T] Wu 2022 §4.2.1–4.2.2, eq 4-5…4-11', summary: 'Samples 13 directions from −90° to +90° of the resultant in 15° steps and takes the candidate with the least cost α‖F_attr‖ + β‖F_rep‖ (α 0.3, β 0.7); the relative distance rule sets β = 0 when the goal is nearer than the obstacle.' },
+  { name: 'sampling + prediction', paper: '[T] Wu 2022 §4.2.3, eq 4-13/4-14', summary: "Adds virtual repulsion at each mover's predicted positions at t+1 and t+2, with ranges scaled 0.75 and 0.75²: the robot turns away from where the mover will be." },
+  { name: 'constant velocity (predictor)', paper: '[T] Wu 2022 §4.2.3', summary: "Predicts a mover's next positions from its last velocity." },
+  { name: 'SimpleRNN (predictor)', paper: '[T] Wu 2022 §5.2', summary: '6 inputs (position, velocity), 15 tanh units, 3 outputs: the position 0.5 s ahead from 5 past samples; trained on synthetic hand-reaching trajectories, runs in wasm.' },
+];
+
+/** The potential-field page. */
+export function apfHelp(): HelpContent {
+  return {
+    page: 'apf',
+    intro:
+      'The potential-field page runs the APF variants of [T] ch. 4 on the thesis scenes: a point robot stepping 0.04 m among discs. The heat map is the force field, arrows its direction, dashed circles the repulsion ranges, the fan the sampled directions (the chosen one green) and the violet / pink circles the predicted obstacles. Click or drag to move the goal.',
+    planners: APF_VARIANTS,
+    params: [
+      { name: 'Variant', unit: '', default: 'sampling + prediction', doc: 'basic, sampling or sampling + prediction (apf.config.mode).' },
+      { name: 'Predictor', unit: '', default: 'constant velocity', doc: 'How the prediction variant forecasts the movers.' },
+    ],
+    shortcuts: [{ keys: 'click / drag', action: 'move the goal (restarts the run)' }],
+  };
+}
+
+/** The arm page. */
+export function armHelp(): HelpContent {
+  return {
+    page: 'arm',
+    intro:
+      "The arm page runs [T] ch. 5's experiment: a TIAGo-like 7-DOF arm whose end effector is planned by the sampling APF in 0.04 m steps and followed by damped least-squares IK, beside a person's hand that reaches across its path. Links are capsules; the minimum distance to the hand is the metric of [T] Table 5-3.",
+    planners: [
+      { name: 'none', paper: '[T] Wu 2022 §4.2.1', summary: 'Sampling APF on the hand where it is now.' },
+      { name: 'constant-velocity', paper: '[T] Wu 2022 §4.2.3, §5.3.3', summary: "Adds virtual repulsion at the hand's positions predicted at t+1 and t+2 from its last velocity: the arm keeps further away (paper: 0.171 m vs 0.077 m)." },
+      { name: 'rnn', paper: '[T] Wu 2022 §5.2', summary: 'The SimpleRNN predictor (15 tanh units, 0.5 s ahead) in place of constant velocity.' },
+    ],
+    params: [
+      { name: 'Speed', unit: '×', default: '1×', doc: 'Simulated seconds per real second.' },
+      { name: 'Predictor', unit: '', default: 'constant-velocity', doc: 'How the hand is forecast (changes live).' },
+      { name: 'Hand motion', unit: '', default: '', doc: 'The preset reach, its speed (m/s) and seed.' },
+      { name: 'Target sliders', unit: 'm', default: '', doc: 'Where the end effector goes.' },
+    ],
+    shortcuts: [
+      { keys: 'Space', action: 'play / pause' },
+      { keys: '.', action: 'one sample (0.1 s)' },
+      { keys: 'R', action: 'reset' },
+      { keys: 'drag', action: 'orbit the 3D view' },
+    ],
+  };
+}
+
+/** Keeps HelpParam exported for pages that add their own. */
+export type { HelpParam };

@@ -1,0 +1,125 @@
+// Run links: the URL a gallery card opens (`robot.html?scenario=T-fig3-2.json
+// &planner=dwa&set=movers%3D%5B%5D&run=1`) and what a page does with it.
+// A run is the reproduce registry's RunSpec (preset, planner, `--set`
+// edits), so the page runs exactly what `planlab reproduce` runs; the edits
+// are applied to the scenario JSON with the CLI's rules (mirrors core
+// `set_json_path` / `set_planner_name`).
+
+/** One run of a gallery entry (assets/gallery.json). */
+export interface GalleryRun {
+  name: string;
+  preset: string;
+  planner: string | null;
+  set: [string, string][];
+}
+
+/** One gallery entry: a `planlab reproduce` id. */
+export interface GalleryEntry {
+  id: string;
+  title: string;
+  page: 'robot' | 'apf' | 'arm' | 'grid';
+  paper: string;
+  section: string;
+  what: string;
+  relation: string;
+  explanation: string;
+  runs: GalleryRun[];
+}
+
+/** The run parameters of a page's URL. */
+export interface RunParams {
+  scenario: string | null;
+  planner: string | null;
+  set: [string, string][];
+  run: boolean;
+}
+
+const PAGE_FILE: Record<GalleryEntry['page'], string> = {
+  robot: 'robot.html',
+  apf: 'apf.html',
+  arm: 'arm.html',
+  grid: 'index.html',
+};
+
+/** The link that opens `run` on `page` and starts it. */
+export function runUrl(page: GalleryEntry['page'], run: GalleryRun): string {
+  const q = new URLSearchParams();
+  q.set('scenario', run.preset);
+  if (run.planner) q.set('planner', run.planner);
+  for (const [p, v] of run.set) q.append('set', `${p}=${v}`);
+  q.set('run', '1');
+  return `./${PAGE_FILE[page]}?${q.toString()}`;
+}
+
+/** Reads `scenario`, `planner`, every `set=path=value` and `run=1`. */
+export function runParams(search: string = location.search): RunParams {
+  const q = new URLSearchParams(search);
+  const set: [string, string][] = [];
+  for (const s of q.getAll('set')) {
+    const i = s.indexOf('=');
+    if (i > 0) set.push([s.slice(0, i), s.slice(i + 1)]);
+  }
+  const run = q.get('run');
+  return {
+    scenario: q.get('scenario'),
+    planner: q.get('planner'),
+    set,
+    run: run === '1' || run === 'true',
+  };
+}
+
+type Json = null | boolean | number | string | Json[] | { [k: string]: Json };
+
+/** `--set path=value`: the value parsed as JSON, else taken as a string. */
+export function setJsonPath(root: Json, path: string, value: string): void {
+  const parts = path.split('.');
+  if (!path || parts.some((p) => !p)) throw new Error(`set ${path}: the path needs names separated by single dots`);
+  if (/^[+-]?(nan|inf|infinity)$/i.test(value.trim())) throw new Error(`set ${path}: ${value} is not a finite number`);
+  let v: Json;
+  try {
+    v = JSON.parse(value) as Json;
+  } catch {
+    v = value;
+  }
+  let here: Json = root;
+  parts.forEach((part, i) => {
+    const last = i + 1 === parts.length;
+    if (Array.isArray(here)) {
+      const idx = Number(part);
+      if (!Number.isInteger(idx) || idx < 0 || idx >= here.length) throw new Error(`set ${path}: no element ${part}`);
+      if (last) here[idx] = v;
+      else here = here[idx];
+    } else if (here !== null && typeof here === 'object') {
+      const o: { [k: string]: Json } = here;
+      if (last) o[part] = v;
+      else {
+        if (o[part] === undefined) o[part] = {};
+        here = o[part];
+      }
+    } else {
+      throw new Error(`set ${path}: ${parts.slice(0, i).join('.')} is not an object`);
+    }
+  });
+}
+
+/** `--planner NAME`: the local planner's name; its config reset to `{}`
+ *  when the name changes. */
+export function setPlannerName(root: Json, name: string): void {
+  if (root === null || typeof root !== 'object' || Array.isArray(root)) throw new Error('a scenario is a JSON object');
+  const lp = (root.local_planner ??= {});
+  if (lp === null || typeof lp !== 'object' || Array.isArray(lp)) throw new Error('local_planner must be an object');
+  if (lp.name !== name) {
+    lp.name = name;
+    lp.config = {};
+  }
+}
+
+/** The scenario text with the planner (robot pages) and edits applied;
+ *  the text unchanged when there are none. */
+export function applyRun(text: string, planner: string | null, set: [string, string][]): string {
+  if (!planner && !set.length) return text;
+  const tree = JSON.parse(text) as Json;
+  if (planner) setPlannerName(tree, planner);
+  for (const [p, v] of set) setJsonPath(tree, p, v);
+  return JSON.stringify(tree);
+}
