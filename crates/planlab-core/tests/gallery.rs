@@ -72,7 +72,11 @@ fn registry() -> Vec<Registered> {
         .collect();
     for e in reproduce::path_experiments() {
         let tree: serde_json::Value = serde_json::from_str(e.runs[0].scenario_json).unwrap();
-        let page = if tree.get("arm").is_some() { "arm" } else { "apf" };
+        let page = if tree.get("arm").is_some() {
+            "arm"
+        } else {
+            "apf"
+        };
         v.push(Registered {
             id: e.id,
             paper: e.paper,
@@ -95,8 +99,14 @@ fn every_reproduce_id_has_one_gallery_entry_and_no_more() {
     let want: BTreeSet<&str> = registry().iter().map(|r| r.id).collect();
     let missing: Vec<_> = want.difference(&unique).collect();
     let extra: Vec<_> = unique.difference(&want).collect();
-    assert!(missing.is_empty(), "gallery.json lacks reproduce ids {missing:?}");
-    assert!(extra.is_empty(), "gallery.json has ids reproduce does not know: {extra:?}");
+    assert!(
+        missing.is_empty(),
+        "gallery.json lacks reproduce ids {missing:?}"
+    );
+    assert!(
+        extra.is_empty(),
+        "gallery.json has ids reproduce does not know: {extra:?}"
+    );
     // The registry's order (the CLI's), so the gallery reads like `planlab reproduce`.
     let order: Vec<&str> = registry().iter().map(|r| r.id).collect();
     assert_eq!(ids, order);
@@ -128,7 +138,11 @@ fn entries_carry_the_registry_text_and_runs() {
             e.section
         );
         assert!(!e.explanation.contains('\n'), "{}: one paragraph", r.id);
-        assert!(e.explanation.len() >= 200, "{}: explanation too short", r.id);
+        assert!(
+            e.explanation.len() >= 200,
+            "{}: explanation too short",
+            r.id
+        );
         assert_eq!(e.runs.len(), r.runs.len(), "{}: runs", r.id);
         for (run, spec) in e.runs.iter().zip(&r.runs) {
             let want = Run {
