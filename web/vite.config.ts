@@ -84,6 +84,7 @@ export default defineConfig({
         main: resolve(here, 'index.html'),
         gallery: resolve(here, 'gallery.html'),
         robot: resolve(here, 'robot.html'),
+        compare: resolve(here, 'compare.html'),
         arm: resolve(here, 'arm.html'),
         apf: resolve(here, 'apf.html'),
         bench: resolve(here, 'bench.html'),

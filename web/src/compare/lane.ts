@@ -1,0 +1,117 @@
+// One planner of a comparison: its own SimHandle on the shared scenario,
+// the scene the robot page's painter draws from it, and the trail kept in
+// JS (grown incrementally, as on the robot page) for the overlay.
+
+import type { SimHandle } from '../../pkg/planlab_wasm.js';
+import { emptyScene, type RobotShape, type Scene } from '../robot/view';
+import type { Metrics } from './table';
+
+/** Planner colours, in the order the planners were picked: apart from the
+ *  start (green), goal (blue), path (rose) and mover colours of the view. */
+export const LANE_COLOURS = ['#f97316', '#7c3aed', '#0d9488', '#db2777'] as const;
+
+export class Lane {
+  readonly name: string;
+  readonly colour: string;
+  readonly sim: SimHandle;
+  readonly scene: Scene;
+  outcome: string;
+  metrics: Metrics | null = null;
+  /** Steps taken and trace hash (decimal) once the episode is over. */
+  hash: string | null = null;
+
+  constructor(name: string, colour: string, sim: SimHandle, robot: RobotShape) {
+    this.name = name;
+    this.colour = colour;
+    this.sim = sim;
+    this.scene = emptyScene();
+    this.scene.robot = robot;
+    const st = sim.start();
+    this.scene.start = [st[0] ?? 0, st[1] ?? 0, st[2] ?? 0];
+    this.outcome = sim.outcome;
+  }
+
+  get running(): boolean {
+    return this.outcome === 'running';
+  }
+
+  /** One control step (a no-op once the episode is over). */
+  step(n = 1): void {
+    if (!this.running) return;
+    this.outcome = this.sim.step(n);
+    if (!this.running) this.hash = this.sim.traceHash();
+  }
+
+  /** Copies what the SimHandle reports into the scene. */
+  pull(): void {
+    const sim = this.sim;
+    const S = this.scene;
+    S.state = sim.state();
+    S.movers = sim.movers();
+    S.goal = pair(sim.goal());
+    S.currentGoal = pair(sim.currentGoal());
+    S.goalKind = sim.goalKind;
+    const cls = sim.classes();
+    S.classes.clear();
+    for (let i = 0; i + 1 < cls.length; i += 2) S.classes.set(cls[i], cls[i + 1]);
+    if (S.show.fan) {
+      S.fan = {
+        points: sim.fanPoints(),
+        offsets: sim.fanOffsets(),
+        scores: sim.fanScores(),
+        admissible: sim.fanAdmissible(),
+        chosen: sim.chosen,
+      };
+    }
+    S.globalPath = sim.globalPath();
+    S.keypoints = sim.keypoints();
+    S.lidar = sim.hasLidar
+      ? {
+          rays: sim.lidarRays(),
+          returns: sim.lidarReturns(),
+          edges: sim.lidarEdges(false),
+          opsRaw: sim.lidarOps(false),
+          opsRawOffsets: sim.lidarOpOffsets(false),
+          ops: sim.lidarOps(true),
+          opsOffsets: sim.lidarOpOffsets(true),
+          blocking: sim.lidarBlocking,
+          candidates: sim.lidarCandidates(),
+          target: sim.lidarTarget(),
+        }
+      : null;
+    // The trail grows: fetch only the rows since the last pull.
+    const rows = sim.trail(S.trailLen);
+    const m = rows.length / 2;
+    if (m > 0) {
+      if (S.trailLen + m > S.trail.length / 2) {
+        const t = new Float64Array(Math.max(S.trail.length * 2, (S.trailLen + m) * 2, 1024));
+        t.set(S.trail.subarray(0, S.trailLen * 2));
+        S.trail = t;
+      }
+      S.trail.set(rows, S.trailLen * 2);
+      S.trailLen += m;
+    }
+    this.outcome = sim.outcome;
+  }
+
+  /** The `planlab run` metrics so far (a pass over the trace: call it at
+   *  the table's pace, not every frame). */
+  updateMetrics(): Metrics {
+    this.metrics = JSON.parse(this.sim.metricsJson()) as Metrics;
+    return this.metrics;
+  }
+
+  /** Records the rollouts for drawing (side by side) or not (faster). */
+  setRecordRollouts(on: boolean): void {
+    this.scene.show.fan = on;
+    this.sim.setRecordRollouts(on);
+  }
+
+  free(): void {
+    this.sim.free();
+  }
+}
+
+function pair(a: Float64Array): [number, number] {
+  return [a[0] ?? 0, a[1] ?? 0];
+}

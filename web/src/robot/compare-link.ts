@@ -1,0 +1,25 @@
+// The robot page's "Compare planners…" link: opens the compare page on the
+// current preset with the planner in use and a second one to compare with.
+// Kept out of main.ts: it only reads the preset and planner selects.
+
+const link = document.getElementById('compare-link') as HTMLAnchorElement | null;
+const preset = document.getElementById('preset') as HTMLSelectElement | null;
+const planner = document.getElementById('planner') as HTMLSelectElement | null;
+
+/** The compare page URL for what the robot page shows now. */
+function compareHref(): string {
+  const q = new URLSearchParams();
+  if (preset?.value) q.set('scenario', preset.value);
+  const current = planner?.value || 'dwa';
+  // Baseline DWA against the planner in use; improved DWA against DWA.
+  const other = current === 'dwa' ? 'improved-dwa' : 'dwa';
+  q.set('planners', `${current},${other}`);
+  return `./compare.html?${q.toString().replaceAll('%2C', ',')}`;
+}
+
+if (link) {
+  const update = () => (link.href = compareHref());
+  for (const ev of ['pointerenter', 'focus', 'pointerdown', 'click']) link.addEventListener(ev, update);
+  preset?.addEventListener('change', update);
+  planner?.addEventListener('change', update);
+}
