@@ -275,6 +275,8 @@ test('the robot page links to the comparison; URL parameters pick the scenario, 
   page.on('pageerror', (e) => problems.push(e.message));
   await page.goto(`${session.base}robot.html?scenario=${TRAP}`);
   await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30_000 });
+  await page.locator('#compare-link').scrollIntoViewIfNeeded();
+  await screenshot(page, 'compare-00-robot-link.png');
   await Promise.all([page.waitForURL(/compare\.html/), page.click('#compare-link')]);
   await waitBuilt(page);
   const q = new URL(page.url()).searchParams;
@@ -295,6 +297,17 @@ test('the robot page links to the comparison; URL parameters pick the scenario, 
   // The fifth checkbox cannot be ticked while four are picked.
   assert.equal(await page.isDisabled('#pick-safe-dual-dwa'), true);
   await screenshot(page, 'compare-04-four-overlaid.png');
+  // V switches to side by side: four canvases, each drawn.
+  await page.keyboard.press('v');
+  assert.equal(await bodyData(page, 'view'), 'side');
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  for (const i of [0, 1, 2, 3]) assert.ok((await canvasStats(page, `#lane-canvas-${i}`)).distinct > 20, `lane ${i} drawn`);
+  await screenshot(page, 'compare-06-four-side.png');
+  // The help overlay (shared shell) describes the page.
+  await page.keyboard.press('?');
+  await page.waitForFunction(() => document.body.dataset.help === 'open');
+  assert.match(await page.textContent('#help'), /run to the end instantly/);
+  await page.keyboard.press('Escape');
   assert.equal(await errorText(page), null);
   assert.deepEqual(problems, []);
   await page.close();

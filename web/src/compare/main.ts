@@ -13,6 +13,8 @@ import type { PlannerInfo } from '../robot/params';
 import { Lane, LANE_COLOURS } from './lane';
 import { OverlayView } from './overlay';
 import { ROWS, cellText, tableCsv, winners } from './table';
+import { compareHelp } from './help';
+import { installShell } from '../shell/help';
 
 /** Planners compared at once. */
 const MIN_PLANNERS = 2;
@@ -284,7 +286,8 @@ function renderLaneHeads(): void {
   lanes.forEach((l, i) => {
     const head = ui.lanes.children[i]?.querySelector('.lane-state');
     if (head) {
-      head.textContent = l.running ? `t = ${l.sim.time.toFixed(1)} s` : `${describe(l.outcome)} · ${l.sim.time.toFixed(1)} s`;
+      head.textContent = l.running ? `t = ${l.sim.time.toFixed(1)} s` : `${l.outcome} · ${l.sim.time.toFixed(1)} s`;
+      (head as HTMLElement).title = l.running ? 'running' : describe(l.outcome);
       (head as HTMLElement).dataset.outcome = l.outcome;
     }
   });
@@ -856,6 +859,8 @@ async function boot(): Promise<void> {
   if (lanes.length >= MIN_PLANNERS && auto === 'instant') await runToEnd();
   else if (lanes.length >= MIN_PLANNERS && auto !== null && auto !== '0') setPlaying(true);
 }
+
+installShell(() => compareHelp(infos, chosen[0]));
 
 boot().catch((e) => {
   ui.body.dataset.state = 'error';
