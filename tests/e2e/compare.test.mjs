@@ -263,6 +263,8 @@ test('compare dwa and improved-dwa on the C-shaped trap: same numbers as the CLI
   await waitDone(page);
   table = await readTable(page);
   checkTable(table, natives, `${TRAP} (run to end)`);
+  const steps = natives.dwa.steps + natives['improved-dwa'].steps;
+  console.log(`run to end instantly, ${TRAP}, dwa + improved-dwa: ${steps} control steps in ${await bodyData(page, 'instantMs')} ms (wall time, paints included)`);
   assert.equal(await errorText(page), null);
   assert.deepEqual(problems, []);
   await page.close();
@@ -294,6 +296,8 @@ test('the robot page links to the comparison; URL parameters pick the scenario, 
   const table = await readTable(page);
   const natives = Object.fromEntries(four.map((n) => [n, cli('dwa-demo.json', n)]));
   checkTable(table, natives, 'dwa-demo.json');
+  const steps = four.reduce((a, n) => a + natives[n].steps, 0);
+  console.log(`run to end instantly, dwa-demo.json, ${four.join(' + ')}: ${steps} control steps in ${await bodyData(page, 'instantMs')} ms (wall time, paints included)`);
   // The fifth checkbox cannot be ticked while four are picked.
   assert.equal(await page.isDisabled('#pick-safe-dual-dwa'), true);
   await screenshot(page, 'compare-04-four-overlaid.png');
@@ -308,6 +312,14 @@ test('the robot page links to the comparison; URL parameters pick the scenario, 
   await page.waitForFunction(() => document.body.dataset.help === 'open');
   assert.match(await page.textContent('#help'), /run to the end instantly/);
   await page.keyboard.press('Escape');
+
+  // autorun=1 plays in real time at the speed given; the result is the same.
+  await page.goto(`${session.base}compare.html?scenario=${TRAP}&planners=dwa,improved-dwa&speed=16&autorun=1`);
+  await page.waitForFunction(() => document.body.dataset.playing === 'true', null, { timeout: 30_000 });
+  assert.equal(await page.inputValue('#speed'), '16');
+  await waitDone(page);
+  const trap = await readTable(page);
+  checkTable(trap, { dwa: cli(TRAP, 'dwa'), 'improved-dwa': cli(TRAP, 'improved-dwa') }, `${TRAP} (autorun)`);
   assert.equal(await errorText(page), null);
   assert.deepEqual(problems, []);
   await page.close();
@@ -342,6 +354,11 @@ test('bad input: a fifth planner, a single one, unknown names and a broken file 
   assert.match((await errorText(page)) ?? '', /compare-broken\.json/);
   assert.equal(await page.inputValue('#preset'), 'dwa-demo.json');
   fs.rmSync(broken, { force: true });
+  // A good file opens: the comparison moves to it.
+  await afterRebuild(page, () => page.setInputFiles('#file-input', path.join(REPO, 'assets/scenarios', TRAP)));
+  assert.equal(await errorText(page), null);
+  assert.equal(await page.inputValue('#preset'), '');
+  assert.match(await page.textContent('#scenario-description'), /C-shaped wall/);
 
   // Unknown planner names in the URL: reported, the known ones kept.
   await page.goto(`${session.base}compare.html?scenario=nope.json&planners=dwa,warp-drive,improved-dwa`);

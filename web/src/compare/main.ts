@@ -480,6 +480,7 @@ async function runToEnd(): Promise<void> {
   if (lanes.length < MIN_PLANNERS || allDone()) return;
   setPlaying(false);
   const gen = generation;
+  const t0 = performance.now();
   instantRunning = true;
   ui.body.dataset.state = 'running';
   renderControls();
@@ -502,6 +503,8 @@ async function runToEnd(): Promise<void> {
       for (const l of lanes) l.sim.setRecordRollouts(ui.showFan.checked);
     }
   }
+  // Wall time of the whole run (slices, pulls and paints included), for the curious and the e2e log.
+  ui.body.dataset.instantMs = (performance.now() - t0).toFixed(0);
   finish();
 }
 
