@@ -17,7 +17,7 @@ export class Lane {
   readonly scene: Scene;
   outcome: string;
   metrics: Metrics | null = null;
-  /** Steps taken and trace hash (decimal) once the episode is over. */
+  /** The trace hash (decimal) once the episode is over. */
   hash: string | null = null;
 
   constructor(name: string, colour: string, sim: SimHandle, robot: RobotShape) {
@@ -29,6 +29,7 @@ export class Lane {
     const st = sim.start();
     this.scene.start = [st[0] ?? 0, st[1] ?? 0, st[2] ?? 0];
     this.outcome = sim.outcome;
+    if (!this.running) this.hash = sim.traceHash();
   }
 
   get running(): boolean {

@@ -228,8 +228,8 @@ function rebuild(): void {
   for (const l of lanes) l.pull();
   overlay.setLanes(lanes);
   accum = 0;
-  renderAll();
   ui.body.dataset.state = lanes.length ? 'ready' : 'empty';
+  renderAll();
   ui.body.dataset.lanes = String(lanes.length);
   ui.body.dataset.buildSeq = String(Number(ui.body.dataset.buildSeq ?? 0) + 1);
   delete ui.body.dataset.done;
