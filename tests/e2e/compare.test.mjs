@@ -201,6 +201,9 @@ test('compare dwa and improved-dwa on the C-shaped trap: same numbers as the CLI
   assert.equal(times[0], times[1], `time-synchronised: ${times}`);
   await screenshot(page, 'compare-01-side-running.png');
   await waitDone(page);
+  const fs16 = await hooks(page, 'frameStats');
+  console.log(`frame work at 16×, ${TRAP}, dwa + improved-dwa: ${fs16.frames} frames, median ${fs16.median.toFixed(2)} ms, p95 ${fs16.p95.toFixed(2)} ms, max ${fs16.max.toFixed(2)} ms`);
+  assert.ok(fs16.frames > 10, 'played frame by frame');
   let table = await readTable(page);
   checkTable(table, natives, TRAP);
   // Spelled out: the trapped DWA drove straight (no turning at all) but did
@@ -224,6 +227,18 @@ test('compare dwa and improved-dwa on the C-shaped trap: same numbers as the CLI
     assert.ok(s.near[0] > 30, `lane ${i} trail drawn (${s.near[0]} px)`);
   }
   await screenshot(page, 'compare-02-side-done.png');
+
+  // The wheel zooms both lanes together; a double click fits them again.
+  const scales = () => page.$$eval('.lane-canvas', (cs) => cs.map((c) => Number(c.dataset.scale)));
+  const fitted = await scales();
+  const box = await page.locator('#lane-canvas-0').boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.wheel(0, -300);
+  const zoomed = await scales();
+  assert.ok(zoomed[0] > fitted[0] * 1.2, `zoomed in: ${fitted} → ${zoomed}`);
+  assert.equal(zoomed[1], zoomed[0], 'both lanes at the same zoom');
+  await page.mouse.dblclick(box.x + box.width / 2, box.y + box.height / 2);
+  assert.deepEqual(await scales(), fitted);
 
   // The table as CSV on the clipboard: the CLI's numbers and the winners.
   await session.context.grantPermissions(['clipboard-read', 'clipboard-write'], { origin: new URL(session.base).origin });

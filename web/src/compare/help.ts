@@ -30,6 +30,9 @@ export function compareHelp(planners: PlannerInfo[], current: string | undefined
       { keys: 'R', action: 'reset: every planner back to the start' },
       { keys: 'E', action: 'run to the end instantly' },
       { keys: 'V', action: 'side by side ⇄ overlaid' },
+      { keys: 'wheel', action: 'zoom every view together' },
+      { keys: 'right or middle drag', action: 'pan every view together' },
+      { keys: 'double click', action: 'fit the map into every view' },
     ],
   };
 }

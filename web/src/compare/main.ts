@@ -450,11 +450,15 @@ function finish(): void {
   renderAll();
 }
 
+/** Per-frame work (all planners' steps + paint), ms, while playing. */
+const frameWork: number[] = [];
+
 function frame(now: number): void {
   if (!playing) return;
   requestAnimationFrame(frame);
   const interval = now - lastFrame;
   lastFrame = now;
+  const t0 = performance.now();
   try {
     accum += (Math.min(interval, 100) / 1000) * speed;
     const due = Math.floor(accum / dt + 1e-9);
@@ -468,6 +472,7 @@ function frame(now: number): void {
       renderTable();
       renderStatus();
     }
+    if (frameWork.length < 100_000) frameWork.push(performance.now() - t0);
   } catch (e) {
     setPlaying(false);
     showError(messageOf(e));
@@ -747,6 +752,50 @@ ui.showFan.addEventListener(
     paintViews();
   }),
 );
+// Zoom and pan move every view together, so the planners stay comparable
+// at the same place: wheel = zoom, right / middle / Alt drag = pan,
+// double click = fit.
+let panFrom: { x: number; y: number } | null = null;
+function allViews(): RobotView[] {
+  return viewMode === 'side' ? sideViews : [overlay.view];
+}
+function onCanvas(ev: Event): HTMLCanvasElement | null {
+  const t = ev.target as HTMLElement | null;
+  return t instanceof HTMLCanvasElement && (t.classList.contains('lane-canvas') || t === ui.overlayCanvas) ? t : null;
+}
+ui.stage.addEventListener(
+  'wheel',
+  (ev) => {
+    const cv = onCanvas(ev);
+    if (!cv) return;
+    ev.preventDefault();
+    const r = cv.getBoundingClientRect();
+    const f = Math.exp(-ev.deltaY * 0.0015);
+    for (const v of allViews()) v.zoomAt(ev.clientX - r.left, ev.clientY - r.top, f);
+    overlay.sync();
+  },
+  { passive: false },
+);
+ui.stage.addEventListener('pointerdown', (ev) => {
+  const cv = onCanvas(ev);
+  if (!cv || !(ev.button === 1 || ev.button === 2 || (ev.button === 0 && ev.altKey))) return;
+  panFrom = { x: ev.clientX, y: ev.clientY };
+  cv.setPointerCapture(ev.pointerId);
+  ev.preventDefault();
+});
+ui.stage.addEventListener('pointermove', (ev) => {
+  if (!panFrom) return;
+  for (const v of allViews()) v.panBy(ev.clientX - panFrom.x, ev.clientY - panFrom.y);
+  panFrom = { x: ev.clientX, y: ev.clientY };
+});
+for (const type of ['pointerup', 'pointercancel'] as const) ui.stage.addEventListener(type, () => (panFrom = null));
+ui.stage.addEventListener('contextmenu', (ev) => {
+  if (onCanvas(ev)) ev.preventDefault();
+});
+ui.stage.addEventListener('dblclick', (ev) => {
+  if (onCanvas(ev)) for (const v of allViews()) v.fit();
+});
+
 ui.showPath.addEventListener('change', () => {
   for (const l of lanes) l.scene.show.path = ui.showPath.checked;
   overlay.showPath = ui.showPath.checked;
@@ -810,6 +859,12 @@ window.addEventListener('keydown', (ev) => {
   hashes: () => Object.fromEntries(lanes.map((l) => [l.name, l.hash])),
   csv: () => currentCsv(),
   chosen: () => [...chosen],
+  frameStats: () => {
+    const xs = [...frameWork].sort((a, b) => a - b);
+    const q = (p: number) => (xs.length ? xs[Math.min(xs.length - 1, Math.floor(p * (xs.length - 1) + 0.5))] : Number.NaN);
+    return { frames: xs.length, median: q(0.5), p95: q(0.95), max: xs.length ? xs[xs.length - 1] : Number.NaN };
+  },
+  resetMeter: () => (frameWork.length = 0),
 };
 
 // -------------------------------------------------------------------- boot
