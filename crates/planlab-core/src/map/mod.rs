@@ -7,6 +7,8 @@
 //! the `origin` field of a ROS map_server YAML means.
 
 pub mod costmap;
+pub mod edit;
+pub mod generate;
 pub mod io;
 
 use serde::{Deserialize, Serialize};
@@ -424,6 +426,30 @@ impl OccupancyGrid {
             }
         }
         c
+    }
+
+    /// FNV-1a hash of the size, frame and cells: equal grids hash equal on
+    /// every target, so a map generated in the browser can be compared
+    /// with the CLI's by one number.
+    pub fn content_hash(&self) -> u64 {
+        const PRIME: u64 = 0x0000_0100_0000_01B3;
+        let mut h: u64 = 0xCBF2_9CE4_8422_2325;
+        let mut eat = |bytes: &[u8]| {
+            for &b in bytes {
+                h ^= u64::from(b);
+                h = h.wrapping_mul(PRIME);
+            }
+        };
+        eat(&(self.width as u64).to_le_bytes());
+        eat(&(self.height as u64).to_le_bytes());
+        eat(&self.resolution.to_bits().to_le_bytes());
+        for v in [self.origin.x, self.origin.y, self.origin.yaw] {
+            eat(&v.to_bits().to_le_bytes());
+        }
+        for c in &self.cells {
+            eat(&[*c as u8]);
+        }
+        h
     }
 
     /// World coordinates (metres) of the centre of cell `(col, row)`.

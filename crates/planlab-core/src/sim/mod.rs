@@ -18,9 +18,13 @@
 //! all trigonometry goes through [`crate::num`], so the same setup and seed
 //! give a bit-identical [`Trace`] natively and in WebAssembly.
 
+mod edit;
 mod live;
 mod trace;
 
+pub use edit::{
+    generated_sim_config, is_start_collision, SetupEdit, GENERATED_MAX_TIME, GENERATED_STUCK_TIME,
+};
 pub use trace::{Trace, TraceStep, CSV_HEADER};
 
 use serde::{Deserialize, Serialize};
