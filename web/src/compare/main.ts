@@ -6,7 +6,7 @@
 // `planlab run` metrics in a table and the winner of each row marked.
 // URL: ?scenario=FILE&planners=a,b&view=side|overlay&speed=X&autorun=1|instant
 
-import init, { SimHandle, planners as plannerListJson, rosImageName } from '../../pkg/planlab_wasm.js';
+import init, { SimHandle, planners as plannerListJson } from '../../pkg/planlab_wasm.js';
 import presets from 'virtual:robot-presets';
 import { RobotView, type RobotShape } from '../robot/view';
 import type { PlannerInfo } from '../robot/params';
@@ -15,6 +15,7 @@ import { OverlayView } from './overlay';
 import { ROWS, cellText, tableCsv, winners } from './table';
 import { compareHelp } from './help';
 import { installShell } from '../shell/help';
+import { loadPresetFiles, readPicked } from '../shell/scenario-files';
 
 /** Planners compared at once. */
 const MIN_PLANNERS = 2;
@@ -624,40 +625,6 @@ function applyPlanners(names: string[]): void {
 }
 
 // ----------------------------------------------------------------- files
-async function fetchText(path: string): Promise<string> {
-  const r = await fetch(new URL(path, document.baseURI));
-  if (!r.ok) throw new Error(`cannot load ${path}: HTTP ${r.status}`);
-  return r.text();
-}
-
-async function fetchBytes(url: URL): Promise<Uint8Array> {
-  const r = await fetch(url);
-  if (!r.ok) throw new Error(`cannot load ${url.pathname}: HTTP ${r.status}`);
-  return new Uint8Array(await r.arrayBuffer());
-}
-
-const baseName = (p: string) => p.split(/[\\/]/).pop() ?? p;
-
-/** The map files a preset refers to (a ROS yaml brings its image), keyed by
- *  base name as SimHandle looks them up. */
-async function mapFilesOf(text: string, scenarioUrl: URL): Promise<Record<string, Uint8Array>> {
-  let ref: unknown;
-  try {
-    ref = (JSON.parse(text) as { map?: { file?: unknown } }).map?.file;
-  } catch {
-    return {};
-  }
-  if (typeof ref !== 'string') return {};
-  const files: Record<string, Uint8Array> = {};
-  const url = new URL(ref, scenarioUrl);
-  files[baseName(ref)] = await fetchBytes(url);
-  if (/\.ya?ml$/i.test(ref)) {
-    const image = rosImageName(new TextDecoder().decode(files[baseName(ref)]));
-    files[baseName(image)] = await fetchBytes(new URL(image, url));
-  }
-  return files;
-}
-
 /** Takes a scenario as the one compared on: checked by building it with its
  *  own planner first, so a broken file is reported as such. */
 function setScenario(text: string, file: string, label: string, files: Record<string, Uint8Array>): void {
@@ -683,10 +650,9 @@ function setScenario(text: string, file: string, label: string, files: Record<st
 }
 
 async function loadPreset(file: string): Promise<void> {
-  const url = new URL(`scenarios/${file}`, document.baseURI);
   try {
-    const text = await fetchText(`scenarios/${file}`);
-    setScenario(text, file, file, await mapFilesOf(text, url));
+    const { text, files } = await loadPresetFiles(file);
+    setScenario(text, file, file, files);
   } catch (e) {
     throw new Error(`${file}: ${messageOf(e)}`);
   }
@@ -704,17 +670,12 @@ ui.file.addEventListener(
   guard(async () => {
     const picked = Array.from(ui.file.files ?? []);
     ui.file.value = '';
-    const f = picked.find((x) => x.name.toLowerCase().endsWith('.json'));
-    if (!f) {
-      if (picked.length) throw new Error(`Open a scenario .json (with the map files it refers to), not ${picked.map((x) => x.name).join(', ')}.`);
-      return;
-    }
-    const files: Record<string, Uint8Array> = {};
-    for (const x of picked) if (x !== f) files[x.name] = new Uint8Array(await x.arrayBuffer());
+    const got = await readPicked(picked);
+    if (!got) return;
     try {
-      setScenario(await f.text(), '', f.name, files);
+      setScenario(got.text, '', got.name, got.files);
     } catch (e) {
-      throw new Error(`${f.name}: ${messageOf(e)}`);
+      throw new Error(`${got.name}: ${messageOf(e)}`);
     }
     ui.preset.value = '';
   }),

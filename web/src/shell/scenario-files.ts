@@ -1,0 +1,64 @@
+// Loading scenario JSON and the map files it refers to, for any page that
+// builds a SimHandle: a preset from the site's ./scenarios/ (its map file,
+// and a ROS yaml's image, fetched relative to it), or the files a person
+// picked (the .json plus the map files among them). Map files are keyed by
+// base name, as SimHandle.fromScenario looks them up.
+
+import { rosImageName } from '../../pkg/planlab_wasm.js';
+
+export type MapFiles = Record<string, Uint8Array>;
+
+export async function fetchText(url: URL): Promise<string> {
+  const r = await fetch(url);
+  if (!r.ok) throw new Error(`cannot load ${url.pathname}: HTTP ${r.status}`);
+  return r.text();
+}
+
+export async function fetchBytes(url: URL): Promise<Uint8Array> {
+  const r = await fetch(url);
+  if (!r.ok) throw new Error(`cannot load ${url.pathname}: HTTP ${r.status}`);
+  return new Uint8Array(await r.arrayBuffer());
+}
+
+export const baseName = (p: string): string => p.split(/[\\/]/).pop() ?? p;
+
+/** The map files scenario `text` refers to, fetched relative to its URL
+ *  (none for an inline map; JSON errors are left to SimHandle, which
+ *  reports them with their position). */
+export async function mapFilesOf(text: string, scenarioUrl: URL): Promise<MapFiles> {
+  let ref: unknown;
+  try {
+    ref = (JSON.parse(text) as { map?: { file?: unknown } }).map?.file;
+  } catch {
+    return {};
+  }
+  if (typeof ref !== 'string') return {};
+  const files: MapFiles = {};
+  const url = new URL(ref, scenarioUrl);
+  files[baseName(ref)] = await fetchBytes(url);
+  if (/\.ya?ml$/i.test(ref)) {
+    const image = rosImageName(new TextDecoder().decode(files[baseName(ref)]));
+    files[baseName(image)] = await fetchBytes(new URL(image, url));
+  }
+  return files;
+}
+
+/** A preset of the site (`scenarios/FILE`) with its map files. */
+export async function loadPresetFiles(file: string): Promise<{ text: string; files: MapFiles }> {
+  const url = new URL(`scenarios/${file}`, document.baseURI);
+  const text = await fetchText(url);
+  return { text, files: await mapFilesOf(text, url) };
+}
+
+/** Picked files: the scenario .json and the others as map files; null when
+ *  nothing was picked. Throws when no .json is among them. */
+export async function readPicked(picked: File[]): Promise<{ name: string; text: string; files: MapFiles } | null> {
+  const f = picked.find((x) => x.name.toLowerCase().endsWith('.json'));
+  if (!f) {
+    if (picked.length) throw new Error(`Open a scenario .json (with the map files it refers to), not ${picked.map((x) => x.name).join(', ')}.`);
+    return null;
+  }
+  const files: MapFiles = {};
+  for (const x of picked) if (x !== f) files[x.name] = new Uint8Array(await x.arrayBuffer());
+  return { name: f.name, text: await f.text(), files };
+}
