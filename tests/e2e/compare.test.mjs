@@ -191,6 +191,9 @@ test('compare dwa and improved-dwa on the C-shaped trap: same numbers as the CLI
   assert.equal(await page.isDisabled('#play'), false);
   assert.equal(new URL(page.url()).searchParams.get('planners'), 'dwa,improved-dwa', 'the URL names the comparison');
 
+  // Step: one control step for each planner.
+  await page.click('#step');
+  assert.deepEqual(await page.$$eval('.lane .lane-state', (els) => els.map((e) => e.textContent)), ['t = 0.1 s', 't = 0.1 s']);
   // Side by side, played in real time at 16×: both robots move together.
   await page.click('#view-side');
   await page.selectOption('#speed', '16');
@@ -327,6 +330,17 @@ test('the robot page links to the comparison; URL parameters pick the scenario, 
   await page.waitForFunction(() => document.body.dataset.help === 'open');
   assert.match(await page.textContent('#help'), /run to the end instantly/);
   await page.keyboard.press('Escape');
+
+  // Nobody reaches the goal: no winner for the outcome, time and length;
+  // the other rows compare every planner.
+  await page.goto(`${session.base}compare.html?scenario=${TRAP}&planners=dwa,apf&autorun=instant`);
+  await waitDone(page);
+  const stuck = { dwa: cli(TRAP, 'dwa'), apf: cli(TRAP, 'apf') };
+  assert.ok(Object.values(stuck).every((n) => n.outcome !== 'reached'), 'neither reaches the goal');
+  const none = await readTable(page);
+  checkTable(none, stuck, `${TRAP} (dwa, apf)`);
+  for (const key of ['outcome', 'time_s', 'path_length_m']) assert.ok(none.rows[key].every((c) => !c.win), `no winner of ${key}`);
+  assert.ok(none.rows.min_clearance_m.some((c) => c.win), 'clearance still compared');
 
   // autorun=1 plays in real time at the speed given; the result is the same.
   await page.goto(`${session.base}compare.html?scenario=${TRAP}&planners=dwa,improved-dwa&speed=16&autorun=1`);
