@@ -27,10 +27,11 @@ after(async () => {
   await session?.close();
 });
 
-/** `planlab run SCEN --planner P --json`. */
-function cli(file, planner) {
+/** `planlab run SCEN --planner P [--set path=value]… --json`. */
+function cli(file, planner, set = []) {
   assert.ok(CLI, 'build the CLI first (cargo build -p planlab-cli)');
-  const run = spawnSync(CLI, ['run', path.join(REPO, 'assets/scenarios', file), '--planner', planner, '--json'], {
+  const edits = set.flatMap((e) => ['--set', e]);
+  const run = spawnSync(CLI, ['run', path.join(REPO, 'assets/scenarios', file), '--planner', planner, ...edits, '--json'], {
     encoding: 'utf8',
     timeout: 120_000,
   });
@@ -306,6 +307,14 @@ test('the robot page links to the comparison; URL parameters pick the scenario, 
   assert.deepEqual(await hooks(page, 'chosen'), ['improved-dwa', 'dwa']);
   assert.equal(await bodyData(page, 'lanes'), '2');
 
+  // From a run link with edits (as the gallery opens them): the edits go along.
+  await page.goto(`${session.base}robot.html?scenario=dwa-demo.json&planner=improved-dwa&set=${encodeURIComponent('movers=[]')}`);
+  await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30_000 });
+  await Promise.all([page.waitForURL(/compare\.html/), page.click('#compare-link')]);
+  await waitBuilt(page);
+  assert.deepEqual(await hooks(page, 'chosen'), ['improved-dwa', 'dwa']);
+  assert.equal(await page.textContent('#edits'), 'movers=[]');
+
   // A link such as the gallery's: four planners, overlaid, run to the end at once.
   const four = ['dwa', 'improved-dwa', 'fusion-53', 'pursuit'];
   await page.goto(`${session.base}compare.html?scenario=dwa-demo.json&planners=${four.join(',')}&view=overlay&autorun=instant`);
@@ -341,6 +350,22 @@ test('the robot page links to the comparison; URL parameters pick the scenario, 
   checkTable(none, stuck, `${TRAP} (dwa, apf)`);
   for (const key of ['outcome', 'time_s', 'path_length_m']) assert.ok(none.rows[key].every((c) => !c.win), `no winner of ${key}`);
   assert.ok(none.rows.min_clearance_m.some((c) => c.win), 'clearance still compared');
+
+  // Edits in the URL (as `planlab run --set`): every planner runs the edited scenario.
+  const set = ['movers=[]', 'sim.max_time=40'];
+  const withSet = new URLSearchParams({ scenario: 'dwa-demo.json', planners: 'dwa,improved-dwa', autorun: 'instant' });
+  for (const e of set) withSet.append('set', e);
+  await page.goto(`${session.base}compare.html?${withSet}`);
+  await waitDone(page);
+  assert.equal(await page.textContent('#edits'), set.join(', '));
+  const edited = { dwa: cli('dwa-demo.json', 'dwa', set), 'improved-dwa': cli('dwa-demo.json', 'improved-dwa', set) };
+  assert.notEqual(edited.dwa.trace_hash, natives.dwa.trace_hash, 'the edits change the episode');
+  checkTable(await readTable(page), edited, 'dwa-demo.json with edits');
+  assert.deepEqual(new URL(page.url()).searchParams.getAll('set'), set, 'the URL keeps the edits');
+  // Another preset drops them.
+  await afterRebuild(page, () => page.selectOption('#preset', TRAP));
+  assert.equal(await page.textContent('#edits'), '—');
+  assert.deepEqual(new URL(page.url()).searchParams.getAll('set'), []);
 
   // autorun=1 plays in real time at the speed given; the result is the same.
   await page.goto(`${session.base}compare.html?scenario=${TRAP}&planners=dwa,improved-dwa&speed=16&autorun=1`);
@@ -388,6 +413,13 @@ test('bad input: a fifth planner, a single one, unknown names and a broken file 
   assert.equal(await errorText(page), null);
   assert.equal(await page.inputValue('#preset'), '');
   assert.match(await page.textContent('#scenario-description'), /C-shaped wall/);
+
+  // An edit that breaks the scenario is reported and left out.
+  await page.goto(`${session.base}compare.html?scenario=dwa-demo.json&planners=dwa,pursuit&set=${encodeURIComponent('sim.dt=-1')}`);
+  await waitBuilt(page);
+  assert.match((await errorText(page)) ?? '', /edits sim\.dt=-1 not applied/);
+  assert.equal(await page.textContent('#edits'), '—');
+  assert.equal(await bodyData(page, 'lanes'), '2');
 
   // Unknown planner names in the URL: reported, the known ones kept.
   await page.goto(`${session.base}compare.html?scenario=nope.json&planners=dwa,warp-drive,improved-dwa`);

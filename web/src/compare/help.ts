@@ -9,7 +9,7 @@ export function compareHelp(planners: PlannerInfo[], current: string | undefined
   return {
     page: 'compare',
     intro:
-      'Compare runs 2 to 4 local planners on one scenario, each in its own simulation built from the same scenario and seed, stepped together so that all are at the same simulated time. The scenario’s own planner keeps the scenario’s parameters, the others run with the paper’s defaults, exactly as `planlab run SCENARIO --planner NAME`; the table shows the metrics that command prints (same rows, units and digits) and marks the best planner per row. Link to a comparison with `compare.html?scenario=T-fig3-2.json&planners=dwa,improved-dwa&view=overlay&autorun=1` (`autorun=instant` runs to the end at once).',
+      'Compare runs 2 to 4 local planners on one scenario, each in its own simulation built from the same scenario and seed, stepped together so that all are at the same simulated time. The scenario’s own planner keeps the scenario’s parameters, the others run with the paper’s defaults, exactly as `planlab run SCENARIO --planner NAME`; the table shows the metrics that command prints (same rows, units and digits) and marks the best planner per row. Link to a comparison with `compare.html?scenario=T-fig3-2.json&planners=dwa,improved-dwa&view=overlay&autorun=1` (`autorun=instant` runs to the end at once; `set=movers=[]`, repeatable, edits the scenario as `planlab run --set`).',
     planners: planners.map((p) => ({
       name: p.name,
       paper: p.paper,

@@ -4,7 +4,8 @@
 // frame so they stay at the same simulated time; drawn side by side (a
 // RobotView each) or overlaid (one view, a colour per planner), with the
 // `planlab run` metrics in a table and the winner of each row marked.
-// URL: ?scenario=FILE&planners=a,b&view=side|overlay&speed=X&autorun=1|instant
+// URL: ?scenario=FILE&planners=a,b&set=path=value (repeatable, as `planlab
+// run --set`)&view=side|overlay&speed=X&autorun=1|instant
 
 import init, { SimHandle, planners as plannerListJson } from '../../pkg/planlab_wasm.js';
 import presets from 'virtual:robot-presets';
@@ -16,6 +17,7 @@ import { ROWS, cellText, tableCsv, winners } from './table';
 import { compareHelp } from './help';
 import { installShell } from '../shell/help';
 import { loadPresetFiles, readPicked } from '../shell/scenario-files';
+import { applyRun, runParams } from '../shell/runlink';
 
 /** Planners compared at once. */
 const MIN_PLANNERS = 2;
@@ -54,6 +56,7 @@ const ui = {
   description: el('scenario-description'),
   mapSize: el('map-size'),
   seed: el('seed'),
+  edits: el('edits'),
   simDt: el('sim-dt'),
   plannerList: el<HTMLUListElement>('planner-list'),
   plannerCount: el('planner-count'),
@@ -113,6 +116,9 @@ let chosen: string[] = [];
 let scenarioText = '';
 let scenarioFile = '';
 let scenarioFiles: Record<string, Uint8Array> = {};
+/** `set=path=value` edits from the URL (as `planlab run --set`), applied
+ *  to the scenario for every planner; dropped when another scenario opens. */
+let edits: [string, string][] = [];
 let lanes: Lane[] = [];
 let sideViews: RobotView[] = [];
 const overlay = new OverlayView(ui.overlayCanvas);
@@ -128,27 +134,6 @@ let lastFrame = 0;
 let lastSlow = 0;
 
 // --------------------------------------------------------------- scenario
-/** The scenario JSON with `local_planner` set to `name`: the config is kept
- *  when the name is the scenario's own, else the paper defaults (`{}`),
- *  exactly as `planlab run --planner` edits it. */
-function withPlanner(text: string, name: string): string {
-  const tree = JSON.parse(text) as Record<string, unknown>;
-  if (typeof tree !== 'object' || tree === null || Array.isArray(tree)) throw new Error('a scenario is a JSON object `{ "version": 1, … }`');
-  let lp = tree.local_planner as Record<string, unknown> | undefined;
-  if (lp === undefined) {
-    lp = {};
-    tree.local_planner = lp;
-  }
-  if (typeof lp !== 'object' || lp === null || Array.isArray(lp)) {
-    throw new Error('local_planner must be an object `{ "name": …, "config": { … } }`');
-  }
-  if (lp.name !== name) {
-    lp.name = name;
-    lp.config = {};
-  }
-  return JSON.stringify(tree);
-}
-
 /** The scenario's own planner (null when it names none or is not JSON). */
 function scenarioPlanner(text: string): string | null {
   try {
@@ -190,7 +175,8 @@ function rebuild(): void {
   if (scenarioText) {
     for (const name of chosen) {
       try {
-        const sim = SimHandle.fromScenario(withPlanner(scenarioText, name), scenarioFiles);
+        // The CLI's edits: `--planner NAME`, then every `--set`.
+        const sim = SimHandle.fromScenario(applyRun(scenarioText, name, edits), scenarioFiles);
         const colour = LANE_COLOURS[chosen.indexOf(name) % LANE_COLOURS.length];
         const lane = new Lane(name, colour, sim, robotShape(sim.robot()));
         lane.setRecordRollouts(ui.showFan.checked);
@@ -564,6 +550,7 @@ function updateUrl(): void {
   const q = new URLSearchParams();
   if (scenarioFile) q.set('scenario', scenarioFile);
   if (chosen.length) q.set('planners', chosen.join(','));
+  for (const [p, v] of edits) q.append('set', `${p}=${v}`);
   q.set('view', viewMode);
   history.replaceState(null, '', `${location.pathname}?${q.toString().replaceAll('%2C', ',')}`);
 }
@@ -625,14 +612,27 @@ function applyPlanners(names: string[]): void {
 }
 
 // ----------------------------------------------------------------- files
-/** Takes a scenario as the one compared on: checked by building it with its
- *  own planner first, so a broken file is reported as such. */
-function setScenario(text: string, file: string, label: string, files: Record<string, Uint8Array>): void {
-  const probe = SimHandle.fromScenario(text, files);
-  probe.free();
+/** Takes a scenario as the one compared on, with `newEdits` (`--set`)
+ *  applied: checked by building it with its own planner first, so a broken
+ *  file is reported as such; edits that break it are reported and dropped. */
+function setScenario(text: string, file: string, label: string, files: Record<string, Uint8Array>, newEdits: [string, string][] = []): void {
+  const problems: string[] = [];
+  let kept = newEdits;
+  if (kept.length) {
+    try {
+      SimHandle.fromScenario(applyRun(text, null, kept), files).free();
+    } catch (e) {
+      problems.push(`edits ${kept.map(([p, v]) => `${p}=${v}`).join(', ')} not applied: ${messageOf(e)}`);
+      kept = [];
+    }
+  }
+  if (!kept.length) SimHandle.fromScenario(text, files).free();
   scenarioText = text;
   scenarioFile = file;
   scenarioFiles = files;
+  edits = kept;
+  ui.edits.textContent = edits.length ? edits.map(([p, v]) => `${p}=${v}`).join(', ') : '—';
+  ui.edits.title = ui.edits.textContent;
   try {
     const s = JSON.parse(text) as { name?: string; description?: string; seed?: number };
     ui.description.textContent = s.description || s.name || label;
@@ -647,12 +647,13 @@ function setScenario(text: string, file: string, label: string, files: Record<st
   }
   updateUrl();
   rebuild();
+  if (problems.length) showError(problems.join(' · '));
 }
 
-async function loadPreset(file: string): Promise<void> {
+async function loadPreset(file: string, withEdits: [string, string][] = []): Promise<void> {
   try {
     const { text, files } = await loadPresetFiles(file);
-    setScenario(text, file, file, files);
+    setScenario(text, file, file, files, withEdits);
   } catch (e) {
     throw new Error(`${file}: ${messageOf(e)}`);
   }
@@ -847,7 +848,9 @@ async function boot(): Promise<void> {
   infos = JSON.parse(plannerListJson()) as PlannerInfo[];
   buildPlannerList();
 
+  // Read before anything rewrites the URL (updateUrl).
   const q = new URLSearchParams(location.search);
+  const urlEdits = runParams(location.search).set;
   const v = q.get('view');
   setView(v === 'overlay' ? 'overlay' : 'side');
   const sp = q.get('speed');
@@ -872,8 +875,9 @@ async function boot(): Promise<void> {
     problems.push(messageOf(e));
   }
   ui.preset.value = file;
-  await loadPreset(file);
-  if (problems.length) showError(problems.join(' · '));
+  // Edits belong to the scenario the URL names.
+  await loadPreset(file, file === want ? urlEdits : []);
+  if (problems.length) showError([...problems, ...(ui.error.hidden ? [] : [ui.error.textContent ?? ''])].join(' · '));
   const auto = q.get('autorun');
   if (lanes.length >= MIN_PLANNERS && auto === 'instant') await runToEnd();
   else if (lanes.length >= MIN_PLANNERS && auto !== null && auto !== '0') setPlaying(true);

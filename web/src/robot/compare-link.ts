@@ -1,5 +1,6 @@
 // The robot page's "Compare planners…" link: opens the compare page on the
-// current preset with the planner in use and a second one to compare with.
+// current preset with the planner in use and a second one to compare with
+// (and the edits of the run link that opened this page, if any).
 // Kept out of main.ts: it only reads the preset and planner selects.
 
 const link = document.getElementById('compare-link') as HTMLAnchorElement | null;
@@ -14,6 +15,10 @@ function compareHref(): string {
   // Baseline DWA against the planner in use; improved DWA against DWA.
   const other = current === 'dwa' ? 'improved-dwa' : 'dwa';
   q.set('planners', `${current},${other}`);
+  // A run link's edits (`set=path=value`, e.g. from the gallery) go along
+  // while its preset is still the one shown.
+  const here = new URLSearchParams(location.search);
+  if (preset?.value && here.get('scenario') === preset.value) for (const e of here.getAll('set')) q.append('set', e);
   return `./compare.html?${q.toString().replaceAll('%2C', ',')}`;
 }
 
