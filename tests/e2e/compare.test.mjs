@@ -238,10 +238,13 @@ test('compare dwa and improved-dwa on the C-shaped trap: same numbers as the CLI
   const box = await page.locator('#lane-canvas-0').boundingBox();
   await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
   await page.mouse.wheel(0, -300);
+  // Input events reach the page asynchronously: wait for the zoom to land.
+  await page.waitForFunction((f) => Number(document.getElementById('lane-canvas-0').dataset.scale) > f * 1.2, fitted[0]);
   const zoomed = await scales();
   assert.ok(zoomed[0] > fitted[0] * 1.2, `zoomed in: ${fitted} → ${zoomed}`);
   assert.equal(zoomed[1], zoomed[0], 'both lanes at the same zoom');
   await page.mouse.dblclick(box.x + box.width / 2, box.y + box.height / 2);
+  await page.waitForFunction((f) => Number(document.getElementById('lane-canvas-0').dataset.scale) === f, fitted[0]);
   assert.deepEqual(await scales(), fitted);
 
   // The table as CSV on the clipboard: the CLI's numbers and the winners.
