@@ -6,6 +6,7 @@
 mod arm_cmds;
 mod batch_cmd;
 mod bench;
+mod gen_cmd;
 mod grid_cmds;
 mod load;
 mod peer;
@@ -89,6 +90,23 @@ impl From<DiagonalArg> for Diagonal {
             DiagonalArg::NoCornerCutting => Diagonal::NoCornerCutting,
             DiagonalArg::OneSideFree => Diagonal::OneSideFree,
             DiagonalArg::Always => Diagonal::Always,
+        }
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum GenKindArg {
+    Maze,
+    Rooms,
+    Random,
+}
+
+impl From<GenKindArg> for planlab_core::map::generate::GeneratorKind {
+    fn from(k: GenKindArg) -> Self {
+        match k {
+            GenKindArg::Maze => Self::Maze,
+            GenKindArg::Rooms => Self::Rooms,
+            GenKindArg::Random => Self::Random,
         }
     }
 }
@@ -251,6 +269,51 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Generate a seeded random map (maze, rooms or random fill) with a
+    /// start and goal the robot can drive between; writes a scenario .json
+    /// (map inline) or a Moving AI .map. Same settings, same map as the
+    /// robot page's Generate.
+    Generate {
+        /// Generator.
+        #[arg(value_enum)]
+        kind: GenKindArg,
+        /// Map width, metres.
+        #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
+        width: f64,
+        /// Map height, metres.
+        #[arg(long, default_value_t = 8.0, allow_hyphen_values = true)]
+        height: f64,
+        /// Cell size, metres.
+        #[arg(long, default_value_t = 0.1, allow_hyphen_values = true)]
+        resolution: f64,
+        /// Seed of the generator.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Maze corridor / rooms door width, metres.
+        #[arg(long, default_value_t = 1.4, allow_hyphen_values = true)]
+        corridor: f64,
+        /// Wall thickness (maze, rooms), metres.
+        #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
+        wall: f64,
+        /// Smallest room side (rooms), metres.
+        #[arg(long, default_value_t = 2.5, allow_hyphen_values = true)]
+        room: f64,
+        /// Covered fraction of the area (random), 0 to 0.6.
+        #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
+        density: f64,
+        /// Block side (random), metres.
+        #[arg(long, default_value_t = 0.4, allow_hyphen_values = true)]
+        block: f64,
+        /// Radius of the robot that must fit from start to goal, metres.
+        #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
+        robot_radius: f64,
+        /// Output file: .json (scenario with the map inline) or .map.
+        #[arg(long, value_name = "FILE")]
+        out: PathBuf,
+        /// Print a JSON line (sizes, grid hash, start, goal) instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Benchmarks.
     Bench {
         #[command(subcommand)]
@@ -317,6 +380,37 @@ fn run(cli: Cli) -> Result<(), String> {
             out,
             json,
         } => sim_cmds::train_predictor(seed, epochs, trajectories, &out, json),
+        Command::Generate {
+            kind,
+            width,
+            height,
+            resolution,
+            seed,
+            corridor,
+            wall,
+            room,
+            density,
+            block,
+            robot_radius,
+            out,
+            json,
+        } => gen_cmd::run(
+            &planlab_core::map::generate::GenerateConfig {
+                kind: kind.into(),
+                width_m: width,
+                height_m: height,
+                resolution,
+                seed,
+                corridor_m: corridor,
+                wall_m: wall,
+                room_m: room,
+                density,
+                block_m: block,
+                robot_radius,
+            },
+            &out,
+            json,
+        ),
         Command::Reproduce { id, json } => sim_cmds::reproduce(id.as_deref(), json),
         Command::Scen {
             map,
