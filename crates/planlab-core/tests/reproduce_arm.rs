@@ -134,3 +134,24 @@ fn bad_arm_scenarios_are_errors_not_panics() {
         assert!(scene_with(f).is_err(), "case {i} was accepted");
     }
 }
+
+#[test]
+fn gripper_distance_bounds_the_arm_distance_and_approaches_it() {
+    // The arm's distance is the minimum over the links, the gripper is one
+    // of them: never nearer than the arm, and the gripper is what comes
+    // closest when the hand reaches across the tool's path at some point.
+    let s = ArmScenario::from_json(PRESET).unwrap();
+    let mut ep = ArmEpisode::from_scenario(&s).unwrap();
+    let (mut equal, mut steps) = (0, 0);
+    while ep.step().unwrap() == Outcome::Running {
+        let (arm, grip) = (ep.distance_now(), ep.gripper_distance_now());
+        assert!(grip.is_finite() && arm.is_finite());
+        assert!(grip >= arm - 1e-12, "gripper {grip} < arm {arm}");
+        equal += usize::from(grip - arm < 1e-9);
+        steps += 1;
+    }
+    assert!(
+        steps > 10 && equal > 0 && equal < steps,
+        "{equal} of {steps}"
+    );
+}

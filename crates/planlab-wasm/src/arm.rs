@@ -16,6 +16,8 @@ fn js(e: impl std::fmt::Display) -> JsError {
 pub struct ArmHandle {
     scenario: ArmScenario,
     ep: ArmEpisode,
+    /// `t, arm distance, gripper distance` per sample since the start.
+    distances: Vec<f64>,
 }
 
 #[derive(Serialize)]
@@ -39,6 +41,21 @@ fn push3(out: &mut Vec<f32>, p: [f64; 3]) {
     out.extend(p.iter().map(|&x| x as f32));
 }
 
+impl ArmHandle {
+    fn note_distances(&mut self) {
+        self.distances.extend_from_slice(&[
+            self.ep.time(),
+            self.ep.distance_now(),
+            self.ep.gripper_distance_now(),
+        ]);
+    }
+
+    fn restart_series(&mut self) {
+        self.distances.clear();
+        self.note_distances();
+    }
+}
+
 #[wasm_bindgen]
 impl ArmHandle {
     /// Reads an arm scenario (JSON with an `arm` section) and builds its
@@ -47,15 +64,23 @@ impl ArmHandle {
     pub fn new(json: &str) -> Result<ArmHandle, JsError> {
         let scenario = ArmScenario::from_json(json).map_err(js)?;
         let ep = ArmEpisode::from_scenario(&scenario).map_err(js)?;
-        Ok(ArmHandle { scenario, ep })
+        let mut h = ArmHandle {
+            scenario,
+            ep,
+            distances: Vec::new(),
+        };
+        h.restart_series();
+        Ok(h)
     }
 
     /// Advances `n` samples (stops early at the end); returns the outcome.
     pub fn step(&mut self, n: u32) -> Result<String, JsError> {
         for _ in 0..n {
-            if self.ep.step().map_err(js)? != planlab_core::sim::Outcome::Running {
+            if self.ep.outcome() != planlab_core::sim::Outcome::Running {
                 break;
             }
+            self.ep.step().map_err(js)?;
+            self.note_distances();
         }
         Ok(self.ep.outcome().to_string())
     }
@@ -63,6 +88,7 @@ impl ArmHandle {
     /// Restarts from the scenario (with the edits made so far).
     pub fn reset(&mut self) -> Result<(), JsError> {
         self.ep = ArmEpisode::from_scenario(&self.scenario).map_err(js)?;
+        self.restart_series();
         Ok(())
     }
 
@@ -88,6 +114,15 @@ impl ArmHandle {
     #[wasm_bindgen(getter, js_name = distanceNow)]
     pub fn distance_now(&self) -> f64 {
         self.ep.distance_now()
+    }
+
+    /// Distances to the hand from sample `from` on (sample 0 is the
+    /// start), stride 3: `t (s), arm (m, nearest link), gripper (m)`.
+    #[wasm_bindgen(js_name = distanceSeries)]
+    pub fn distance_series(&self, from: u32) -> Vec<f64> {
+        self.distances
+            .get(3 * from as usize..)
+            .map_or_else(Vec::new, <[f64]>::to_vec)
     }
 
     /// Smallest link-to-hand distance so far, m.
@@ -297,6 +332,7 @@ impl ArmHandle {
         let ep = ArmEpisode::from_scenario(&s).map_err(js)?;
         self.scenario = s;
         self.ep = ep;
+        self.restart_series();
         Ok(())
     }
 

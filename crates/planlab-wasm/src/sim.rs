@@ -15,8 +15,8 @@ use planlab_core::lidar::{LidarDebug, TargetKind};
 use planlab_core::local::registry::{self, PlannerChoice};
 use planlab_core::local::{GoalKind, ObstacleClass};
 use planlab_core::map::io::scenario::Scenario;
-use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
-use planlab_core::sim::{Episode, EpisodeSetup, Outcome, SimConfig};
+use planlab_core::metrics::{distance_to_polyline, EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::sim::{Edit, Episode, EpisodeSetup, Outcome, Recording, SimConfig};
 use planlab_core::world::{MoverSpec, Placement, RobotSpec, RobotState, StaticMap, TerrainSpec};
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
@@ -53,6 +53,18 @@ fn outcome_str(o: Outcome) -> String {
     o.as_str().to_string()
 }
 
+/// Tells runs apart: replays of one run share its number.
+static NEXT_RUN: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+
+fn goal_kind_code(k: GoalKind) -> f64 {
+    match k {
+        GoalKind::Final => 0.0,
+        GoalKind::Intermediate => 1.0,
+        GoalKind::Virtual => 2.0,
+        GoalKind::Temporary => 3.0,
+    }
+}
+
 fn json_err(what: &str, e: serde_json::Error) -> JsError {
     JsError::new(&format!("{what}: {e}"))
 }
@@ -65,17 +77,57 @@ pub struct SimHandle {
     draw_fan: bool,
     /// Cells the robot's scans have swept (LiDAR planners only).
     seen: SeenCells,
+    /// The setup and the edits since, for exact replays (the timeline).
+    rec: Recording,
+    /// Which run this is (shared by its replays and branches).
+    run: u64,
 }
 
 impl SimHandle {
     fn wrap(mut ep: Episode) -> SimHandle {
         ep.set_record_rollouts(true);
         let seen = SeenCells::new(ep.map().grid());
+        let rec = Recording::of(&ep);
         SimHandle {
             ep,
             draw_fan: true,
             seen,
+            rec,
+            run: NEXT_RUN.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
         }
+    }
+
+    /// Applies and records a live edit.
+    fn edit(&mut self, e: Edit) -> Result<(), JsError> {
+        Ok(self.rec.edit(&mut self.ep, e)?)
+    }
+
+    /// Takes `h` (a replay of this run) on to step `steps`, recording the
+    /// last step's rollouts and every scan like [`SimHandle::step`].
+    fn advance_replay_of(&self, h: &mut SimHandle, steps: u64) -> Result<(), JsError> {
+        let mut applied = h.rec.edits().len();
+        let draw = h.draw_fan;
+        let seen = &mut h.seen;
+        self.rec.advance(
+            &mut h.ep,
+            &mut applied,
+            steps,
+            |ep, last| ep.set_record_rollouts(draw && last),
+            |ep| {
+                if let Some(l) = ep.planner_debug().lidar.as_ref() {
+                    seen.update(ep.map().grid(), l.pose, &l.ranges, &l.returns);
+                }
+            },
+        )?;
+        h.ep.set_record_rollouts(draw);
+        h.rec = self.rec.truncated(h.ep.steps());
+        debug_assert_eq!(h.rec.edits().len(), applied);
+        Ok(())
+    }
+
+    /// The trace row `i`, if there is one.
+    fn row(&self, i: u32) -> Option<&planlab_core::sim::TraceStep> {
+        self.ep.trace().steps.get(i as usize)
     }
 
     /// Adds the last step's scan to the seen cells.
@@ -237,7 +289,7 @@ impl SimHandle {
     pub fn set_movers(&mut self, json: &str) -> Result<(), JsError> {
         let movers: Vec<MoverSpec> =
             serde_json::from_str(json).map_err(|e| json_err("invalid movers JSON", e))?;
-        Ok(self.ep.set_movers(movers)?)
+        self.edit(Edit::Movers(movers))
     }
 
     /// Adds a mover that is at (x, y) moving with (vx, vy) now, following
@@ -265,14 +317,14 @@ impl SimHandle {
         let spec = MoverSpec::placed(id, radius, how, [x, y], [vx, vy], span, self.ep.time())?;
         let mut movers = self.ep.movers().to_vec();
         movers.push(spec);
-        self.ep.set_movers(movers)?;
+        self.edit(Edit::Movers(movers))?;
         Ok(id)
     }
 
     /// Moves the goal to (x, y), m.
     #[wasm_bindgen(js_name = setGoal)]
     pub fn set_goal(&mut self, x: f64, y: f64) -> Result<(), JsError> {
-        Ok(self.ep.set_goal([x, y])?)
+        self.edit(Edit::Goal([x, y]))
     }
 
     /// Swaps in planner `name` with `config` (JSON object; `{}` = the
@@ -281,11 +333,10 @@ impl SimHandle {
     pub fn set_planner(&mut self, name: &str, config: &str) -> Result<(), JsError> {
         let config: serde_json::Value = serde_json::from_str(config)
             .map_err(|e| json_err(&format!("invalid {name} config JSON"), e))?;
-        self.ep.set_planner(PlannerChoice {
+        self.edit(Edit::Planner(PlannerChoice {
             name: name.into(),
             config,
-        })?;
-        Ok(())
+        }))
     }
 
     /// The planner in force: `{"name", "config"}` JSON.
@@ -636,6 +687,158 @@ impl SimHandle {
     #[wasm_bindgen(js_name = traceHash)]
     pub fn trace_hash(&self) -> String {
         self.ep.trace().hash().to_string()
+    }
+
+    // ------------------------------------------------------- timeline
+
+    /// This run rebuilt from its setup up to step `steps` (fewer when it
+    /// ended earlier), with the live edits made up to then applied at the
+    /// steps they were made: its trace is bit-identical to this one's
+    /// first rows, and its fan, LiDAR and fog are those of that step. A
+    /// handle of its own (a scratch view of the past, or a branch that
+    /// continues from there).
+    #[wasm_bindgen(js_name = replayTo)]
+    pub fn replay_to(&self, steps: f64) -> Result<SimHandle, JsError> {
+        let ep = Episode::new(self.rec.origin().clone())?;
+        let mut h = SimHandle {
+            seen: SeenCells::new(ep.map().grid()),
+            rec: Recording::of(&ep),
+            ep,
+            draw_fan: self.draw_fan,
+            run: self.run,
+        };
+        self.advance_replay_of(&mut h, steps.max(0.0) as u64)?;
+        Ok(h)
+    }
+
+    /// Takes `scratch` (from [`SimHandle::replay_to`] of this run) on to
+    /// step `steps` without starting over; false (and `scratch` untouched)
+    /// when it cannot: another run, past `steps`, or an edit made since
+    /// that it missed.
+    #[wasm_bindgen(js_name = advanceReplay)]
+    pub fn advance_replay(&self, scratch: &mut SimHandle, steps: f64) -> Result<bool, JsError> {
+        let steps = steps.max(0.0) as u64;
+        if scratch.run != self.run
+            || scratch.ep.steps() > steps
+            || !self.rec.continues(scratch.rec.edits(), scratch.ep.steps())
+        {
+            return Ok(false);
+        }
+        self.advance_replay_of(scratch, steps)?;
+        Ok(true)
+    }
+
+    /// Step counts at which live edits were made, in order.
+    #[wasm_bindgen(js_name = editSteps)]
+    pub fn edit_steps(&self) -> Vec<f64> {
+        self.rec.edits().iter().map(|(s, _)| *s as f64).collect()
+    }
+
+    /// Trace row `i`: `t, x, y, theta, v, vy, w, cmd_v, cmd_vy, cmd_w,
+    /// clearance, goal_x, goal_y, goal_kind, accel_z, load_fl, load_fr,
+    /// load_rl, load_rr` (goal_kind 0 final, 1 intermediate, 2 virtual, 3
+    /// temporary; loads NaN without a vehicle model); empty past the end.
+    #[wasm_bindgen(js_name = traceRow)]
+    pub fn trace_row(&self, i: u32) -> Vec<f64> {
+        let Some(r) = self.row(i) else {
+            return Vec::new();
+        };
+        let l = r.wheel_loads.unwrap_or([f64::NAN; 4]);
+        vec![
+            r.t,
+            r.x,
+            r.y,
+            r.theta,
+            r.v,
+            r.vy,
+            r.w,
+            r.cmd.v,
+            r.cmd.vy,
+            r.cmd.w,
+            r.clearance,
+            r.goal[0],
+            r.goal[1],
+            goal_kind_code(r.goal_kind),
+            r.accel_z,
+            l[0],
+            l[1],
+            l[2],
+            l[3],
+        ]
+    }
+
+    /// The movers of trace row `i`, stride 3: `id, x, y`.
+    #[wasm_bindgen(js_name = traceMovers)]
+    pub fn trace_movers(&self, i: u32) -> Vec<f64> {
+        self.row(i).map_or_else(Vec::new, |r| {
+            r.movers
+                .iter()
+                .flat_map(|(id, p)| [f64::from(*id), p[0], p[1]])
+                .collect()
+        })
+    }
+
+    /// The obstacle classes of trace row `i`, pairs `id, class` (as
+    /// [`SimHandle::classes`]).
+    #[wasm_bindgen(js_name = traceClasses)]
+    pub fn trace_classes(&self, i: u32) -> Vec<u32> {
+        self.row(i).map_or_else(Vec::new, |r| {
+            r.classes
+                .iter()
+                .flat_map(|(id, c)| {
+                    [
+                        *id,
+                        match c {
+                            ObstacleClass::OrdinaryDynamic => 0,
+                            ObstacleClass::OrdinaryStatic => 1,
+                            ObstacleClass::Special => 2,
+                        },
+                    ]
+                })
+                .collect()
+        })
+    }
+
+    /// The planner's strategy in trace row `i` ("" in the start row).
+    #[wasm_bindgen(js_name = traceMode)]
+    pub fn trace_mode(&self, i: u32) -> String {
+        self.row(i).map(|r| r.mode.clone()).unwrap_or_default()
+    }
+
+    /// Whether the scenario has a vehicle model (the trace carries wheel
+    /// loads from the first step on).
+    #[wasm_bindgen(getter, js_name = hasVehicle)]
+    pub fn has_vehicle(&self) -> bool {
+        self.rec.origin().terrain.vehicle.is_some()
+    }
+
+    /// Wheel loads from trace row `from` on, stride 5: `t (s), FL, FR, RL,
+    /// RR (N)`, NaN where a row has none (the start row).
+    #[wasm_bindgen(js_name = wheelLoads)]
+    pub fn wheel_loads(&self, from: u32) -> Vec<f64> {
+        let rows = self.ep.trace().steps.get(from as usize..).unwrap_or(&[]);
+        let mut out = Vec::with_capacity(rows.len() * 5);
+        for r in rows {
+            out.push(r.t);
+            out.extend_from_slice(&r.wheel_loads.unwrap_or([f64::NAN; 4]));
+        }
+        out
+    }
+
+    /// Tracking error from trace row `from` on, one value per row: the
+    /// distance (m) from the driven position to the planner's current
+    /// global path, as `planlab run` averages it for
+    /// `mean_tracking_error_m`; empty without a global path.
+    #[wasm_bindgen(js_name = trackingErrors)]
+    pub fn tracking_errors(&self, from: u32) -> Vec<f64> {
+        let path = &self.ep.planner_debug().global_path;
+        if path.is_empty() {
+            return Vec::new();
+        }
+        let rows = self.ep.trace().steps.get(from as usize..).unwrap_or(&[]);
+        rows.iter()
+            .filter_map(|r| distance_to_polyline([r.x, r.y], path))
+            .collect()
     }
 }
 

@@ -105,3 +105,20 @@ fn bad_scenarios_are_errors() {
     let far = PRESET.replace("\"goal\": [0.6, 0.35, 0.82]", "\"goal\": [2.0, 0.0, 0.9]");
     assert!(message(ArmHandle::new(&far).err().unwrap()).contains("out of reach"));
 }
+
+#[wasm_bindgen_test]
+fn distance_series_records_every_sample_and_restarts() {
+    let mut h = ArmHandle::new(PRESET).unwrap();
+    assert_eq!(h.distance_series(0).len(), 3);
+    h.step(20).unwrap();
+    let s = h.distance_series(0);
+    assert_eq!(s.len(), 3 * 21);
+    for r in s.chunks(3) {
+        assert!(r[1] > 0.0 && r[2] >= r[1], "{r:?}");
+    }
+    assert!((s[60] - h.time()).abs() < 1e-12);
+    assert_eq!(s[61], h.distance_now());
+    assert_eq!(h.distance_series(20).len(), 3);
+    h.reset().unwrap();
+    assert_eq!(h.distance_series(0).len(), 3);
+}

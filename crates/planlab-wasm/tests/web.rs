@@ -383,3 +383,85 @@ fn apf_handle_runs_a_preset_and_reports_what_the_page_draws() {
     assert_eq!(h.endpoints()[2], 1.0);
     assert!(h.set_mode("warp").is_err());
 }
+
+#[wasm_bindgen_test]
+fn timeline_replays_an_edited_run_exactly_and_reads_rows() {
+    use planlab_wasm::SimHandle;
+    let mut sim = SimHandle::from_scenario(&room_json("dwa", ""), None).unwrap();
+    sim.set_goal(3.2, 1.2).unwrap();
+    sim.step(8);
+    sim.place_mover("constant-velocity", 0.15, 2.6, 1.8, 0.0, -0.2, 1.0)
+        .unwrap();
+    // Refused edits are not part of the run.
+    assert!(sim.set_goal(0.1, 0.1).is_err());
+    while sim.step(50) == "running" {}
+    assert_eq!(sim.edit_steps(), vec![0.0, 8.0]);
+    let n = sim.steps();
+    // The whole run again: the identical trace.
+    let again = sim.replay_to(n).unwrap();
+    assert_eq!(again.trace_hash(), sim.trace_hash());
+    assert_eq!(again.outcome(), sim.outcome());
+    // Frame 5, then on to frame 12 without starting over: the rows agree
+    // with the run's, and the replay has the mover placed at step 8.
+    let mut scratch = sim.replay_to(5.0).unwrap();
+    assert_eq!(scratch.steps(), 5.0);
+    assert_eq!(scratch.trace_row(5), sim.trace_row(5));
+    assert!(scratch.movers().is_empty());
+    assert!(sim.advance_replay(&mut scratch, 12.0).unwrap());
+    assert_eq!(scratch.steps(), 12.0);
+    assert_eq!(scratch.trace_row(12), sim.trace_row(12));
+    assert_eq!(scratch.movers().len(), 6);
+    assert!(!scratch.fan_scores().is_empty(), "the frame's fan is drawn");
+    // Backwards needs a new replay.
+    assert!(!sim.advance_replay(&mut scratch, 3.0).unwrap());
+    // Rows: pose, goal and movers of the trace.
+    let r = sim.trace_row(12);
+    assert_eq!(r.len(), 19);
+    let csv = sim.trace_csv();
+    let line: Vec<f64> = csv
+        .lines()
+        .nth(13)
+        .unwrap()
+        .split(',')
+        .take(13)
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert_eq!(&r[..13], &line[..]);
+    assert!(r[15].is_nan(), "no vehicle, no loads");
+    assert_eq!(sim.trace_movers(12).len(), 3);
+    assert!(sim.trace_movers(5).is_empty());
+    assert!(sim.trace_row(n as u32 + 1).is_empty());
+    // A branch from frame 12 continues on its own and replays exactly.
+    let mut branch = sim.replay_to(12.0).unwrap();
+    branch.set_goal(3.4, 0.6).unwrap();
+    while branch.step(50) == "running" {}
+    assert_ne!(branch.trace_hash(), sim.trace_hash());
+    let b2 = branch.replay_to(branch.steps()).unwrap();
+    assert_eq!(b2.trace_hash(), branch.trace_hash());
+    // Plot series: tracking error against the global path, loads.
+    assert!(!sim.has_vehicle());
+    assert_eq!(sim.tracking_errors(0).len() as f64, n + 1);
+    assert!(sim
+        .tracking_errors(0)
+        .iter()
+        .all(|d| d.is_finite() && *d >= 0.0));
+    assert_eq!(sim.wheel_loads(0).len() as f64, 5.0 * (n + 1.0));
+}
+
+#[wasm_bindgen_test]
+fn wheel_loads_come_with_a_vehicle_model() {
+    use planlab_wasm::SimHandle;
+    let mut sim =
+        SimHandle::from_scenario(&room_json("dwa", r#", "terrain": {"vehicle": {}}"#), None)
+            .unwrap();
+    assert!(sim.has_vehicle());
+    sim.step(10);
+    let l = sim.wheel_loads(1);
+    assert_eq!(l.len(), 50);
+    // Roughly a quarter of 40 kg·g per wheel.
+    assert!(
+        l.chunks(5)
+            .all(|r| r[1..].iter().all(|f| *f > 20.0 && *f < 200.0)),
+        "{l:?}"
+    );
+}

@@ -10,6 +10,7 @@ import { installShell } from '../shell/help';
 import { armHelp } from '../shell/help-content';
 import init, { ArmHandle, armChoices } from '../../pkg/planlab_wasm.js';
 import { ArmView, type Frame } from './view';
+import { DistancePlot } from './distplot';
 
 /** At most this many 0.1 s samples per animation frame. */
 const MAX_STEPS_PER_FRAME = 8;
@@ -155,10 +156,13 @@ function setTarget(p: number[]): void {
   refresh();
 }
 
+let distPlot: DistancePlot | null = null;
+
 function refresh(): void {
   const h = handle;
   if (!h || !view) return;
   view.update(frame(h), ui.showScript.checked, script);
+  distPlot?.pull(h);
   const m = JSON.parse(h.metricsJson());
   const out: string = m.outcome;
   ui.m.outcome.textContent = out;
@@ -264,6 +268,7 @@ async function main(): Promise<void> {
   for (const p of choices.predictors) ui.predictor.add(new Option(p === 'none' ? 'none (sampling APF)' : p, p));
   for (const p of choices.hand_presets) ui.handPreset.add(new Option(p, p));
   view = new ArmView(ui.view);
+  distPlot = new DistancePlot(el('plot-hand'));
   view.onTargetDrag = (x, y, z) => setTarget([x, y, z]);
   ui.play.addEventListener('click', () => setPlaying(!playing));
   ui.step.addEventListener('click', () => {
@@ -332,6 +337,7 @@ async function main(): Promise<void> {
       return out;
     },
     metrics: () => (handle ? JSON.parse(handle.metricsJson()) : null),
+    distancePlot: () => ({ rows: distPlot?.length ?? 0, last: distPlot?.last() ?? [], series: handle ? Array.from(handle.distanceSeries(0)) : [] }),
     setPredictor(name: string) {
       ui.predictor.value = name;
       ui.predictor.dispatchEvent(new Event('change'));

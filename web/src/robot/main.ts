@@ -13,6 +13,7 @@ import { ParamPanel, type PlannerInfo } from './params';
 import { applyRun, runParams } from '../shell/runlink';
 import { installShell } from '../shell/help';
 import { robotHelp } from '../shell/help-content';
+import { Timeline } from './timeline';
 
 type Tool = 'goal' | 'mover' | 'remove';
 
@@ -137,7 +138,13 @@ function guard<A extends unknown[]>(fn: (...args: A) => void | Promise<void>): (
 
 // ------------------------------------------------------------------- state
 const view = new RobotView(ui.canvas);
-const plots = new SeriesPlots([el('plot-v'), el('plot-w'), el('plot-clearance')]);
+const plots = new SeriesPlots({
+  v: el('plot-v'),
+  w: el('plot-w'),
+  clearance: el('plot-clearance'),
+  tracking: el('plot-tracking'),
+  loads: el('plot-loads'),
+});
 let sim: SimHandle | null = null;
 let infos = new Map<string, PlannerInfo>();
 /** The loaded scenario's text and label, for Reset. */
@@ -176,6 +183,16 @@ const meter = {
 };
 let paintMs = 0;
 view.onPaint = (ms) => (paintMs = ms);
+
+const timeline = new Timeline(el('timeline'), {
+  sim: () => sim,
+  view,
+  plots,
+  pause: () => playing && setPlaying(false),
+  branch: (next) => install(next),
+  refreshLive: () => pull(),
+  speed: () => speed,
+});
 
 const params = new ParamPanel(ui.params, (config) => {
   if (!sim) return;
@@ -237,11 +254,12 @@ function pull(): void {
     S.trail.set(rows, S.trailLen * 2);
     S.trailLen += m;
   }
-  plots.append(sim.series(plots.length));
+  plots.pull(sim, S.globalPath);
   outcome = sim.outcome;
   ui.body.dataset.outcome = outcome;
   ui.body.dataset.steps = String(sim.steps);
   ui.body.dataset.time = String(sim.time);
+  timeline.afterPull();
 }
 
 /** LiDAR layers and the fog of war (LiDAR planners only). */
@@ -495,7 +513,7 @@ function install(next: SimHandle): void {
   ui.simDt.textContent = `${dt} s`;
   const choice = JSON.parse(sim.plannerChoice()) as { name: string; config: Record<string, unknown> };
   selectPlanner(choice.name, choice.config);
-  plots.clear(omni);
+  plots.clear(omni, sim.hasVehicle);
   clearMetrics();
   delete ui.body.dataset.traceHash;
   outcome = sim.outcome;
@@ -769,7 +787,9 @@ for (const b of ui.tools) b.addEventListener('click', () => setTool(b.dataset.to
 ui.play.addEventListener(
   'click',
   guard(() => {
-    if (!playing && outcome !== 'running') resetEpisode();
+    // From a past frame of the timeline: branch there and go on.
+    if (!playing && timeline.scrubbed) timeline.branchHere();
+    else if (!playing && outcome !== 'running') resetEpisode();
     setPlaying(!playing);
   }),
 );
@@ -777,6 +797,7 @@ ui.step.addEventListener(
   'click',
   guard(() => {
     setPlaying(false);
+    if (timeline.scrubbed) timeline.branchHere();
     advance(1);
     plots.flush(true);
     refreshSlow();

@@ -1,78 +1,160 @@
-// v(t), ω(t) and clearance(t) with uPlot (bundled, no CDN). The series
-// arrive from the SimHandle as rows (t, v, v_y, ω, clearance) since the
-// last call and are appended into growable Float64Arrays; the charts get
-// subarray views, redrawn at most every `minIntervalMs`. For an
-// omnidirectional robot the speed chart also shows v_y.
+// Time plots of the run with uPlot (bundled, no CDN): v(t) (and v_y for an
+// omnidirectional robot), ω(t), clearance(t), tracking error(t) (distance
+// to the global path, shown when the planner has one) and the four wheel
+// loads(t) (shown when the scenario has a vehicle model). Rows come from
+// the SimHandle since the last pull and are appended into growable
+// Float64Arrays; the charts get subarray views, redrawn at most every
+// `minIntervalMs`.
+//
+// The charts are linked to the timeline: their cursors are synced (hover
+// one, all show the values at that time in their legends), a marker line
+// and the cursor sit at the timeline's frame when the pointer is
+// elsewhere, and pressing or dragging in a chart scrubs the timeline
+// (`onScrub`). Row i of every chart is trace row i, i.e. frame i.
 
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
+import type { SimHandle } from '../../pkg/planlab_wasm.js';
 
-/** Values per row from SimHandle.series. */
-const STRIDE = 5;
+/** Columns held per row. */
+const T = 0,
+  V = 1,
+  VY = 2,
+  W = 3,
+  CLR = 4,
+  TRACK = 5,
+  FL = 6;
+const NCOLS = 10;
 
-const AXIS = { stroke: '#64748b', grid: { stroke: 'rgba(100,116,139,0.15)', width: 1 }, ticks: { show: false }, size: 34 };
+const AXIS = { stroke: '#64748b', grid: { stroke: 'rgba(100,116,139,0.15)', width: 1 }, ticks: { show: false }, size: 38 };
 
 interface Spec {
+  key: string;
   title: string;
-  /** Columns of the row drawn, after t. */
   cols: number[];
   labels: string[];
   colours: string[];
+  /** Whether the y range starts at zero (false: fit the data, for loads). */
+  zero: boolean;
 }
 
 const SPECS: Spec[] = [
-  { title: 'Speed v(t), m/s', cols: [1, 2], labels: ['v (m/s)', 'v_y (m/s)'], colours: ['#4f46e5', '#db2777'] },
-  { title: 'Turn rate ω(t), rad/s', cols: [3], labels: ['ω (rad/s)'], colours: ['#0891b2'] },
-  { title: 'Clearance(t), m', cols: [4], labels: ['clearance (m)'], colours: ['#059669'] },
+  { key: 'v', title: 'Speed v(t), m/s', cols: [V, VY], labels: ['v', 'v_y'], colours: ['#4f46e5', '#db2777'], zero: true },
+  { key: 'w', title: 'Turn rate ω(t), rad/s', cols: [W], labels: ['ω'], colours: ['#0891b2'], zero: true },
+  { key: 'clearance', title: 'Clearance(t), m', cols: [CLR], labels: ['clearance'], colours: ['#059669'], zero: true },
+  { key: 'tracking', title: 'Tracking error(t), m', cols: [TRACK], labels: ['to path'], colours: ['#e11d48'], zero: true },
+  {
+    key: 'loads',
+    title: 'Wheel loads(t), N',
+    cols: [FL, FL + 1, FL + 2, FL + 3],
+    labels: ['FL', 'FR', 'RL', 'RR'],
+    colours: ['#4f46e5', '#0891b2', '#ea580c', '#65a30d'],
+    zero: false,
+  },
 ];
 
+/** The chart elements by key (`v`, `w`, `clearance`, `tracking`, `loads`). */
+export type PlotElements = Record<string, HTMLElement>;
+
 export class SeriesPlots {
-  private cols: Float64Array[] = Array.from({ length: STRIDE }, () => new Float64Array(1024));
+  private cols: Float64Array[] = Array.from({ length: NCOLS }, () => new Float64Array(1024));
   private n = 0;
-  private plots: uPlot[] = [];
+  private plots: (uPlot | null)[] = SPECS.map(() => null);
   private els: HTMLElement[];
   private dirty = false;
   private lastDraw = 0;
   private omni = false;
+  private vehicle = false;
+  private tracking = false;
+  /** Rows whose tracking error is known, and the path it was measured to. */
+  private trackN = 0;
+  private pathKey = '';
+  /** The timeline's frame (row); null = the live end. */
+  private frame: number | null = null;
+  private hovering = false;
+  private scrubbing = false;
   minIntervalMs = 100;
+  /** Called with a row when the user presses or drags in a chart. */
+  onScrub: (row: number) => void = () => {};
 
-  constructor(elements: [HTMLElement, HTMLElement, HTMLElement]) {
-    this.els = elements;
+  constructor(elements: PlotElements) {
+    this.els = SPECS.map((s) => {
+      const e = elements[s.key];
+      if (!e) throw new Error(`missing plot element ${s.key}`);
+      return e;
+    });
     this.build();
     const ro = new ResizeObserver(() => {
-      this.plots.forEach((p, i) => p.setSize(this.size(this.els[i])));
+      this.plots.forEach((p, i) => p?.setSize(this.size(this.els[i])));
+      this.placeCursors();
     });
-    for (const e of elements) ro.observe(e);
+    for (const e of this.els) ro.observe(e);
+    window.addEventListener('pointerup', () => (this.scrubbing = false));
   }
 
   private size(el: HTMLElement): { width: number; height: number } {
-    return { width: Math.max(100, el.clientWidth - 12), height: Math.max(80, el.clientHeight - 34) };
+    return { width: Math.max(100, el.clientWidth - 12), height: Math.max(70, el.clientHeight - 54) };
+  }
+
+  private visible(i: number): boolean {
+    const key = SPECS[i].key;
+    if (key === 'loads') return this.vehicle;
+    if (key === 'tracking') return this.tracking;
+    return true;
   }
 
   /** Series shown by chart i (v_y only for an omnidirectional robot). */
   private shown(i: number): number[] {
-    return i === 0 && !this.omni ? [1] : SPECS[i].cols;
+    return SPECS[i].key === 'v' && !this.omni ? [V] : SPECS[i].cols;
   }
 
   private build(): void {
-    for (const p of this.plots) p.destroy();
+    for (const p of this.plots) p?.destroy();
     this.plots = SPECS.map((spec, i) => {
       const el = this.els[i];
+      el.hidden = !this.visible(i);
+      el.dataset.plot = spec.key;
+      if (el.hidden) return null;
       const shown = this.shown(i);
-      return new uPlot(
+      const marker = (u: uPlot) => {
+        const row = this.frameRow();
+        if (row < 0) return;
+        const x = Math.round(u.valToPos(this.cols[T][row], 'x', true));
+        const ctx = u.ctx;
+        ctx.save();
+        ctx.strokeStyle = 'rgba(15, 23, 42, 0.55)';
+        ctx.lineWidth = Math.max(1, devicePixelRatio);
+        ctx.setLineDash([4 * devicePixelRatio, 3 * devicePixelRatio]);
+        ctx.beginPath();
+        ctx.moveTo(x, u.bbox.top);
+        ctx.lineTo(x, u.bbox.top + u.bbox.height);
+        ctx.stroke();
+        ctx.restore();
+      };
+      const u = new uPlot(
         {
-          title: i === 0 && this.omni ? 'Speed v (blue), v_y (pink) (t), m/s' : spec.title,
+          title: spec.title,
           ...this.size(el),
-          legend: { show: false },
-          cursor: { drag: { x: false, y: false } },
+          legend: { show: true, live: true },
+          cursor: {
+            drag: { x: false, y: false, setScale: false },
+            sync: { key: 'planlab-robot', setSeries: false },
+            points: { size: 5 },
+          },
           // Fixed-from-zero ranges: one row does not blow the axes up to
           // uPlot's defaults, and the time axis grows with the episode.
           scales: {
             x: { time: false, range: (_u, _lo, hi) => [0, Math.max(5, hi ?? 0)] },
             y: {
               range: (_u, lo, hi) => {
-                const a = Math.min(0, lo ?? 0);
-                const b = Math.max(0, hi ?? 0);
+                const l = lo ?? 0;
+                const h = hi ?? 0;
+                if (!spec.zero) {
+                  const pad = Math.max(1, (h - l) * 0.1);
+                  return [l - pad, h + pad];
+                }
+                const a = Math.min(0, l);
+                const b = Math.max(0, h);
                 const pad = Math.max(0.05, (b - a) * 0.08);
                 return [a < 0 ? a - pad : 0, b + pad];
               },
@@ -80,21 +162,49 @@ export class SeriesPlots {
           },
           axes: [{ ...AXIS, size: 22, values: (_u, ticks) => ticks.map((t) => `${t}s`) }, { ...AXIS }],
           series: [
-            {},
+            { label: 't (s)', value: (_u, v) => (v == null ? '—' : v.toFixed(1)) },
             ...shown.map((c) => {
               const k = spec.cols.indexOf(c);
-              return { label: spec.labels[k], stroke: spec.colours[k], width: 1.5, fill: k === 0 ? `${spec.colours[k]}14` : undefined };
+              return {
+                label: spec.labels[k],
+                stroke: spec.colours[k],
+                width: 1.5,
+                fill: k === 0 && spec.zero ? `${spec.colours[k]}14` : undefined,
+                value: (_u: uPlot, v: number | null) => (v == null || Number.isNaN(v) ? '—' : v.toFixed(spec.zero ? 3 : 1)),
+              };
             }),
           ],
+          hooks: { draw: [marker] },
         },
         this.data(i),
         el,
       );
+      // Press or drag in the chart: the timeline goes to that time.
+      const scrubTo = (ev: PointerEvent) => {
+        const r = u.over.getBoundingClientRect();
+        const idx = u.posToIdx(ev.clientX - r.left);
+        if (idx !== null && idx >= 0 && idx < this.n) this.onScrub(idx);
+      };
+      u.over.addEventListener('pointerdown', (ev) => {
+        if (ev.button !== 0) return;
+        this.scrubbing = true;
+        scrubTo(ev);
+      });
+      u.over.addEventListener('pointermove', (ev) => {
+        if (this.scrubbing && ev.buttons & 1) scrubTo(ev);
+      });
+      u.over.addEventListener('pointerenter', () => (this.hovering = true));
+      u.over.addEventListener('pointerleave', () => {
+        this.hovering = false;
+        // Back to the timeline's frame once the pointer leaves.
+        requestAnimationFrame(() => this.placeCursors());
+      });
+      return u;
     });
   }
 
   private data(i: number): uPlot.AlignedData {
-    const t = this.cols[0].subarray(0, this.n);
+    const t = this.cols[T].subarray(0, this.n);
     return [t, ...this.shown(i).map((c) => this.cols[c].subarray(0, this.n))];
   }
 
@@ -103,34 +213,80 @@ export class SeriesPlots {
     return this.n;
   }
 
-  /** Empties the charts; `omni` adds v_y to the speed chart. */
-  clear(omni = false): void {
+  /** Which charts are shown, by key. */
+  get shownKeys(): string[] {
+    return SPECS.filter((_, i) => this.visible(i)).map((s) => s.key);
+  }
+
+  /** Empties the charts; `omni` adds v_y to the speed chart, `vehicle`
+   *  shows the wheel loads. */
+  clear(omni = false, vehicle = false): void {
     this.n = 0;
-    if (omni !== this.omni) {
+    this.trackN = 0;
+    this.pathKey = '';
+    this.frame = null;
+    if (omni !== this.omni || vehicle !== this.vehicle) {
       this.omni = omni;
+      this.vehicle = vehicle;
       this.build();
     }
     this.dirty = true;
     this.flush(true);
   }
 
-  /** Appends rows given as stride-5 (t, v, v_y, ω, clearance) values. */
-  append(rows: Float64Array): void {
-    const m = Math.floor(rows.length / STRIDE);
-    if (m === 0) return;
-    if (this.n + m > this.cols[0].length) {
-      const cap = Math.max(this.cols[0].length * 2, this.n + m);
-      this.cols = this.cols.map((c) => {
-        const d = new Float64Array(cap);
-        d.set(c.subarray(0, this.n));
-        return d;
-      });
+  private grow(rows: number): void {
+    if (rows <= this.cols[0].length) return;
+    const cap = Math.max(this.cols[0].length * 2, rows);
+    this.cols = this.cols.map((c) => {
+      const d = new Float64Array(cap);
+      d.set(c.subarray(0, this.n));
+      return d;
+    });
+  }
+
+  /** Fetches the rows since the last pull (series, loads, tracking error;
+   *  the tracking error again from row 0 when the global path changed). */
+  pull(sim: SimHandle, globalPath: Float64Array): void {
+    const rows = sim.series(this.n);
+    const m = Math.floor(rows.length / 5);
+    if (m > 0) {
+      this.grow(this.n + m);
+      for (let i = 0; i < m; i++) {
+        for (let c = 0; c < 5; c++) this.cols[c][this.n + i] = rows[5 * i + c];
+      }
+      if (this.vehicle) {
+        const l = sim.wheelLoads(this.n);
+        for (let i = 0; i < m && 5 * i + 4 < l.length; i++) {
+          for (let w = 0; w < 4; w++) this.cols[FL + w][this.n + i] = l[5 * i + 1 + w];
+        }
+      }
+      this.n += m;
+      this.dirty = true;
     }
-    for (let i = 0; i < m; i++) {
-      for (let c = 0; c < STRIDE; c++) this.cols[c][this.n + i] = rows[STRIDE * i + c];
+    // The tracking error is measured to the current global path (as the
+    // metric is); a new path (a goal edit, a replan) re-measures it all.
+    let key = `${globalPath.length}`;
+    if (globalPath.length) {
+      let sum = 0;
+      for (let i = 0; i < globalPath.length; i++) sum += globalPath[i] * (1 + (i % 7));
+      key += `:${sum}`;
     }
-    this.n += m;
-    this.dirty = true;
+    const has = globalPath.length > 0;
+    if (has !== this.tracking) {
+      this.tracking = has;
+      this.build();
+      this.dirty = true;
+    }
+    if (key !== this.pathKey) {
+      this.pathKey = key;
+      this.trackN = 0;
+    }
+    if (has && this.trackN < this.n) {
+      const d = sim.trackingErrors(this.trackN);
+      for (let i = 0; i < d.length && this.trackN + i < this.n; i++) this.cols[TRACK][this.trackN + i] = d[i];
+      this.trackN = Math.min(this.n, this.trackN + d.length);
+      this.dirty = true;
+    }
   }
 
   /** Redraws the charts if rows arrived (throttled unless `force`). */
@@ -140,6 +296,54 @@ export class SeriesPlots {
     if (!force && now - this.lastDraw < this.minIntervalMs) return;
     this.lastDraw = now;
     this.dirty = false;
-    this.plots.forEach((p, i) => p.setData(this.data(i)));
+    this.plots.forEach((p, i) => p?.setData(this.data(i)));
+    this.placeCursors();
+  }
+
+  /** Row the marker and cursors show: the timeline's frame or the end. */
+  private frameRow(): number {
+    return this.frame === null ? this.n - 1 : Math.min(this.frame, this.n - 1);
+  }
+
+  /** Puts the marker and the cursors at `row` (null: the live end). */
+  setFrame(row: number | null): void {
+    // Following the live end costs nothing extra: flush places the cursors.
+    if (row === null && this.frame === null) return;
+    this.frame = row;
+    if (this.dirty) this.flush(true);
+    else {
+      for (const p of this.plots) p?.redraw(false, false);
+      this.placeCursors();
+    }
+  }
+
+  private placeCursors(): void {
+    if (this.hovering) return;
+    const row = this.frameRow();
+    if (row < 0) return;
+    const t = this.cols[T][row];
+    for (const p of this.plots) {
+      if (!p) continue;
+      p.setCursor({ left: p.valToPos(t, 'x'), top: p.bbox.height / devicePixelRatio / 2 }, false);
+    }
+  }
+
+  /** Cursor row of every shown chart (for the tests). */
+  cursorRows(): Record<string, number | null> {
+    const out: Record<string, number | null> = {};
+    this.plots.forEach((p, i) => {
+      if (p) out[SPECS[i].key] = p.cursor.idx ?? null;
+    });
+    return out;
+  }
+
+  /** Rows held per shown chart and the last value of each series. */
+  summary(): Record<string, { rows: number; last: number[] }> {
+    const out: Record<string, { rows: number; last: number[] }> = {};
+    SPECS.forEach((_, i) => {
+      if (!this.visible(i)) return;
+      out[SPECS[i].key] = { rows: this.n, last: this.shown(i).map((c) => (this.n ? this.cols[c][this.n - 1] : Number.NaN)) };
+    });
+    return out;
   }
 }

@@ -13,7 +13,7 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::geometry::{link_capsules, min_distance, LinkCapsule, Obstacle3};
+use super::geometry::{link_capsules, link_distance, min_distance, LinkCapsule, Obstacle3};
 use super::hand::{HandMotion, HandSpec};
 use super::kinematics::IkConfig;
 use super::model::{ArmModel, ArmSpec};
@@ -639,6 +639,19 @@ impl ArmEpisode {
     /// Link-to-hand distance now, m.
     pub fn distance_now(&self) -> f64 {
         self.dist_now
+    }
+
+    /// Distance from the gripper (the last link capsule) to the hand and
+    /// forearm now, m; the whole arm's distance is
+    /// [`ArmEpisode::distance_now`].
+    pub fn gripper_distance_now(&self) -> f64 {
+        let links = self.links();
+        let obs = self.hand_obstacles();
+        links.last().map_or(f64::INFINITY, |l| {
+            obs.iter()
+                .map(|o| link_distance(l, o))
+                .fold(f64::INFINITY, f64::min)
+        })
     }
 
     /// Smallest link-to-hand distance so far, m.

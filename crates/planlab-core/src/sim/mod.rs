@@ -20,11 +20,13 @@
 
 mod edit;
 mod live;
+mod replay;
 mod trace;
 
 pub use edit::{
     generated_sim_config, is_start_collision, SetupEdit, GENERATED_MAX_TIME, GENERATED_STUCK_TIME,
 };
+pub use replay::{Edit, Recording};
 pub use trace::{Trace, TraceStep, CSV_HEADER};
 
 use serde::{Deserialize, Serialize};

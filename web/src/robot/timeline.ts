@@ -1,0 +1,454 @@
+// The robot page's timeline: every run is recorded (the SimHandle keeps its
+// trace plus the setup and the live edits, see core `sim::Recording`), and
+// this bar under the canvas scrubs through it.
+//
+// - Slider drag, ←/→ (Shift: 10 steps), Home/End, the step buttons and a
+//   press or drag in any plot move to a frame. A past frame is drawn from
+//   the trace row (pose, movers, classes, the goal steered to, the trail up
+//   to then) at once, and a scratch SimHandle re-simulated to that step
+//   (the core is deterministic: same setup, seed and edits, same trace)
+//   adds that step's DWA fan, LiDAR, fog and global path. Forward moves
+//   take the scratch on from where it is; backward moves rebuild it, which
+//   costs one step per frame, so while dragging it waits until the slider
+//   rests.
+// - Replay re-runs the recorded run from its setup and seed (edits applied
+//   at the steps they were made), plays it back on the canvas and checks
+//   at the end that the trace hash is identical to the original's.
+// - Play or Step from a past frame branches: the run is cut at that frame
+//   and continues live from there (edits up to then kept); the cut-off
+//   future is dropped and the bar says where the branch started. Edits
+//   (goal, movers, planner) always go to the live end of the run: making
+//   one while a past frame is shown returns the view to the live end.
+
+import type { SimHandle } from '../../pkg/planlab_wasm.js';
+import type { RobotView, Fan, LidarScene } from './view';
+import type { SeriesPlots } from './plots';
+import './timeline.css';
+
+/** What the timeline needs from the page (main.ts). */
+export interface TimelineHost {
+  sim(): SimHandle | null;
+  view: RobotView;
+  plots: SeriesPlots;
+  /** Stops live play. */
+  pause(): void;
+  /** Installs `next` as the live run (paused). */
+  branch(next: SimHandle): void;
+  /** Repaints the live end (main's pull). */
+  refreshLive(): void;
+  /** Playback speed factor. */
+  speed(): number;
+}
+
+const GOAL_KINDS = ['final', 'intermediate', 'virtual', 'temporary'];
+
+/** Rebuilding the scratch while dragging waits this long after the last
+ *  slider move, ms. */
+const SETTLE_MS = 90;
+
+function button(text: string, title: string, id: string): HTMLButtonElement {
+  const b = document.createElement('button');
+  b.type = 'button';
+  b.textContent = text;
+  b.title = title;
+  b.id = id;
+  return b;
+}
+
+function emptyFan(): Fan {
+  return { points: new Float32Array(0), offsets: new Uint32Array(0), scores: new Float32Array(0), admissible: new Uint8Array(0), chosen: -1 };
+}
+
+function fanOf(h: SimHandle): Fan {
+  return { points: h.fanPoints(), offsets: h.fanOffsets(), scores: h.fanScores(), admissible: h.fanAdmissible(), chosen: h.chosen };
+}
+
+function lidarOf(h: SimHandle): LidarScene | null {
+  if (!h.hasLidar) return null;
+  return {
+    rays: h.lidarRays(),
+    returns: h.lidarReturns(),
+    edges: h.lidarEdges(false),
+    opsRaw: h.lidarOps(false),
+    opsRawOffsets: h.lidarOpOffsets(false),
+    ops: h.lidarOps(true),
+    opsOffsets: h.lidarOpOffsets(true),
+    blocking: h.lidarBlocking,
+    candidates: h.lidarCandidates(),
+    target: h.lidarTarget(),
+  };
+}
+
+export class Timeline {
+  readonly root: HTMLElement;
+  private slider: HTMLInputElement;
+  private readout: HTMLOutputElement;
+  private note: HTMLElement;
+  private replayBtn: HTMLButtonElement;
+  private ticks: HTMLElement;
+  /** Frame shown; null = the live end. */
+  private frame: number | null = null;
+  /** A replay of the run at some step, for the fan / LiDAR of past frames. */
+  private scratch: SimHandle | null = null;
+  private settle = 0;
+  private lastSim: SimHandle | null = null;
+  private edits = 0;
+  /** Mover radii by id, as seen live (removed movers keep theirs). */
+  private radii = new Map<number, number>();
+  private branchedAt: number | null = null;
+  private playback: { target: number; hash: string; raf: number; last: number; accum: number } | null = null;
+  /** Time of the last scratch rebuild / advance, ms (for the tests and
+   *  the curious). */
+  lastScratchMs = 0;
+
+  constructor(
+    mount: HTMLElement,
+    private host: TimelineHost,
+  ) {
+    this.root = mount;
+    mount.classList.add('timeline');
+    const start = button('⏮', 'Jump to the start (Home)', 'tl-start');
+    const back = button('◀', 'One step back (←; Shift+←: 10)', 'tl-back');
+    const fwd = button('▶', 'One step on (→; Shift+→: 10)', 'tl-fwd');
+    const end = button('⏭', 'Jump to the end, the live run (End)', 'tl-end');
+    this.replayBtn = button('⟲ Replay', 'Re-run the recorded run from its setup and seed, play it back and check the trace is identical', 'tl-replay');
+    const track = document.createElement('div');
+    track.className = 'tl-track';
+    this.slider = document.createElement('input');
+    this.slider.type = 'range';
+    this.slider.id = 'tl-slider';
+    this.slider.min = '0';
+    this.slider.max = '0';
+    this.slider.step = '1';
+    this.slider.value = '0';
+    this.slider.setAttribute('aria-label', 'Timeline: frame of the run');
+    this.ticks = document.createElement('div');
+    this.ticks.className = 'tl-ticks';
+    track.append(this.ticks, this.slider);
+    this.readout = document.createElement('output');
+    this.readout.id = 'tl-readout';
+    this.note = document.createElement('span');
+    this.note.id = 'tl-note';
+    this.note.className = 'tl-note';
+    mount.replaceChildren(start, back, fwd, end, track, this.replayBtn, this.readout, this.note);
+
+    start.addEventListener('click', () => this.seek(0));
+    end.addEventListener('click', () => this.seek(Infinity));
+    back.addEventListener('click', (ev) => this.stepBy(ev.shiftKey ? -10 : -1));
+    fwd.addEventListener('click', (ev) => this.stepBy(ev.shiftKey ? 10 : 1));
+    this.replayBtn.addEventListener('click', () => this.guard(() => this.replay()));
+    this.slider.addEventListener('pointerdown', () => {
+      this.stopPlayback();
+      host.pause();
+    });
+    this.slider.addEventListener('input', () => this.seek(Number(this.slider.value), true));
+    window.addEventListener('keydown', (ev) => this.onKey(ev));
+    host.plots.onScrub = (row) => this.seek(row, true);
+    // For the e2e tests and the curious: what is drawn and plotted.
+    (window as unknown as { planlabTimeline: unknown }).planlabTimeline = {
+      frame: () => this.current,
+      scrubbed: () => this.scrubbed,
+      drawnPose: () => Array.from(host.view.scene.state),
+      drawnMovers: () => Array.from(host.view.scene.movers),
+      drawnGoal: () => [...host.view.scene.currentGoal, host.view.scene.goalKind],
+      trailLen: () => host.view.scene.trailLen,
+      plotCursors: () => host.plots.cursorRows(),
+      plotsShown: () => host.plots.shownKeys,
+      plotSummary: () => host.plots.summary(),
+      scratchMs: () => this.lastScratchMs,
+    };
+  }
+
+  private guard(f: () => void): void {
+    try {
+      f();
+    } catch (e) {
+      // The page's error banner catches what escapes a handler.
+      queueMicrotask(() => {
+        throw e;
+      });
+    }
+  }
+
+  /** Whether a past frame is shown. */
+  get scrubbed(): boolean {
+    return this.frame !== null;
+  }
+
+  /** The frame shown (the live end when not scrubbed). */
+  get current(): number {
+    const sim = this.host.sim();
+    return this.frame ?? (sim ? sim.steps : 0);
+  }
+
+  private onKey(ev: KeyboardEvent): void {
+    const t = ev.target as HTMLElement | null;
+    if (t && t !== this.slider && (t.tagName === 'INPUT' || t.tagName === 'SELECT' || t.tagName === 'TEXTAREA')) return;
+    if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
+    let done = true;
+    if (ev.key === 'ArrowLeft') this.stepBy(ev.shiftKey ? -10 : -1);
+    else if (ev.key === 'ArrowRight') this.stepBy(ev.shiftKey ? 10 : 1);
+    else if (ev.key === 'Home') this.seek(0);
+    else if (ev.key === 'End') this.seek(Infinity);
+    else done = false;
+    if (done) ev.preventDefault();
+  }
+
+  /** Moves `d` frames from the one shown. */
+  stepBy(d: number): void {
+    this.seek(this.current + d);
+  }
+
+  /** Shows frame `k` (clamped; the last frame is the live end). `dragging`:
+   *  the fan / LiDAR wait until the frame rests. */
+  seek(k: number, dragging = false): void {
+    this.guard(() => {
+      const sim = this.host.sim();
+      if (!sim) return;
+      if (!dragging) this.stopPlayback();
+      this.host.pause();
+      const n = sim.steps;
+      k = Math.max(0, Math.min(n, Math.round(Number.isFinite(k) ? k : n)));
+      if (k >= n) {
+        this.frame = null;
+        this.dropScratch();
+        this.host.refreshLive();
+        this.host.view.request();
+        return;
+      }
+      this.frame = k;
+      this.showFrame(k);
+      clearTimeout(this.settle);
+      if (dragging) this.settle = window.setTimeout(() => this.guard(() => this.detail()), SETTLE_MS);
+      else this.detail();
+    });
+  }
+
+  private dropScratch(): void {
+    clearTimeout(this.settle);
+    this.scratch?.free();
+    this.scratch = null;
+  }
+
+  /** Re-simulates the scratch to the frame shown and draws what that step
+   *  drew (fan, LiDAR, fog, global path, final goal). */
+  private detail(): void {
+    const sim = this.host.sim();
+    const k = this.frame;
+    if (!sim || k === null) return;
+    const t0 = performance.now();
+    if (!this.scratch || this.scratch.steps !== k) {
+      if (!this.scratch || !sim.advanceReplay(this.scratch, k)) {
+        this.scratch?.free();
+        this.scratch = sim.replayTo(k);
+      }
+    }
+    this.lastScratchMs = performance.now() - t0;
+    this.showFrame(k);
+  }
+
+  /** Draws frame `k` from the trace (and from the scratch when it stands
+   *  at `k`). */
+  private showFrame(k: number): void {
+    const sim = this.host.sim();
+    if (!sim) return;
+    const S = this.host.view.scene;
+    // A replay in progress shows its own rows (the re-simulated run).
+    const h = this.scratch && this.scratch.steps === k ? this.scratch : null;
+    const src = this.playback && h ? h : sim;
+    const r = src.traceRow(k);
+    if (r.length < 19) return;
+    S.state = Float64Array.of(r[1], r[2], r[3], r[4], r[5], r[6]);
+    S.currentGoal = [r[11], r[12]];
+    S.goalKind = GOAL_KINDS[r[13]] ?? 'final';
+    // Movers at that time; velocities from the neighbouring rows.
+    const m = src.traceMovers(k);
+    const ahead = k + 1 < src.traceLen;
+    const nb = src.traceMovers(ahead ? k + 1 : Math.max(0, k - 1));
+    const sign = ahead ? 1 : -1;
+    const dt = src.dt;
+    const movers = new Float64Array((m.length / 3) * 6);
+    for (let i = 0, j = 0; i + 2 < m.length; i += 3, j += 6) {
+      const id = m[i];
+      let vx = 0;
+      let vy = 0;
+      for (let q = 0; q + 2 < nb.length; q += 3) {
+        if (nb[q] === id) {
+          vx = (sign * (nb[q + 1] - m[i + 1])) / dt;
+          vy = (sign * (nb[q + 2] - m[i + 2])) / dt;
+          break;
+        }
+      }
+      movers.set([id, this.radii.get(id) ?? 0.2, m[i + 1], m[i + 2], vx, vy], j);
+    }
+    S.movers = movers;
+    const cls = src.traceClasses(k);
+    S.classes.clear();
+    for (let i = 0; i + 1 < cls.length; i += 2) S.classes.set(cls[i], cls[i + 1]);
+    S.trailLen = Math.min(k + 1, S.trail.length / 2);
+    if (h) {
+      S.fan = S.show.fan ? fanOf(h) : emptyFan();
+      S.lidar = lidarOf(h);
+      if (S.lidar) {
+        S.seen = h.seenCells();
+        S.seenCount = h.seenCount;
+      }
+      S.globalPath = h.globalPath();
+      S.keypoints = h.keypoints();
+      const g = h.goal();
+      S.goal = [g[0], g[1]];
+    } else {
+      S.fan = emptyFan();
+      S.lidar = null;
+    }
+    this.root.dataset.detail = h ? 'replayed' : 'trace';
+    this.updateBar(sim, k, r, src.traceMode(k));
+    this.host.plots.setFrame(k);
+    this.host.view.request();
+  }
+
+  private updateBar(sim: SimHandle, k: number, r: Float64Array, mode: string): void {
+    const n = sim.steps;
+    this.slider.max = String(n);
+    this.slider.value = String(k);
+    const live = this.frame === null;
+    this.root.dataset.frame = String(k);
+    this.root.dataset.frames = String(n);
+    this.root.dataset.live = String(live);
+    this.root.dataset.t = String(r[0]);
+    this.root.dataset.x = String(r[1]);
+    this.root.dataset.y = String(r[2]);
+    this.root.dataset.theta = String(r[3]);
+    this.readout.textContent =
+      `${live ? 'live · ' : ''}frame ${k}/${n} · t = ${r[0].toFixed(1)} s · ` +
+      `(${r[1].toFixed(2)}, ${r[2].toFixed(2)}) m, θ ${r[3].toFixed(2)} · v ${r[4].toFixed(2)} m/s, ω ${r[6].toFixed(2)} rad/s` +
+      (mode ? ` · ${mode}` : '');
+    this.readout.title = this.readout.textContent;
+  }
+
+  /** Called by the page after every live pull: follows the live end,
+   *  notices a new run (load, reset, branch) and edits. */
+  afterPull(): void {
+    const sim = this.host.sim();
+    if (!sim) return;
+    if (sim !== this.lastSim) {
+      this.lastSim = sim;
+      this.stopPlayback();
+      this.dropScratch();
+      this.frame = null;
+      this.edits = -1;
+      this.note.textContent = this.branchedAt !== null ? `branched at frame ${this.branchedAt}` : '';
+      this.root.dataset.branch = this.branchedAt !== null ? String(this.branchedAt) : '';
+      this.branchedAt = null;
+      this.radii.clear();
+      delete this.root.dataset.replayMatch;
+      delete this.root.dataset.replayHash;
+      this.replayBtn.classList.remove('ok', 'bad');
+    }
+    const S = this.host.view.scene;
+    for (let i = 0; i + 5 < S.movers.length; i += 6) this.radii.set(S.movers[i], S.movers[i + 1]);
+    const edits = sim.editSteps();
+    if (edits.length !== this.edits) {
+      this.edits = edits.length;
+      this.drawTicks(edits, sim.steps);
+      // An edit goes to the live end: show it.
+      if (this.frame !== null && !this.playback) {
+        this.frame = null;
+        this.dropScratch();
+      }
+    }
+    if (this.frame !== null) {
+      // A pull while a past frame is shown (a display toggle): keep it.
+      this.showFrame(this.frame);
+      return;
+    }
+    const n = sim.steps;
+    this.updateBar(sim, n, sim.traceRow(n), sim.mode);
+    this.host.plots.setFrame(null);
+  }
+
+  private drawTicks(edits: Float64Array, n: number): void {
+    const marks = Array.from(edits)
+      .filter((s) => s > 0)
+      .map((s) => {
+        const i = document.createElement('i');
+        i.style.left = `${(100 * s) / Math.max(1, n)}%`;
+        i.title = `edit at frame ${s}`;
+        return i;
+      });
+    this.ticks.replaceChildren(...marks);
+  }
+
+  /** Play / Step from a past frame: cut the run there and continue live. */
+  branchHere(): void {
+    const sim = this.host.sim();
+    const k = this.frame;
+    if (!sim || k === null) return;
+    this.stopPlayback();
+    let next: SimHandle;
+    if (this.scratch && this.scratch.steps === k) {
+      next = this.scratch;
+      this.scratch = null;
+    } else next = sim.replayTo(k);
+    this.branchedAt = k;
+    this.host.branch(next);
+  }
+
+  /** Re-runs the recorded run and plays it back; checks the trace hash. */
+  replay(): void {
+    const sim = this.host.sim();
+    if (!sim || sim.steps === 0) return;
+    this.host.pause();
+    this.stopPlayback();
+    this.dropScratch();
+    delete this.root.dataset.replayMatch;
+    this.replayBtn.classList.remove('ok', 'bad');
+    this.note.textContent = 'replaying…';
+    this.scratch = sim.replayTo(0);
+    this.frame = 0;
+    this.showFrame(0);
+    const pb = { target: sim.steps, hash: sim.traceHash(), raf: 0, last: performance.now(), accum: 0 };
+    this.playback = pb;
+    this.root.dataset.playback = 'true';
+    const tick = (now: number) => {
+      if (this.playback !== pb) return;
+      this.guard(() => {
+        const s = this.host.sim();
+        if (!s || !this.scratch) return this.stopPlayback();
+        pb.accum += (Math.min(100, now - pb.last) / 1000) * this.host.speed();
+        pb.last = now;
+        const due = Math.floor(pb.accum / s.dt);
+        if (due > 0) {
+          pb.accum -= due * s.dt;
+          const k = Math.min(pb.target, (this.frame ?? 0) + Math.min(due, 16));
+          if (!s.advanceReplay(this.scratch, k)) throw new Error('replay lost its course');
+          this.frame = k;
+          this.showFrame(k);
+          if (k >= pb.target || this.scratch.outcome !== 'running') return this.finishReplay(pb.hash);
+        }
+        pb.raf = requestAnimationFrame(tick);
+      });
+    };
+    pb.raf = requestAnimationFrame(tick);
+  }
+
+  private finishReplay(hash: string): void {
+    const got = this.scratch?.traceHash() ?? '';
+    const ok = got === hash;
+    this.root.dataset.replayHash = got;
+    this.root.dataset.replayMatch = String(ok);
+    this.replayBtn.classList.toggle('ok', ok);
+    this.replayBtn.classList.toggle('bad', !ok);
+    this.note.textContent = ok ? `✓ replay identical (trace hash ${got})` : `✗ replay differs: ${got} ≠ ${hash}`;
+    this.stopPlayback();
+    // The replay ends at the run's end: back to the live view of it.
+    this.seek(Infinity);
+  }
+
+  private stopPlayback(): void {
+    if (!this.playback) return;
+    cancelAnimationFrame(this.playback.raf);
+    this.playback = null;
+    delete this.root.dataset.playback;
+  }
+}
