@@ -255,6 +255,11 @@ test('a vehicle preset (C-tab5) plots wheel loads and tracking error; hover read
   assert.equal(s.loads.rows, steps + 1);
   // A quarter of the Table 1 vehicle's weight each, give or take.
   for (const f of s.loads.last) assert.ok(f > 20 && f < 120, `wheel load ${f} N`);
+  // Every chart has a finite y range around its data (the start row has
+  // no loads: that must not blank the loads chart).
+  const ranges = await tl(page, 'plotRanges');
+  for (const [key, [lo, hi]] of Object.entries(ranges)) assert.ok(Number.isFinite(lo) && Number.isFinite(hi) && lo < hi, `${key} range ${lo}..${hi}`);
+  for (const f of s.loads.last) assert.ok(ranges.loads[0] < f && f < ranges.loads[1], `load ${f} within ${ranges.loads}`);
   const track = s.tracking.last[0];
   const m = await robot(page, 'metrics');
   assert.ok(track >= 0 && track <= m.max_tracking_error_m + 1e-12, `tracking ${track} ≤ max ${m.max_tracking_error_m}`);

@@ -85,7 +85,7 @@ export class SeriesPlots {
     });
     this.build();
     const ro = new ResizeObserver(() => {
-      this.plots.forEach((p, i) => p?.setSize(this.size(this.els[i])));
+      this.plots.forEach((_, i) => this.fit(i));
       this.placeCursors();
     });
     for (const e of this.els) ro.observe(e);
@@ -147,9 +147,12 @@ export class SeriesPlots {
             x: { time: false, range: (_u, _lo, hi) => [0, Math.max(5, hi ?? 0)] },
             y: {
               range: (_u, lo, hi) => {
-                const l = lo ?? 0;
-                const h = hi ?? 0;
+                let l = lo ?? 0;
+                let h = hi ?? 0;
                 if (!spec.zero) {
+                  // Own extent: the start row has no loads (NaN), which
+                  // uPlot's data range does not skip.
+                  [l, h] = this.extent(shown);
                   const pad = Math.max(1, (h - l) * 0.1);
                   return [l - pad, h + pad];
                 }
@@ -201,6 +204,32 @@ export class SeriesPlots {
       });
       return u;
     });
+    this.plots.forEach((_, i) => this.fit(i));
+  }
+
+  /** Smallest and largest finite value of the columns `cols`. */
+  private extent(cols: number[]): [number, number] {
+    let lo = Infinity;
+    let hi = -Infinity;
+    for (const c of cols) {
+      const d = this.cols[c];
+      for (let i = 0; i < this.n; i++) {
+        const v = d[i];
+        if (v < lo) lo = v;
+        if (v > hi) hi = v;
+      }
+    }
+    return lo <= hi ? [lo, hi] : [0, 1];
+  }
+
+  /** Sizes chart i to its element, below its title and legend. */
+  private fit(i: number): void {
+    const u = this.plots[i];
+    if (!u) return;
+    const el = this.els[i];
+    const title = u.root.querySelector<HTMLElement>('.u-title')?.offsetHeight ?? 0;
+    const legend = u.root.querySelector<HTMLElement>('.u-legend')?.offsetHeight ?? 0;
+    u.setSize({ width: Math.max(100, el.clientWidth - 12), height: Math.max(60, el.clientHeight - 8 - title - legend) });
   }
 
   private data(i: number): uPlot.AlignedData {
@@ -333,6 +362,15 @@ export class SeriesPlots {
     const out: Record<string, number | null> = {};
     this.plots.forEach((p, i) => {
       if (p) out[SPECS[i].key] = p.cursor.idx ?? null;
+    });
+    return out;
+  }
+
+  /** The y range each shown chart draws (for the tests). */
+  yRanges(): Record<string, [number, number]> {
+    const out: Record<string, [number, number]> = {};
+    this.plots.forEach((p, i) => {
+      if (p) out[SPECS[i].key] = [p.scales.y.min ?? Number.NaN, p.scales.y.max ?? Number.NaN];
     });
     return out;
   }

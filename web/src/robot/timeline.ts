@@ -107,10 +107,10 @@ export class Timeline {
   ) {
     this.root = mount;
     mount.classList.add('timeline');
-    const start = button('⏮', 'Jump to the start (Home)', 'tl-start');
+    const start = button('|◀', 'Jump to the start (Home)', 'tl-start');
     const back = button('◀', 'One step back (←; Shift+←: 10)', 'tl-back');
     const fwd = button('▶', 'One step on (→; Shift+→: 10)', 'tl-fwd');
-    const end = button('⏭', 'Jump to the end, the live run (End)', 'tl-end');
+    const end = button('▶|', 'Jump to the end, the live run (End)', 'tl-end');
     this.replayBtn = button('⟲ Replay', 'Re-run the recorded run from its setup and seed, play it back and check the trace is identical', 'tl-replay');
     const track = document.createElement('div');
     track.className = 'tl-track';
@@ -155,6 +155,7 @@ export class Timeline {
       plotCursors: () => host.plots.cursorRows(),
       plotsShown: () => host.plots.shownKeys,
       plotSummary: () => host.plots.summary(),
+      plotRanges: () => host.plots.yRanges(),
       scratchMs: () => this.lastScratchMs,
     };
   }
