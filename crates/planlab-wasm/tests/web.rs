@@ -440,7 +440,7 @@ fn timeline_replays_an_edited_run_exactly_and_reads_rows() {
     assert_eq!(b2.trace_hash(), branch.trace_hash());
     // Plot series: tracking error against the global path, loads.
     assert!(!sim.has_vehicle());
-    assert_eq!(sim.tracking_errors(0).len() as f64, n + 1);
+    assert_eq!(sim.tracking_errors(0).len() as f64, n + 1.0);
     assert!(sim
         .tracking_errors(0)
         .iter()
