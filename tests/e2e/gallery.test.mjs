@@ -189,6 +189,21 @@ test('gallery → APF page and arm page', async () => {
   assert.notEqual(await page.evaluate(() => document.body.dataset.outcome), 'reached');
   await screenshot(page, 'gallery-apf-run.png');
 
+  // T-tab4-1 is 3D: the APF page runs it in top view to the goal.
+  await page.goto(`${session.base}gallery.html`);
+  await page.waitForFunction(() => document.body.dataset.state === 'ready');
+  await page.click('#exp-T-tab4-1 a.run[data-run="sampling+prediction"]');
+  await page.waitForURL(/apf\.html/);
+  await ready(page);
+  assert.equal(await errorText(page), null);
+  assert.equal(await page.evaluate(() => document.body.dataset.dims), '3');
+  assert.equal(await page.isVisible('#dims-note'), true);
+  await page.waitForFunction(() => document.body.dataset.outcome && document.body.dataset.outcome !== 'running', null, {
+    timeout: 60_000,
+  });
+  assert.equal(await page.evaluate(() => document.body.dataset.outcome), 'reached');
+  assert.equal(await page.getAttribute('#metric-spikes', 'data-value'), '0', 'Table 4-1: no spikes with prediction');
+
   await page.goto(`${session.base}gallery.html`);
   await page.waitForFunction(() => document.body.dataset.state === 'ready');
   await page.click('#exp-T-tab5-3 a.run[data-run="no-prediction"]');

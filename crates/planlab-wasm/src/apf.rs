@@ -1,11 +1,13 @@
-//! [`ApfHandle`]: one 2D potential-field run (core `apf::ApfRun`) for the
+//! [`ApfHandle`]: one potential-field run (core `apf::ApfRun`) for the
 //! APF page: steps, live edits (goal, variant, predictor) and everything
 //! drawn as typed arrays — the path, obstacles, the force field on a
 //! lattice, the sampled directions with their costs and the chosen one,
-//! the predicted obstacles with their virtual ranges. No field is
-//! computed here: every number comes from the core.
+//! the predicted obstacles with their virtual ranges. A 3D scene (\[T\]
+//! Table 4-1: the end effector and the hand) runs in 3D and is reported in
+//! its top view (x, y). No field is computed here: every number comes from
+//! the core.
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use planlab_core::apf::{
     ApfMode, ApfRun, ApfScene, ApfVector, ObstacleObs, PredictorKind, StepKind,
 };
@@ -16,14 +18,176 @@ fn js(e: impl std::fmt::Display) -> JsError {
     JsError::new(&e.to_string())
 }
 
-/// A 2D APF run and the scene it restarts from.
+/// One run in its own dimension, with the start and goal it restarts from.
+struct Core<V: ApfVector> {
+    start: V,
+    goal: V,
+    run: ApfRun<V>,
+}
+
+/// (x, y) of a point: the top view of a 3D one.
+fn xy<V: ApfVector>(v: V) -> [f64; 2] {
+    let p = v.to_xyz();
+    [p.x, p.y]
+}
+
+/// `like` moved to (x, y) in the top view (a 3D point keeps its z).
+fn at_xy<V: ApfVector>(like: V, x: f64, y: f64) -> V {
+    V::from_xyz(DVec3::new(x, y, like.to_xyz().z))
+}
+
+impl<V: ApfVector> Core<V> {
+    fn new(scene: &ApfScene, start: V, goal: V) -> Result<Self, JsError> {
+        Ok(Core {
+            start,
+            goal,
+            run: ApfRun::new(scene, start, goal).map_err(js)?,
+        })
+    }
+
+    fn reset(&mut self, scene: &ApfScene) -> Result<(), JsError> {
+        self.run = ApfRun::new(scene, self.start, self.goal).map_err(js)?;
+        Ok(())
+    }
+
+    fn set_goal(&mut self, scene: &ApfScene, x: f64, y: f64) -> Result<(), JsError> {
+        let goal = at_xy(self.goal, x, y);
+        let run = ApfRun::new(scene, self.start, goal).map_err(js)?;
+        self.goal = goal;
+        self.run = run;
+        Ok(())
+    }
+
+    fn step(&mut self, n: u32) -> Result<(), JsError> {
+        for _ in 0..n {
+            self.run.step().map_err(js)?;
+        }
+        Ok(())
+    }
+
+    fn endpoints(&self) -> Vec<f64> {
+        let [sx, sy] = xy(self.start);
+        let [gx, gy] = xy(self.goal);
+        vec![sx, sy, gx, gy]
+    }
+
+    fn path(&self) -> Vec<f64> {
+        self.run.path().iter().flat_map(|p| xy(*p)).collect()
+    }
+
+    fn obstacles(&self, p0: f64) -> Vec<f64> {
+        self.run
+            .obstacles_at(self.run.time())
+            .iter()
+            .flat_map(|o| {
+                let [x, y] = xy(o.centre);
+                [x, y, o.radius, o.radius + p0]
+            })
+            .collect()
+    }
+
+    fn predicted(&self) -> Vec<f64> {
+        self.run
+            .last_step()
+            .map(|s| {
+                s.predicted
+                    .iter()
+                    .flat_map(|v| {
+                        let [x, y] = xy(v.centre);
+                        [x, y, v.range, f64::from(v.k)]
+                    })
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+
+    fn candidates(&self) -> Vec<f64> {
+        self.run
+            .last_step()
+            .map(|s| {
+                s.candidates
+                    .iter()
+                    .flat_map(|c| {
+                        let [x, y] = xy(c.point);
+                        [x, y, c.cost]
+                    })
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+
+    fn chosen(&self) -> i32 {
+        self.run
+            .last_step()
+            .and_then(|s| s.chosen)
+            .map_or(-1, |i| i as i32)
+    }
+
+    fn step_kind(&self) -> Option<StepKind> {
+        self.run.last_step().map(|s| s.kind)
+    }
+
+    /// The field on the lattice, in the plane of the robot's height (3D).
+    fn field(&self, bounds: [f64; 4], nx: u32, ny: u32) -> Vec<f64> {
+        let [x0, y0, x1, y1] = bounds;
+        let obs: Vec<ObstacleObs<V>> = self.run.obstacles_at(self.run.time());
+        let virtuals = self
+            .run
+            .last_step()
+            .map(|s| s.predicted.clone())
+            .unwrap_or_default();
+        let apf = self.run.planner();
+        let here = self.run.position();
+        let mut out = Vec::with_capacity((2 * nx * ny) as usize);
+        for j in 0..ny {
+            for i in 0..nx {
+                let p = at_xy(
+                    here,
+                    x0 + (i as f64 + 0.5) * (x1 - x0) / nx as f64,
+                    y0 + (j as f64 + 0.5) * (y1 - y0) / ny as f64,
+                );
+                let (a, r) = apf.forces_at(p, self.goal, &obs, &virtuals);
+                out.extend(xy(a + r));
+            }
+        }
+        out
+    }
+
+    fn forces(&self) -> Vec<f64> {
+        self.run
+            .last_step()
+            .map(|s| {
+                [s.attraction, s.repulsion, s.resultant]
+                    .into_iter()
+                    .flat_map(xy)
+                    .collect()
+            })
+            .unwrap_or_else(|| vec![0.0; 6])
+    }
+}
+
+enum AnyCore {
+    D2(Core<DVec2>),
+    D3(Core<DVec3>),
+}
+
+/// The same expression on either dimension's run.
+macro_rules! on {
+    ($self:expr, $c:ident => $e:expr) => {
+        match $self {
+            AnyCore::D2($c) => $e,
+            AnyCore::D3($c) => $e,
+        }
+    };
+}
+
+/// An APF run (2D, or 3D shown in its top view) and the scene it restarts
+/// from.
 #[wasm_bindgen]
 pub struct ApfHandle {
     scene: ApfScene,
-    start: DVec2,
-    goal: DVec2,
     bounds: [f64; 4],
-    run: ApfRun<DVec2>,
+    core: AnyCore,
 }
 
 fn mode_of(name: &str) -> Result<ApfMode, JsError> {
@@ -39,7 +203,8 @@ fn mode_of(name: &str) -> Result<ApfMode, JsError> {
 
 #[wasm_bindgen]
 impl ApfHandle {
-    /// Reads a scenario JSON with a 2D `apf` section (inline map).
+    /// Reads a scenario JSON with an `apf` section (inline map); a 3D scene
+    /// gives 3-coordinate `apf.start` / `apf.goal`.
     #[wasm_bindgen(constructor)]
     pub fn new(json: &str) -> Result<ApfHandle, JsError> {
         let sc = Scenario::from_json(json).map_err(js)?;
@@ -51,36 +216,47 @@ impl ApfHandle {
             .apf
             .clone()
             .ok_or_else(|| JsError::new("the scenario has no `apf` section"))?;
-        let pick = |given: &Option<Vec<f64>>, fallback: [f64; 2], what: &str| {
-            let v = given.clone().unwrap_or(fallback.to_vec());
-            <DVec2 as ApfVector>::from_slice(&v).ok_or_else(|| {
-                JsError::new(&format!(
-                    "apf.{what}: the APF page is 2D (2 coordinates), got {v:?}"
-                ))
-            })
+        let start = scene
+            .start
+            .clone()
+            .unwrap_or_else(|| sc.start_world(&grid).to_vec());
+        let goal = scene
+            .goal
+            .clone()
+            .unwrap_or_else(|| sc.goal_world(&grid).to_vec());
+        let bad = |what: &str, v: &[f64]| {
+            JsError::new(&format!(
+                "apf.{what}: give 2 (plane) or 3 (space) finite coordinates, like the other, got {v:?}"
+            ))
         };
-        let start = pick(&scene.start, sc.start_world(&grid), "start")?;
-        let goal = pick(&scene.goal, sc.goal_world(&grid), "goal")?;
+        let core = match start.len() {
+            3 => AnyCore::D3(Core::new(
+                &scene,
+                <DVec3 as ApfVector>::from_slice(&start).ok_or_else(|| bad("start", &start))?,
+                <DVec3 as ApfVector>::from_slice(&goal).ok_or_else(|| bad("goal", &goal))?,
+            )?),
+            _ => AnyCore::D2(Core::new(
+                &scene,
+                <DVec2 as ApfVector>::from_slice(&start).ok_or_else(|| bad("start", &start))?,
+                <DVec2 as ApfVector>::from_slice(&goal).ok_or_else(|| bad("goal", &goal))?,
+            )?),
+        };
         let (w, h, r, o) = (
             grid.width() as f64,
             grid.height() as f64,
             grid.resolution(),
             grid.origin(),
         );
-        let run = ApfRun::new(&scene, start, goal).map_err(js)?;
         Ok(ApfHandle {
             scene,
-            start,
-            goal,
             bounds: [o.x, o.y, o.x + w * r, o.y + h * r],
-            run,
+            core,
         })
     }
 
     /// Restarts from the start with the current goal, variant and predictor.
     pub fn reset(&mut self) -> Result<(), JsError> {
-        self.run = ApfRun::new(&self.scene, self.start, self.goal).map_err(js)?;
-        Ok(())
+        on!(&mut self.core, c => c.reset(&self.scene))
     }
 
     /// Switches the variant (`basic`, `sampling`, `sampling-prediction`)
@@ -107,34 +283,28 @@ impl ApfHandle {
         self.scene.config.mode.label().into()
     }
 
-    /// Moves the goal (m) and restarts; a goal inside an obstacle is an
-    /// error and leaves the run as it was.
+    /// Moves the goal (m; a 3D goal keeps its height) and restarts; a goal
+    /// inside an obstacle is an error and leaves the run as it was.
     #[wasm_bindgen(js_name = setGoal)]
     pub fn set_goal(&mut self, x: f64, y: f64) -> Result<(), JsError> {
-        let goal = DVec2::new(x, y);
-        let run = ApfRun::new(&self.scene, self.start, goal).map_err(js)?;
-        self.goal = goal;
-        self.run = run;
-        Ok(())
+        on!(&mut self.core, c => c.set_goal(&self.scene, x, y))
     }
 
     /// Up to `n` planning steps; the outcome after them (`running`,
     /// `reached`, `stuck`, `collision`, `timeout`).
     pub fn step(&mut self, n: u32) -> Result<String, JsError> {
-        for _ in 0..n {
-            self.run.step().map_err(js)?;
-        }
+        on!(&mut self.core, c => c.step(n))?;
         Ok(self.outcome())
     }
 
     /// The outcome so far.
     pub fn outcome(&self) -> String {
-        self.run.outcome().to_string()
+        on!(&self.core, c => c.run.outcome().to_string())
     }
 
     /// Time of the run, s.
     pub fn time(&self) -> f64 {
-        self.run.time()
+        on!(&self.core, c => c.run.time())
     }
 
     /// Map extent (x_min, y_min, x_max, y_max), m.
@@ -144,65 +314,42 @@ impl ApfHandle {
 
     /// Start and goal (x, y, x, y), m.
     pub fn endpoints(&self) -> Vec<f64> {
-        vec![self.start.x, self.start.y, self.goal.x, self.goal.y]
+        on!(&self.core, c => c.endpoints())
     }
 
     /// The path so far as (x, y) pairs, m.
     pub fn path(&self) -> Vec<f64> {
-        self.run.path().iter().flat_map(|p| [p.x, p.y]).collect()
+        on!(&self.core, c => c.path())
     }
 
     /// The obstacles now as (x, y, radius, range) quadruples, m (range =
     /// radius + p₀, where repulsion ends).
     pub fn obstacles(&self) -> Vec<f64> {
         let p0 = self.scene.config.p0;
-        self.run
-            .obstacles_at(self.run.time())
-            .iter()
-            .flat_map(|o| [o.centre.x, o.centre.y, o.radius, o.radius + p0])
-            .collect()
+        on!(&self.core, c => c.obstacles(p0))
     }
 
     /// Predicted obstacles of the last step as (x, y, virtual range, k)
     /// quadruples (k = 1 for t+1, 2 for t+2).
     pub fn predicted(&self) -> Vec<f64> {
-        self.run
-            .last_step()
-            .map(|s| {
-                s.predicted
-                    .iter()
-                    .flat_map(|v| [v.centre.x, v.centre.y, v.range, f64::from(v.k)])
-                    .collect()
-            })
-            .unwrap_or_default()
+        on!(&self.core, c => c.predicted())
     }
 
     /// Sampled candidates of the last step as (x, y, cost) triples.
     pub fn candidates(&self) -> Vec<f64> {
-        self.run
-            .last_step()
-            .map(|s| {
-                s.candidates
-                    .iter()
-                    .flat_map(|c| [c.point.x, c.point.y, c.cost])
-                    .collect()
-            })
-            .unwrap_or_default()
+        on!(&self.core, c => c.candidates())
     }
 
     /// Index of the chosen candidate of the last step, −1 for none.
     pub fn chosen(&self) -> i32 {
-        self.run
-            .last_step()
-            .and_then(|s| s.chosen)
-            .map_or(-1, |i| i as i32)
+        on!(&self.core, c => c.chosen())
     }
 
     /// How the last step was chosen (`resultant`, `sampled`,
     /// `relative-distance`, `stalled`, `arrived`, or `none`).
     #[wasm_bindgen(js_name = stepKind)]
     pub fn step_kind(&self) -> String {
-        match self.run.last_step().map(|s| s.kind) {
+        match on!(&self.core, c => c.step_kind()) {
             Some(StepKind::Resultant) => "resultant",
             Some(StepKind::Sampled) => "sampled",
             Some(StepKind::RelativeDistance) => "relative-distance",
@@ -215,63 +362,35 @@ impl ApfHandle {
 
     /// The force field now on an `nx` × `ny` lattice of cell centres over
     /// the map (row 0 at the bottom): (F_x, F_y) of the resultant per
-    /// point, real and predicted obstacles included.
+    /// point, real and predicted obstacles included (3D: in the horizontal
+    /// plane through the robot).
     pub fn field(&self, nx: u32, ny: u32) -> Vec<f64> {
         let (nx, ny) = (nx.clamp(1, 400), ny.clamp(1, 400));
-        let [x0, y0, x1, y1] = self.bounds;
-        let obs: Vec<ObstacleObs<DVec2>> = self.run.obstacles_at(self.run.time());
-        let virtuals = self
-            .run
-            .last_step()
-            .map(|s| s.predicted.clone())
-            .unwrap_or_default();
-        let apf = self.run.planner();
-        let mut out = Vec::with_capacity((2 * nx * ny) as usize);
-        for j in 0..ny {
-            for i in 0..nx {
-                let p = DVec2::new(
-                    x0 + (i as f64 + 0.5) * (x1 - x0) / nx as f64,
-                    y0 + (j as f64 + 0.5) * (y1 - y0) / ny as f64,
-                );
-                let (a, r) = apf.forces_at(p, self.goal, &obs, &virtuals);
-                let f = a + r;
-                out.extend([f.x, f.y]);
-            }
-        }
-        out
+        on!(&self.core, c => c.field(self.bounds, nx, ny))
     }
 
-    /// Attraction, repulsion and resultant at the robot (6 numbers).
+    /// Attraction, repulsion and resultant at the robot (6 numbers: x, y
+    /// of each).
     pub fn forces(&self) -> Vec<f64> {
-        self.run
-            .last_step()
-            .map(|s| {
-                vec![
-                    s.attraction.x,
-                    s.attraction.y,
-                    s.repulsion.x,
-                    s.repulsion.y,
-                    s.resultant.x,
-                    s.resultant.y,
-                ]
-            })
-            .unwrap_or_else(|| vec![0.0; 6])
+        on!(&self.core, c => c.forces())
     }
 
     /// The metrics as JSON (`outcome`, `path_length_m`, `path_points`,
     /// `spikes`, `min_obstacle_distance_m`, `time_s`).
     pub fn metrics(&self) -> String {
-        serde_json::to_string(&self.run.metrics()).unwrap_or_default()
+        serde_json::to_string(&on!(&self.core, c => c.run.metrics())).unwrap_or_default()
     }
 
     /// The robot's position (x, y), m.
     pub fn position(&self) -> Vec<f64> {
-        let p = self.run.position();
-        vec![p.x, p.y]
+        on!(&self.core, c => xy(c.run.position()).to_vec())
     }
 
-    /// Number of coordinates of the scene (always 2 here).
+    /// Number of coordinates of the scene (2, or 3 for a spatial scene).
     pub fn dims(&self) -> u32 {
-        DVec2::DIM as u32
+        match self.core {
+            AnyCore::D2(_) => 2,
+            AnyCore::D3(_) => 3,
+        }
     }
 }

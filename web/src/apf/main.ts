@@ -227,6 +227,8 @@ async function load(file: string, edit: (text: string) => string = (t) => t): Pr
   const text = edit(await (await fetch(`./scenarios/${file}`)).text());
   handle?.free();
   handle = new ApfHandle(text);
+  document.body.dataset.dims = String(handle.dims());
+  el('dims-note').hidden = handle.dims() !== 3;
   handle.setMode(ui.mode.value);
   handle.setPredictor(ui.predictor.value);
   showError(null);
