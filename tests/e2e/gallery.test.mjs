@@ -58,7 +58,7 @@ async function openGallery(page) {
 // The grid page counts its plans instead of a state.
 const ready = (page) =>
   page.waitForFunction(
-    () => ['ready', 'done', 'error'].includes(document.body.dataset.state) || Number(document.body.dataset.planSeq) > 0,
+    () => ['ready', 'done', 'empty', 'error'].includes(document.body.dataset.state) || Number(document.body.dataset.planSeq) > 0,
     null,
     { timeout: 30_000 },
   );
@@ -289,7 +289,7 @@ test('layout: no horizontal overflow, top-bar controls in view at 1366×768 and 
     [1920, 1080],
   ]) {
     await page.setViewportSize({ width: w, height: hgt });
-    for (const p of ['gallery.html', 'index.html', 'robot.html', 'apf.html', 'arm.html']) {
+    for (const p of ['gallery.html', 'index.html', 'robot.html', 'compare.html', 'apf.html', 'arm.html']) {
       await page.goto(session.base + p);
       await ready(page);
       const r = await page.evaluate(() => {

@@ -4,8 +4,9 @@
 //! lattice, the sampled directions with their costs and the chosen one,
 //! the predicted obstacles with their virtual ranges. A 3D scene (\[T\]
 //! Table 4-1: the end effector and the hand) runs in 3D and is reported in
-//! its top view (x, y). No field is computed here: every number comes from
-//! the core.
+//! its side view (x, z), the plane its detours happen in: "x, y" below means
+//! the page's two drawing coordinates. No field is computed here: every
+//! number comes from the core.
 
 use glam::{DVec2, DVec3};
 use planlab_core::apf::{
@@ -25,15 +26,23 @@ struct Core<V: ApfVector> {
     run: ApfRun<V>,
 }
 
-/// (x, y) of a point: the top view of a 3D one.
+/// The page's (x, y) of a point: the side view (x, z) of a 3D one.
 fn xy<V: ApfVector>(v: V) -> [f64; 2] {
     let p = v.to_xyz();
-    [p.x, p.y]
+    if V::DIM == 3 {
+        [p.x, p.z]
+    } else {
+        [p.x, p.y]
+    }
 }
 
-/// `like` moved to (x, y) in the top view (a 3D point keeps its z).
+/// `like` moved to the page's (x, y) (a 3D point keeps its y).
 fn at_xy<V: ApfVector>(like: V, x: f64, y: f64) -> V {
-    V::from_xyz(DVec3::new(x, y, like.to_xyz().z))
+    if V::DIM == 3 {
+        V::from_xyz(DVec3::new(x, like.to_xyz().y, y))
+    } else {
+        V::from_xyz(DVec3::new(x, y, 0.0))
+    }
 }
 
 impl<V: ApfVector> Core<V> {
@@ -181,7 +190,7 @@ macro_rules! on {
     };
 }
 
-/// An APF run (2D, or 3D shown in its top view) and the scene it restarts
+/// An APF run (2D, or 3D shown in its side view) and the scene it restarts
 /// from.
 #[wasm_bindgen]
 pub struct ApfHandle {
@@ -247,9 +256,18 @@ impl ApfHandle {
             grid.resolution(),
             grid.origin(),
         );
+        // The side view of a 3D scene spans the map's x and as much height
+        // as the map's depth, centred on the start.
+        let bounds = match &core {
+            AnyCore::D3(c) => {
+                let zc = c.start.z;
+                [o.x, zc - h * r / 2.0, o.x + w * r, zc + h * r / 2.0]
+            }
+            AnyCore::D2(_) => [o.x, o.y, o.x + w * r, o.y + h * r],
+        };
         Ok(ApfHandle {
             scene,
-            bounds: [o.x, o.y, o.x + w * r, o.y + h * r],
+            bounds,
             core,
         })
     }
@@ -283,7 +301,7 @@ impl ApfHandle {
         self.scene.config.mode.label().into()
     }
 
-    /// Moves the goal (m; a 3D goal keeps its height) and restarts; a goal
+    /// Moves the goal (m; a 3D goal moves in its side view, keeping y) and restarts; a goal
     /// inside an obstacle is an error and leaves the run as it was.
     #[wasm_bindgen(js_name = setGoal)]
     pub fn set_goal(&mut self, x: f64, y: f64) -> Result<(), JsError> {
@@ -307,7 +325,8 @@ impl ApfHandle {
         on!(&self.core, c => c.run.time())
     }
 
-    /// Map extent (x_min, y_min, x_max, y_max), m.
+    /// Drawing extent (x_min, y_min, x_max, y_max), m: the map's, or for a
+    /// 3D scene its x and a height range around the start.
     pub fn bounds(&self) -> Vec<f64> {
         self.bounds.to_vec()
     }
@@ -362,8 +381,8 @@ impl ApfHandle {
 
     /// The force field now on an `nx` × `ny` lattice of cell centres over
     /// the map (row 0 at the bottom): (F_x, F_y) of the resultant per
-    /// point, real and predicted obstacles included (3D: in the horizontal
-    /// plane through the robot).
+    /// point, real and predicted obstacles included (3D: (F_x, F_z) in the
+    /// vertical x–z plane through the robot).
     pub fn field(&self, nx: u32, ny: u32) -> Vec<f64> {
         let (nx, ny) = (nx.clamp(1, 400), ny.clamp(1, 400));
         on!(&self.core, c => c.field(self.bounds, nx, ny))
@@ -381,7 +400,7 @@ impl ApfHandle {
         serde_json::to_string(&on!(&self.core, c => c.run.metrics())).unwrap_or_default()
     }
 
-    /// The robot's position (x, y), m.
+    /// The robot's position in the page's (x, y), m.
     pub fn position(&self) -> Vec<f64> {
         on!(&self.core, c => xy(c.run.position()).to_vec())
     }

@@ -464,8 +464,10 @@ fn wheel_loads_come_with_a_vehicle_model() {
             .all(|r| r[1..].iter().all(|f| *f > 20.0 && *f < 200.0)),
         "{l:?}"
     );
+}
 
-fn apf_handle_runs_the_3d_table_4_1_scene_in_top_view() {
+#[wasm_bindgen_test]
+fn apf_handle_runs_the_3d_table_4_1_scene_in_side_view() {
     use planlab_wasm::ApfHandle;
     let json = include_str!("../../../assets/scenarios/T-tab4-1.json");
     let mut h = ApfHandle::new(json).unwrap();
@@ -476,14 +478,18 @@ fn apf_handle_runs_the_3d_table_4_1_scene_in_top_view() {
         assert_eq!(h.step(400).unwrap(), "reached", "{mode}");
         let m: serde_json::Value = serde_json::from_str(&h.metrics()).unwrap();
         lengths.push(m["path_length_m"].as_f64().unwrap());
-        // Top view: pairs, obstacles as quadruples.
-        assert_eq!(h.path().len() % 2, 0);
+        // Side view (x, z): pairs from the start's height, obstacles as quadruples.
+        assert_eq!(h.path()[..2], [0.0, 0.8]);
         assert_eq!(h.obstacles().len(), 4);
     }
     // [T] Table 4-1: basic > sampling > sampling + prediction.
-    assert!(lengths[0] > lengths[1] && lengths[1] > lengths[2], "{lengths:?}");
+    assert!(
+        lengths[0] > lengths[1] && lengths[1] > lengths[2],
+        "{lengths:?}"
+    );
     assert_eq!(h.field(8, 6).len(), 2 * 8 * 6);
-    // The goal moves in its horizontal plane and the run restarts.
-    h.set_goal(0.6, 0.1).unwrap();
-    assert_eq!(h.endpoints()[2..], [0.6, 0.1]);
+    // The goal moves in the side view and the run restarts.
+    h.set_goal(0.6, 0.9).unwrap();
+    assert_eq!(h.endpoints()[2..], [0.6, 0.9]);
+    assert_eq!(h.outcome(), "running");
 }
