@@ -284,11 +284,15 @@ test('help overlay: ? opens planners and parameters, Esc and a click outside clo
 
 test('layout: no horizontal overflow, top-bar controls in view at 1366×768 and 1920×1080', async () => {
   const { page, problems } = await newPage();
-  for (const [w, hgt] of [
-    [1366, 768],
-    [1920, 1080],
+  // Laptop and full HD as they are, and a projector's full HD in presentation mode.
+  for (const [w, hgt, present] of [
+    [1366, 768, false],
+    [1920, 1080, false],
+    [1920, 1080, true],
   ]) {
     await page.setViewportSize({ width: w, height: hgt });
+    await page.goto(session.base + 'gallery.html');
+    await page.evaluate((on) => localStorage.setItem('planlab.present', on ? '1' : '0'), present);
     for (const p of ['gallery.html', 'index.html', 'robot.html', 'compare.html', 'apf.html', 'arm.html']) {
       await page.goto(session.base + p);
       await ready(page);
@@ -310,10 +314,13 @@ test('layout: no horizontal overflow, top-bar controls in view at 1366×768 and 
         }
         return out;
       });
-      assert.deepEqual(r, [], `${p} at ${w}×${hgt}`);
+      assert.equal(await page.evaluate(() => document.documentElement.classList.contains('present')), present);
+      assert.deepEqual(r, [], `${p} at ${w}×${hgt}${present ? ' (presentation)' : ''}`);
       if (w === 1366 && p === 'robot.html') await screenshot(page, 'gallery-robot-1366.png');
+      if (present && p === 'apf.html') await screenshot(page, 'gallery-present-apf.png');
     }
   }
+  await page.evaluate(() => localStorage.removeItem('planlab.present'));
   assert.deepEqual(problems, []);
   await page.close();
 });

@@ -39,6 +39,8 @@ export function robotHelp(planners: RegistryPlanner[], current: string): HelpCon
       { keys: 'Space', action: 'play / pause' },
       { keys: '.', action: 'one control step' },
       { keys: 'R', action: 'reset: restart with the current goal, movers and planner' },
+      { keys: '← / →', action: 'timeline: one frame back / forward (with Shift: 10 frames)' },
+      { keys: 'Home / End', action: 'timeline: first frame / the live end' },
       { keys: 'G', action: 'tool: move the goal' },
       { keys: 'M', action: 'tool: place a mover (drag gives its velocity)' },
       { keys: 'X', action: 'tool: remove a mover' },
