@@ -85,7 +85,9 @@ test('gallery: one card per reproduce id, with paper, explanation, relation and 
     assert.ok(c.title.length > 5 && c.expl.length > 200 && c.rel.length > 20, `${c.id}: text`);
     assert.ok(c.runs.length >= 1, `${c.id}: runs`);
     const page_ = c.id.startsWith('T-fig4') || c.id === 'T-tab4-1' ? 'apf' : c.id === 'T-tab5-3' ? 'arm' : 'robot';
-    for (const href of c.runs) assert.match(href, new RegExp(`^\\./${page_}\\.html\\?scenario=[^&]+\\.json.*&run=1$`), c.id);
+    for (const href of c.runs) {
+      assert.match(href, new RegExp(`^\\./${page_}\\.html\\?scenario=[^&]+\\.json.*&run=1&exp=${c.id}&as=[^&]+$`), c.id);
+    }
   }
   // L-tab2 offers all eight runs of sims 5–8.
   assert.equal(cards.find((c) => c.id === 'L-tab2').runs.length, 8);
@@ -128,11 +130,16 @@ test('gallery → robot page: T-fig3-2 improved runs to the goal; S-fig12 and C-
   const m = await page.evaluate(() => window.planlabRobot.metrics());
   assert.equal(m.outcome, 'reached');
   assert.ok(m.min_clearance_m > 0, 'no contact');
+  // The note names the experiment and run and the relation to look for.
+  const note = await page.textContent('#gallery-note');
+  assert.match(note, /T-fig3-2 · improved/);
+  assert.match(note, /the paper claims: plain DWA ends stuck in the trap/);
   await screenshot(page, 'gallery-robot-run.png');
 
-  // The plain DWA run of the same card ends stuck in the trap ([T] Fig 3-2).
-  await page.goBack();
-  await page.waitForURL(/gallery\.html/);
+  // Back to the card by the note's link; the plain DWA run of the same
+  // card ends stuck in the trap ([T] Fig 3-2).
+  await page.click('#gallery-note a');
+  await page.waitForURL(/gallery\.html#exp-T-fig3-2$/);
   await page.waitForFunction(() => document.body.dataset.state === 'ready');
   await page.click('#exp-T-fig3-2 a.run[data-run="dwa"]');
   await page.waitForURL(/robot\.html/);

@@ -9,6 +9,7 @@ import init, { ApfHandle } from '../../pkg/planlab_wasm.js';
 import { applyRun, runParams } from '../shell/runlink';
 import { installShell } from '../shell/help';
 import { apfHelp } from '../shell/help-content';
+import { showGalleryNote } from '../shell/gallery-note';
 
 function el<T extends HTMLElement = HTMLElement>(id: string): T {
   const e = document.getElementById(id);
@@ -293,6 +294,7 @@ async function main(): Promise<void> {
 }
 
 installShell(apfHelp());
+showGalleryNote();
 
 main().catch((e) => {
   showError(messageOf(e));

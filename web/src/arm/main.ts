@@ -8,6 +8,7 @@
 import { applyRun, runParams } from '../shell/runlink';
 import { installShell } from '../shell/help';
 import { armHelp } from '../shell/help-content';
+import { showGalleryNote } from '../shell/gallery-note';
 import init, { ArmHandle, armChoices } from '../../pkg/planlab_wasm.js';
 import { ArmView, type Frame } from './view';
 import { DistancePlot } from './distplot';
@@ -347,6 +348,7 @@ async function main(): Promise<void> {
 }
 
 installShell(armHelp());
+showGalleryNote();
 
 main().catch((e) => {
   ui.body.dataset.state = 'error';

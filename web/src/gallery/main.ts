@@ -65,7 +65,7 @@ function card(e: GalleryEntry): HTMLElement {
   runs.append(h('span', 'gon', `Run on the ${PAGE_LABEL[e.page]} page:`));
   for (const r of e.runs) {
     const a = h('a', 'run', `▶ ${runLabel(r)}`);
-    a.href = runUrl(e.page, r);
+    a.href = runUrl(e.page, r, e.id);
     a.dataset.run = r.name;
     a.title = `Open ${r.preset} on the ${PAGE_LABEL[e.page]} page and run it` + (r.planner ? ` with ${r.planner}` : '') +
       (r.set.length ? ` (${r.set.map(([p, v]) => `${p}=${v}`).join(', ')})` : '');

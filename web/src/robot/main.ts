@@ -13,6 +13,7 @@ import { ParamPanel, type PlannerInfo } from './params';
 import { applyRun, runParams } from '../shell/runlink';
 import { installShell } from '../shell/help';
 import { robotHelp } from '../shell/help-content';
+import { showGalleryNote } from '../shell/gallery-note';
 import { Timeline } from './timeline';
 
 type Tool = 'goal' | 'mover' | 'remove';
@@ -1026,6 +1027,7 @@ async function boot(): Promise<void> {
 
 // Help overlay (planners and parameters from the wasm registry) and presentation mode.
 installShell(() => robotHelp([...infos.values()], ui.planner.value));
+showGalleryNote();
 
 boot().catch((e) => {
   ui.body.dataset.state = 'error';

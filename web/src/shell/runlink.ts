@@ -41,13 +41,18 @@ const PAGE_FILE: Record<GalleryEntry['page'], string> = {
   grid: 'index.html',
 };
 
-/** The link that opens `run` on `page` and starts it. */
-export function runUrl(page: GalleryEntry['page'], run: GalleryRun): string {
+/** The link that opens `run` on `page` and starts it; `exp` names the
+ *  gallery entry for the page's note (experiment, run, claimed relation). */
+export function runUrl(page: GalleryEntry['page'], run: GalleryRun, exp?: string): string {
   const q = new URLSearchParams();
   q.set('scenario', run.preset);
   if (run.planner) q.set('planner', run.planner);
   for (const [p, v] of run.set) q.append('set', `${p}=${v}`);
   q.set('run', '1');
+  if (exp) {
+    q.set('exp', exp);
+    q.set('as', run.name);
+  }
   return `./${PAGE_FILE[page]}?${q.toString()}`;
 }
 
