@@ -39,7 +39,7 @@ pub mod sim;
 
 pub use apf::ApfHandle;
 pub use arm::{arm_choices, ArmHandle};
-pub use sim::{planners, SimHandle};
+pub use sim::{generated_grid_hash, planners, SimHandle};
 
 use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};
 use planlab_core::global::{GridPos, PlanGrid};

@@ -23,6 +23,9 @@ use wasm_bindgen::prelude::*;
 
 use crate::{files_reader, MapHandle};
 
+mod edit;
+pub use edit::generated_grid_hash;
+
 /// What [`SimHandle::from_map`] reads besides the map: the simulation
 /// sections of a scenario, with start and goal in world metres.
 #[derive(Debug, Clone, Deserialize)]

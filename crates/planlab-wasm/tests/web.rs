@@ -492,4 +492,50 @@ fn apf_handle_runs_the_3d_table_4_1_scene_in_side_view() {
     h.set_goal(0.6, 0.9).unwrap();
     assert_eq!(h.endpoints()[2..], [0.6, 0.9]);
     assert_eq!(h.outcome(), "running");
+
+fn map_edits_generate_and_undo_snapshots() {
+    use planlab_wasm::{generated_grid_hash, SimHandle};
+    let mut sim = SimHandle::from_scenario(&room_json("pursuit", ""), None).unwrap();
+    sim.step(3);
+    let before = sim.grid_hash();
+    let (state, cells) = (sim.edit_state().unwrap(), sim.map().cells());
+    // A disc in the middle: cells change, the episode restarts at t = 0.
+    let n = sim
+        .edit_map(r#"{"op":"disc","centre":[2.0,1.0],"radius":0.3,"cell":"occupied"}"#)
+        .unwrap();
+    assert_eq!(n, 4, "the four cells around the centre");
+    assert_eq!(sim.steps(), 0.0);
+    assert_ne!(sim.grid_hash(), before);
+    // A wall over the start is refused with the core's message; nothing changes.
+    let edited = sim.grid_hash();
+    let e = message(
+        sim.edit_map(r#"{"op":"rect","a":[0.2,0.6],"b":[0.8,1.4],"cell":"occupied"}"#)
+            .unwrap_err(),
+    );
+    assert!(
+        e.contains("starts in collision") && e.contains("wall"),
+        "{e}"
+    );
+    assert_eq!(sim.grid_hash(), edited);
+    // Undo: the snapshot restores the map exactly.
+    sim.restore_edit(&state, &cells).unwrap();
+    assert_eq!(sim.grid_hash(), before);
+    // Start with a heading.
+    sim.set_start(1.0, 1.0, 0.5).unwrap();
+    assert_eq!(sim.start(), vec![1.0, 1.0, 0.5]);
+    // Generated maps: same settings, same hash (the CLI's too, see e2e).
+    let settings = r#"{"kind":"maze","seed":7,"width_m":8,"height_m":6}"#;
+    let h = sim.generate_map(settings).unwrap();
+    assert_eq!(h, sim.grid_hash());
+    assert_eq!(h, generated_grid_hash(settings).unwrap());
+    assert_ne!(
+        h,
+        generated_grid_hash(r#"{"kind":"maze","seed":8,"width_m":8,"height_m":6}"#).unwrap()
+    );
+    let e = message(
+        sim.generate_map(r#"{"kind":"random","density":2}"#)
+            .unwrap_err(),
+    );
+    assert!(e.contains("density"), "{e}");
+    assert_eq!(sim.grid_hash(), h);
 }
