@@ -492,7 +492,9 @@ fn apf_handle_runs_the_3d_table_4_1_scene_in_side_view() {
     h.set_goal(0.6, 0.9).unwrap();
     assert_eq!(h.endpoints()[2..], [0.6, 0.9]);
     assert_eq!(h.outcome(), "running");
+}
 
+#[wasm_bindgen_test]
 fn map_edits_generate_and_undo_snapshots() {
     use planlab_wasm::{generated_grid_hash, SimHandle};
     let mut sim = SimHandle::from_scenario(&room_json("pursuit", ""), None).unwrap();
