@@ -18,7 +18,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { REPO, startSession, screenshot, errorText } from './harness.mjs';
+import { REPO, SCREENSHOTS, startSession, screenshot, errorText } from './harness.mjs';
 
 let session;
 before(async () => {
@@ -169,6 +169,49 @@ test('gallery → robot page: T-fig3-2 improved runs to the goal; S-fig12 and C-
   const choice = await page.evaluate(() => window.planlabRobot.plannerChoice());
   assert.equal(choice.name, 'traditional-dwa');
   assert.ok(Object.keys(choice.config).length > 0, 'the preset config is kept');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('gallery → compare page: a card whose runs differ only by planner compares them; T-fig3-2 dwa stuck, improved reached', async () => {
+  const { page, problems } = await newPage();
+  await page.setViewportSize({ width: 1440, height: 900 });
+  await openGallery(page);
+  const links = await page.$$eval('.gcard', (cs) =>
+    Object.fromEntries(cs.map((c) => [c.dataset.id, [...c.querySelectorAll('a.compare')].map((a) => a.getAttribute('href'))])),
+  );
+  const planners = (href) => new URLSearchParams(href.split('?')[1]).get('planners');
+  assert.deepEqual(links['T-fig3-2'].map(planners), ['dwa,fusion-53,improved-dwa']);
+  // S-fig12: the no-movers run has its own edit (movers=[]), so only the two that share none are compared.
+  assert.deepEqual(links['S-fig12'].map(planners), ['safe-dual-dwa,preliminary-fusion']);
+  assert.deepEqual(new URLSearchParams(links['S-fig12'][0].split('?')[1]).getAll('set'), []);
+  // One run, or runs that differ by edits (C-tab3 renames the planner with `set`): no comparison.
+  for (const id of ['S-fig6', 'C-tab3', 'L-sim4', 'T-fig4-6', 'T-tab5-3']) assert.deepEqual(links[id], [], id);
+  // L-tab2 compares per preset: four links, lidar planner vs its baseline.
+  assert.deepEqual(links['L-tab2'].map((h) => new URLSearchParams(h.split('?')[1]).get('scenario')), [
+    'L-sim5.json',
+    'L-sim6.json',
+    'L-sim7.json',
+    'L-sim8.json',
+  ]);
+  for (const h of links['L-tab2']) assert.equal(planners(h).split(',').length, 2, h);
+
+  await page.$eval('#exp-T-fig3-2', (c) => c.scrollIntoView());
+  await (await page.$('#exp-T-fig3-2')).screenshot({ path: path.join(SCREENSHOTS, 'gallery-card-compare.png') });
+  await page.click('#exp-T-fig3-2 a.compare');
+  await page.waitForURL(/compare\.html/);
+  await page.waitForFunction(() => document.body.dataset.playing === 'true', null, { timeout: 30_000 });
+  assert.equal(await errorText(page), null);
+  assert.equal(await page.inputValue('#preset'), 'T-fig3-2.json');
+  await page.selectOption('#speed', '16');
+  await page.waitForFunction(() => document.body.dataset.done === 'true', null, { timeout: 180_000 });
+  const outcomes = await page.$$eval('#metrics-table tr[data-metric="outcome"] td[data-planner]', (tds) =>
+    Object.fromEntries(tds.map((td) => [td.dataset.planner, td.textContent.trim()])),
+  );
+  assert.equal(outcomes['improved-dwa'], 'reached', JSON.stringify(outcomes));
+  assert.equal(outcomes.dwa, 'stuck', JSON.stringify(outcomes));
+  assert.ok('fusion-53' in outcomes, 'the third run of the card is compared too');
+  await screenshot(page, 'gallery-compare.png');
   assert.deepEqual(problems, []);
   await page.close();
 });

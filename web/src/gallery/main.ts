@@ -7,6 +7,8 @@
 import entries from 'virtual:gallery';
 import { runUrl, type GalleryEntry, type GalleryRun } from '../shell/runlink';
 import { installShell } from '../shell/help';
+import presets from 'virtual:robot-presets';
+import { compareGroups, compareUrl } from './compare-links';
 
 function el<T extends HTMLElement = HTMLElement>(id: string): T {
   const e = document.getElementById(id);
@@ -69,6 +71,17 @@ function card(e: GalleryEntry): HTMLElement {
     a.dataset.run = r.name;
     a.title = `Open ${r.preset} on the ${PAGE_LABEL[e.page]} page and run it` + (r.planner ? ` with ${r.planner}` : '') +
       (r.set.length ? ` (${r.set.map(([p, v]) => `${p}=${v}`).join(', ')})` : '');
+    runs.append(a);
+  }
+  const own = (f: string) => presets.find((p) => p.file === f)?.planner;
+  const groups = compareGroups(e, own);
+  for (const g of groups) {
+    const names = g.runs.map((r) => r.name);
+    const a = h('a', 'compare', groups.length === 1 ? '⇄ Compare these runs' : `⇄ Compare ${names.join(' vs ')}`);
+    a.href = compareUrl(g);
+    a.dataset.runs = names.join(',');
+    a.title = `Open ${g.preset} on the compare page and run ${g.planners.join(', ')} side by side` +
+      (g.set.length ? ` (${g.set.map(([p, v]) => `${p}=${v}`).join(', ')})` : '');
     runs.append(a);
   }
   body.append(runs);
