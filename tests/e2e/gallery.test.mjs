@@ -216,6 +216,50 @@ test('gallery → compare page: a card whose runs differ only by planner compare
   await page.close();
 });
 
+test('gallery → grid page: S-fig6 as a pure global plan (safe A*, key points, feature nodes); bad URL values show the banner', async () => {
+  const { page, problems } = await newPage();
+  await page.setViewportSize({ width: 1440, height: 900 });
+  await openGallery(page);
+  await page.click('#exp-S-fig6 a.alt');
+  await page.waitForURL(/index\.html\?scenario=S-fig6\.json/);
+  await page.waitForFunction(() => document.body.dataset.state === 'ok' || document.body.dataset.state === 'error', null, {
+    timeout: 30_000,
+  });
+  assert.equal(await errorText(page), null);
+  assert.equal(await page.inputValue('#algorithm'), 'safe-astar');
+  assert.equal(await page.isChecked('#keypoints'), true);
+  assert.equal(await page.isChecked('#bottom-up'), true);
+  assert.equal(await page.$eval('#preset', (s) => s.selectedOptions[0].textContent), 'S-fig6.json (linked)');
+  assert.equal(await page.textContent('#map-size'), '480 × 320');
+  // Start and goal are the scenario's (col,row).
+  const sc = JSON.parse(fs.readFileSync(path.join(REPO, 'assets/scenarios/S-fig6.json'), 'utf8'));
+  assert.equal(await page.getAttribute('#map-canvas', 'data-start'), `${sc.start.col},${sc.start.row}`);
+  assert.equal(await page.getAttribute('#map-canvas', 'data-goal'), `${sc.goal.col},${sc.goal.row}`);
+  const pathLen = Number(await page.getAttribute('#map-canvas', 'data-path-len'));
+  assert.ok(pathLen > 100, `safe A* path of ${pathLen} cells`);
+  const kp = Number(await page.getAttribute('#metric-keypoints', 'data-value'));
+  assert.ok(kp > 0 && kp < pathLen, `${kp} key points of ${pathLen} nodes`);
+  // The Bottom-Up feature nodes: at most 5 % of the path nodes, as the S-fig6 relation asks.
+  const bu = Number((await page.textContent('#metric-keypoints')).match(/(\d+) BU/)?.[1]);
+  assert.ok(bu >= 2 && bu <= 0.05 * pathLen, `${bu} feature nodes of ${pathLen}`);
+  await screenshot(page, 'gallery-grid-sfig6.png');
+  // Unknown values in the URL: the banner names them, the scenario still opens.
+  await page.goto(`${session.base}index.html?scenario=S-fig6.json&algorithm=teleport&inflate=NaN`);
+  await page.waitForFunction(() => Number(document.body.dataset.planSeq) > 0, null, { timeout: 30_000 });
+  await page.waitForSelector('#error:not([hidden])');
+  assert.match(await errorText(page), /algorithm “teleport”.*inflate “NaN”/);
+  assert.equal(await page.textContent('#map-size'), '480 × 320');
+  await page.goto(`${session.base}index.html?scenario=..%2Fsecret.json`);
+  await page.waitForSelector('#error:not([hidden])');
+  assert.match(await errorText(page), /not a scenario file name/);
+  await page.goto(`${session.base}index.html?scenario=nope.json`);
+  await page.waitForSelector('#error:not([hidden])');
+  // (planlab serve answers 404; vite preview its index.html, which is no JSON)
+  assert.match(await errorText(page), /^nope\.json: (cannot load|scenario JSON error)/);
+  assert.deepEqual(problems.filter((p) => !/404|Not Found/i.test(p)), []);
+  await page.close();
+});
+
 test('gallery → APF page and arm page', async () => {
   const { page, problems } = await newPage();
   await openGallery(page);

@@ -14,6 +14,8 @@ import init, {
 import { MapView, type Cell } from './render';
 import { installShell } from './shell/help';
 import { gridHelp } from './shell/help-content';
+import { gridUrl } from './grid-url';
+import { loadPresetFiles } from './shell/scenario-files';
 
 type Tool = 'start' | 'goal' | 'wall' | 'erase';
 
@@ -396,10 +398,15 @@ async function loadPreset(key: string): Promise<void> {
  * Installs a scenario: its map (inline, or a referenced file looked up in
  * `files` by name), endpoints and planner options.
  */
-function installScenario(sc: ScenarioHandle, name: string, files: Record<string, Uint8Array>): void {
+function installScenario(
+  sc: ScenarioHandle,
+  name: string,
+  files: Record<string, Uint8Array>,
+  extra: Record<string, unknown> = {},
+): void {
   try {
     const m = sc.loadMap(files);
-    applyOptions({ ...defaults, ...(sc.plannerOptions() as Record<string, unknown>) });
+    applyOptions({ ...defaults, ...(sc.plannerOptions() as Record<string, unknown>), ...extra });
     const s = sc.start();
     const g = sc.goal();
     installMap(m, sc.name ? `${sc.name} (${name})` : name, [s[0], s[1]], [g[0], g[1]]);
@@ -652,7 +659,27 @@ async function boot(): Promise<void> {
   applyOptions(defaults);
   syncControls();
   ui.hint.textContent = hintForTool();
-  await loadPreset(ui.preset.value || 'arena');
+  // `?scenario=FILE` (+ planner options): a site scenario as a global plan.
+  const url = gridUrl();
+  if (url.scenario) {
+    try {
+      const { text, files } = await loadPresetFiles(url.scenario);
+      installScenario(ScenarioHandle.fromJson(text), url.scenario, files, url.options);
+      const linked = ui.preset.querySelector<HTMLOptionElement>('option[value=""]');
+      if (linked) linked.textContent = `${url.scenario} (linked)`;
+      ui.preset.value = '';
+    } catch (e) {
+      url.problems.unshift(`${url.scenario}: ${messageOf(e)}`);
+      await loadPreset(ui.preset.value || 'arena');
+    }
+  } else {
+    await loadPreset(ui.preset.value || 'arena');
+    if (Object.keys(url.options).length) {
+      applyOptions({ ...readOptions(), ...url.options });
+      replan();
+    }
+  }
+  if (url.problems.length) showError(url.problems.join(' · '));
 }
 
 installShell(gridHelp());

@@ -84,6 +84,12 @@ function card(e: GalleryEntry): HTMLElement {
       (g.set.length ? ` (${g.set.map(([p, v]) => `${p}=${v}`).join(', ')})` : '');
     runs.append(a);
   }
+  for (const l of e.also ?? []) {
+    const a = h('a', 'alt', `↗ ${l.label}`);
+    a.href = l.href;
+    if (l.title) a.title = l.title;
+    runs.append(a);
+  }
   body.append(runs);
   c.append(body);
   void drawThumb(thumb, e).catch(() => {

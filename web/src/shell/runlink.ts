@@ -24,6 +24,8 @@ export interface GalleryEntry {
   relation: string;
   explanation: string;
   runs: GalleryRun[];
+  /** Secondary links of the card (another page's view of the experiment). */
+  also?: { label: string; href: string; title?: string }[];
 }
 
 /** The run parameters of a page's URL. */
