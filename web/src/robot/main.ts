@@ -15,8 +15,9 @@ import { installShell } from '../shell/help';
 import { robotHelp } from '../shell/help-content';
 import { showGalleryNote } from '../shell/gallery-note';
 import { Timeline } from './timeline';
+import { Editor, type EditTool } from './edit';
 
-type Tool = 'goal' | 'mover' | 'remove';
+type Tool = 'goal' | 'mover' | 'remove' | EditTool;
 
 /** A mover the user placed, kept so that Reset puts it back (at t = 0). */
 interface Placement {
@@ -193,6 +194,16 @@ const timeline = new Timeline(el('timeline'), {
   branch: (next) => install(next),
   refreshLive: () => pull(),
   speed: () => speed,
+});
+
+// Map editing, start, mover paths, generators, undo/redo (edit.ts).
+const editor = new Editor({
+  sim: () => sim,
+  view,
+  refresh: () => sim && install(sim, true),
+  showError,
+  clearError,
+  setTool: (t) => setTool(t as Tool),
 });
 
 const params = new ParamPanel(ui.params, (config) => {
@@ -484,9 +495,10 @@ function frame(now: number): void {
   }
 }
 
-function install(next: SimHandle): void {
+function install(next: SimHandle, keepView = false): void {
   setPlaying(false);
-  sim?.free();
+  // An edit changes the handle in place: the same object comes back.
+  if (sim !== next) sim?.free();
   sim = next;
   dt = sim.dt;
   const map = sim.map();
@@ -500,7 +512,7 @@ function install(next: SimHandle): void {
       originX: origin[0],
       originY: origin[1],
       cells: map.cells(),
-    });
+    }, keepView);
     ui.mapSize.textContent = `${map.width} × ${map.height} · ${map.resolution} m`;
   } finally {
     map.free();
@@ -525,6 +537,7 @@ function install(next: SimHandle): void {
   ui.body.dataset.state = 'ready';
   ui.body.dataset.loadSeq = String(Number(ui.body.dataset.loadSeq ?? 0) + 1);
   ui.hint.textContent = hintForTool();
+  editor.installed();
 }
 
 /** Loads scenario JSON as a fresh episode (edits forgotten); `files` holds
@@ -538,6 +551,7 @@ function loadScenario(text: string, label: string, files: Record<string, Uint8Ar
   plannerEdit = null;
   placed = [];
   removed = new Set();
+  editor.reset();
   clearError();
   try {
     const s = JSON.parse(text) as { name?: string; description?: string };
@@ -552,6 +566,13 @@ function loadScenario(text: string, label: string, files: Record<string, Uint8Ar
 /** Restarts from the scenario with the goal, movers and planner edits. */
 function resetEpisode(): void {
   if (!scenarioText) return;
+  // After map edits the SimHandle holds the edited scenario: restart it.
+  if (editor.dirty && sim) {
+    sim.restart();
+    install(sim, true);
+    clearError();
+    return;
+  }
   const next = SimHandle.fromScenario(scenarioText, scenarioFiles);
   const problems: string[] = [];
   const attempt = (what: string, f: () => void) => {
@@ -618,8 +639,9 @@ function schedulePlanner(): void {
 // ------------------------------------------------------------------ movers
 function removeMover(id: number): void {
   if (!sim) return;
-  const keep = (JSON.parse(sim.moversJson()) as MoverJson[]).filter((m) => m.id !== id);
-  sim.setMovers(JSON.stringify(keep));
+  const s = sim;
+  const keep = (JSON.parse(s.moversJson()) as MoverJson[]).filter((m) => m.id !== id);
+  editor.recorded(`removing mover ${id}`, () => s.setMovers(JSON.stringify(keep)), false);
   const before = placed.length;
   placed = placed.filter((p) => p.id !== id);
   if (placed.length === before) removed.add(id);
@@ -649,7 +671,8 @@ function placeMover(x: number, y: number, vx: number, vy: number): void {
     vy,
     span: num(ui.moverSpan),
   };
-  p.id = sim.placeMover(p.model, p.radius, p.x, p.y, p.vx, p.vy, p.span);
+  const s = sim;
+  editor.recorded('mover', () => (p.id = s.placeMover(p.model, p.radius, p.x, p.y, p.vx, p.vy, p.span)), false);
   placed.push(p);
   clearError();
   pull();
@@ -683,6 +706,8 @@ function hintForTool(): string {
       return 'Press where a mover should be and drag toward where it will be in 1 s.';
     case 'remove':
       return 'Click a mover to remove it.';
+    default:
+      return ''; // edit.ts's tools set their own hint
   }
 }
 
@@ -700,7 +725,8 @@ function canvasPoint(ev: MouseEvent): [number, number] {
 
 function moveGoal(x: number, y: number): void {
   if (!sim) return;
-  sim.setGoal(x, y);
+  const s = sim;
+  editor.recorded('goal', () => s.setGoal(x, y), false);
   goalEdit = [x, y];
   clearError();
   pull();
@@ -722,7 +748,7 @@ ui.canvas.addEventListener(
     if (ev.button !== 0) return;
     const [cx, cy] = canvasPoint(ev);
     const [x, y] = view.toWorld(cx, cy);
-    if (ev.shiftKey || tool === 'goal') {
+    if ((ev.shiftKey && !['rect', 'disc', 'wall', 'erase'].includes(tool)) || tool === 'goal') {
       moveGoal(x, y);
     } else if (tool === 'mover') {
       if (!view.onMap(x, y)) return;
@@ -858,7 +884,8 @@ ui.clearMovers.addEventListener(
       if (!placed.some((p) => p.id === m.id)) removed.add(m.id);
     }
     placed = [];
-    sim.setMovers('[]');
+    const s = sim;
+    editor.recorded('removing all movers', () => s.setMovers('[]'), false);
     pull();
     refreshSlow();
     view.request();

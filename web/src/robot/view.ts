@@ -212,6 +212,8 @@ export class RobotView {
   scene: Scene = emptyScene();
   /** Called after each paint with its duration in ms (for the frame meter). */
   onPaint: ((ms: number) => void) | null = null;
+  /** Extra layer painted last in screen space (CSS px): edit previews. */
+  overlay: ((ctx: CanvasRenderingContext2D) => void) | null = null;
 
   constructor(canvas: HTMLCanvasElement) {
     this.canvas = canvas;
@@ -222,8 +224,10 @@ export class RobotView {
     this.resize();
   }
 
-  /** A new map: paint its image and fit it into the view. */
-  setMap(m: MapInfo): void {
+  /** A new map: paint its image and fit it into the view (`keepView`: keep
+   *  the zoom and pan when the size is unchanged, after an edit). */
+  setMap(m: MapInfo, keepView = false): void {
+    const same = !!this.map && this.map.width === m.width && this.map.height === m.height && this.map.resolution === m.resolution;
     this.map = m;
     const [c, ctx] = offscreen(m.width, m.height);
     const img = ctx.createImageData(m.width, m.height);
@@ -242,7 +246,8 @@ export class RobotView {
     this.fog = null;
     this.fogCount = -1;
     this.known = knownBox(m);
-    this.fit();
+    if (keepView && same) this.request();
+    else this.fit();
   }
 
   private get mapW(): number {
@@ -423,6 +428,7 @@ export class RobotView {
     this.drawMovers();
     this.drawGoals();
     this.drawPreview();
+    this.overlay?.(ctx);
   }
 
   /** The fog overlay: unseen cells shaded (rebuilt when the count changes). */
