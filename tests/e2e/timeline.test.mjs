@@ -132,6 +132,9 @@ test('timeline: scrub with slider and keys, step, plots follow, click in a plot,
   await waitDetail(page);
   assert.ok((await robot(page, 'rollouts')) > 10, 'the fan of that step');
   await assertFrameMatches(page, rows, k);
+  // How long re-simulating to that frame from the start took (a backward
+  // move costs this; a forward one only the steps in between).
+  console.log(`re-simulating ${k} steps of the DWA demo for the fan: ${(await tl(page, 'scratchMs')).toFixed(1)} ms`);
   await plotCursorsAt(page, k);
   await screenshot(page, 'timeline-01-scrubbed.png');
 

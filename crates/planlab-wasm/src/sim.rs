@@ -81,6 +81,8 @@ pub struct SimHandle {
     /// Cells the robot's scans have swept (LiDAR planners only).
     seen: SeenCells,
     /// The setup and the edits since, for exact replays (the timeline).
+    /// Whatever replaces `ep` with another episode must start a new
+    /// recording ([`SimHandle::wrap`]).
     rec: Recording,
     /// Which run this is (shared by its replays and branches).
     run: u64,
@@ -711,7 +713,21 @@ impl SimHandle {
             run: self.run,
         };
         self.advance_replay_of(&mut h, steps.max(0.0) as u64)?;
+        h.check_against(self)?;
         Ok(h)
+    }
+
+    /// A replay's last row must be this run's row: otherwise the
+    /// recording missed something and the timeline would show a
+    /// different run.
+    fn check_against(&self, run: &SimHandle) -> Result<(), JsError> {
+        let k = self.ep.steps() as usize;
+        if run.ep.trace().steps.get(k) != self.ep.trace().steps.last() {
+            return Err(JsError::new(&format!(
+                "the replay of this run differs from it at step {k}: the recording is incomplete"
+            )));
+        }
+        Ok(())
     }
 
     /// Takes `scratch` (from [`SimHandle::replay_to`] of this run) on to
@@ -728,6 +744,7 @@ impl SimHandle {
             return Ok(false);
         }
         self.advance_replay_of(scratch, steps)?;
+        scratch.check_against(self)?;
         Ok(true)
     }
 

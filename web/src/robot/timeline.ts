@@ -143,7 +143,10 @@ export class Timeline {
     });
     this.slider.addEventListener('input', () => this.seek(Number(this.slider.value), true));
     window.addEventListener('keydown', (ev) => this.onKey(ev));
-    host.plots.onScrub = (row) => this.seek(row, true);
+    host.plots.onScrub = (row) => {
+      this.stopPlayback();
+      this.seek(row, true);
+    };
     // For the e2e tests and the curious: what is drawn and plotted.
     (window as unknown as { planlabTimeline: unknown }).planlabTimeline = {
       frame: () => this.current,
