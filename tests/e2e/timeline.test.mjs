@@ -276,6 +276,15 @@ test('a vehicle preset (C-tab5) plots wheel loads and tracking error; hover read
   const c = await tl(page, 'plotCursors');
   const rowsAt = new Set(Object.values(c));
   assert.equal(rowsAt.size, 1, `synced cursors ${JSON.stringify(c)}`);
+  // Back to frame 30 with the keys: that step's fan and the plots' cursors.
+  await page.mouse.move(10, 10);
+  await page.focus('#tl-slider');
+  await page.keyboard.press('Home');
+  for (let i = 0; i < 3; i++) await page.keyboard.press('Shift+ArrowRight');
+  await waitDetail(page);
+  assert.equal(Number((await tlData(page)).frame), 30);
+  assert.ok((await robot(page, 'rollouts')) > 10, 'the fan of frame 30');
+  await plotCursorsAt(page, 30);
   await screenshot(page, 'timeline-03-wheel-loads.png');
   assert.equal(await errorText(page), null);
   assert.deepEqual(problems, []);
