@@ -748,6 +748,14 @@ impl SimHandle {
         Ok(true)
     }
 
+    /// Which run this is: a new number when the handle is built or an
+    /// edit restarts it at t = 0 (map, start, movers, restart); replays
+    /// and branches keep their run's.
+    #[wasm_bindgen(getter, js_name = runId)]
+    pub fn run_id(&self) -> f64 {
+        self.run as f64
+    }
+
     /// Step counts at which live edits were made, in order.
     #[wasm_bindgen(js_name = editSteps)]
     pub fn edit_steps(&self) -> Vec<f64> {

@@ -440,6 +440,16 @@ fn timeline_replays_an_edited_run_exactly_and_reads_rows() {
     assert_ne!(branch.trace_hash(), sim.trace_hash());
     let b2 = branch.replay_to(branch.steps()).unwrap();
     assert_eq!(b2.trace_hash(), branch.trace_hash());
+    assert_eq!(b2.run_id(), sim.run_id());
+    // A restart at t = 0 (an editing tool) is a new run with a new
+    // recording: its replay is the restarted episode.
+    let mut edited = sim.replay_to(20.0).unwrap();
+    edited.restart().unwrap();
+    assert_ne!(edited.run_id(), sim.run_id());
+    assert!(edited.edit_steps().is_empty());
+    edited.step(5);
+    let r = edited.replay_to(5.0).unwrap();
+    assert_eq!(r.trace_hash(), edited.trace_hash());
     // Plot series: no global path for plain DWA (no tracking error), no
     // vehicle (NaN loads).
     assert!(!sim.has_vehicle());

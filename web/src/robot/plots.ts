@@ -276,6 +276,12 @@ export class SeriesPlots {
   /** Fetches the rows since the last pull (series, loads, tracking error;
    *  the tracking error again from row 0 when the global path changed). */
   pull(sim: SimHandle, globalPath: Float64Array): void {
+    // An edit that restarted the run in place: start over.
+    if (sim.traceLen < this.n) {
+      this.n = 0;
+      this.trackN = 0;
+      this.dirty = true;
+    }
     const rows = sim.series(this.n);
     const m = Math.floor(rows.length / 5);
     if (m > 0) {

@@ -94,6 +94,7 @@ export class Timeline {
   private scratch: SimHandle | null = null;
   private settle = 0;
   private lastSim: SimHandle | null = null;
+  private lastRun = -1;
   private edits = 0;
   /** Mover radii by id, as seen live (removed movers keep theirs). */
   private radii = new Map<number, number>();
@@ -343,8 +344,11 @@ export class Timeline {
   afterPull(): void {
     const sim = this.host.sim();
     if (!sim) return;
-    if (sim !== this.lastSim) {
+    // A new run: another handle (load, reset, branch) or the same one
+    // restarted in place by an editing tool.
+    if (sim !== this.lastSim || sim.runId !== this.lastRun) {
       this.lastSim = sim;
+      this.lastRun = sim.runId;
       this.stopPlayback();
       this.dropScratch();
       this.frame = null;
