@@ -291,6 +291,31 @@ test('a vehicle preset (C-tab5) plots wheel loads and tracking error; hover read
   await page.close();
 });
 
+test('a LiDAR preset: a past frame shows the scan taken there, from the re-simulated step', async () => {
+  const { page, problems } = await openRobot('L-sim1.json');
+  await page.selectOption('#speed', '8');
+  await page.click('#play');
+  await page.waitForFunction(() => Number(document.body.dataset.time) >= 5, null, { timeout: 60_000 });
+  await page.click('#play');
+  const live = await tl(page, 'drawnLidar');
+  assert.ok(live && live.rays > 10, 'live scan drawn');
+  const rows = await traceRows(page);
+  await page.click('#tl-start');
+  for (let i = 0; i < 2; i++) await page.click('#tl-fwd', { modifiers: ['Shift'] });
+  await assertFrameMatches(page, rows, 20);
+  await waitDetail(page);
+  const past = await tl(page, 'drawnLidar');
+  assert.ok(past && past.rays === live.rays, 'the scan of frame 20');
+  // The scan was taken from where the robot stood before step 20 moved it.
+  const d = Math.hypot(past.sensor[0] - rows[19].x, past.sensor[1] - rows[19].y);
+  assert.ok(d < 1e-4, `sensor at ${past.sensor}, robot at frame 19 (${rows[19].x}, ${rows[19].y})`);
+  assert.ok(past.seen > 0 && past.seen < live.seen, `fog of frame 20: ${past.seen} cells seen of ${live.seen}`);
+  await screenshot(page, 'timeline-05-lidar-past.png');
+  assert.equal(await errorText(page), null);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 test('arm page: the distance to the hand is plotted per sample with hover values', async () => {
   const page = await session.context.newPage();
   const problems = [];

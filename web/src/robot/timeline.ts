@@ -158,6 +158,10 @@ export class Timeline {
       drawnMovers: () => Array.from(host.view.scene.movers),
       drawnGoal: () => [...host.view.scene.currentGoal, host.view.scene.goalKind],
       trailLen: () => host.view.scene.trailLen,
+      drawnLidar: () => {
+        const l = host.view.scene.lidar;
+        return l ? { rays: l.rays.length / 2 - 1, sensor: [l.rays[0], l.rays[1]], seen: host.view.scene.seenCount } : null;
+      },
       plotCursors: () => host.plots.cursorRows(),
       plotsShown: () => host.plots.shownKeys,
       plotSummary: () => host.plots.summary(),
