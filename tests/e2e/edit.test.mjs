@@ -175,12 +175,12 @@ test('start with a heading and a waypoint mover path built by clicks', async () 
   const st = await edit(page, 'start');
   assert.ok(Math.abs(st[0] - 2.0) < 0.05 && Math.abs(st[1] - 2.0) < 0.05, `start ${st}`);
   assert.ok(Math.abs(st[2] - Math.PI / 4) < 0.1, `heading ${st[2]}`);
-  // Start inside the T obstacle: refused.
-  await clickWorld(page, [6.5, 6.9]);
-  if (await edit(page, 'occupied', 6.5, 6.9)) {
-    const err = await errorText(page);
-    assert.ok(err && /Start refused/.test(err), err ?? 'no error');
-  }
+  // A start in the map's border wall: refused, the start stays.
+  assert.equal(await edit(page, 'occupied', 0.05, 4.0), true);
+  await clickWorld(page, [0.05, 4.0]);
+  const err = await errorText(page);
+  assert.ok(err && /Start refused/.test(err) && /starts in collision/.test(err), err ?? 'no error');
+  assert.deepEqual(await edit(page, 'start'), st);
   await key(page, 'l');
   await page.fill('#path-speed', '0.5');
   await page.fill('#path-radius', '0.3');

@@ -422,6 +422,9 @@ export class Editor {
       throw new Error(`Generate: ${messageOf(e)}`);
     }
     document.body.dataset.generatedHash = hash;
+    const d = el('scenario-description');
+    d.textContent = `Generated ${settings.kind} map, seed ${settings.seed} (grid hash ${hash}); the same as planlab generate ${settings.kind} --width ${settings.width_m} --height ${settings.height_m} --resolution ${settings.resolution} --seed ${settings.seed}${settings.kind === 'random' ? ` --density ${settings.density}` : ` --corridor ${settings.corridor_m}`}.`;
+    d.title = d.textContent;
     this.host.view.fit();
   }
 
