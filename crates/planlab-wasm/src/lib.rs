@@ -35,6 +35,7 @@
 pub mod apf;
 pub mod arm;
 pub mod batch;
+pub mod files;
 pub mod sim;
 
 pub use apf::ApfHandle;

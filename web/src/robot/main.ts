@@ -16,6 +16,7 @@ import { robotHelp } from '../shell/help-content';
 import { showGalleryNote } from '../shell/gallery-note';
 import { Timeline } from './timeline';
 import { Editor, type EditTool } from './edit';
+import { FilesMenu } from './files';
 
 type Tool = 'goal' | 'mover' | 'remove' | EditTool;
 
@@ -561,6 +562,7 @@ function loadScenario(text: string, label: string, files: Record<string, Uint8Ar
     ui.description.textContent = label;
   }
   install(next);
+  filesMenu.noteLoaded(text, label);
 }
 
 /** Restarts from the scenario with the goal, movers and planner edits. */
@@ -942,27 +944,15 @@ ui.preset.addEventListener(
     if (ui.preset.value) await loadPreset(ui.preset.value);
   }),
 );
-ui.file.addEventListener(
-  'change',
-  guard(async () => {
-    const picked = Array.from(ui.file.files ?? []);
-    ui.file.value = '';
-    const f = picked.find((x) => x.name.toLowerCase().endsWith('.json'));
-    if (!f) {
-      if (picked.length) throw new Error(`Open a scenario .json (with the map files it refers to), not ${picked.map((x) => x.name).join(', ')}.`);
-      return;
-    }
-    // The map files it refers to may be among the others.
-    const files: Record<string, Uint8Array> = {};
-    for (const x of picked) if (x !== f) files[x.name] = new Uint8Array(await x.arrayBuffer());
-    try {
-      loadScenario(await f.text(), f.name, files);
-    } catch (e) {
-      throw new Error(`${f.name}: ${messageOf(e)}`);
-    }
-    ui.preset.value = '';
-  }),
-);
+// Open (file button, drop on the canvas), save, share: files.ts.
+const filesMenu = new FilesMenu({
+  sim: () => sim,
+  load: (text, label, files) => loadScenario(text, label, files),
+  scene: () => view.scene,
+  canvas: ui.canvas,
+  showError,
+  clearError,
+});
 
 window.addEventListener('keydown', (ev) => {
   const t = ev.target as HTMLElement | null;
@@ -1048,8 +1038,16 @@ async function boot(): Promise<void> {
   const first = q && presets.some((p) => p.file === q) ? q : presets[0]?.file;
   if (!first) throw new Error('no robot presets (assets/scenarios/*.json with a local_planner)');
   ui.preset.value = first;
+  // A share link (#s=…) opens its scenario instead of the first preset.
+  let shared: unknown = null;
+  try {
+    if (await filesMenu.loadFromHash()) return;
+  } catch (e) {
+    shared = e;
+  }
   await loadPreset(first, first === q ? (t) => applyRun(t, link.planner, link.set) : undefined);
   if (first === q && link.run) ui.play.click();
+  if (shared !== null) showError(`Could not open the shared link: ${messageOf(shared)}`);
 }
 
 // Help overlay (planners and parameters from the wasm registry) and presentation mode.

@@ -137,6 +137,48 @@ impl EpisodeMetrics {
             temp_goal_switches: temp_goal_switches(trace),
         }
     }
+
+    /// The metrics as CSV: a `name,value,unit` header, then one row per
+    /// metric in the order of `planlab run`'s table, named by the JSON
+    /// field, values in full precision (an empty value where a metric does
+    /// not apply; the outcome as its name). What the page's "Metrics CSV"
+    /// saves.
+    pub fn to_csv(&self) -> String {
+        let num = |x: f64| format!("{x}");
+        let opt = |x: Option<f64>| x.map_or_else(String::new, num);
+        let rows: [(&str, String, &str); 13] = [
+            ("outcome", self.outcome.as_str().to_string(), ""),
+            ("time_s", num(self.time_s), "s"),
+            ("path_length_m", num(self.path_length_m), "m"),
+            ("min_clearance_m", num(self.min_clearance_m), "m"),
+            ("mean_clearance_m", num(self.mean_clearance_m), "m"),
+            ("total_turn_rad", num(self.total_turn_rad), "rad"),
+            ("max_turn_rad", num(self.max_turn_rad), "rad"),
+            ("speed_drops", self.speed_drops.to_string(), ""),
+            (
+                "temp_goal_switches",
+                self.temp_goal_switches.to_string(),
+                "",
+            ),
+            (
+                "mean_tracking_error_m",
+                opt(self.mean_tracking_error_m),
+                "m",
+            ),
+            ("max_tracking_error_m", opt(self.max_tracking_error_m), "m"),
+            (
+                "tracking_error_var_m2",
+                opt(self.tracking_error_var_m2),
+                "m^2",
+            ),
+            ("load_ok_share", opt(self.load_ok_share), "1"),
+        ];
+        let mut out = String::from("name,value,unit\n");
+        for (k, v, u) in rows {
+            out.push_str(&format!("{k},{v},{u}\n"));
+        }
+        out
+    }
 }
 
 /// Number of temporary-goal switches in `trace` (see the module doc).

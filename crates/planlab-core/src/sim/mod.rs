@@ -19,6 +19,7 @@
 //! give a bit-identical [`Trace`] natively and in WebAssembly.
 
 mod edit;
+mod export;
 mod live;
 mod replay;
 mod trace;
@@ -27,6 +28,7 @@ pub use edit::{
     generated_sim_config, is_start_collision, SetupEdit, GENERATED_MAX_TIME, GENERATED_STUCK_TIME,
 };
 pub use replay::{Edit, Recording};
+pub use export::{default_endpoints, ENDPOINT_MARGIN_M};
 pub use trace::{Trace, TraceStep, CSV_HEADER};
 
 use serde::{Deserialize, Serialize};
@@ -765,15 +767,37 @@ impl Episode {
     /// Moves the goal (the user dragged it): checked like the start goal,
     /// then the planner re-targets (it may replan and fail with
     /// [`LocalError::NoGlobalPath`], leaving the old goal in force). The
-    /// stuck timer restarts.
+    /// stuck timer restarts. Before the first step the planner is built
+    /// afresh instead, so the episode equals one set up with this goal.
     pub fn set_goal(&mut self, goal: [f64; 2]) -> Result<(), SimError> {
         check_goal(&self.map, goal)?;
         check_reachable(&self.map, [self.state.x, self.state.y], goal)?;
-        self.planner.set_goal(&self.map, &self.state, goal)?;
+        if self.steps == 0 {
+            // Before the first step a new goal is a new episode: the planner
+            // is built afresh, as from a scenario with this goal, so a saved
+            // scenario replays the edited episode exactly.
+            let mut planner =
+                registry::build(&self.choice, &self.robot, &self.map, &self.state, goal)?;
+            planner.set_record_rollouts(self.config.record_rollouts);
+            self.planner = planner;
+        } else {
+            self.planner.set_goal(&self.map, &self.state, goal)?;
+        }
         self.goal = goal;
         let d = hypot(goal[0] - self.state.x, goal[1] - self.state.y);
         self.progress = (d, self.time());
+        self.rewrite_start_row();
         Ok(())
+    }
+
+    /// Before the first step, rewrites the start row of the trace after an
+    /// edit (goal, movers: their positions and the clearance are in it), so
+    /// the trace is the one the edited setup gives from the start.
+    fn rewrite_start_row(&mut self) {
+        if self.steps == 0 {
+            let row = self.trace_row(Default::default(), None, &self.movers_at(0.0));
+            self.trace.steps = vec![row];
+        }
     }
 
     /// Replaces the movers (the page edits them live). Their motion models
@@ -785,6 +809,7 @@ impl Episode {
             m.validate()?;
         }
         self.movers = movers;
+        self.rewrite_start_row();
         Ok(())
     }
 }

@@ -1,0 +1,208 @@
+//! Episodes as scenario files, and scenarios for bare maps.
+//!
+//! - [`Scenario::from_setup`] / [`Episode::to_scenario`]: a complete,
+//!   self-contained scenario (the map inline) that rebuilds the same setup,
+//!   so `planlab run` on it gives the trace the page recorded, bit for bit.
+//! - [`Scenario::for_map`]: a ROS or Moving AI map opened on its own gets
+//!   a start and a goal placed in free space by [`default_endpoints`] (far
+//!   apart along the free space, joined by it, with room for the robot) and
+//!   the default robot.
+
+use crate::map::io::scenario::{Scenario, ScenarioError, ScenarioPoint, WorldPoint};
+use crate::map::OccupancyGrid;
+use crate::sim::{Episode, EpisodeSetup, SimConfig};
+use crate::world::{RobotSpec, StaticMap};
+use std::collections::VecDeque;
+
+/// Room kept around the robot's circumscribed radius when placing default
+/// endpoints, m: start and goal are not pressed against a wall.
+pub const ENDPOINT_MARGIN_M: f64 = 0.15;
+
+/// The scenario point of a world position on `grid` (its cell plus the
+/// exact position); `what` names it in errors.
+fn point_on(grid: &OccupancyGrid, what: &str, p: [f64; 2]) -> Result<ScenarioPoint, ScenarioError> {
+    let (col, row) = grid.world_to_cell(p[0], p[1]).ok_or_else(|| {
+        ScenarioError::Invalid(format!(
+            "{what} ({}, {}) m is off the {}×{} map",
+            p[0],
+            p[1],
+            grid.width(),
+            grid.height()
+        ))
+    })?;
+    Ok(ScenarioPoint {
+        col: col as u32,
+        row: row as u32,
+        world: Some(WorldPoint { x: p[0], y: p[1] }),
+    })
+}
+
+impl Scenario {
+    /// The scenario that rebuilds `setup` exactly: map inline (plain rows up
+    /// to 100 cells a side, run-length encoded above), start and goal as
+    /// exact world positions, robot, start heading, movers, planner with its
+    /// config, simulation settings, terrain and seed. `record_rollouts`
+    /// (a drawing switch that does not change the trace) is written as
+    /// `false`. A scenario starts at rest: a setup whose start velocities
+    /// are not zero is refused.
+    pub fn from_setup(
+        setup: &EpisodeSetup,
+        name: &str,
+        description: &str,
+    ) -> Result<Scenario, ScenarioError> {
+        let s = &setup.start;
+        if s.v != 0.0 || s.vy != 0.0 || s.w != 0.0 {
+            return Err(ScenarioError::Invalid(format!(
+                "the start velocities ({}, {}, {}) are not zero: a scenario starts at rest",
+                s.v, s.vy, s.w
+            )));
+        }
+        let grid = setup.map.grid().clone();
+        let start = point_on(&grid, "start", [s.x, s.y])?;
+        let goal = point_on(&grid, "goal", setup.goal)?;
+        let mut scenario = Scenario::new(name, grid, start.pos(), goal.pos());
+        scenario.description = description.to_string();
+        scenario.start = start;
+        scenario.goal = goal;
+        scenario.robot = Some(setup.robot);
+        scenario.start_yaw = Some(s.theta);
+        scenario.movers = Some(setup.movers.clone());
+        scenario.local_planner = Some(setup.planner.clone());
+        scenario.sim = Some(SimConfig {
+            record_rollouts: false,
+            ..setup.config
+        });
+        scenario.terrain = Some(setup.terrain.clone());
+        scenario.seed = Some(setup.seed);
+        scenario.validate()?;
+        Ok(scenario)
+    }
+
+    /// A scenario for a bare map (a ROS map_server map or a Moving AI map
+    /// opened without a scenario): the default robot and planner, start and
+    /// goal from [`default_endpoints`], start heading towards the goal.
+    pub fn for_map(name: &str, grid: OccupancyGrid) -> Result<Scenario, ScenarioError> {
+        let config = SimConfig::default();
+        let robot = RobotSpec::default();
+        let map = StaticMap::new(grid, config.unknown_is_obstacle)
+            .map_err(|e| ScenarioError::Invalid(e.to_string()))?;
+        let (start, goal) = default_endpoints(&map, &robot)?;
+        let grid = map.grid().clone();
+        let (a, b) = (
+            point_on(&grid, "start", start)?,
+            point_on(&grid, "goal", goal)?,
+        );
+        let mut s = Scenario::new(name, grid, a.pos(), b.pos());
+        s.description = format!(
+            "{name}: start and goal placed automatically, far apart in the largest free area"
+        );
+        s.start = a;
+        s.goal = b;
+        s.start_yaw = Some(crate::num::atan2(goal[1] - start[1], goal[0] - start[0]));
+        s.validate()?;
+        Ok(s)
+    }
+}
+
+impl Episode {
+    /// This episode as a self-contained scenario ([`Scenario::from_setup`]
+    /// of [`Episode::setup`]): the current map, goal, movers and planner,
+    /// from the original start.
+    pub fn to_scenario(&self, name: &str, description: &str) -> Result<Scenario, ScenarioError> {
+        Scenario::from_setup(&self.setup(), name, description)
+    }
+}
+
+/// A start and a goal for `robot` on `map`, world metres: cell centres with
+/// room for the robot (clearance of at least its circumscribed radius plus
+/// [`ENDPOINT_MARGIN_M`], also from the map edge), in the largest
+/// 4-connected area of such cells, as far apart along that area as a double
+/// sweep of breadth-first searches finds (the first from the area's first
+/// cell finds one end, the second from there the other end). Deterministic.
+/// Errors when no cell has room for the robot.
+pub fn default_endpoints(
+    map: &StaticMap,
+    robot: &RobotSpec,
+) -> Result<([f64; 2], [f64; 2]), ScenarioError> {
+    let grid = map.grid();
+    let (w, h) = (grid.width(), grid.height());
+    let res = grid.resolution();
+    let need = robot.footprint.circumscribed_radius() + ENDPOINT_MARGIN_M;
+    let roomy: Vec<bool> = (0..w * h)
+        .map(|i| {
+            let (c, r) = (i % w, i / w);
+            // Cell centre to the map edge, m.
+            let edge = res * ((c.min(w - 1 - c).min(r).min(h - 1 - r)) as f64 + 0.5);
+            !map.is_blocked(c as i64, r as i64)
+                && edge >= need
+                && map.cell_clearance(c as i64, r as i64) >= need
+        })
+        .collect();
+    // Largest 4-connected area of roomy cells (first found wins ties).
+    let mut label = vec![u32::MAX; w * h];
+    let mut best: Option<(usize, usize)> = None; // (size, first cell)
+    let mut queue = VecDeque::new();
+    for seed in 0..w * h {
+        if !roomy[seed] || label[seed] != u32::MAX {
+            continue;
+        }
+        let id = seed as u32;
+        label[seed] = id;
+        queue.push_back(seed);
+        let mut size = 0usize;
+        while let Some(i) = queue.pop_front() {
+            size += 1;
+            for j in neighbours(i, w, h) {
+                if roomy[j] && label[j] == u32::MAX {
+                    label[j] = id;
+                    queue.push_back(j);
+                }
+            }
+        }
+        if best.map_or(true, |(n, _)| size > n) {
+            best = Some((size, seed));
+        }
+    }
+    let Some((_, first)) = best else {
+        return Err(ScenarioError::Invalid(format!(
+            "no free cell of the {w}×{h} map has room for the robot (clearance ≥ {need:.2} m): cannot place a start and a goal"
+        )));
+    };
+    let area = label[first];
+    let farthest = |from: usize| -> usize {
+        let mut dist = vec![u32::MAX; w * h];
+        dist[from] = 0;
+        let mut q = VecDeque::from([from]);
+        let mut last = from;
+        while let Some(i) = q.pop_front() {
+            last = i;
+            for j in neighbours(i, w, h) {
+                if label[j] == area && dist[j] == u32::MAX {
+                    dist[j] = dist[i] + 1;
+                    q.push_back(j);
+                }
+            }
+        }
+        last
+    };
+    let a = farthest(first);
+    let b = farthest(a);
+    let centre = |i: usize| {
+        let (x, y) = grid.cell_to_world(i % w, i / w);
+        [x, y]
+    };
+    Ok((centre(a), centre(b)))
+}
+
+/// The 4-neighbours of cell index `i` on a `w`×`h` grid.
+fn neighbours(i: usize, w: usize, h: usize) -> impl Iterator<Item = usize> {
+    let (c, r) = (i % w, i / w);
+    [
+        (c > 0).then(|| i - 1),
+        (c + 1 < w).then(|| i + 1),
+        (r > 0).then(|| i - w),
+        (r + 1 < h).then(|| i + w),
+    ]
+    .into_iter()
+    .flatten()
+}
