@@ -27,8 +27,8 @@ mod trace;
 pub use edit::{
     generated_sim_config, is_start_collision, SetupEdit, GENERATED_MAX_TIME, GENERATED_STUCK_TIME,
 };
-pub use replay::{Edit, Recording};
 pub use export::{default_endpoints, ENDPOINT_MARGIN_M};
+pub use replay::{Edit, Recording};
 pub use trace::{Trace, TraceStep, CSV_HEADER};
 
 use serde::{Deserialize, Serialize};
