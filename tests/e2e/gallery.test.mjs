@@ -376,6 +376,52 @@ test('help overlay: ? opens planners and parameters, Esc and a click outside clo
   await page.close();
 });
 
+test('robot page metric cards: every label and value whole (no "…") at 1366×768, and in presentation mode at 1920×1080', async () => {
+  const { page, problems } = await newPage();
+  // Labels and values wider than their card (cut by overflow), sampled while the run goes on.
+  const cut = () =>
+    page.evaluate(() => {
+      const out = [];
+      for (const m of document.querySelectorAll('.robot-metrics .metric')) {
+        for (const c of m.children) {
+          if (c.scrollWidth > c.clientWidth + 0.5) out.push(`${c.textContent} (${c.scrollWidth} > ${c.clientWidth} px)`);
+        }
+        const b = m.getBoundingClientRect();
+        if (b.right > window.innerWidth) out.push(`${m.textContent} beyond the right edge`);
+      }
+      return out;
+    });
+  for (const [w, hgt, present, runs] of [
+    [1366, 768, false, ['T-fig3-2.json&planner=improved-dwa', 'L-sim1.json']],
+    [1920, 1080, true, ['T-fig3-2.json&planner=improved-dwa']],
+  ]) {
+    await page.setViewportSize({ width: w, height: hgt });
+    await page.goto(`${session.base}gallery.html`);
+    await page.evaluate((on) => localStorage.setItem('planlab.present', on ? '1' : '0'), present);
+    for (const run of runs) {
+      await page.goto(`${session.base}robot.html?scenario=${run}&run=1`);
+      await ready(page);
+      await page.selectOption('#speed', '8');
+      const seen = new Set();
+      for (;;) {
+        for (const c of await cut()) seen.add(c);
+        if (!['running', undefined].includes(await page.evaluate(() => document.body.dataset.outcome))) break;
+        await page.waitForTimeout(250);
+      }
+      for (const c of await cut()) seen.add(c);
+      assert.deepEqual([...seen], [], `${run} at ${w}×${hgt}${present ? ' (presentation)' : ''}`);
+      // At the laptop size the cards stay one row, so the map does not move when values grow.
+      const tops = await page.$$eval('.robot-metrics .metric', (ms) => new Set(ms.map((m) => Math.round(m.getBoundingClientRect().top))).size);
+      if (!present) assert.equal(tops, 1, `${run}: metric cards in one row`);
+      assert.notEqual(await page.textContent('#metric-time'), '—');
+    }
+    await screenshot(page, present ? 'robot-metrics-1920-present.png' : 'robot-metrics-1366.png');
+  }
+  await page.evaluate(() => localStorage.removeItem('planlab.present'));
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 test('layout: no horizontal overflow, top-bar controls in view at 1366×768 and 1920×1080', async () => {
   const { page, problems } = await newPage();
   // Laptop and full HD as they are, and a projector's full HD in presentation mode.
