@@ -42,15 +42,45 @@ async function planlabBench(
   }
 }
 
+export interface DwaBenchResult {
+  /** Steps per timed block. */
+  steps: number;
+  timesMs: number[];
+  /** Sum of the chosen v + ω over one block; `planlab bench step` must agree. */
+  checksum: number;
+}
+
+/** Times the reference DWA step (the scene of `planlab bench step`) in
+ *  `blocks` blocks of `steps` steps, one wasm call per block. */
+function planlabDwaBench(steps: number, blocks: number): DwaBenchResult {
+  const bench = new (DwaBench as any)();
+  try {
+    // One untimed block warms the JIT tier-up, as the native side does.
+    const checksum = bench.run(steps);
+    const timesMs: number[] = [];
+    for (let i = 0; i < blocks; i++) {
+      const t0 = performance.now();
+      const c = bench.run(steps);
+      timesMs.push(performance.now() - t0);
+      if (c !== checksum) throw new Error('non-deterministic DWA step');
+    }
+    return { steps, timesMs, checksum };
+  } finally {
+    bench.free();
+  }
+}
+
 declare global {
   interface Window {
     planlabBench: typeof planlabBench;
+    planlabDwaBench: typeof planlabDwaBench;
   }
 }
 
 init()
   .then(() => {
     window.planlabBench = planlabBench;
+    window.planlabDwaBench = planlabDwaBench;
     document.body.dataset.state = 'ready';
   })
   .catch((e) => {

@@ -93,6 +93,113 @@ pub fn bench_grid(
     })
 }
 
+/// Timings of `planlab bench step`: the reference DWA step in blocks.
+#[derive(Debug, Serialize)]
+pub struct StepReport {
+    /// Steps per timed block.
+    pub steps: usize,
+    /// Wall time of each block, ms.
+    pub times_ms: Vec<f64>,
+    /// Median block time / steps, ms per step.
+    pub ms_per_step: f64,
+    /// Fastest block time / steps, ms per step.
+    pub min_ms_per_step: f64,
+    /// Sum of v + ω over one block (the browser must agree).
+    pub checksum: f64,
+}
+
+/// Timings of `planlab bench scen`: one pass = every query planned once.
+#[derive(Debug, Serialize)]
+pub struct ScenReport {
+    /// Queries per pass.
+    pub rows: usize,
+    /// Passes per timed block.
+    pub inner: usize,
+    /// Summed path cost of one pass.
+    pub total_cost: f64,
+    /// Sum of the scenario's optimal lengths.
+    pub optimal_sum: f64,
+    /// Wall time of each block, ms.
+    pub times_ms: Vec<f64>,
+    /// Median block time / (rows × inner), ms per query.
+    pub ms_per_query: f64,
+}
+
+fn median(xs: &[f64]) -> f64 {
+    let mut s = xs.to_vec();
+    s.sort_by(f64::total_cmp);
+    let m = s.len() / 2;
+    if s.len() % 2 == 1 {
+        s[m]
+    } else {
+        (s[m - 1] + s[m]) / 2.0
+    }
+}
+
+/// Times [`DwaStepBench`](planlab_core::bench::DwaStepBench) in `blocks`
+/// blocks of `steps` steps after one untimed warm-up block.
+pub fn bench_step(steps: usize, blocks: usize) -> Result<StepReport, String> {
+    let (steps, blocks) = (steps.max(1), blocks.max(1));
+    let mut b = planlab_core::bench::DwaStepBench::reference().map_err(|e| e.to_string())?;
+    let checksum = b.run(steps);
+    let mut times_ms = Vec::with_capacity(blocks);
+    for _ in 0..blocks {
+        let t = Instant::now();
+        let c = std::hint::black_box(b.run(steps));
+        times_ms.push(t.elapsed().as_secs_f64() * 1e3);
+        if c != checksum {
+            return Err("non-deterministic DWA step".into());
+        }
+    }
+    let n = steps as f64;
+    Ok(StepReport {
+        steps,
+        ms_per_step: median(&times_ms) / n,
+        min_ms_per_step: times_ms.iter().copied().fold(f64::INFINITY, f64::min) / n,
+        times_ms,
+        checksum,
+    })
+}
+
+/// Times [`ScenBatch::solve_all`](planlab_core::bench::ScenBatch::solve_all)
+/// with A* (default options): `reps` blocks of `inner` passes after one
+/// untimed pass.
+pub fn bench_scen(
+    grid: &OccupancyGrid,
+    scen_text: &str,
+    reps: usize,
+    inner: usize,
+) -> Result<ScenReport, String> {
+    let (reps, inner) = (reps.max(1), inner.max(1));
+    let options = planlab_core::global::plan::GridPlanOptions::default();
+    let batch = planlab_core::bench::ScenBatch::new(grid, scen_text, &options)
+        .map_err(|e| e.to_string())?;
+    if batch.is_empty() {
+        return Err("the scenario has no rows".into());
+    }
+    let total_cost = batch.solve_all().map_err(|e| e.to_string())?;
+    let mut times_ms = Vec::with_capacity(reps);
+    for _ in 0..reps {
+        let t0 = Instant::now();
+        let mut t = 0.0;
+        for _ in 0..inner {
+            t = batch.solve_all().map_err(|e| e.to_string())?;
+        }
+        times_ms.push(t0.elapsed().as_secs_f64() * 1e3);
+        if (t - total_cost).abs() > 1e-9 {
+            return Err("non-deterministic total cost".into());
+        }
+    }
+    Ok(ScenReport {
+        rows: batch.len(),
+        inner,
+        total_cost,
+        optimal_sum: batch.optimal_sum(),
+        ms_per_query: median(&times_ms) / (batch.len() * inner) as f64,
+        times_ms,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

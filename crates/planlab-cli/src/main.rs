@@ -125,6 +125,32 @@ enum BenchKind {
         #[arg(long, default_value_t = 3)]
         reps: usize,
     },
+    /// One DWA step of the reference scene (200 × 200 map, 20 movers,
+    /// 20 × 40 samples, 3 s horizon), timed in blocks of STEPS steps; the
+    /// native side of the browser benchmark. Prints one JSON line.
+    Step {
+        /// Steps per timed block.
+        #[arg(long, default_value_t = 50)]
+        steps: usize,
+        /// Timed blocks (after one untimed warm-up block).
+        #[arg(long, default_value_t = 5)]
+        blocks: usize,
+    },
+    /// Every query of a Moving AI scenario planned with A* in one pass
+    /// (planner and grid built once), timed per block of INNER passes; the
+    /// native side of the browser benchmark's A* figure. Prints one JSON line.
+    Scen {
+        /// Moving AI .map file.
+        map: PathBuf,
+        /// Its .scen file (all rows are used).
+        scen: PathBuf,
+        /// Timed blocks (after one untimed pass).
+        #[arg(long, default_value_t = 5)]
+        reps: usize,
+        /// Whole-scenario passes per timed block.
+        #[arg(long, default_value_t = 1)]
+        inner: usize,
+    },
 }
 
 #[derive(Subcommand)]
@@ -497,6 +523,35 @@ fn run(cli: Cli) -> Result<(), String> {
             planlab_core::map::io::movingai::check_scen_against_map(&rows, &grid)
                 .map_err(|e| format!("{} does not fit {}: {e}", scen.display(), map.display()))?;
             let report = bench::bench_grid(&grid, &rows, reps.max(1))?;
+            println!(
+                "{}",
+                serde_json::to_string(&report).map_err(|e| e.to_string())?
+            );
+            Ok(())
+        }
+        Command::Bench {
+            kind: BenchKind::Step { steps, blocks },
+        } => {
+            let report = bench::bench_step(steps, blocks)?;
+            println!(
+                "{}",
+                serde_json::to_string(&report).map_err(|e| e.to_string())?
+            );
+            Ok(())
+        }
+        Command::Bench {
+            kind:
+                BenchKind::Scen {
+                    map,
+                    scen,
+                    reps,
+                    inner,
+                },
+        } => {
+            let grid = load::load_movingai(&map)?;
+            let text = std::fs::read_to_string(&scen)
+                .map_err(|e| format!("cannot read {}: {e}", scen.display()))?;
+            let report = bench::bench_scen(&grid, &text, reps, inner)?;
             println!(
                 "{}",
                 serde_json::to_string(&report).map_err(|e| e.to_string())?

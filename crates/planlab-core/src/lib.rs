@@ -18,6 +18,7 @@
 pub mod apf;
 pub mod arm;
 pub mod batch;
+pub mod bench;
 pub mod global;
 pub mod lidar;
 pub mod local;

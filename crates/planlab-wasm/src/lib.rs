@@ -33,13 +33,18 @@
 //! ([`Cell`]'s `repr(u8)`).
 
 pub mod apf;
-pub mod arm;
 pub mod batch;
 pub mod files;
 pub mod sim;
 
 pub use apf::ApfHandle;
-pub use arm::{arm_choices, ArmHandle};
+/// The arm page's handle, from its own crate (the arm page loads that
+/// crate's smaller wasm module; the playground pages build this crate
+/// without the feature).
+#[cfg(feature = "arm")]
+pub use planlab_wasm_arm as arm;
+#[cfg(feature = "arm")]
+pub use planlab_wasm_arm::{arm_choices, ArmHandle};
 pub use sim::{generated_grid_hash, planners, SimHandle};
 
 use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};
@@ -478,5 +483,29 @@ impl ScenBatch {
     #[wasm_bindgen(js_name = solveAll)]
     pub fn solve_all(&self) -> Result<f64, JsError> {
         Ok(self.inner.solve_all()?)
+    }
+}
+
+/// The DWA step of the reference benchmark scene
+/// ([`planlab_core::bench::DwaStepBench`]), for timing from JS: the same
+/// work `planlab bench step` times natively.
+#[wasm_bindgen]
+pub struct DwaBench {
+    inner: planlab_core::bench::DwaStepBench,
+}
+
+#[wasm_bindgen]
+impl DwaBench {
+    /// Builds the reference scene (200 × 200 map, 20 movers, 20 × 40 samples, 3 s).
+    #[wasm_bindgen(constructor)]
+    pub fn new() -> Result<DwaBench, JsError> {
+        Ok(DwaBench {
+            inner: planlab_core::bench::DwaStepBench::reference()?,
+        })
+    }
+
+    /// Runs `n` steps; returns the sum of the chosen v + ω (a checksum).
+    pub fn run(&mut self, n: u32) -> f64 {
+        self.inner.run(n as usize)
     }
 }

@@ -3,7 +3,7 @@
 //! distance it reports, typed arrays have their documented shapes, live
 //! edits work, and unreachable targets or bad scenarios arrive as
 //! `JsError`s with the core's message.
-#![cfg(target_arch = "wasm32")]
+#![cfg(all(target_arch = "wasm32", feature = "arm"))]
 
 use planlab_wasm::{arm_choices, ArmHandle};
 use wasm_bindgen::JsValue;

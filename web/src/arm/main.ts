@@ -9,7 +9,7 @@ import { applyRun, runParams } from '../shell/runlink';
 import { installShell } from '../shell/help';
 import { armHelp } from '../shell/help-content';
 import { showGalleryNote } from '../shell/gallery-note';
-import init, { ArmHandle, armChoices } from '../../pkg/planlab_wasm.js';
+import init, { ArmHandle, armChoices } from '../../pkg-arm/planlab_wasm_arm.js';
 import { ArmView, type Frame } from './view';
 import { DistancePlot } from './distplot';
 

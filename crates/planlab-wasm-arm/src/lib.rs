@@ -2,6 +2,11 @@
 //! page. Steps, live edits (goal, predictor; hand motion and speed restart
 //! the episode) and everything drawn as typed arrays. No kinematics or
 //! distances are computed here.
+//!
+//! A crate of its own so the arm page loads a wasm module with only the arm
+//! (and parry3d) in it: with three.js next to it, the whole playground
+//! module would not fit the page's 1.5 MB first-load budget. `planlab-wasm`
+//! re-exports it (feature `arm`, on by default) as `planlab_wasm::arm`.
 
 use planlab_core::arm::{ArmEpisode, ArmPredictor, ArmScenario, HandPreset, Obstacle3};
 use serde::Serialize;
@@ -62,6 +67,9 @@ impl ArmHandle {
     /// episode; errors carry the core's message.
     #[wasm_bindgen(constructor)]
     pub fn new(json: &str) -> Result<ArmHandle, JsError> {
+        // This module has no start function (planlab-wasm, which links it
+        // in, has one): a bug still shows as a readable console message.
+        console_error_panic_hook::set_once();
         let scenario = ArmScenario::from_json(json).map_err(js)?;
         let ep = ArmEpisode::from_scenario(&scenario).map_err(js)?;
         let mut h = ArmHandle {

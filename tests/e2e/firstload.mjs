@@ -1,0 +1,73 @@
+// First-load size of the built pages: what a browser actually transfers when
+// it opens a page with an empty cache, from Playwright's network events.
+// Shared by tests/e2e/size.test.mjs (the bar) and scripts/bench-browser.mjs
+// (the report). Sizes are the uncompressed bodies (the response body as
+// the page sees it); the static server compresses nothing anyway.
+
+import fs from 'node:fs';
+import path from 'node:path';
+import { DIST } from './harness.mjs';
+
+/** Issue 6: wasm + JS + CSS of a page's first load, bytes (1.5 MB). */
+export const FIRST_LOAD_LIMIT = 1_500_000;
+
+/** Every page of the built site: the .html files at the top of web/dist. */
+export function sitePages() {
+  return fs
+    .readdirSync(DIST)
+    .filter((f) => f.endsWith('.html'))
+    .sort();
+}
+
+function kindOf(url, contentType) {
+  const p = new URL(url).pathname;
+  if (p.endsWith('.wasm') || contentType.includes('application/wasm')) return 'wasm';
+  if (/\.m?js$/.test(p) || contentType.includes('javascript')) return 'js';
+  if (p.endsWith('.css') || contentType.includes('text/css')) return 'css';
+  if (p.endsWith('.html') || p.endsWith('/') || contentType.includes('text/html')) return 'html';
+  return 'other';
+}
+
+/**
+ * Opens `page` (a file name under web/dist) in a fresh browser page with the
+ * cache disabled, waits until the network is idle, and sums the bodies of
+ * every response by kind. Returns
+ * `{ page, wasm, js, css, html, other, firstLoad, files: [{url, kind, bytes}] }`
+ * where `firstLoad = wasm + js + css` (bytes).
+ */
+export async function measureFirstLoad(session, page) {
+  const tab = await session.context.newPage();
+  const cdp = await session.context.newCDPSession(tab);
+  await cdp.send('Network.setCacheDisabled', { cacheDisabled: true });
+  const pending = [];
+  const files = [];
+  tab.on('response', (r) => {
+    pending.push(
+      (async () => {
+        const url = r.url();
+        if (!url.startsWith(session.base)) return;
+        const kind = kindOf(url, r.headers()['content-type'] ?? '');
+        let bytes;
+        try {
+          bytes = (await r.body()).length;
+        } catch {
+          // A body Chromium already dropped: the file it came from.
+          const rel = decodeURIComponent(new URL(url).pathname).replace(/^\/+/, '') || 'index.html';
+          bytes = fs.statSync(path.join(DIST, rel)).size;
+        }
+        files.push({ url: url.slice(session.base.length), kind, bytes });
+      })(),
+    );
+  });
+  await tab.goto(session.base + page, { waitUntil: 'networkidle' });
+  await Promise.all(pending);
+  await cdp.detach().catch(() => {});
+  await tab.close();
+  const sum = (k) => files.filter((f) => f.kind === k).reduce((a, f) => a + f.bytes, 0);
+  const out = { page, wasm: sum('wasm'), js: sum('js'), css: sum('css'), html: sum('html'), other: sum('other') };
+  out.firstLoad = out.wasm + out.js + out.css;
+  out.files = files.sort((a, b) => b.bytes - a.bytes);
+  return out;
+}
+
+export const kB = (n) => `${(n / 1000).toFixed(1)} kB`;

@@ -1,0 +1,30 @@
+// First load of every built page (wasm + JS + CSS, uncompressed, as
+// transferred with an empty cache) stays within issue 6's 1.5 MB.
+// Deterministic: the bytes depend on the build only, not on the machine.
+
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { startSession } from './harness.mjs';
+import { FIRST_LOAD_LIMIT, kB, measureFirstLoad, sitePages } from './firstload.mjs';
+
+let session;
+before(async () => {
+  session = await startSession();
+});
+after(async () => {
+  await session?.close();
+});
+
+test('first load of every page is at most 1.5 MB (wasm + JS + CSS)', async () => {
+  const pages = sitePages();
+  // The site's own pages at least; pages added later are measured too.
+  for (const p of ['index.html', 'robot.html', 'apf.html', 'arm.html']) assert.ok(pages.includes(p), `${p} built`);
+  for (const p of pages) {
+    const m = await measureFirstLoad(session, p);
+    console.log(`${p}: first load ${kB(m.firstLoad)} (wasm ${kB(m.wasm)}, js ${kB(m.js)}, css ${kB(m.css)})`);
+    // Every page that plans loads the wasm module; a page that fetched
+    // nothing would pass the bar vacuously.
+    assert.ok(m.js > 0, `${p}: loaded no JS`);
+    assert.ok(m.firstLoad <= FIRST_LOAD_LIMIT, `${p}: ${m.firstLoad} bytes > ${FIRST_LOAD_LIMIT}: ${JSON.stringify(m.files.slice(0, 5))}`);
+  }
+});
