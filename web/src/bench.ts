@@ -2,7 +2,7 @@
 // query of a .scen) with performance.now(), so the boundary is crossed once
 // per repetition and the figure is the planner's own speed in wasm.
 
-import init, { MapHandle, ScenBatch } from '../pkg/planlab_wasm.js';
+import init, { DwaBench, MapHandle, ScenBatch } from '../pkg/planlab_wasm.js';
 
 export interface BenchResult {
   rows: number;
@@ -53,7 +53,7 @@ export interface DwaBenchResult {
 /** Times the reference DWA step (the scene of `planlab bench step`) in
  *  `blocks` blocks of `steps` steps, one wasm call per block. */
 function planlabDwaBench(steps: number, blocks: number): DwaBenchResult {
-  const bench = new (DwaBench as any)();
+  const bench = new DwaBench();
   try {
     // One untimed block warms the JIT tier-up, as the native side does.
     const checksum = bench.run(steps);
