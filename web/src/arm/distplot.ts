@@ -5,7 +5,7 @@
 
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
-import type { ArmHandle } from '../../pkg/planlab_wasm.js';
+import type { ArmHandle } from '../../pkg-arm/planlab_wasm_arm.js';
 
 const AXIS = { stroke: '#64748b', grid: { stroke: 'rgba(100,116,139,0.15)', width: 1 }, ticks: { show: false }, size: 40 };
 
