@@ -229,4 +229,21 @@ mod tests {
         let err = bench_grid(&g, &[row((0, 0), (1, 1), 1.5)], 1).unwrap_err();
         assert!(err.contains("row 0"), "{err}");
     }
+
+    #[test]
+    fn step_and_scen_reports_agree_with_the_work() {
+        let r = bench_step(2, 2).unwrap();
+        assert_eq!((r.steps, r.times_ms.len()), (2, 2));
+        // Two steps of the same state: twice one step's v + ω.
+        let mut b = planlab_core::bench::DwaStepBench::reference().unwrap();
+        assert_eq!(r.checksum, b.run(2));
+        assert!(r.ms_per_step > 0.0 && r.min_ms_per_step <= r.ms_per_step);
+
+        let g = OccupancyGrid::from_ascii("....\n.##.\n....\n").unwrap();
+        let scen = "version 1\n0\tm.map\t4\t3\t0\t0\t3\t2\t5\n";
+        let s = bench_scen(&g, scen, 3, 2).unwrap();
+        assert_eq!((s.rows, s.inner, s.times_ms.len()), (1, 2, 3));
+        assert!((s.total_cost - 5.0).abs() < 1e-9, "{}", s.total_cost);
+        assert!(bench_scen(&g, "version 1\n", 1, 1).is_err());
+    }
 }
