@@ -111,7 +111,7 @@ impl StaticMap {
 
     /// Fractional cell coordinates of a world point (x right, y *up* from the
     /// bottom-left corner; not rows).
-    #[inline]
+    #[inline(always)]
     fn local(&self, x: f64, y: f64) -> (f64, f64) {
         ((x - self.ox) / self.res, (y - self.oy) / self.res)
     }
@@ -121,6 +121,7 @@ impl StaticMap {
     /// about a third of a cell of the exact value and never above it by more
     /// than that. Use it in rollouts; [`StaticMap::footprint_collides`] is
     /// the exact test.
+    #[inline(always)]
     pub fn clearance(&self, x: f64, y: f64) -> f64 {
         let (w, h) = (self.grid.width(), self.grid.height());
         let (lx, ly) = self.local(x, y);
