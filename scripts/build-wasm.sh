@@ -8,7 +8,7 @@
 # then drops their custom sections (function names; scripts/strip-wasm.mjs).
 # WASM_OPT_LEVEL (default s) is the rustc opt-level of these builds only;
 # the native release profile stays at 3. "s" makes the playground module
-# ~17% smaller than 3 (1.07 MB instead of ~1.29 MB, stripped), which keeps
+# smaller than 3 (1.22 MB instead of 1.43 MB with planlab-core at 3, stripped), which keeps
 # every page's first load ≤ 1.5 MB with room to grow; the wasm/native
 # ratios stay ≤ 1.5 (npm --prefix web run bench:browser).
 set -euo pipefail
