@@ -89,13 +89,13 @@ fn payload(g: u64, idx: usize) -> u64 {
 pub(crate) struct BinaryQueue(BinaryHeap<u128>);
 
 impl OpenList for BinaryQueue {
-    #[inline]
+    #[inline(always)]
     fn push(&mut self, f: u64, g: u64, idx: usize) {
         // Max-heap: invert f so the smallest f is the largest key.
         self.0.push(((!f as u128) << 64) | payload(g, idx) as u128);
     }
 
-    #[inline]
+    #[inline(always)]
     fn pop(&mut self) -> Option<usize> {
         self.0.pop().map(|k| (k as u32) as usize)
     }
@@ -139,7 +139,7 @@ impl Default for RadixQueue {
 }
 
 impl OpenList for RadixQueue {
-    #[inline]
+    #[inline(always)]
     fn push(&mut self, f: u64, g: u64, idx: usize) {
         let p = payload(g, idx);
         if f <= self.last {
@@ -155,7 +155,7 @@ impl OpenList for RadixQueue {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn pop(&mut self) -> Option<usize> {
         if let Some(p) = self.top.pop() {
             return Some((p as u32) as usize);
@@ -390,7 +390,7 @@ impl FixedHeuristic {
     /// Estimate for absolute offsets `dx`, `dy` in cells. Exact integer
     /// arithmetic where possible; otherwise rounded down, which keeps an
     /// admissible heuristic admissible.
-    #[inline]
+    #[inline(always)]
     pub fn eval(&self, dx: usize, dy: usize) -> u64 {
         let (dx, dy) = (dx as u64, dy as u64);
         let (lo, hi) = if dx < dy { (dx, dy) } else { (dy, dx) };
@@ -453,7 +453,7 @@ impl Estimate for ZeroEstimate {
 
 impl Estimate for FixedHeuristic {
     const MONOTONE: bool = false;
-    #[inline]
+    #[inline(always)]
     fn h(&self, dx: usize, dy: usize) -> u64 {
         self.eval(dx, dy)
     }
@@ -480,7 +480,7 @@ pub(crate) fn trivial_path(start: GridPos) -> Path {
 }
 
 /// Padded cell index → padded `(x, y)`.
-#[inline]
+#[inline(always)]
 pub(crate) fn xy(idx: usize, stride: usize) -> (usize, usize) {
     // 32-bit division is markedly faster; indices fit (see `check_size`).
     let (i, s) = (idx as u32, stride as u32);
