@@ -5,6 +5,7 @@
 import type { SimHandle } from '../../pkg/planlab_wasm.js';
 import { emptyScene, type RobotShape, type Scene } from '../robot/view';
 import type { Metrics } from './table';
+import { appendTrail, lidarOf, pullState } from '../robot/pull';
 
 /** Planner colours, in the order the planners were picked: apart from the
  *  start (green), goal (blue), path (rose) and mover colours of the view. */
@@ -47,51 +48,9 @@ export class Lane {
   pull(): void {
     const sim = this.sim;
     const S = this.scene;
-    S.state = sim.state();
-    S.movers = sim.movers();
-    S.goal = pair(sim.goal());
-    S.currentGoal = pair(sim.currentGoal());
-    S.goalKind = sim.goalKind;
-    const cls = sim.classes();
-    S.classes.clear();
-    for (let i = 0; i + 1 < cls.length; i += 2) S.classes.set(cls[i], cls[i + 1]);
-    if (S.show.fan) {
-      S.fan = {
-        points: sim.fanPoints(),
-        offsets: sim.fanOffsets(),
-        scores: sim.fanScores(),
-        admissible: sim.fanAdmissible(),
-        chosen: sim.chosen,
-      };
-    }
-    S.globalPath = sim.globalPath();
-    S.keypoints = sim.keypoints();
-    S.lidar = sim.hasLidar
-      ? {
-          rays: sim.lidarRays(),
-          returns: sim.lidarReturns(),
-          edges: sim.lidarEdges(false),
-          opsRaw: sim.lidarOps(false),
-          opsRawOffsets: sim.lidarOpOffsets(false),
-          ops: sim.lidarOps(true),
-          opsOffsets: sim.lidarOpOffsets(true),
-          blocking: sim.lidarBlocking,
-          candidates: sim.lidarCandidates(),
-          target: sim.lidarTarget(),
-        }
-      : null;
-    // The trail grows: fetch only the rows since the last pull.
-    const rows = sim.trail(S.trailLen);
-    const m = rows.length / 2;
-    if (m > 0) {
-      if (S.trailLen + m > S.trail.length / 2) {
-        const t = new Float64Array(Math.max(S.trail.length * 2, (S.trailLen + m) * 2, 1024));
-        t.set(S.trail.subarray(0, S.trailLen * 2));
-        S.trail = t;
-      }
-      S.trail.set(rows, S.trailLen * 2);
-      S.trailLen += m;
-    }
+    pullState(sim, S);
+    S.lidar = lidarOf(sim);
+    appendTrail(sim, S);
     this.outcome = sim.outcome;
   }
 
@@ -113,6 +72,3 @@ export class Lane {
   }
 }
 
-function pair(a: Float64Array): [number, number] {
-  return [a[0] ?? 0, a[1] ?? 0];
-}

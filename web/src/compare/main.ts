@@ -18,6 +18,7 @@ import { compareHelp } from './help';
 import { installShell } from '../shell/help';
 import { loadPresetFiles, readPicked } from '../shell/scenario-files';
 import { applyRun, runParams } from '../shell/runlink';
+import { el, messageOf, errorBanner } from '../shell/dom';
 
 /** Planners compared at once. */
 const MIN_PLANNERS = 2;
@@ -32,21 +33,7 @@ const SLOW_REFRESH_MS = 250;
 
 type ViewMode = 'side' | 'overlay';
 
-function el<T extends HTMLElement = HTMLElement>(id: string): T {
-  const e = document.getElementById(id);
-  if (!e) throw new Error(`page is missing #${id}`);
-  return e as T;
-}
 
-function messageOf(e: unknown): string {
-  if (e instanceof Error) return e.message;
-  if (typeof e === 'string') return e;
-  try {
-    return JSON.stringify(e);
-  } catch {
-    return String(e);
-  }
-}
 
 const ui = {
   body: document.body,
@@ -82,32 +69,7 @@ const ui = {
 };
 
 // ------------------------------------------------------------------ errors
-function showError(text: string): void {
-  ui.error.textContent = text;
-  ui.error.title = text;
-  ui.error.hidden = false;
-  ui.body.dataset.error = 'true';
-}
-
-function clearError(): void {
-  ui.error.hidden = true;
-  ui.error.textContent = '';
-  delete ui.body.dataset.error;
-}
-
-window.addEventListener('error', (ev) => showError(`Unexpected error: ${messageOf(ev.error ?? ev.message)}`));
-window.addEventListener('unhandledrejection', (ev) => showError(`Unexpected error: ${messageOf(ev.reason)}`));
-
-function guard<A extends unknown[]>(fn: (...args: A) => void | Promise<void>): (...args: A) => void {
-  return (...args: A) => {
-    try {
-      const r = fn(...args);
-      if (r instanceof Promise) r.catch((e) => showError(messageOf(e)));
-    } catch (e) {
-      showError(messageOf(e));
-    }
-  };
-}
+const { showError, clearError, guard } = errorBanner(ui.error, ui.body);
 
 // ------------------------------------------------------------------- state
 let infos: PlannerInfo[] = [];

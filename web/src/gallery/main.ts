@@ -9,12 +9,8 @@ import { runUrl, type GalleryEntry, type GalleryRun } from '../shell/runlink';
 import { installShell } from '../shell/help';
 import presets from 'virtual:robot-presets';
 import { compareGroups, compareUrl } from './compare-links';
+import { el } from '../shell/dom';
 
-function el<T extends HTMLElement = HTMLElement>(id: string): T {
-  const e = document.getElementById(id);
-  if (!e) throw new Error(`page is missing #${id}`);
-  return e as T;
-}
 
 const ui = {
   cards: el('cards'),

@@ -9,6 +9,7 @@
 import type { SimHandle } from '../../pkg/planlab_wasm.js';
 import type { RobotView } from './view';
 import { History, type Snapshot } from './history';
+import { el, messageOf } from '../shell/dom';
 
 export type EditTool = 'wall' | 'erase' | 'rect' | 'disc' | 'start' | 'path';
 
@@ -42,16 +43,7 @@ interface MoverJson {
   motion: Record<string, unknown>;
 }
 
-function el<T extends HTMLElement = HTMLElement>(id: string): T {
-  const e = document.getElementById(id);
-  if (!e) throw new Error(`page is missing #${id}`);
-  return e as T;
-}
 
-function messageOf(e: unknown): string {
-  if (e instanceof Error) return e.message;
-  return typeof e === 'string' ? e : String(e);
-}
 
 function num(input: HTMLInputElement): number {
   return input.value.trim() === '' ? Number.NaN : Number(input.value);

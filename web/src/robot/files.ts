@@ -12,6 +12,7 @@ import { decodeScenarioHash, shareLink } from '../shell/share';
 import { sceneSvg } from './svg';
 import type { MapInfo, Scene } from './view';
 import './files.css';
+import { messageOf } from '../shell/dom';
 
 /** What the page lends the Files menu. */
 export interface FilesHost {
@@ -26,10 +27,6 @@ export interface FilesHost {
   clearError(): void;
 }
 
-function messageOf(e: unknown): string {
-  if (e instanceof Error) return e.message;
-  return typeof e === 'string' ? e : String(e);
-}
 
 const lower = (f: { name: string }) => f.name.toLowerCase();
 const stem = (name: string) => name.replace(/^.*[\\/]/, '').replace(/\.[^.]*$/, '');

@@ -17,6 +17,8 @@ import { showGalleryNote } from '../shell/gallery-note';
 import { Timeline } from './timeline';
 import { Editor, type EditTool } from './edit';
 import { FilesMenu } from './files';
+import { el, messageOf, errorBanner } from '../shell/dom';
+import { appendTrail, lidarOf, pullState } from './pull';
 
 type Tool = 'goal' | 'mover' | 'remove' | EditTool;
 
@@ -48,21 +50,7 @@ const SIM_BUDGET_MS = 6;
 /** Metrics, mover list and status refresh interval while running, ms. */
 const SLOW_REFRESH_MS = 250;
 
-function el<T extends HTMLElement = HTMLElement>(id: string): T {
-  const e = document.getElementById(id);
-  if (!e) throw new Error(`page is missing #${id}`);
-  return e as T;
-}
 
-function messageOf(e: unknown): string {
-  if (e instanceof Error) return e.message;
-  if (typeof e === 'string') return e;
-  try {
-    return JSON.stringify(e);
-  } catch {
-    return String(e);
-  }
-}
 
 const ui = {
   body: document.body,
@@ -112,32 +100,7 @@ const ui = {
 };
 
 // ------------------------------------------------------------------ errors
-function showError(text: string): void {
-  ui.error.textContent = text;
-  ui.error.title = text;
-  ui.error.hidden = false;
-  ui.body.dataset.error = 'true';
-}
-
-function clearError(): void {
-  ui.error.hidden = true;
-  ui.error.textContent = '';
-  delete ui.body.dataset.error;
-}
-
-window.addEventListener('error', (ev) => showError(`Unexpected error: ${messageOf(ev.error ?? ev.message)}`));
-window.addEventListener('unhandledrejection', (ev) => showError(`Unexpected error: ${messageOf(ev.reason)}`));
-
-function guard<A extends unknown[]>(fn: (...args: A) => void | Promise<void>): (...args: A) => void {
-  return (...args: A) => {
-    try {
-      const r = fn(...args);
-      if (r instanceof Promise) r.catch((e) => showError(messageOf(e)));
-    } catch (e) {
-      showError(messageOf(e));
-    }
-  };
-}
+const { showError, clearError, guard } = errorBanner(ui.error, ui.body);
 
 // ------------------------------------------------------------------- state
 const view = new RobotView(ui.canvas);
@@ -235,38 +198,9 @@ function robotShape(json: string): [RobotShape, string, boolean] {
 function pull(): void {
   if (!sim) return;
   const S = view.scene;
-  S.state = sim.state();
-  S.movers = sim.movers();
-  S.goal = toPair(sim.goal());
-  S.currentGoal = toPair(sim.currentGoal());
-  S.goalKind = sim.goalKind;
-  const cls = sim.classes();
-  S.classes.clear();
-  for (let i = 0; i + 1 < cls.length; i += 2) S.classes.set(cls[i], cls[i + 1]);
-  if (S.show.fan) {
-    S.fan = {
-      points: sim.fanPoints(),
-      offsets: sim.fanOffsets(),
-      scores: sim.fanScores(),
-      admissible: sim.fanAdmissible(),
-      chosen: sim.chosen,
-    };
-  }
-  S.globalPath = sim.globalPath();
-  S.keypoints = sim.keypoints();
+  pullState(sim, S);
   pullLidar();
-  // Trail and series grow: fetch only the rows since the last pull.
-  const rows = sim.trail(S.trailLen);
-  const m = rows.length / 2;
-  if (m > 0) {
-    if (S.trailLen + m > S.trail.length / 2) {
-      const t = new Float64Array(Math.max(S.trail.length * 2, (S.trailLen + m) * 2, 1024));
-      t.set(S.trail.subarray(0, S.trailLen * 2));
-      S.trail = t;
-    }
-    S.trail.set(rows, S.trailLen * 2);
-    S.trailLen += m;
-  }
+  appendTrail(sim, S);
   plots.pull(sim, S.globalPath);
   outcome = sim.outcome;
   ui.body.dataset.outcome = outcome;
@@ -288,18 +222,7 @@ function pullLidar(): void {
     S.seenCount = 0;
     return;
   }
-  S.lidar = {
-    rays: sim.lidarRays(),
-    returns: sim.lidarReturns(),
-    edges: sim.lidarEdges(false),
-    opsRaw: sim.lidarOps(false),
-    opsRawOffsets: sim.lidarOpOffsets(false),
-    ops: sim.lidarOps(true),
-    opsOffsets: sim.lidarOpOffsets(true),
-    blocking: sim.lidarBlocking,
-    candidates: sim.lidarCandidates(),
-    target: sim.lidarTarget(),
-  };
+  S.lidar = lidarOf(sim);
   const count = sim.seenCount;
   if (count !== S.seenCount || S.seen === null) {
     S.seen = sim.seenCells();
@@ -308,9 +231,6 @@ function pullLidar(): void {
   ui.body.dataset.seen = String(count);
 }
 
-function toPair(a: Float64Array): [number, number] {
-  return [a[0] ?? 0, a[1] ?? 0];
-}
 
 // ----------------------------------------------------------------- metrics
 function setMetric(e: HTMLElement, text: string, value: number | null): void {

@@ -21,9 +21,10 @@
 //   one while a past frame is shown returns the view to the live end.
 
 import type { SimHandle } from '../../pkg/planlab_wasm.js';
-import type { RobotView, Fan, LidarScene } from './view';
+import type { RobotView, Fan } from './view';
 import type { SeriesPlots } from './plots';
 import './timeline.css';
+import { fanOf, lidarOf } from './pull';
 
 /** What the timeline needs from the page (main.ts). */
 export interface TimelineHost {
@@ -59,26 +60,6 @@ function button(text: string, title: string, id: string): HTMLButtonElement {
 
 function emptyFan(): Fan {
   return { points: new Float32Array(0), offsets: new Uint32Array(0), scores: new Float32Array(0), admissible: new Uint8Array(0), chosen: -1 };
-}
-
-function fanOf(h: SimHandle): Fan {
-  return { points: h.fanPoints(), offsets: h.fanOffsets(), scores: h.fanScores(), admissible: h.fanAdmissible(), chosen: h.chosen };
-}
-
-function lidarOf(h: SimHandle): LidarScene | null {
-  if (!h.hasLidar) return null;
-  return {
-    rays: h.lidarRays(),
-    returns: h.lidarReturns(),
-    edges: h.lidarEdges(false),
-    opsRaw: h.lidarOps(false),
-    opsRawOffsets: h.lidarOpOffsets(false),
-    ops: h.lidarOps(true),
-    opsOffsets: h.lidarOpOffsets(true),
-    blocking: h.lidarBlocking,
-    candidates: h.lidarCandidates(),
-    target: h.lidarTarget(),
-  };
 }
 
 export class Timeline {
