@@ -13,7 +13,7 @@ import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { REPO, startSession, screenshot, errorText } from './harness.mjs';
+import { REPO, startSession, screenshot, errorText, openRobotPage } from './harness.mjs';
 
 const PRESET = 'T-fig3-2.json';
 
@@ -26,16 +26,7 @@ after(async () => {
 });
 
 async function openRobot(scenario = PRESET) {
-  const page = await session.context.newPage();
-  const problems = [];
-  page.on('console', (m) => {
-    if (m.type() === 'error') problems.push(`console.error: ${m.text()}`);
-  });
-  page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
-  await page.goto(`${session.base}robot.html?scenario=${scenario}`);
-  await page.waitForFunction(() => ['ready', 'error'].includes(document.body.dataset.state), null, { timeout: 30_000 });
-  assert.equal(await errorText(page), null, 'no error after loading');
-  return { page, problems };
+  return openRobotPage(session, `robot.html?scenario=${scenario}`);
 }
 
 const edit = (page, fn, ...args) => page.evaluate(([f, a]) => window.planlabEdit[f](...a), [fn, args]);

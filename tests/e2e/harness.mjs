@@ -8,6 +8,7 @@
 //               has `serve`, else `npx vite preview`).
 //   CHROMIUM    browser executable (default /usr/bin/chromium).
 
+import assert from 'node:assert/strict';
 import { spawn, spawnSync } from 'node:child_process';
 import { createRequire } from 'node:module';
 import fs from 'node:fs';
@@ -143,6 +144,22 @@ export async function openPage(session, query = '') {
   page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
   await page.goto(session.base + query);
   await page.waitForFunction(() => Number(document.body.dataset.planSeq) > 0, null, { timeout: 30_000 });
+  return { page, problems };
+}
+
+/** Opens the robot page at `url` (relative to the site), waits until its
+ *  episode is built, and checks it shows no error; `problems` collects
+ *  console errors and page errors. */
+export async function openRobotPage(session, url) {
+  const page = await session.context.newPage();
+  const problems = [];
+  page.on('console', (m) => {
+    if (m.type() === 'error') problems.push(`console.error: ${m.text()}`);
+  });
+  page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
+  await page.goto(session.base + url);
+  await page.waitForFunction(() => ['ready', 'error'].includes(document.body.dataset.state), null, { timeout: 30_000 });
+  assert.equal(await errorText(page), null, 'no error after loading');
   return { page, problems };
 }
 

@@ -11,7 +11,7 @@
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { startSession, screenshot, errorText } from './harness.mjs';
+import { startSession, screenshot, errorText, openRobotPage } from './harness.mjs';
 
 let session;
 before(async () => {
@@ -22,16 +22,7 @@ after(async () => {
 });
 
 async function openRobot(scenario) {
-  const page = await session.context.newPage();
-  const problems = [];
-  page.on('console', (m) => {
-    if (m.type() === 'error') problems.push(`console.error: ${m.text()}`);
-  });
-  page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
-  await page.goto(`${session.base}robot.html?scenario=${scenario}`);
-  await page.waitForFunction(() => ['ready', 'error'].includes(document.body.dataset.state), null, { timeout: 30_000 });
-  assert.equal(await errorText(page), null, 'no error after loading');
-  return { page, problems };
+  return openRobotPage(session, `robot.html?scenario=${scenario}`);
 }
 
 const robot = (page, fn, ...args) => page.evaluate(([f, a]) => window.planlabRobot[f](...a), [fn, args]);
