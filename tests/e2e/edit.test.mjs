@@ -33,8 +33,28 @@ const edit = (page, fn, ...args) => page.evaluate(([f, a]) => window.planlabEdit
 const robot = (page, fn, ...args) => page.evaluate(([f, a]) => window.planlabRobot[f](...a), [fn, args]);
 const bodyData = (page, key) => page.evaluate((k) => document.body.dataset[k], key);
 
+/** Waits until the world → page mapping holds still over two frames: a
+ *  tool key changes the hint above the canvas, and the canvas is re-laid
+ *  out and the view re-fitted a frame later, so a point read straight after
+ *  the key can be a few pixels off by the time the mouse goes down. */
+async function settled(page) {
+  const mapping = () =>
+    page.evaluate(async () => {
+      await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+      return JSON.stringify([window.planlabRobot.toScreen(0, 0), window.planlabRobot.toScreen(1, 1)]);
+    });
+  let last = await mapping();
+  for (let i = 0; i < 50; i++) {
+    const now = await mapping();
+    if (now === last) return;
+    last = now;
+  }
+  throw new Error('the robot view never settled');
+}
+
 /** Drags with the real mouse between world points (m). */
 async function drag(page, from, to, steps = 12) {
+  await settled(page);
   const a = await robot(page, 'toScreen', from[0], from[1]);
   const b = await robot(page, 'toScreen', to[0], to[1]);
   await page.mouse.move(a.x, a.y);
@@ -44,6 +64,7 @@ async function drag(page, from, to, steps = 12) {
 }
 
 async function clickWorld(page, p) {
+  await settled(page);
   const a = await robot(page, 'toScreen', p[0], p[1]);
   await page.mouse.click(a.x, a.y);
 }

@@ -19,12 +19,15 @@ async function planlabBench(
   reps: number,
   inner = 1,
   options?: Record<string, unknown>,
+  warmMs = 0,
 ): Promise<BenchResult> {
   const map = MapHandle.fromMovingAi(mapText);
   const batch = new ScenBatch(map, scenText, options ?? { algorithm: 'astar' });
   try {
-    // One untimed pass warms the JIT tier-up and caches, as the native side does.
+    // Untimed passes (at least one, as the native side; then until warmMs)
+    // let V8 tier the hot functions up from its baseline compiler.
     const totalCost = batch.solveAll();
+    for (const w0 = performance.now(); performance.now() - w0 < warmMs; ) batch.solveAll();
     const timesMs: number[] = [];
     for (let i = 0; i < reps; i++) {
       const t0 = performance.now();
@@ -52,11 +55,13 @@ export interface DwaBenchResult {
 
 /** Times the reference DWA step (the scene of `planlab bench step`) in
  *  `blocks` blocks of `steps` steps, one wasm call per block. */
-function planlabDwaBench(steps: number, blocks: number): DwaBenchResult {
+function planlabDwaBench(steps: number, blocks: number, warmMs = 0): DwaBenchResult {
   const bench = new DwaBench();
   try {
-    // One untimed block warms the JIT tier-up, as the native side does.
+    // Untimed blocks (at least one, as the native side; then until warmMs)
+    // let V8 tier the hot functions up from its baseline compiler.
     const checksum = bench.run(steps);
+    for (const w0 = performance.now(); performance.now() - w0 < warmMs; ) bench.run(steps);
     const timesMs: number[] = [];
     for (let i = 0; i < blocks; i++) {
       const t0 = performance.now();
