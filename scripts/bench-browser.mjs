@@ -54,7 +54,7 @@ const QUICK = flag('--quick');
 const SECONDS = Number(opt('--seconds', QUICK ? 3 : 5));
 const REPEATS = Number(opt('--repeats', QUICK ? 2 : 3));
 /** Alternating native / wasm rounds per ratio. */
-const ROUNDS = Number(opt('--rounds', QUICK ? 3 : 5));
+const ROUNDS = Number(opt('--rounds', QUICK ? 3 : 7));
 /** Untimed wasm work before the timed blocks of a round, ms. */
 const WARM_MS = 300;
 const OUT = path.resolve(opt('--json', path.join(REPO, 'target/bench-browser.json')));
