@@ -110,6 +110,9 @@ test('save after editing, re-open: identical trace, also from planlab run; SVG, 
   // Save the scenario as it is now.
   const saved = await save(page, '#save-json');
   assert.match(saved.name, /^dwa-demo-room\.json$/);
+  // Edits before Play reproduce exactly: no warning.
+  assert.equal(await bodyData(page, 'liveEdits'), '0');
+  assert.equal(await page.isVisible('#files-note'), false);
   const text = saved.bytes.toString('utf8');
   const s = JSON.parse(text);
   assert.equal(s.version, 1);
@@ -197,6 +200,38 @@ test('save after editing, re-open: identical trace, also from planlab run; SVG, 
   const native = cliHash(file);
   console.log(`exported scenario: page ${first.hash}, re-opened ${again.hash}, planlab run ${native.trace_hash} (= ${native.dec}); ${native.outcome} after ${native.steps} steps`);
   assert.equal(native.dec, first.hash, 'planlab run on the saved file gives the page trace');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('saving after a goal move during the run says the file runs differently, and it does', async () => {
+  const { page, problems } = await openRobot();
+  await page.click('#play');
+  await page.waitForFunction(() => Number(document.body.dataset.time) >= 2.0, null, { timeout: 30_000 });
+  await page.click('#play');
+  await page.click('#tool-goal');
+  const goal = [10.6, 1.2];
+  const g = await screenOf(page, ...goal);
+  await page.mouse.click(g.x, g.y);
+  const saved = await save(page, '#save-json');
+  assert.equal(await bodyData(page, 'liveEdits'), '1');
+  const note = await page.textContent('#files-note');
+  assert.ok(await page.isVisible('#files-note'), 'the note is shown');
+  assert.match(note, /1 edit made while this run went on \(t > 0\) is saved as in force from t = 0/);
+  await screenshot(page, 'files-live-edit-note.png');
+  const s = JSON.parse(saved.bytes.toString('utf8'));
+  assert.ok(Math.hypot(s.goal.world.x - goal[0], s.goal.world.y - goal[1]) < 0.05, 'the file has the new goal');
+  // The run on the page (old goal for 2 s, then the new one) and the file's
+  // run (new goal from t = 0) differ, as the note says.
+  const page_ = await runToEnd(page);
+  const file = path.join(tmp, 'live-edit.json');
+  fs.writeFileSync(file, saved.bytes);
+  const native = cliHash(file);
+  assert.notEqual(native.dec, page_.hash);
+  // A new run forgets the note.
+  await page.click('#reset');
+  await page.waitForFunction(() => document.body.dataset.outcome === 'running');
+  assert.equal(await page.isVisible('#files-note'), false);
   assert.deepEqual(problems, []);
   await page.close();
 });

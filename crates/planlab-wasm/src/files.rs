@@ -25,6 +25,15 @@ impl SimHandle {
             .to_json_pretty()?)
     }
 
+    /// Edits made to this run after its first step. The saved scenario
+    /// holds the goal, movers and planner as they are now, from t = 0, so
+    /// when this is not 0 its run differs from this one (edits made before
+    /// the first step reproduce exactly); the page says so on Save.
+    #[wasm_bindgen(getter, js_name = liveEdits)]
+    pub fn live_edits(&self) -> u32 {
+        u32::try_from(self.edits_after_start()).unwrap_or(u32::MAX)
+    }
+
     /// The metrics so far as `name,value,unit` CSV (the `planlab run`
     /// metrics, full precision).
     #[wasm_bindgen(js_name = metricsCsv)]

@@ -102,6 +102,12 @@ impl SimHandle {
         }
     }
 
+    /// How many recorded edits were made after the first step (goal,
+    /// movers or planner changed while the run went on).
+    pub(crate) fn edits_after_start(&self) -> usize {
+        self.rec.edits().iter().filter(|(k, _)| *k > 0).count()
+    }
+
     /// Applies and records a live edit.
     fn edit(&mut self, e: Edit) -> Result<(), JsError> {
         Ok(self.rec.edit(&mut self.ep, e)?)

@@ -287,13 +287,19 @@ fn bad_scenarios_are_errors_not_panics() {
 fn live_edits_and_their_errors() {
     use planlab_wasm::SimHandle;
     let mut sim = SimHandle::from_scenario(&room_json("pursuit", ""), None).unwrap();
+    // An edit before the first step is part of the saved setup, not live.
+    sim.set_goal(3.0, 0.7).unwrap();
+    assert_eq!(sim.live_edits(), 0);
     sim.step(5);
     // Goal: a free point is taken, a wall refused with the core's message.
     sim.set_goal(3.0, 0.6).unwrap();
     assert_eq!(sim.goal(), vec![3.0, 0.6]);
+    assert_eq!(sim.live_edits(), 1);
     let e = message(sim.set_goal(0.1, 0.1).unwrap_err());
     assert!(e.contains("wall"), "{e}");
     assert_eq!(sim.goal(), vec![3.0, 0.6]);
+    // A refused edit is not part of the run.
+    assert_eq!(sim.live_edits(), 1);
     // Movers: placed now, at the drop point with the drag's velocity.
     let id = sim
         .place_mover("back-and-forth", 0.2, 2.0, 1.5, 0.3, 0.0, 1.0)

@@ -212,7 +212,29 @@ export class FilesMenu {
 
   /** The episode in force as scenario JSON (what Save and Share use). */
   scenarioJson(): string {
-    return this.sim().scenarioJson(this.name, this.description);
+    const sim = this.sim();
+    const json = sim.scenarioJson(this.name, this.description);
+    this.noteLiveEdits(sim.liveEdits);
+    return json;
+  }
+
+  /** A new run (load, reset, edit restart): the last save's note is stale. */
+  static forgetNote(): void {
+    const note = document.getElementById('files-note');
+    if (note) note.hidden = true;
+  }
+
+  /** A scenario file has no clock for edits: it holds the goal, movers and
+   *  planner as they are now, from t = 0. Says so when this run was edited
+   *  while it went on, since the file's run then differs from it. */
+  private noteLiveEdits(n: number): void {
+    const note = document.getElementById('files-note');
+    if (!note) return;
+    note.hidden = n === 0;
+    note.textContent = n
+      ? `${n} edit${n === 1 ? '' : 's'} made while this run went on (t > 0) ${n === 1 ? 'is' : 'are'} saved as in force from t = 0, so the saved scenario's run differs from this one (edits made before Play reproduce it exactly).`
+      : '';
+    document.body.dataset.liveEdits = String(n);
   }
 
   private file(ext: string): string {

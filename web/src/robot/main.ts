@@ -449,6 +449,7 @@ function install(next: SimHandle, keepView = false): void {
   selectPlanner(choice.name, choice.config);
   plots.clear(omni, sim.hasVehicle);
   clearMetrics();
+  FilesMenu.forgetNote();
   delete ui.body.dataset.traceHash;
   outcome = sim.outcome;
   pull();
