@@ -9,6 +9,7 @@
 
 import init, { SimHandle, planners as plannerListJson } from '../../pkg/planlab_wasm.js';
 import presets from 'virtual:robot-presets';
+import { fillPresetSelect } from '../shell/preset-select';
 import { RobotView, type RobotShape } from '../robot/view';
 import type { PlannerInfo } from '../robot/params';
 import { Lane, LANE_COLOURS } from './lane';
@@ -793,19 +794,7 @@ window.addEventListener('keydown', (ev) => {
 
 // -------------------------------------------------------------------- boot
 async function boot(): Promise<void> {
-  for (const p of presets) {
-    const o = document.createElement('option');
-    o.value = p.file;
-    o.textContent = `${p.name} — ${p.planner}`;
-    o.title = p.description;
-    ui.preset.append(o);
-  }
-  const hidden = document.createElement('option');
-  hidden.value = '';
-  hidden.disabled = true;
-  hidden.hidden = true;
-  hidden.textContent = 'Opened from disk';
-  ui.preset.append(hidden);
+  fillPresetSelect(ui.preset);
   await init();
   infos = JSON.parse(plannerListJson()) as PlannerInfo[];
   buildPlannerList();

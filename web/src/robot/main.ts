@@ -7,6 +7,7 @@
 
 import init, { SimHandle, planners as plannerListJson, rosImageName } from '../../pkg/planlab_wasm.js';
 import presets from 'virtual:robot-presets';
+import { fillPresetSelect } from '../shell/preset-select';
 import { RobotView, emptyScene, CLASS_NAMES, COLORS, type RobotShape } from './view';
 import { SeriesPlots } from './plots';
 import { ParamPanel, type PlannerInfo } from './params';
@@ -930,19 +931,7 @@ async function boot(): Promise<void> {
   setTool('goal');
   clearMetrics();
   ui.spanField.dataset.dim = 'true';
-  for (const p of presets) {
-    const o = document.createElement('option');
-    o.value = p.file;
-    o.textContent = `${p.name} — ${p.planner}`;
-    o.title = p.description;
-    ui.preset.append(o);
-  }
-  const hidden = document.createElement('option');
-  hidden.value = '';
-  hidden.disabled = true;
-  hidden.hidden = true;
-  hidden.textContent = 'Opened from disk';
-  ui.preset.append(hidden);
+  fillPresetSelect(ui.preset);
   await init();
   const list = JSON.parse(plannerListJson()) as PlannerInfo[];
   infos = new Map(list.map((p) => [p.name, p]));
