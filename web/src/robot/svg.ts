@@ -4,7 +4,7 @@
 // Coordinates are world metres (y up) under one flipping transform, so the
 // file measures in metres like the scenario; nothing is rasterised.
 
-import { COLORS, type MapInfo, type Scene } from './view';
+import { COLORS, knownBox, type MapInfo, type Scene } from './view';
 
 const rgb = (c: readonly number[]) => `rgb(${c[0]},${c[1]},${c[2]})`;
 
@@ -51,25 +51,6 @@ export function mergeCells(m: MapInfo, kind: number): [number, number, number, n
   }
   for (const rect of open.values()) done.push(rect);
   return done;
-}
-
-/** Bounding box [c0, r0, c1, r1) of the cells that are not unknown, padded;
- *  the whole map when all are unknown (ROS maps are mostly unknown). */
-function knownBox(m: MapInfo): [number, number, number, number] {
-  const { width: w, height: h, cells } = m;
-  let [c0, r0, c1, r1] = [w, h, -1, -1];
-  for (let r = 0; r < h; r++) {
-    for (let c = 0; c < w; c++) {
-      if (cells[r * w + c] === 2) continue;
-      c0 = Math.min(c0, c);
-      c1 = Math.max(c1, c);
-      r0 = Math.min(r0, r);
-      r1 = Math.max(r1, r);
-    }
-  }
-  if (c1 < 0) return [0, 0, w, h];
-  const pad = Math.max(2, Math.round(0.04 * Math.max(c1 - c0, r1 - r0)));
-  return [Math.max(0, c0 - pad), Math.max(0, r0 - pad), Math.min(w, c1 + 1 + pad), Math.min(h, r1 + 1 + pad)];
 }
 
 function polyline(xy: ArrayLike<number>, count: number): string {

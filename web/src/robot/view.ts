@@ -171,8 +171,9 @@ function offscreen(w: number, h: number): [HTMLCanvasElement, CanvasRenderingCon
 }
 
 /** Known-cell bounding box [c0, r0, c1, r1) padded by a few cells; the
- *  whole map when every cell is unknown. */
-function knownBox(m: MapInfo): [number, number, number, number] {
+ *  whole map when every cell is unknown (ROS maps are mostly unknown).
+ *  The canvas view and the SVG export frame the same part of the map. */
+export function knownBox(m: MapInfo): [number, number, number, number] {
   const { width: w, height: h, cells } = m;
   let [c0, r0, c1, r1] = [w, h, -1, -1];
   for (let r = 0; r < h; r++) {
