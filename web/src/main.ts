@@ -16,6 +16,7 @@ import { installShell } from './shell/help';
 import { gridHelp } from './shell/help-content';
 import { gridUrl } from './grid-url';
 import { loadPresetFiles } from './shell/scenario-files';
+import { el, messageOf } from './shell/dom';
 
 type Tool = 'start' | 'goal' | 'wall' | 'erase';
 
@@ -51,22 +52,6 @@ const PRESETS: Record<string, Preset> = {
 };
 
 const CELL_NAMES = ['free', 'occupied', 'unknown'];
-
-function el<T extends HTMLElement = HTMLElement>(id: string): T {
-  const e = document.getElementById(id);
-  if (!e) throw new Error(`page is missing #${id}`);
-  return e as T;
-}
-
-function messageOf(e: unknown): string {
-  if (e instanceof Error) return e.message;
-  if (typeof e === 'string') return e;
-  try {
-    return JSON.stringify(e);
-  } catch {
-    return String(e);
-  }
-}
 
 // ---------------------------------------------------------------- elements
 const ui = {

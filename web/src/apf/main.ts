@@ -10,12 +10,7 @@ import { applyRun, runParams } from '../shell/runlink';
 import { installShell } from '../shell/help';
 import { apfHelp } from '../shell/help-content';
 import { showGalleryNote } from '../shell/gallery-note';
-
-function el<T extends HTMLElement = HTMLElement>(id: string): T {
-  const e = document.getElementById(id);
-  if (!e) throw new Error(`page is missing #${id}`);
-  return e as T;
-}
+import { el, messageOf } from '../shell/dom';
 
 const ui = {
   hint: el('hint'),
@@ -40,10 +35,6 @@ const FIELD_NY = 48;
 function showError(msg: string | null): void {
   ui.error.hidden = msg === null;
   ui.error.textContent = msg ?? '';
-}
-
-function messageOf(e: unknown): string {
-  return e instanceof Error ? e.message : String(e);
 }
 
 function setPlaying(on: boolean): void {

@@ -12,6 +12,7 @@ import { showGalleryNote } from '../shell/gallery-note';
 import init, { ArmHandle, armChoices } from '../../pkg-arm/planlab_wasm_arm.js';
 import { ArmView, type Frame } from './view';
 import { DistancePlot } from './distplot';
+import { el, messageOf } from '../shell/dom';
 
 /** At most this many 0.1 s samples per animation frame. */
 const MAX_STEPS_PER_FRAME = 8;
@@ -21,17 +22,6 @@ const RANGES: [string, number, number][] = [
   ['y', -0.5, 0.7],
   ['z', 0.5, 1.3],
 ];
-
-function el<T extends HTMLElement = HTMLElement>(id: string): T {
-  const e = document.getElementById(id);
-  if (!e) throw new Error(`page is missing #${id}`);
-  return e as T;
-}
-
-function messageOf(e: unknown): string {
-  if (e instanceof Error) return e.message;
-  return typeof e === 'string' ? e : String(e);
-}
 
 const ui = {
   body: document.body,
