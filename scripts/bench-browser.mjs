@@ -200,6 +200,10 @@ async function ratios(session) {
         if (Math.abs(web.totalCost - nat.total_cost) > 1e-6) {
           throw new Error(`${m.name}: wasm total ${web.totalCost} != native ${nat.total_cost}`);
         }
+        // And both are optimal (.scen optima are printed to 4 decimals).
+        if (Math.abs(web.totalCost - web.optimalSum) > 1e-3 * web.rows) {
+          throw new Error(`${m.name}: total ${web.totalCost} != optimal sum ${web.optimalSum}`);
+        }
         rows = nat.rows;
         rounds.push(round(nat.times_ms, web.timesMs, nat.rows * nat.inner));
       }

@@ -1,6 +1,6 @@
 //! A Moving AI scenario solved in one call: the unit both the browser (timed
 //! with `performance.now()` around [`Batch::solve_all`]) and the native side
-//! (`planlab bench scen`, `examples/bench_native.rs`, timed with `Instant`)
+//! (`planlab bench scen`, timed with `Instant`)
 //! measure, so the wasm-vs-native ratio compares the same Rust code. It
 //! lives in the core ([`planlab_core::bench::ScenBatch`]) so the CLI runs
 //! exactly the same code.

@@ -14,7 +14,8 @@
 //! - [`ScenBatch`] solves a whole Moving AI `.scen` in one call so the page
 //!   can time it with `performance.now()` (core reads no clock) without
 //!   per-query boundary overhead; the same [`batch::Batch`] runs natively in
-//!   `examples/bench_native.rs` for the wasm-vs-native comparison.
+//!   `planlab bench scen` for the wasm-vs-native comparison
+//!   (`scripts/bench-browser.mjs`).
 //!
 //! - [`SimHandle`] runs one robot episode (core `sim::Episode`) for the
 //!   robot page: steps, live edits (goal, movers, planner and its
