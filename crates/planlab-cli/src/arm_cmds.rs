@@ -15,6 +15,8 @@ struct ArmRunReport<'a> {
     scenario: &'a str,
     planner: String,
     seed: u64,
+    /// FNV-1a of the tool path, hex (what `planlab reproduce` reports).
+    trace_hash: String,
     #[serde(flatten)]
     metrics: &'a ArmMetrics,
 }
@@ -55,6 +57,10 @@ pub fn run(path: &Path, mut tree: serde_json::Value, args: &RunArgs<'_>) -> Resu
         scenario: &scenario.name,
         planner: format!("arm-apf:{}", ArmPredictor::of(&ep.scene().apf).name()),
         seed: scenario.seed.unwrap_or(0),
+        trace_hash: format!(
+            "{:016x}",
+            planlab_core::apf::scene::path_hash(ep.tool_path())
+        ),
         metrics: &m,
     };
     if args.json {

@@ -10,6 +10,7 @@ mod gen_cmd;
 mod grid_cmds;
 mod load;
 mod peer;
+mod reproduce_cmd;
 mod serve;
 mod sim_cmds;
 
@@ -241,14 +242,35 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Run the papers' experiments (all, or one by id) and check each
-    /// relation; exits non-zero when one does not hold.
+    /// Run the papers' experiments (all, or one by id): on their presets,
+    /// or with --variants N on a seeded family of scenes with success
+    /// rates, per-clause shares, paired effects and a verdict (reproduced /
+    /// partly / not reproduced). A relation that does not hold is a
+    /// result, not an error: the exit status is 0 whenever the runs ran.
     Reproduce {
         /// Experiment id, e.g. T-fig3-2; all when omitted.
         id: Option<String>,
         /// One JSON line per experiment.
         #[arg(long)]
         json: bool,
+        /// Run the family: variant 0 is the preset, 1…N−1 are perturbed
+        /// (start/goal, obstacles, movers, speeds, seed), in parallel.
+        #[arg(long)]
+        variants: Option<u32>,
+        /// Seed of the family.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// PATH=a,b,c: run the family once per value of a declared value
+        /// (e.g. apf.config.predict_dt=0.1,0.5,0.8), set on every run.
+        #[arg(long)]
+        sweep: Option<String>,
+        /// Write every variant's scenario files (ID-vK-RUN.json) into this
+        /// existing folder; `planlab run` replays each.
+        #[arg(long, value_name = "DIR")]
+        write_variants: Option<PathBuf>,
+        /// List the experiments (clauses, family, deviations) without running.
+        #[arg(long)]
+        list: bool,
     },
     /// Run N seeded variants of a scenario (start, goal and movers
     /// jittered) with several planners in parallel; print the success rate
@@ -437,7 +459,23 @@ fn run(cli: Cli) -> Result<(), String> {
             &out,
             json,
         ),
-        Command::Reproduce { id, json } => sim_cmds::reproduce(id.as_deref(), json),
+        Command::Reproduce {
+            id,
+            json,
+            variants,
+            seed,
+            sweep,
+            write_variants,
+            list,
+        } => reproduce_cmd::reproduce(&reproduce_cmd::ReproduceArgs {
+            id: id.as_deref(),
+            json,
+            variants,
+            seed,
+            sweep: sweep.as_deref(),
+            write_variants: write_variants.as_deref(),
+            list,
+        }),
         Command::Scen {
             map,
             scen,

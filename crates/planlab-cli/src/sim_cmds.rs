@@ -1,7 +1,6 @@
 //! `planlab run`, `planlab planners` and `planlab reproduce`: simulated
 //! episodes, the planner registry and the papers' experiments.
 
-use std::collections::BTreeMap;
 use std::path::Path;
 
 use planlab_core::apf::{AnyApfRun, ApfMetrics};
@@ -9,7 +8,7 @@ use planlab_core::local::registry;
 use planlab_core::map::io::scenario::{set_json_path, set_planner_name, Scenario};
 use planlab_core::map::OccupancyGrid;
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
-use planlab_core::reproduce::{self, ExperimentResult, PathExperimentResult};
+use planlab_core::reproduce;
 use planlab_core::sim::Episode;
 use serde::Serialize;
 
@@ -104,6 +103,8 @@ struct ApfRunReport<'a> {
     planner: String,
     dims: usize,
     steps: u64,
+    /// FNV-1a of the path points, hex (what `planlab reproduce` reports).
+    trace_hash: String,
     #[serde(flatten)]
     metrics: &'a ApfMetrics,
 }
@@ -136,6 +137,7 @@ fn run_apf(
         planner: format!("apf:{}", r.mode_label()),
         dims,
         steps: r.steps(),
+        trace_hash: format!("{:016x}", planlab_core::apf::scene::path_hash(&pts)),
         metrics: &m,
     };
     if args.json {
@@ -152,6 +154,7 @@ fn run_apf(
         println!("{title} — {} ({dims}D)", report.planner);
         print!("{}", apf_metrics_table(&m));
         println!("{:<22}{}", "steps", report.steps);
+        println!("{:<22}{}", "trace hash", report.trace_hash);
     }
     Ok(())
 }
@@ -224,7 +227,7 @@ pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
     Ok(())
 }
 
-fn opt(v: Option<f64>, digits: usize) -> String {
+pub(crate) fn opt(v: Option<f64>, digits: usize) -> String {
     v.map_or_else(|| "—".into(), |x| format!("{x:.digits$}"))
 }
 
@@ -291,168 +294,6 @@ pub fn planners(json: bool) -> Result<(), String> {
         emit("\n")?;
     }
     Ok(())
-}
-
-/// `planlab reproduce`: runs one or every experiment; fails when a
-/// relation does not hold.
-pub fn reproduce(id: Option<&str>, json: bool) -> Result<(), String> {
-    let all = reproduce::all();
-    let paths = reproduce::path_experiments();
-    let (chosen, chosen_paths): (Vec<_>, Vec<_>) = match id {
-        None => (all, paths),
-        Some(id) => {
-            let ids: Vec<&str> = all
-                .iter()
-                .map(|e| e.id)
-                .chain(paths.iter().map(|e| e.id))
-                .collect();
-            if let Some(e) = all.iter().find(|e| e.id == id) {
-                (vec![e.clone()], vec![])
-            } else if let Some(e) = paths.iter().find(|e| e.id == id) {
-                (vec![], vec![e.clone()])
-            } else {
-                let known = if ids.is_empty() {
-                    "none are registered".to_string()
-                } else {
-                    format!("known ids: {}", ids.join(", "))
-                };
-                return Err(format!("unknown experiment `{id}`; {known}"));
-            }
-        }
-    };
-    let mut failed = Vec::new();
-    for exp in &chosen {
-        let r = reproduce::run(exp).map_err(|e| format!("{}: {e}", exp.id))?;
-        if json {
-            emit(&(serde_json::to_string(&r).map_err(|e| e.to_string())? + "\n"))?;
-        } else {
-            emit(&experiment_table(&r))?;
-        }
-        if !r.holds {
-            failed.push(r.id.clone());
-        }
-    }
-    for exp in &chosen_paths {
-        let r = reproduce::run_path(exp).map_err(|e| format!("{}: {e}", exp.id))?;
-        if json {
-            println!("{}", serde_json::to_string(&r).map_err(|e| e.to_string())?);
-        } else {
-            print!("{}", path_experiment_table(&r));
-        }
-        if !r.holds {
-            failed.push(r.id.clone());
-        }
-    }
-    let total = chosen.len() + chosen_paths.len();
-    if failed.is_empty() {
-        Ok(())
-    } else {
-        Err(format!(
-            "{} of {} relations do not hold: {}",
-            failed.len(),
-            total,
-            failed.join(", ")
-        ))
-    }
-}
-
-/// A paper-style table of one path experiment (\[T\] Table 4-1 columns).
-fn path_experiment_table(r: &PathExperimentResult) -> String {
-    let mut s = format!("{} — {}\n  {}\n", r.id, r.paper, r.what);
-    s.push_str(&format!(
-        "  {:<22}{:<11}{:>10}{:>8}{:>8}{:>12}{:>9}\n",
-        "run", "outcome", "length m", "points", "spikes", "min dist m", "time s"
-    ));
-    for (name, m) in &r.runs {
-        s.push_str(&format!(
-            "  {:<22}{:<11}{:>10.3}{:>8}{:>8}{:>12.3}{:>9.2}\n",
-            name,
-            m.outcome.to_string(),
-            m.path_length_m,
-            m.path_points,
-            m.spikes,
-            m.min_obstacle_distance_m,
-            m.time_s
-        ));
-    }
-    s.push_str(&format!(
-        "  relation: {}\n  holds: {}\n\n",
-        r.relation,
-        if r.holds { "yes" } else { "NO" }
-    ));
-    s
-}
-
-/// A paper-style table of one experiment: runs as rows, metrics as columns.
-fn experiment_table(r: &ExperimentResult) -> String {
-    let mut s = format!("{} — {}\n  {}\n", r.id, r.paper, r.what);
-    let head = [
-        "run",
-        "outcome",
-        "time s",
-        "length m",
-        "min clr m",
-        "mean clr m",
-        "turn rad",
-        "max turn",
-        "drops",
-        "tg sw",
-        "track m",
-        "track max",
-        "load %",
-    ];
-    let mut rows: Vec<Vec<String>> = vec![head.iter().map(|h| h.to_string()).collect()];
-    let runs: &BTreeMap<String, EpisodeMetrics> = &r.runs;
-    for (name, m) in runs {
-        rows.push(vec![
-            name.clone(),
-            m.outcome.to_string(),
-            format!("{:.2}", m.time_s),
-            format!("{:.2}", m.path_length_m),
-            format!("{:.3}", m.min_clearance_m),
-            format!("{:.3}", m.mean_clearance_m),
-            format!("{:.2}", m.total_turn_rad),
-            format!("{:.2}", m.max_turn_rad),
-            m.speed_drops.to_string(),
-            m.temp_goal_switches.to_string(),
-            opt(m.mean_tracking_error_m, 3),
-            opt(m.max_tracking_error_m, 3),
-            opt(m.load_ok_share.map(|x| 100.0 * x), 1),
-        ]);
-    }
-    let widths: Vec<usize> = (0..head.len())
-        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
-        .collect();
-    for row in &rows {
-        s.push_str("  ");
-        for (c, cell) in row.iter().enumerate() {
-            let pad = widths[c] - cell.chars().count();
-            if c == 0 || c == 1 {
-                s.push_str(cell);
-                s.push_str(&" ".repeat(pad + 2));
-            } else {
-                s.push_str(&" ".repeat(pad));
-                s.push_str(cell);
-                s.push_str("  ");
-            }
-        }
-        s.truncate(s.trim_end_matches(' ').len());
-        s.push('\n');
-    }
-    for (k, v) in &r.figures {
-        let v = if v.fract() == 0.0 && v.abs() < 1e15 {
-            format!("{v:.0}")
-        } else {
-            format!("{v:.4}")
-        };
-        s.push_str(&format!("  {k}: {v}\n"));
-    }
-    s.push_str(&format!(
-        "  relation: {}\n  holds: {}\n\n",
-        r.relation,
-        if r.holds { "yes" } else { "NO" }
-    ));
-    s
 }
 
 /// `planlab train-predictor`: trains the SimpleRNN, writes its weights,

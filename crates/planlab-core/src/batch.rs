@@ -222,7 +222,7 @@ pub struct PlannerSummary {
 }
 
 /// The names [`metric_values`] returns, in its order (CSV columns).
-pub const METRIC_NAMES: [&str; 10] = [
+pub const METRIC_NAMES: [&str; 11] = [
     "time_s",
     "path_length_m",
     "min_clearance_m",
@@ -233,10 +233,11 @@ pub const METRIC_NAMES: [&str; 10] = [
     "mean_tracking_error_m",
     "max_tracking_error_m",
     "load_ok_share",
+    "wheel_load_share",
 ];
 
 /// The numeric metrics of one run by their `planlab run` names.
-pub fn metric_values(m: &EpisodeMetrics) -> [(&'static str, Option<f64>); 10] {
+pub fn metric_values(m: &EpisodeMetrics) -> [(&'static str, Option<f64>); 11] {
     [
         ("time_s", Some(m.time_s)),
         ("path_length_m", Some(m.path_length_m)),
@@ -248,6 +249,7 @@ pub fn metric_values(m: &EpisodeMetrics) -> [(&'static str, Option<f64>); 10] {
         ("mean_tracking_error_m", m.mean_tracking_error_m),
         ("max_tracking_error_m", m.max_tracking_error_m),
         ("load_ok_share", m.load_ok_share),
+        ("wheel_load_share", m.wheel_load_share),
     ]
 }
 

@@ -118,6 +118,27 @@ impl ApfMetrics {
     }
 }
 
+/// FNV-1a (64 bit) of a path's points (the bit patterns of x, y, z, in
+/// order, after the point count): the trace hash of a kinematic APF or arm
+/// run, printed by `planlab run` and `planlab reproduce`, equal on every
+/// target for the same run.
+pub fn path_hash(path: &[DVec3]) -> u64 {
+    let mut h: u64 = 0xCBF2_9CE4_8422_2325;
+    let mut eat = |b: [u8; 8]| {
+        for x in b {
+            h ^= u64::from(x);
+            h = h.wrapping_mul(0x0000_0100_0000_01B3);
+        }
+    };
+    eat((path.len() as u64).to_le_bytes());
+    for p in path {
+        for v in [p.x, p.y, p.z] {
+            eat(v.to_bits().to_le_bytes());
+        }
+    }
+    h
+}
+
 /// Interior path points where the direction turns by more than `angle`
 /// rad (zero-length segments skipped: standing still is not a turn).
 pub fn spikes(path: &[DVec3], angle: f64) -> u32 {

@@ -79,6 +79,10 @@ pub struct EpisodeMetrics {
     pub tracking_error_var_m2: Option<f64>,
     /// Share (0–1) of rows with every wheel load above the threshold.
     pub load_ok_share: Option<f64>,
+    /// Mean over the four wheels of each wheel's share (0–1) of rows with
+    /// its load above the threshold: what \[C\] Table 5 reports ("the
+    /// share of time each wheel's vertical load exceeds 40 N", averaged).
+    pub wheel_load_share: Option<f64>,
     /// Temporary-goal switches (\[L\]; 0 for planners without them).
     pub temp_goal_switches: u32,
 }
@@ -113,6 +117,14 @@ impl EpisodeMetrics {
             .filter_map(|r| r.wheel_loads)
             .map(|l| l.iter().all(|&f| f > load_threshold_n))
             .collect();
+        let wheel_rows: Vec<[f64; 4]> = rows.iter().filter_map(|r| r.wheel_loads).collect();
+        let wheel_load_share = (!wheel_rows.is_empty()).then(|| {
+            let above: usize = wheel_rows
+                .iter()
+                .map(|l| l.iter().filter(|&&f| f > load_threshold_n).count())
+                .sum();
+            above as f64 / (4 * wheel_rows.len()) as f64
+        });
         EpisodeMetrics {
             outcome,
             time_s: rows.last().map_or(0.0, |r| r.t),
@@ -134,6 +146,7 @@ impl EpisodeMetrics {
             } else {
                 Some(loads.iter().filter(|&&ok| ok).count() as f64 / loads.len() as f64)
             },
+            wheel_load_share,
             temp_goal_switches: temp_goal_switches(trace),
         }
     }
@@ -146,7 +159,7 @@ impl EpisodeMetrics {
     pub fn to_csv(&self) -> String {
         let num = |x: f64| format!("{x}");
         let opt = |x: Option<f64>| x.map_or_else(String::new, num);
-        let rows: [(&str, String, &str); 13] = [
+        let rows: [(&str, String, &str); 14] = [
             ("outcome", self.outcome.as_str().to_string(), ""),
             ("time_s", num(self.time_s), "s"),
             ("path_length_m", num(self.path_length_m), "m"),
@@ -172,6 +185,7 @@ impl EpisodeMetrics {
                 "m^2",
             ),
             ("load_ok_share", opt(self.load_ok_share), "1"),
+            ("wheel_load_share", opt(self.wheel_load_share), "1"),
         ];
         let mut out = String::from("name,value,unit\n");
         for (k, v, u) in rows {
@@ -426,5 +440,7 @@ mod tests {
         tr.steps[4].wheel_loads = Some([40.0; 4]);
         let m = EpisodeMetrics::from_trace(&tr, &[], Outcome::Reached, 40.0);
         assert_eq!(m.load_ok_share, Some(0.5));
+        // Per wheel: 4 + 3 + 4 + 0 of 16 wheel-rows above 40 N.
+        assert_eq!(m.wheel_load_share, Some(11.0 / 16.0));
     }
 }

@@ -4,18 +4,18 @@
 //! The presets (`assets/scenarios/L-*.json`, made by
 //! `scripts/gen_lidar_scenarios.py`) resemble the paper's figures 13–19;
 //! the robot is \[L\] Table 1's. `lidar` runs the navigator over DWA
-//! (`lidar-dwa`, the preset's config; `lidar-apf` over the basic APF in sims
-//! 8–9 as in the paper); the comparison runs use plain DWA (plain APF in
-//! sim 8) on
-//! the same unknown map — straight to the goal with only the scan's local
-//! map and no global path (`scan-dwa` with its default config, the MATLAB
-//! DWA sample weights every DWA in planlab starts from).
+//! (`lidar-dwa`, sims 1–7) or APF (`lidar-apf`, sims 8–9) as in the paper.
+//! Sims 5–8 compare it with the peer the paper names for each (§4, Table
+//! 2): improved DWA \[17\] (sim 5), Critical-PointBug \[21\] (sim 6),
+//! RL-RRT \[2\] (sim 7), RS-APF \[11\] (sim 8), each on the same unknown map;
+//! [`PEERS`] says which planlab planner stands in for each and how far it
+//! is from the paper's. The paper's claim (Table 2) is "comparable or
+//! better on all three metrics": path length, total and maximum turning
+//! angle, with every peer arriving.
 
-use std::collections::BTreeMap;
-
-use super::{Experiment, RunSpec};
+use super::clause::{effect, ok, outcome, ratio};
+use super::{Deviation, Experiment, Family, Perturbation, RunSpec, Runs};
 use crate::metrics::EpisodeMetrics;
-use crate::sim::Outcome;
 
 const SIM1: &str = include_str!("../../../../assets/scenarios/L-sim1.json");
 const SIM2: &str = include_str!("../../../../assets/scenarios/L-sim2.json");
@@ -31,8 +31,21 @@ const SIM9: &str = include_str!("../../../../assets/scenarios/L-sim9.json");
 /// temporary goals as obstacles come into view, no back and forth.
 pub const MAX_SWITCHES: u32 = 8;
 
-/// The comparison scenes: (sim number, preset).
-const COMPARED: [(u32, &str); 4] = [(5, SIM5), (6, SIM6), (7, SIM7), (8, SIM8)];
+/// "Comparable" in Table 2: at most this factor worse than the peer (the
+/// paper's own sim 8 path is 2.4 % longer than RS-APF's and called
+/// comparable).
+pub const COMPARABLE: f64 = 1.05;
+
+/// Per compared sim: (sim, preset, run name of the peer, planlab planner
+/// standing in for it, the paper's peer).
+pub const PEERS: [(u32, &str, &str, &str, &str); 4] = [
+    (5, SIM5, "peer", "scan-dwa", "improved DWA [17]"),
+    (6, SIM6, "peer", "scan-dwa", "Critical-PointBug [21]"),
+    (7, SIM7, "peer", "scan-dwa", "RL-RRT [2]"),
+    (8, SIM8, "peer", "scan-apf", "RS-APF [11]"),
+];
+
+type R = Runs<EpisodeMetrics>;
 
 fn lidar(name: &'static str, scenario: &'static str) -> RunSpec {
     RunSpec {
@@ -43,69 +56,203 @@ fn lidar(name: &'static str, scenario: &'static str) -> RunSpec {
     }
 }
 
-fn plain(name: &'static str, scenario: &'static str) -> RunSpec {
+fn with(name: &'static str, scenario: &'static str, planner: &'static str) -> RunSpec {
     RunSpec {
         name,
         scenario_json: scenario,
-        planner: Some("scan-dwa"),
+        planner: Some(planner),
         set: vec![],
     }
 }
 
-/// Plain APF on the scan (the baseline of sim 8, whose navigator runs APF).
-fn plain_apf(name: &'static str, scenario: &'static str) -> RunSpec {
-    RunSpec {
-        name,
-        scenario_json: scenario,
-        planner: Some("scan-apf"),
-        set: vec![],
+/// Start and goal moved up to 0.5 m, free-standing blocks up to 2 cells
+/// (0.2 m), movers up to 0.3 m and ±20 % speed, a new seed.
+fn family() -> Family {
+    Family {
+        perturbations: vec![
+            Perturbation::Endpoint {
+                which: "start",
+                radius_m: 0.5,
+            },
+            Perturbation::Endpoint {
+                which: "goal",
+                radius_m: 0.5,
+            },
+            Perturbation::Blocks { cells: 2 },
+            Perturbation::Movers {
+                radius_m: 0.3,
+                speed_rel: 0.2,
+            },
+            Perturbation::Seed,
+        ],
     }
 }
 
-/// Reached the goal without touching anything.
-fn reached_safely(m: &EpisodeMetrics) -> bool {
-    m.outcome == Outcome::Reached && m.min_clearance_m > 0.0
-}
-
-/// Sims 1–4: the navigator reaches safely without chattering.
-fn navigates(r: &BTreeMap<String, EpisodeMetrics>) -> bool {
-    r.get("lidar")
-        .is_some_and(|m| reached_safely(m) && m.temp_goal_switches <= MAX_SWITCHES)
-}
-
-/// Sims 5–8: the navigator reaches safely; plain DWA either does not reach,
-/// or drives a longer path with more total turning.
-pub fn better(ours: Option<&EpisodeMetrics>, plain: Option<&EpisodeMetrics>) -> bool {
-    match (ours, plain) {
-        (Some(o), Some(p)) => {
-            reached_safely(o)
-                && (p.outcome != Outcome::Reached
-                    || (o.path_length_m < p.path_length_m && o.total_turn_rad < p.total_turn_rad))
+fn deviations(dwa: bool) -> Vec<Deviation> {
+    let mut v = vec![
+        Deviation {
+            what: "scene geometry (the paper draws its maps)",
+            path: None,
+            ours: "assets/scenarios/L-*.json, drawn to resemble Figs 13–19",
+            paper: "not given",
+        },
+        Deviation {
+            what: "\"without chattering\", as a bound (sims 1–4)",
+            path: None,
+            ours: "≤ 8 temporary-goal switches",
+            paper: "not quantified",
+        },
+        Deviation {
+            what: "\"comparable\" in Table 2, as a bound",
+            path: None,
+            ours: "≤ 1.05 × the peer's value",
+            paper: "not quantified (sim 8: 26.28 vs 25.66 m called comparable)",
+        },
+        Deviation {
+            what: "the peers of sims 5–8",
+            path: None,
+            ours: "improved DWA [17] → scan-dwa (plain DWA on the scan); Critical-PointBug \
+                   [21] → scan-dwa; RL-RRT [2] → scan-dwa; RS-APF [11] → scan-apf",
+            paper: "the peers' own implementations",
+        },
+    ];
+    v.push(if dwa {
+        Deviation {
+            what: "heading weight α of the DWA under the navigator",
+            path: Some("local_planner.config.motion.alpha"),
+            ours: "0.2",
+            paper: "not given (DWA [8])",
         }
-        _ => false,
-    }
+    } else {
+        Deviation {
+            what: "gains of the APF under the navigator",
+            path: None,
+            ours: "the basic APF defaults",
+            paper: "not given (APF [9])",
+        }
+    });
+    v
 }
 
-fn compared(n: u32, scenario: &'static str) -> Experiment {
+/// Sims 1–4: reaches safely, no chattering.
+fn navigates() -> Vec<super::Clause<EpisodeMetrics>> {
+    vec![
+        outcome(
+            "reaches",
+            "the navigator reaches the goal without collision",
+            |r| ok(r, "lidar"),
+        ),
+        outcome(
+            "no chattering",
+            "without target chattering (≤ 8 temporary-goal switches)",
+            |r| {
+                r.get("lidar")
+                    .is_some_and(|m| m.temp_goal_switches <= MAX_SWITCHES)
+            },
+        ),
+    ]
+}
+
+/// `ours / peer` of one metric on sim `n` (run names `lidar`/`peer` or
+/// `simN-lidar`/`simN-peer`) when both reached safely.
+fn metric_ratio(r: &R, ours: &str, peer: &str, f: fn(&EpisodeMetrics) -> f64) -> Option<f64> {
+    if !(ok(r, ours) && ok(r, peer)) {
+        return None;
+    }
+    let (o, p) = (f(r.get(ours)?), f(r.get(peer)?));
+    Some(if p > 0.0 {
+        o / p
+    } else if o <= 0.0 {
+        1.0
+    } else {
+        f64::INFINITY
+    })
+}
+
+fn length(m: &EpisodeMetrics) -> f64 {
+    m.path_length_m
+}
+fn total_turn(m: &EpisodeMetrics) -> f64 {
+    m.total_turn_rad
+}
+fn max_turn(m: &EpisodeMetrics) -> f64 {
+    m.max_turn_rad
+}
+
+const METRICS: [(&str, fn(&EpisodeMetrics) -> f64); 3] = [
+    ("path length", length),
+    ("total turning", total_turn),
+    ("max turning", max_turn),
+];
+
+fn comparable(x: Option<f64>) -> bool {
+    x.is_some_and(|x| x <= COMPARABLE)
+}
+
+/// The clauses of one compared sim.
+fn compared_clauses() -> Vec<super::Clause<EpisodeMetrics>> {
+    macro_rules! metric_clause {
+        ($i:expr, $name:expr, $text:expr, $eff:expr) => {
+            effect(
+                $name,
+                $text,
+                |r| comparable(metric_ratio(r, "lidar", "peer", METRICS[$i].1)),
+                ratio($eff, |r| metric_ratio(r, "lidar", "peer", METRICS[$i].1)),
+            )
+        };
+    }
+    vec![
+        outcome(
+            "reaches",
+            "the navigator reaches the goal without collision",
+            |r| ok(r, "lidar"),
+        ),
+        outcome(
+            "peer reaches",
+            "the peer reaches it too (Table 2 has its figures)",
+            |r| ok(r, "peer"),
+        ),
+        metric_clause!(
+            0,
+            "length comparable or better",
+            "path length comparable or better (≤ 1.05 × the peer's)",
+            "path length navigator / peer"
+        ),
+        metric_clause!(
+            1,
+            "total turning comparable or better",
+            "total turning angle comparable or better",
+            "total turning navigator / peer"
+        ),
+        metric_clause!(
+            2,
+            "max turning comparable or better",
+            "maximum turning angle comparable or better",
+            "max turning navigator / peer"
+        ),
+    ]
+}
+
+fn compared(n: u32, scenario: &'static str, planner: &'static str) -> Experiment {
     let (id, paper, what) = match n {
         5 => (
             "L-sim5",
-            "[L] Chang et al. 2024, sim 5 / Fig 15",
+            "[L] Chang et al. 2024, sim 5 / Fig 15 (vs improved DWA [17])",
             "a long wall hooked at its upper end across the way",
         ),
         6 => (
             "L-sim6",
-            "[L] Chang et al. 2024, sim 6 / Fig 16",
+            "[L] Chang et al. 2024, sim 6 / Fig 16 (vs Critical-PointBug [21])",
             "scattered rectangular blocks",
         ),
         7 => (
             "L-sim7",
-            "[L] Chang et al. 2024, sim 7 / Fig 17",
+            "[L] Chang et al. 2024, sim 7 / Fig 17 (vs RL-RRT [2])",
             "two offset free-standing walls",
         ),
         _ => (
             "L-sim8",
-            "[L] Chang et al. 2024, sim 8 / Fig 18",
+            "[L] Chang et al. 2024, sim 8 / Fig 18 (vs RS-APF [11])",
             "blocks across the way",
         ),
     };
@@ -113,64 +260,91 @@ fn compared(n: u32, scenario: &'static str) -> Experiment {
         id,
         paper,
         what,
-        relation: "the navigator (temporary goals over DWA; over APF in sim 8) reaches the goal \
-                   without collision; plain DWA (plain APF in sim 8) on the same unknown map \
-                   either does not reach it or drives a longer path with more total turning (the \
-                   paper's peer is replaced by the plain motion planner)",
-        runs: vec![
-            lidar("lidar", scenario),
-            if n == 8 {
-                plain_apf("apf", scenario)
-            } else {
-                plain("dwa", scenario)
-            },
-        ],
-        holds: |r| better(r.get("lidar"), r.get("dwa").or_else(|| r.get("apf"))),
+        relation: "the navigator (temporary goals over DWA; over APF in sim 8) and the \
+                   paper's peer both reach the goal without collision; the navigator's path \
+                   length, total and maximum turning angle are each comparable or better \
+                   (≤ 1.05 × the peer's)",
+        runs: vec![lidar("lidar", scenario), with("peer", scenario, planner)],
+        clauses: compared_clauses(),
+        family: family(),
+        deviations: deviations(n != 8),
+        figures: None,
     }
+}
+
+/// Run names of sim `n` in L-tab2.
+fn tab2_names(n: u32) -> (&'static str, &'static str) {
+    match n {
+        5 => ("sim5-lidar", "sim5-peer"),
+        6 => ("sim6-lidar", "sim6-peer"),
+        7 => ("sim7-lidar", "sim7-peer"),
+        _ => ("sim8-lidar", "sim8-peer"),
+    }
+}
+
+/// The worst (largest) navigator / peer ratio of metric `i` over sims 5–8;
+/// `None` unless every sim has one.
+fn worst_ratio(r: &R, i: usize) -> Option<f64> {
+    (5..=8)
+        .map(|n| {
+            let (o, p) = tab2_names(n);
+            metric_ratio(r, o, p, METRICS[i].1)
+        })
+        .try_fold(0.0f64, |acc, x| x.map(|x| acc.max(x)))
 }
 
 /// The \[L\] experiments.
 pub fn experiments() -> Vec<Experiment> {
-    let mut v = vec![
-        Experiment {
-            id: "L-sim1",
-            paper: "[L] Chang et al. 2024, sim 1 / Fig 13a",
-            what: "goal inside a U open away from the robot; start, U and goal symmetric",
-            relation: "the navigator reaches the goal without collision and without target \
-                       chattering (the hold period settles the symmetric choice); plain DWA \
-                       is shown for contrast",
-            runs: vec![lidar("lidar", SIM1), plain("dwa", SIM1)],
-            holds: navigates,
-        },
-        Experiment {
-            id: "L-sim2",
-            paper: "[L] Chang et al. 2024, sim 2 / Fig 13b",
-            what: "goal behind a shallow U open toward the robot; symmetric",
-            relation: "the navigator reaches the goal without collision and without target \
-                       chattering; plain DWA is shown for contrast",
-            runs: vec![lidar("lidar", SIM2), plain("dwa", SIM2)],
-            holds: navigates,
-        },
-        Experiment {
-            id: "L-sim3",
-            paper: "[L] Chang et al. 2024, sim 3 / Fig 14a",
-            what: "start in a bay behind a long wall reaching the map edge; asymmetric",
-            relation: "the navigator reaches the goal without collision and without target \
-                       chattering; plain DWA is shown for contrast",
-            runs: vec![lidar("lidar", SIM3), plain("dwa", SIM3)],
-            holds: navigates,
-        },
-        Experiment {
-            id: "L-sim4",
-            paper: "[L] Chang et al. 2024, sim 4 / Fig 14b",
-            what: "Z-shaped channel whose walls have 0.4 m holes (< robot, < T_gap)",
-            relation: "the navigator reaches the goal without collision and without target \
-                       chattering; the holes do not attract it",
-            runs: vec![lidar("lidar", SIM4)],
-            holds: navigates,
-        },
+    let sims14: [(&str, &str, &str, &str, bool); 4] = [
+        (
+            "L-sim1",
+            "[L] Chang et al. 2024, sim 1 / Fig 13a",
+            "goal inside a U open away from the robot; start, U and goal symmetric",
+            SIM1,
+            true,
+        ),
+        (
+            "L-sim2",
+            "[L] Chang et al. 2024, sim 2 / Fig 13b",
+            "goal behind a shallow U open toward the robot; symmetric",
+            SIM2,
+            true,
+        ),
+        (
+            "L-sim3",
+            "[L] Chang et al. 2024, sim 3 / Fig 14a",
+            "start in a bay behind a long wall reaching the map edge; asymmetric",
+            SIM3,
+            true,
+        ),
+        (
+            "L-sim4",
+            "[L] Chang et al. 2024, sim 4 / Fig 14b",
+            "Z-shaped channel whose walls have 0.4 m holes (< robot, < T_gap)",
+            SIM4,
+            false,
+        ),
     ];
-    v.extend(COMPARED.iter().map(|&(n, s)| compared(n, s)));
+    let mut v: Vec<Experiment> = sims14
+        .iter()
+        .map(|&(id, paper, what, s, contrast)| Experiment {
+            id,
+            paper,
+            what,
+            relation: "the navigator reaches the goal without collision and without target \
+                       chattering (plain DWA on the scan is run for contrast, no claim)",
+            runs: if contrast {
+                vec![lidar("lidar", s), with("dwa", s, "scan-dwa")]
+            } else {
+                vec![lidar("lidar", s)]
+            },
+            clauses: navigates(),
+            family: family(),
+            deviations: deviations(true),
+            figures: None,
+        })
+        .collect();
+    v.extend(PEERS.iter().map(|&(n, s, _, p, _)| compared(n, s, p)));
     v.push(Experiment {
         id: "L-sim9",
         paper: "[L] Chang et al. 2024, sim 9 / Fig 19",
@@ -178,40 +352,66 @@ pub fn experiments() -> Vec<Experiment> {
                extra switching conditions)",
         relation: "the navigator reaches the goal without collision",
         runs: vec![lidar("lidar", SIM9)],
-        holds: |r| r.get("lidar").is_some_and(reached_safely),
+        clauses: vec![outcome(
+            "reaches",
+            "the navigator reaches the goal without collision among the movers",
+            |r| ok(r, "lidar"),
+        )],
+        family: family(),
+        deviations: deviations(false),
+        figures: None,
     });
     v.push(Experiment {
         id: "L-tab2",
         paper: "[L] Chang et al. 2024, Table 2 (sims 5–8)",
-        what: "path length, total and max turning of sims 5–8, navigator vs plain DWA",
-        relation: "in every one of sims 5–8 the navigator reaches the goal and plain DWA does \
-                   not, or drives a longer path with more total turning (paper: 14.65 vs \
-                   24.32 m, 24.35 vs 28.50, 11.15 vs 13.08, 26.28 vs 25.66; total turning \
-                   lower in all four)",
-        runs: COMPARED
+        what: "path length, total and max turning of sims 5–8, navigator vs each sim's peer",
+        relation: "in every one of sims 5–8 the navigator and the peer reach the goal and the \
+                   navigator is comparable or better on all three metrics (paper: length \
+                   14.65/24.32, 24.35/28.50, 11.15/13.08, 26.28/25.66 m; total turning \
+                   4.51/9.40, 2.80/4.13, 5.66/10.06, 4.11/4.51 rad; max turning 0.26/0.28, \
+                   0.07/0.90, 0.12/0.32, 0.15/1.14 rad)",
+        runs: PEERS
             .iter()
-            .flat_map(|&(n, s)| {
-                let (a, b) = match n {
-                    5 => ("sim5-lidar", "sim5-dwa"),
-                    6 => ("sim6-lidar", "sim6-dwa"),
-                    7 => ("sim7-lidar", "sim7-dwa"),
-                    _ => ("sim8-lidar", "sim8-apf"),
-                };
-                [
-                    lidar(a, s),
-                    if n == 8 { plain_apf(b, s) } else { plain(b, s) },
-                ]
+            .flat_map(|&(n, s, _, p, _)| {
+                let (a, b) = tab2_names(n);
+                [lidar(a, s), with(b, s, p)]
             })
             .collect(),
-        holds: |r| {
-            (5..=8).all(|n| {
-                better(
-                    r.get(&format!("sim{n}-lidar")),
-                    r.get(&format!("sim{n}-dwa"))
-                        .or_else(|| r.get(&format!("sim{n}-apf"))),
-                )
-            })
-        },
+        clauses: vec![
+            outcome(
+                "all reach",
+                "the navigator and every peer reach the goal without collision in sims 5–8",
+                |r| r.metrics.keys().all(|k| ok(r, k)),
+            ),
+            effect(
+                "length comparable or better",
+                "path length comparable or better in all four sims",
+                |r| comparable(worst_ratio(r, 0)),
+                ratio(
+                    "worst path-length ratio navigator / peer over sims 5–8",
+                    |r| worst_ratio(r, 0),
+                ),
+            ),
+            effect(
+                "total turning comparable or better",
+                "total turning angle comparable or better in all four sims",
+                |r| comparable(worst_ratio(r, 1)),
+                ratio("worst total-turning ratio over sims 5–8", |r| {
+                    worst_ratio(r, 1)
+                }),
+            ),
+            effect(
+                "max turning comparable or better",
+                "maximum turning angle comparable or better in all four sims",
+                |r| comparable(worst_ratio(r, 2)),
+                ratio("worst max-turning ratio over sims 5–8", |r| {
+                    worst_ratio(r, 2)
+                }),
+            ),
+        ],
+        family: family(),
+        deviations: deviations(true),
+        figures: None,
     });
     v
 }

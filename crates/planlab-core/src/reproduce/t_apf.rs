@@ -6,10 +6,12 @@
 //! section): a point robot stepping 0.04 m among discs (2D) or a sphere
 //! (3D, `T-tab4-1`). The runs switch the variant with `apf.config.mode`
 //! (and the relative distance rule with `apf.config.relative_distance`).
+//! The families move the discs by up to 2 cm (the scenes are 1 m across):
+//! the local minimum of Fig 4-6 needs start, disc and goal exactly on one
+//! line, and the family says how often it survives being a little off it.
 
-use std::collections::BTreeMap;
-
-use super::{PathExperiment, RunSpec};
+use super::clause::{diff, effect, ok, outcome, reached};
+use super::{Deviation, Family, PathExperiment, Perturbation, RunSpec, Runs};
 use crate::apf::ApfMetrics;
 use crate::sim::Outcome;
 
@@ -19,6 +21,8 @@ const FIG4_10: &str = include_str!("../../../../assets/scenarios/T-fig4-10.json"
 const FIG4_11: &str = include_str!("../../../../assets/scenarios/T-fig4-11.json");
 const FIG4_12: &str = include_str!("../../../../assets/scenarios/T-fig4-12.json");
 const TAB4_1: &str = include_str!("../../../../assets/scenarios/T-tab4-1.json");
+
+type R = Runs<ApfMetrics>;
 
 /// The three variants of \[T\] Fig 4-10…4-12 / Table 4-1.
 fn three(scenario: &'static str) -> Vec<RunSpec> {
@@ -37,21 +41,94 @@ fn three(scenario: &'static str) -> Vec<RunSpec> {
     .collect()
 }
 
-fn reached(r: &BTreeMap<String, ApfMetrics>, name: &str) -> bool {
-    r.get(name).is_some_and(|m| m.outcome == Outcome::Reached)
-}
-
-fn reached_safely(r: &BTreeMap<String, ApfMetrics>, name: &str) -> bool {
-    r.get(name)
-        .is_some_and(|m| m.outcome == Outcome::Reached && m.min_obstacle_distance_m > 0.0)
-}
-
-fn length(r: &BTreeMap<String, ApfMetrics>, name: &str) -> f64 {
+fn length(r: &R, name: &str) -> f64 {
     r.get(name).map_or(f64::NAN, |m| m.path_length_m)
 }
 
-fn spikes(r: &BTreeMap<String, ApfMetrics>, name: &str) -> u32 {
+fn spikes(r: &R, name: &str) -> u32 {
     r.get(name).map_or(u32::MAX, |m| m.spikes)
+}
+
+/// Path length basic > sampling > sampling+prediction.
+fn ordered(r: &R) -> bool {
+    length(r, "apf") > length(r, "sampling")
+        && length(r, "sampling") > length(r, "sampling+prediction")
+}
+
+fn all_ok(r: &R) -> bool {
+    r.metrics.keys().all(|k| ok(r, k))
+}
+
+/// 2D scenes: start, goal and discs moved up to 2 cm, mover speeds ±20 %.
+fn family_2d() -> Family {
+    Family {
+        perturbations: vec![
+            Perturbation::Endpoint {
+                which: "start",
+                radius_m: 0.02,
+            },
+            Perturbation::Endpoint {
+                which: "goal",
+                radius_m: 0.02,
+            },
+            Perturbation::ApfObstacles {
+                radius_m: 0.02,
+                speed_rel: 0.2,
+            },
+        ],
+    }
+}
+
+/// The 3D scene: its start, goal and sphere moved up to 2 cm, speed ±20 %.
+fn family_3d() -> Family {
+    Family {
+        perturbations: vec![
+            Perturbation::Point {
+                path: "apf.start",
+                radius_m: 0.02,
+            },
+            Perturbation::Point {
+                path: "apf.goal",
+                radius_m: 0.02,
+            },
+            Perturbation::ApfObstacles {
+                radius_m: 0.02,
+                speed_rel: 0.2,
+            },
+        ],
+    }
+}
+
+fn deviations(prediction: bool) -> Vec<Deviation> {
+    let mut v = vec![
+        Deviation {
+            what: "scene geometry (discs, start, goal)",
+            path: None,
+            ours: "assets/scenarios/T-fig4-*.json, T-tab4-1.json, drawn from the figures",
+            paper: "drawn, not given",
+        },
+        Deviation {
+            what: "attraction / repulsion gains and repulsion range",
+            path: Some("apf.config.k_r"),
+            ours: "the ApfConfig defaults",
+            paper: "not given",
+        },
+        Deviation {
+            what: "a spike: a path point turning by more than",
+            path: None,
+            ours: "30°",
+            paper: "not defined",
+        },
+    ];
+    if prediction {
+        v.push(Deviation {
+            what: "time step between the predicted positions t+1, t+2",
+            path: Some("apf.config.predict_dt"),
+            ours: "0.8 s in these presets (the config default is 0.5 s)",
+            paper: "not given",
+        });
+    }
+    v
 }
 
 /// The \[T\] ch. 4 experiments.
@@ -64,10 +141,22 @@ pub fn experiments() -> Vec<PathExperiment> {
             relation: "basic APF oscillates in front of the disc and ends stuck; the sampling \
                        APF escapes around it and reaches the goal",
             runs: three(FIG4_6).into_iter().take(2).collect(),
-            holds: |r| {
-                r.get("apf").is_some_and(|m| m.outcome == Outcome::Stuck)
-                    && reached_safely(r, "sampling")
-            },
+            clauses: vec![
+                outcome(
+                    "sampling reaches",
+                    "the sampling APF escapes the local minimum and reaches the goal",
+                    |r| ok(r, "sampling"),
+                ),
+                effect(
+                    "basic stuck",
+                    "basic APF is caught in the local minimum (stuck before the disc)",
+                    |r| r.get("apf").is_some_and(|m| m.outcome == Outcome::Stuck),
+                    None,
+                ),
+            ],
+            family: family_2d(),
+            deviations: deviations(false),
+            figures: None,
         },
         PathExperiment {
             id: "T-fig4-8",
@@ -98,11 +187,28 @@ pub fn experiments() -> Vec<PathExperiment> {
                     set: vec![("apf.config.mode", "sampling")],
                 },
             ],
-            holds: |r| {
-                !reached(r, "apf")
-                    && !reached(r, "sampling-no-rule")
-                    && reached_safely(r, "sampling+rule")
-            },
+            clauses: vec![
+                outcome(
+                    "with the rule reaches",
+                    "with the relative distance rule the sampling APF reaches the goal",
+                    |r| ok(r, "sampling+rule"),
+                ),
+                effect(
+                    "basic stalls",
+                    "basic APF does not reach the goal (goal unreachable near the obstacle)",
+                    |r| !reached(r, "apf"),
+                    None,
+                ),
+                effect(
+                    "no rule stalls",
+                    "the sampling APF without the rule does not reach it either",
+                    |r| !reached(r, "sampling-no-rule"),
+                    None,
+                ),
+            ],
+            family: family_2d(),
+            deviations: deviations(false),
+            figures: None,
         },
         PathExperiment {
             id: "T-fig4-10",
@@ -111,12 +217,35 @@ pub fn experiments() -> Vec<PathExperiment> {
             relation: "basic APF does not reach the goal; the sampling APF does; with \
                        prediction the path is shorter",
             runs: three(FIG4_10),
-            holds: |r| {
-                !reached(r, "apf")
-                    && reached_safely(r, "sampling")
-                    && reached_safely(r, "sampling+prediction")
-                    && length(r, "sampling+prediction") < length(r, "sampling")
-            },
+            clauses: vec![
+                outcome(
+                    "improved reach",
+                    "the sampling APF reaches, with and without prediction",
+                    |r| ok(r, "sampling") && ok(r, "sampling+prediction"),
+                ),
+                effect(
+                    "basic fails",
+                    "basic APF does not reach the goal",
+                    |r| !reached(r, "apf"),
+                    None,
+                ),
+                effect(
+                    "prediction shorter",
+                    "with prediction the path is shorter (paper 0.84 vs 0.96 m)",
+                    |r| {
+                        ok(r, "sampling")
+                            && ok(r, "sampling+prediction")
+                            && length(r, "sampling+prediction") < length(r, "sampling")
+                    },
+                    diff("path prediction − sampling", "m", |r| {
+                        (ok(r, "sampling") && ok(r, "sampling+prediction"))
+                            .then(|| length(r, "sampling+prediction") - length(r, "sampling"))
+                    }),
+                ),
+            ],
+            family: family_2d(),
+            deviations: deviations(true),
+            figures: None,
         },
         PathExperiment {
             id: "T-fig4-11",
@@ -125,15 +254,33 @@ pub fn experiments() -> Vec<PathExperiment> {
             relation: "all reach; path length basic > sampling > sampling+prediction; the \
                        basic path has the most spikes",
             runs: three(FIG4_11),
-            holds: |r| {
-                ["apf", "sampling", "sampling+prediction"]
-                    .iter()
-                    .all(|n| reached_safely(r, n))
-                    && length(r, "apf") > length(r, "sampling")
-                    && length(r, "sampling") > length(r, "sampling+prediction")
-                    && spikes(r, "apf") > spikes(r, "sampling")
-                    && spikes(r, "apf") > spikes(r, "sampling+prediction")
-            },
+            clauses: vec![
+                outcome(
+                    "all reach",
+                    "all three reach the goal without collision",
+                    all_ok,
+                ),
+                effect(
+                    "lengths fall",
+                    "path length basic > sampling > sampling+prediction",
+                    |r| all_ok(r) && ordered(r),
+                    diff("path prediction − basic", "m", |r| {
+                        all_ok(r).then(|| length(r, "sampling+prediction") - length(r, "apf"))
+                    }),
+                ),
+                effect(
+                    "basic most spikes",
+                    "the basic path has the most spikes",
+                    |r| {
+                        spikes(r, "apf") > spikes(r, "sampling")
+                            && spikes(r, "apf") > spikes(r, "sampling+prediction")
+                    },
+                    None,
+                ),
+            ],
+            family: family_2d(),
+            deviations: deviations(true),
+            figures: None,
         },
         PathExperiment {
             id: "T-fig4-12",
@@ -142,14 +289,30 @@ pub fn experiments() -> Vec<PathExperiment> {
             relation: "all reach; the improvement is not evident: both improved paths are at \
                        least as long as the basic one (within 10 %)",
             runs: three(FIG4_12),
-            holds: |r| {
-                ["apf", "sampling", "sampling+prediction"]
-                    .iter()
-                    .all(|n| reached_safely(r, n))
-                    && ["sampling", "sampling+prediction"].iter().all(|n| {
-                        length(r, n) >= length(r, "apf") && length(r, n) <= 1.1 * length(r, "apf")
-                    })
-            },
+            clauses: vec![
+                outcome(
+                    "all reach",
+                    "all three reach the goal without collision",
+                    all_ok,
+                ),
+                effect(
+                    "no gain",
+                    "both improved paths are at least as long as the basic one, within 10 %",
+                    |r| {
+                        all_ok(r)
+                            && ["sampling", "sampling+prediction"].iter().all(|n| {
+                                length(r, n) >= length(r, "apf")
+                                    && length(r, n) <= 1.1 * length(r, "apf")
+                            })
+                    },
+                    diff("path prediction − basic", "m", |r| {
+                        all_ok(r).then(|| length(r, "sampling+prediction") - length(r, "apf"))
+                    }),
+                ),
+            ],
+            family: family_2d(),
+            deviations: deviations(true),
+            figures: None,
         },
         PathExperiment {
             id: "T-tab4-1",
@@ -159,16 +322,34 @@ pub fn experiments() -> Vec<PathExperiment> {
             relation: "all reach; path length basic > sampling > sampling+prediction; spikes \
                        fall: basic > sampling > sampling+prediction = 0",
             runs: three(TAB4_1),
-            holds: |r| {
-                ["apf", "sampling", "sampling+prediction"]
-                    .iter()
-                    .all(|n| reached_safely(r, n))
-                    && length(r, "apf") > length(r, "sampling")
-                    && length(r, "sampling") > length(r, "sampling+prediction")
-                    && spikes(r, "apf") > spikes(r, "sampling")
-                    && spikes(r, "sampling") > spikes(r, "sampling+prediction")
-                    && spikes(r, "sampling+prediction") == 0
-            },
+            clauses: vec![
+                outcome(
+                    "all reach",
+                    "all three reach the goal without collision",
+                    all_ok,
+                ),
+                effect(
+                    "lengths fall",
+                    "path length basic > sampling > sampling+prediction",
+                    |r| all_ok(r) && ordered(r),
+                    diff("path prediction − sampling", "m", |r| {
+                        all_ok(r).then(|| length(r, "sampling+prediction") - length(r, "sampling"))
+                    }),
+                ),
+                effect(
+                    "spikes fall to 0",
+                    "spikes basic > sampling > sampling+prediction = 0",
+                    |r| {
+                        spikes(r, "apf") > spikes(r, "sampling")
+                            && spikes(r, "sampling") > spikes(r, "sampling+prediction")
+                            && spikes(r, "sampling+prediction") == 0
+                    },
+                    None,
+                ),
+            ],
+            family: family_3d(),
+            deviations: deviations(true),
+            figures: None,
         },
     ]
 }
