@@ -7,6 +7,7 @@ use planlab_core::sim::Outcome;
 fn holds(id: &str) -> PathExperimentResult {
     let exp = find_path(id).unwrap_or_else(|| panic!("{id} is not registered"));
     let r = run_path(&exp).unwrap_or_else(|e| panic!("{id}: {e}"));
+    // The preset's own clauses: the scene as drawn shows each effect.
     assert!(
         r.holds,
         "{id}: {}\n{}",

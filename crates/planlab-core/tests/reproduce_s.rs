@@ -8,6 +8,7 @@ use planlab_core::reproduce::s_dual::{feature_nodes, FIG6_MAX_SHARE};
 use planlab_core::reproduce::{self, find, run_spec};
 use planlab_core::sim::{Outcome, TraceStep};
 
+/// The preset run of `id`: every clause holds on the preset.
 fn assert_holds(id: &str) -> reproduce::ExperimentResult {
     let exp = find(id).unwrap_or_else(|| panic!("experiment {id} is registered"));
     let r = reproduce::run(&exp).unwrap_or_else(|e| panic!("{id}: {e}"));
