@@ -155,7 +155,7 @@ fn navigates() -> Vec<super::Clause<EpisodeMetrics>> {
 
 /// `ours / peer` of one metric on sim `n` (run names `lidar`/`peer` or
 /// `simN-lidar`/`simN-peer`) when both reached safely.
-fn metric_ratio(r: &R, ours: &str, peer: &str, f: fn(&EpisodeMetrics) -> f64) -> Option<f64> {
+fn metric_ratio(r: &R, ours: &str, peer: &str, f: Metric) -> Option<f64> {
     if !(ok(r, ours) && ok(r, peer)) {
         return None;
     }
@@ -179,7 +179,10 @@ fn max_turn(m: &EpisodeMetrics) -> f64 {
     m.max_turn_rad
 }
 
-const METRICS: [(&str, fn(&EpisodeMetrics) -> f64); 3] = [
+/// A metric read from a run.
+type Metric = fn(&EpisodeMetrics) -> f64;
+
+const METRICS: [(&str, Metric); 3] = [
     ("path length", length),
     ("total turning", total_turn),
     ("max turning", max_turn),

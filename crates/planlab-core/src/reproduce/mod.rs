@@ -150,6 +150,9 @@ pub struct Deviation {
     pub paper: &'static str,
 }
 
+/// Figures of a variant's scene from its first run's tree.
+pub type FiguresFn = fn(&Value) -> Result<BTreeMap<String, f64>, SimError>;
+
 /// A paper's experiment: runs, clauses, family, deviations.
 #[derive(Debug, Clone)]
 pub struct Experiment<M = EpisodeMetrics> {
@@ -170,7 +173,7 @@ pub struct Experiment<M = EpisodeMetrics> {
     /// Values not from the paper.
     pub deviations: Vec<Deviation>,
     /// Figures of a variant's scene (its first run's tree), for clauses.
-    pub figures: Option<fn(&Value) -> Result<BTreeMap<String, f64>, SimError>>,
+    pub figures: Option<FiguresFn>,
 }
 
 /// An experiment over kinematic path runs (potential fields, the arm).
@@ -228,7 +231,7 @@ impl RunMetrics for EpisodeMetrics {
 /// A path scenario's run: the arm episode or the APF run.
 enum PathRun {
     Arm(Box<crate::arm::ArmEpisode>),
-    Apf(AnyApfRun),
+    Apf(Box<AnyApfRun>),
 }
 
 fn path_run_of(tree: &Value) -> Result<PathRun, SimError> {
@@ -243,7 +246,7 @@ fn path_run_of(tree: &Value) -> Result<PathRun, SimError> {
     let grid = scenario
         .inline_grid()?
         .ok_or_else(|| invalid("an embedded preset needs an inline map".into()))?;
-    Ok(PathRun::Apf(apf_run_of(&scenario, &grid)?))
+    Ok(PathRun::Apf(Box::new(apf_run_of(&scenario, &grid)?)))
 }
 
 impl RunMetrics for ApfMetrics {

@@ -54,7 +54,7 @@ pub fn feature_nodes_of(sc: &Scenario) -> Result<(usize, usize, bool), SimError>
             "the [S] presets have inline maps".into(),
         ))
     })?;
-    let robot = sc.robot.clone().unwrap_or_default();
+    let robot = sc.robot.unwrap_or_default();
     let map = StaticMap::new(grid.clone(), true).map_err(SimError::from)?;
     let opts = grid_options(
         &DualConfig::default(),
