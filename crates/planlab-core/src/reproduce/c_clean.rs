@@ -87,14 +87,8 @@ fn share_gain(r: &R, road: &str) -> Option<f64> {
 fn family() -> Family {
     Family {
         perturbations: vec![
-            Perturbation::Endpoint {
-                which: "start",
-                radius_m: 0.2,
-            },
-            Perturbation::Endpoint {
-                which: "goal",
-                radius_m: 0.2,
-            },
+            Perturbation::start(0.2),
+            Perturbation::goal(0.2),
             Perturbation::Seed,
         ],
     }

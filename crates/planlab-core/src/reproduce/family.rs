@@ -82,6 +82,22 @@ pub enum Perturbation {
 }
 
 impl Perturbation {
+    /// The scenario's start moved within `radius_m`.
+    pub fn start(radius_m: f64) -> Perturbation {
+        Perturbation::Endpoint {
+            which: "start",
+            radius_m,
+        }
+    }
+
+    /// The scenario's goal moved within `radius_m`.
+    pub fn goal(radius_m: f64) -> Perturbation {
+        Perturbation::Endpoint {
+            which: "goal",
+            radius_m,
+        }
+    }
+
     /// A short name for reports (`start`, `movers`, `arm.goal` …).
     pub fn name(&self) -> String {
         match self {
@@ -503,14 +519,8 @@ mod tests {
     fn family() -> Family {
         Family {
             perturbations: vec![
-                Perturbation::Endpoint {
-                    which: "start",
-                    radius_m: 0.2,
-                },
-                Perturbation::Endpoint {
-                    which: "goal",
-                    radius_m: 0.2,
-                },
+                Perturbation::start(0.2),
+                Perturbation::goal(0.2),
                 Perturbation::Movers {
                     radius_m: 0.2,
                     speed_rel: 0.2,

@@ -70,14 +70,8 @@ fn with(name: &'static str, scenario: &'static str, planner: &'static str) -> Ru
 fn family() -> Family {
     Family {
         perturbations: vec![
-            Perturbation::Endpoint {
-                which: "start",
-                radius_m: 0.5,
-            },
-            Perturbation::Endpoint {
-                which: "goal",
-                radius_m: 0.5,
-            },
+            Perturbation::start(0.5),
+            Perturbation::goal(0.5),
             Perturbation::Blocks { cells: 2 },
             Perturbation::Movers {
                 radius_m: 0.3,

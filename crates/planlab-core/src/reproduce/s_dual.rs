@@ -113,14 +113,8 @@ type R = Runs<EpisodeMetrics>;
 fn family(cells: u32) -> Family {
     Family {
         perturbations: vec![
-            Perturbation::Endpoint {
-                which: "start",
-                radius_m: 0.2,
-            },
-            Perturbation::Endpoint {
-                which: "goal",
-                radius_m: 0.2,
-            },
+            Perturbation::start(0.2),
+            Perturbation::goal(0.2),
             Perturbation::Movers {
                 radius_m: 0.3,
                 speed_rel: 0.2,

@@ -55,6 +55,19 @@ fn ordered(r: &R) -> bool {
         && length(r, "sampling") > length(r, "sampling+prediction")
 }
 
+/// "Path length basic > sampling > sampling+prediction", with the
+/// prediction's gain over the basic path as its effect.
+fn lengths_fall() -> super::Clause<ApfMetrics> {
+    effect(
+        "lengths fall",
+        "path length basic > sampling > sampling+prediction",
+        |r| all_ok(r) && ordered(r),
+        diff("path prediction − basic", "m", |r| {
+            all_ok(r).then(|| length(r, "sampling+prediction") - length(r, "apf"))
+        }),
+    )
+}
+
 fn all_ok(r: &R) -> bool {
     r.metrics.keys().all(|k| ok(r, k))
 }
@@ -63,14 +76,8 @@ fn all_ok(r: &R) -> bool {
 fn family_2d() -> Family {
     Family {
         perturbations: vec![
-            Perturbation::Endpoint {
-                which: "start",
-                radius_m: 0.02,
-            },
-            Perturbation::Endpoint {
-                which: "goal",
-                radius_m: 0.02,
-            },
+            Perturbation::start(0.02),
+            Perturbation::goal(0.02),
             Perturbation::ApfObstacles {
                 radius_m: 0.02,
                 speed_rel: 0.2,
@@ -260,14 +267,7 @@ pub fn experiments() -> Vec<PathExperiment> {
                     "all three reach the goal without collision",
                     all_ok,
                 ),
-                effect(
-                    "lengths fall",
-                    "path length basic > sampling > sampling+prediction",
-                    |r| all_ok(r) && ordered(r),
-                    diff("path prediction − basic", "m", |r| {
-                        all_ok(r).then(|| length(r, "sampling+prediction") - length(r, "apf"))
-                    }),
-                ),
+                lengths_fall(),
                 effect(
                     "basic most spikes",
                     "the basic path has the most spikes",
@@ -328,14 +328,7 @@ pub fn experiments() -> Vec<PathExperiment> {
                     "all three reach the goal without collision",
                     all_ok,
                 ),
-                effect(
-                    "lengths fall",
-                    "path length basic > sampling > sampling+prediction",
-                    |r| all_ok(r) && ordered(r),
-                    diff("path prediction − sampling", "m", |r| {
-                        all_ok(r).then(|| length(r, "sampling+prediction") - length(r, "sampling"))
-                    }),
-                ),
+                lengths_fall(),
                 effect(
                     "spikes fall to 0",
                     "spikes basic > sampling > sampling+prediction = 0",

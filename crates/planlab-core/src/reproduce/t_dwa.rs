@@ -62,14 +62,8 @@ fn length_ratio(r: &R, name: &str) -> Option<f64> {
 fn room_family(goal_m: f64, movers_m: f64) -> Family {
     Family {
         perturbations: vec![
-            Perturbation::Endpoint {
-                which: "start",
-                radius_m: 0.2,
-            },
-            Perturbation::Endpoint {
-                which: "goal",
-                radius_m: goal_m,
-            },
+            Perturbation::start(0.2),
+            Perturbation::goal(goal_m),
             Perturbation::Movers {
                 radius_m: movers_m,
                 speed_rel: 0.2,
@@ -120,6 +114,31 @@ fn planner_deviations() -> Vec<Deviation> {
             paper: "not given",
         },
     ]
+}
+
+/// "Baseline `run` fails or circles near the goal" (\[T\] §3.2.3: plain
+/// DWA and \[53\] both), with the path ratio as its effect.
+fn circles_clause(run: &str) -> super::Clause<EpisodeMetrics> {
+    if run == "dwa" {
+        effect(
+            "dwa fails or circles",
+            "plain DWA cannot reach a goal this close to an obstacle (fails, or circles: \
+             path ≥ 1.3 × the improved one's)",
+            |r| fails_or_circles(r, "dwa"),
+            ratio("path dwa / improved (both reached)", |r| {
+                length_ratio(r, "dwa")
+            }),
+        )
+    } else {
+        effect(
+            "[53] fails or circles",
+            "the [53] baseline cannot reach it either (Fig 3-14)",
+            |r| fails_or_circles(r, "fusion-53"),
+            ratio("path fusion-53 / improved (both reached)", |r| {
+                length_ratio(r, "fusion-53")
+            }),
+        )
+    }
 }
 
 fn improved_reaches() -> super::Clause<EpisodeMetrics> {
@@ -197,23 +216,8 @@ pub fn experiments() -> Vec<Experiment> {
             runs: runs(FIG3_13A, &all3),
             clauses: vec![
                 improved_reaches(),
-                effect(
-                    "dwa fails or circles",
-                    "plain DWA cannot reach a goal this close to an obstacle (fails, or \
-                     circles: path ≥ 1.3 × the improved one's)",
-                    |r| fails_or_circles(r, "dwa"),
-                    ratio("path dwa / improved (both reached)", |r| {
-                        length_ratio(r, "dwa")
-                    }),
-                ),
-                effect(
-                    "[53] fails or circles",
-                    "the [53] baseline cannot reach it either (Fig 3-14)",
-                    |r| fails_or_circles(r, "fusion-53"),
-                    ratio("path fusion-53 / improved (both reached)", |r| {
-                        length_ratio(r, "fusion-53")
-                    }),
-                ),
+                circles_clause("dwa"),
+                circles_clause("fusion-53"),
             ],
             // The scene is the goal's distance to the disc: goal and disc move
             // by at most 5 cm so a variant stays a "goal near an obstacle".
@@ -230,22 +234,8 @@ pub fn experiments() -> Vec<Experiment> {
             runs: runs(FIG3_13B, &all3),
             clauses: vec![
                 improved_reaches(),
-                effect(
-                    "dwa fails or circles",
-                    "plain DWA fails or circles (path ≥ 1.3 × the improved one's)",
-                    |r| fails_or_circles(r, "dwa"),
-                    ratio("path dwa / improved (both reached)", |r| {
-                        length_ratio(r, "dwa")
-                    }),
-                ),
-                effect(
-                    "[53] fails or circles",
-                    "the [53] baseline fails or circles",
-                    |r| fails_or_circles(r, "fusion-53"),
-                    ratio("path fusion-53 / improved (both reached)", |r| {
-                        length_ratio(r, "fusion-53")
-                    }),
-                ),
+                circles_clause("dwa"),
+                circles_clause("fusion-53"),
             ],
             family: room_family(0.05, 0.05),
             deviations: planner_deviations(),
