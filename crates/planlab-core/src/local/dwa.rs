@@ -33,8 +33,10 @@
 //! With no admissible sample the robot brakes at its largest deceleration
 //! and, for a circular footprint, turns in place toward the goal (mode
 //! `"no-admissible"`) — unless that braking manoeuvre itself would be hit
-//! within the horizon (a mover that keeps coming): then the collision-free
-//! sample with the most clearance is taken (`"no-admissible-evade"`).
+//! or would stop the robot in a mover's predicted path (a mover that keeps
+//! coming): then it takes what Fox et al.'s DWA takes, the collision-free
+//! sample with the best G, the critics normalised over those samples
+//! (`"no-admissible-evade"`).
 //! Nothing here panics or returns NaN.
 //!
 //! **Defaults.** \[T\] gives no numeric DWA parameters (its tables list only
@@ -336,8 +338,6 @@ struct Cand {
     admissible: bool,
     /// Collides within the horizon.
     collided: bool,
-    /// Smallest clearance along the rollout (up to the collision), m.
-    clear: f64,
 }
 
 /// The DWA engine: window, sampling, rollouts, clearance, critics. Reused by
@@ -489,16 +489,16 @@ impl DwaCore {
         if res.admissible == 0 {
             self.debug.chosen = None;
             let evade = if self.braking_collides(obs.map, &s) {
-                // Braking will not avoid it (a mover keeps coming): take the
-                // collision-free sample with the most clearance, if any.
-                self.cands
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, c)| !c.collided)
-                    .fold(None::<(usize, f64)>, |b, (i, c)| match b {
-                        Some((_, bc)) if bc >= c.clear => b,
-                        _ => Some((i, c.clear)),
-                    })
+                // Braking will not avoid it (a mover keeps coming, or the
+                // robot would stop in a mover's predicted path): fall back
+                // on Fox et al.'s own rule, the best collision-free sample.
+                // The rest and stranding checks that ruled every sample out
+                // look 4 horizons ahead at constant velocity — wrong for a
+                // mover that turns round — and the most-clearance choice
+                // used before tied at the critic's cap whenever nothing came
+                // within the horizon, so it turned the robot on the spot in
+                // a mover's way until that arrived (dwa-demo variants).
+                self.best_collision_free(req)
             } else {
                 None
             };
@@ -849,6 +849,38 @@ impl DwaCore {
         }
     }
 
+    /// The collision-free candidate with the best G, each critic normalised
+    /// by its sum over the collision-free candidates.
+    fn best_collision_free(&self, req: &StepRequest) -> Option<(usize, f64)> {
+        let mut sum = [0.0f64; 3];
+        for c in self.cands.iter().filter(|c| !c.collided) {
+            for (k, x) in sum.iter_mut().enumerate() {
+                *x += c.raw[k];
+            }
+        }
+        let wts = [
+            req.weights.alpha,
+            req.weights.beta * req.rho,
+            req.weights.gamma,
+        ];
+        let mut best: Option<(usize, f64)> = None;
+        for (i, c) in self.cands.iter().enumerate().filter(|(_, c)| !c.collided) {
+            let mut score = 0.0;
+            for k in 0..3 {
+                if sum[k] > 0.0 {
+                    score += wts[k] * c.raw[k] / sum[k];
+                }
+            }
+            if !score.is_finite() {
+                score = f64::NEG_INFINITY;
+            }
+            if best.map_or(true, |(_, b)| score > b) {
+                best = Some((i, score));
+            }
+        }
+        best
+    }
+
     /// Keeps the movers that can come within `horizon` of a rollout and
     /// tabulates their positions per rollout step.
     fn prepare_movers(&mut self, obs: &Observation<'_>, s: &RobotState, reach: f64, horizon: f64) {
@@ -1074,7 +1106,6 @@ impl DwaCore {
             raw: [heading, dist.min(self.cfg.dist_cap), v.max(0.0)],
             admissible,
             collided,
-            clear: min_c,
         }
     }
 }
