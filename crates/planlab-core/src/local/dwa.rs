@@ -15,7 +15,9 @@
 //!    [`StaticMap::clearance`] minus the footprint's circumscribed radius
 //!    (and `safety_margin`), and the distance to every perceived mover disc —
 //!    at its position at the rollout step's time when `predict_movers`
-//!    (constant velocity, the default), else at its current position.
+//!    (constant velocity, the default), else at its current position; a
+//!    moving disc counts larger by the distance it covers in one control
+//!    period (it may turn before the robot sees it again).
 //!    A rollout whose clearance reaches 0 collides and is discarded (early
 //!    exit); so is one breaking V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b)
 //!    with dist, as in Fox et al., the distance the robot drives *along
@@ -724,7 +726,7 @@ impl DwaCore {
         };
         let t_total = (self.steps.max(self.va_steps)) as f64 * h;
         self.extra_rows = ((dt / h).round() as usize).clamp(1, MAX_ROLLOUT_STEPS);
-        self.prepare_movers(obs, &s, v_abs * (t_total + dt), horizon);
+        self.prepare_movers(obs, &s, v_abs * (t_total + dt), horizon, dt);
 
         // Threshold of collision: 0, or the current clearance when the
         // robot already sits inside the margin (it may leave, not go deeper).
@@ -883,7 +885,21 @@ impl DwaCore {
 
     /// Keeps the movers that can come within `horizon` of a rollout and
     /// tabulates their positions per rollout step.
-    fn prepare_movers(&mut self, obs: &Observation<'_>, s: &RobotState, reach: f64, horizon: f64) {
+    ///
+    /// A moving disc counts `|v|·dt` larger, `dt` the control period: its
+    /// motion may change between two observations (a turnaround, a corner
+    /// of its loop) and the robot reacts one period later, so that much is
+    /// kept in hand. With the bare radius the constant-velocity prediction
+    /// let the robot wait, or creep, within millimetres of a mover's path
+    /// and be hit when the mover turned round (dwa-demo variants).
+    fn prepare_movers(
+        &mut self,
+        obs: &Observation<'_>,
+        s: &RobotState,
+        reach: f64,
+        horizon: f64,
+        dt: f64,
+    ) {
         self.mover_pos.clear();
         self.mover_rad.clear();
         self.all_movers.clear();
@@ -897,8 +913,9 @@ impl DwaCore {
             if !finite {
                 continue;
             }
-            self.all_movers.push((m.pos, m.vel, m.radius));
-            let d0 = hypot(m.pos[0] - s.x, m.pos[1] - s.y) - m.radius - self.r_eff;
+            let radius = m.radius + hypot(m.vel[0], m.vel[1]) * dt;
+            self.all_movers.push((m.pos, m.vel, radius));
+            let d0 = hypot(m.pos[0] - s.x, m.pos[1] - s.y) - radius - self.r_eff;
             let travel = if predict {
                 hypot(m.vel[0], m.vel[1]) * t_total
             } else {
@@ -913,8 +930,10 @@ impl DwaCore {
             self.kept = kept;
             return;
         }
-        self.mover_rad
-            .extend(kept.iter().map(|&j| obs.movers[j].radius));
+        self.mover_rad.extend(kept.iter().map(|&j| {
+            let m = &obs.movers[j];
+            m.radius + hypot(m.vel[0], m.vel[1]) * dt
+        }));
         let rows = self.table_rows();
         self.mover_pos.resize(rows * n, [0.0, 0.0]);
         for k in 0..rows {
