@@ -113,7 +113,8 @@ pub fn list() -> Vec<PlannerInfo> {
             name: "fusion-53".into(),
             paper: "[T] Wu 2022 §3.2–3.3, its reference [53]; SPEC §4.2 baseline".into(),
             summary: "Baseline fusion: A* key points + DWA with the deceleration weights \
-                      whenever a mover is near; no classification, virtual goal or ρ."
+                      while a moving obstacle is near, plain DWA otherwise; no \
+                      classification, virtual goal or ρ."
                 .into(),
             fields: owned_field_infos::<Fusion53Config>(&fusion53_fields()),
         },
