@@ -49,7 +49,7 @@ fn temp_file(name: &str, contents: &str) -> PathBuf {
     p
 }
 
-const METRICS: [&str; 12] = [
+const METRICS: [&str; 14] = [
     "outcome",
     "time_s",
     "path_length_m",
@@ -57,11 +57,13 @@ const METRICS: [&str; 12] = [
     "mean_clearance_m",
     "total_turn_rad",
     "max_turn_rad",
+    "max_turn_step_rad",
     "speed_drops",
     "mean_tracking_error_m",
     "max_tracking_error_m",
     "tracking_error_var_m2",
     "load_ok_share",
+    "temp_goal_switches",
 ];
 
 #[test]

@@ -222,22 +222,24 @@ pub struct PlannerSummary {
 }
 
 /// The names [`metric_values`] returns, in its order (CSV columns).
-pub const METRIC_NAMES: [&str; 11] = [
+pub const METRIC_NAMES: [&str; 13] = [
     "time_s",
     "path_length_m",
     "min_clearance_m",
     "mean_clearance_m",
     "total_turn_rad",
     "max_turn_rad",
+    "max_turn_step_rad",
     "speed_drops",
     "mean_tracking_error_m",
     "max_tracking_error_m",
     "load_ok_share",
     "wheel_load_share",
+    "temp_goal_switches",
 ];
 
 /// The numeric metrics of one run by their `planlab run` names.
-pub fn metric_values(m: &EpisodeMetrics) -> [(&'static str, Option<f64>); 11] {
+pub fn metric_values(m: &EpisodeMetrics) -> [(&'static str, Option<f64>); 13] {
     [
         ("time_s", Some(m.time_s)),
         ("path_length_m", Some(m.path_length_m)),
@@ -245,11 +247,13 @@ pub fn metric_values(m: &EpisodeMetrics) -> [(&'static str, Option<f64>); 11] {
         ("mean_clearance_m", Some(m.mean_clearance_m)),
         ("total_turn_rad", Some(m.total_turn_rad)),
         ("max_turn_rad", Some(m.max_turn_rad)),
+        ("max_turn_step_rad", Some(m.max_turn_step_rad)),
         ("speed_drops", Some(f64::from(m.speed_drops))),
         ("mean_tracking_error_m", m.mean_tracking_error_m),
         ("max_tracking_error_m", m.max_tracking_error_m),
         ("load_ok_share", m.load_ok_share),
         ("wheel_load_share", m.wheel_load_share),
+        ("temp_goal_switches", Some(f64::from(m.temp_goal_switches))),
     ]
 }
 

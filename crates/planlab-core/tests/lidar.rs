@@ -131,6 +131,52 @@ fn symmetric_candidates_start_a_hold_that_follows_the_robot() {
 }
 
 #[test]
+fn a_swap_of_sides_between_two_steps_holds_the_current_side() {
+    // Step 1: the wall's lower end is cheaper by far more than T_dc; step
+    // 2: the wall moved up, so its upper end is cheaper by as much. The
+    // costs crossed between the two steps without ever being seen within
+    // T_dc: the lower side is kept and held, as a continuous check would.
+    let cfg = LidarNavConfig::default();
+    let low = wall_scan(3.0, -1.0, 4.0);
+    let high = wall_scan(3.0, -4.0, 1.0);
+    let mut nav = Navigator::new(cfg, "nav").unwrap();
+    let t1 = nav.step(&input(&low, [8.0, 0.0]));
+    assert!(t1[1] < -1.0, "{t1:?}");
+    assert!(nav.debug().cost_gap.unwrap() > cfg.t_dc);
+    assert_eq!(nav.debug().hold_remaining, 0.0);
+    let t2 = nav.step(&input(&high, [8.0, 0.0]));
+    let d = nav.debug();
+    assert!(d.cost_gap.unwrap() > cfg.t_dc);
+    assert_eq!(d.kind, TargetKind::Temporary);
+    assert!(t2[1] < -4.0, "kept below the wall: {t2:?}");
+    assert!((d.hold_remaining - cfg.t_h).abs() < 1e-12);
+    assert_eq!(nav.step(&input(&high, [8.0, 0.0])), t2);
+    assert_eq!(nav.debug().kind, TargetKind::Held);
+    // Without the hold the cheaper side wins at once.
+    let mut free = Navigator::new(
+        LidarNavConfig {
+            hold: false,
+            ..cfg
+        },
+        "nav",
+    )
+    .unwrap();
+    free.step(&input(&low, [8.0, 0.0]));
+    let t = free.step(&input(&high, [8.0, 0.0]));
+    assert!(t[1] > 1.0, "{t:?}");
+    // A fresh choice after a hold has no previous side.
+    let mut nav = Navigator::new(cfg, "nav").unwrap();
+    nav.step(&input(&low, [8.0, 0.0]));
+    nav.step(&input(&high, [8.0, 0.0]));
+    for _ in 0..31 {
+        nav.step(&input(&high, [8.0, 0.0]));
+    }
+    let t = nav.step(&input(&high, [8.0, 0.0]));
+    assert_eq!(nav.debug().kind, TargetKind::Temporary);
+    assert!(t[1] > 1.0, "after the hold: {t:?}");
+}
+
+#[test]
 fn a_blocked_candidate_is_chosen_again_around_the_next_obstacle() {
     // Wall A 6 m ahead (y −1 … 3) blocks the goal; a post 2.5 m ahead at
     // bearings −30° … −17° (clear of the goal's bearing even expanded)

@@ -21,6 +21,20 @@
 //! blocked. The navigator has no pose, so the held goal is carried along by
 //! integrating the robot's own velocity (the simulator's Euler step: move
 //! by (v, v_y)·dt, then turn by ω·dt).
+//!
+//! **Sampled selection** (**Decision**): \[L\] states the hold for a choice
+//! made continuously. The two costs are continuous in the robot's pose, so
+//! the cheaper side can only change where they are equal, and the current
+//! side's lead falls below T_dc first — which starts the hold on the
+//! current side. At 10 Hz, with candidates that jump with the beam grid (an
+//! OP cut by a weak edge on a wall seen at a grazing angle moves by a metre
+//! when the beams shift by one), the order can swap between two steps with
+//! the lead never seen below T_dc. So when the cheaper first candidate is
+//! on the other side of the goal's bearing (before the blocking OP's start
+//! rather than after its end, or the reverse) from the previous step's
+//! choice, the costs crossed: the current side's candidate is kept and held
+//! for t_h. A fresh choice (from the goal, or when a hold ends) has no
+//! previous side.
 
 use serde::{Deserialize, Serialize};
 
@@ -203,6 +217,10 @@ pub struct Navigator {
     in_temp: bool,
     /// (time left, held goal in the current robot frame).
     hold: Option<(f64, [f64; 2])>,
+    /// Side of the goal's bearing (0 = before the blocking OP's start, 1 =
+    /// after its end) of the previous step's choice, when that step chose
+    /// (not held).
+    last_side: Option<usize>,
     debug: NavDebug,
 }
 
@@ -214,6 +232,7 @@ impl Navigator {
             cfg,
             in_temp: false,
             hold: None,
+            last_side: None,
             debug: NavDebug::default(),
         })
     }
@@ -232,6 +251,7 @@ impl Navigator {
     pub fn reset(&mut self) {
         self.in_temp = false;
         self.hold = None;
+        self.last_side = None;
     }
 
     /// Scan processing alone (§2): edges, Algorithm 1, Algorithm 2 and the
@@ -285,6 +305,9 @@ impl Navigator {
             return self.finish(goal, TargetKind::Global);
         };
         self.debug.blocking = Some(blk);
+        // The side of the previous step's choice; `None` after a hold or
+        // from the goal (a fresh choice).
+        let last_side = self.last_side.take();
         if let Some((left, g)) = self.hold {
             if left > 1e-9 {
                 return self.finish(g, TargetKind::Held);
@@ -298,13 +321,32 @@ impl Navigator {
                 return self.finish(goal, TargetKind::Global);
             }
         }
-        match self.choose(goal, blk) {
-            Some((p, dc)) => {
+        let holds = self.cfg.hold && self.cfg.t_h > 0.0;
+        match self.choose(goal, blk, None) {
+            Some(mut ch) => {
                 self.in_temp = true;
-                if self.cfg.hold && dc < self.cfg.t_dc && self.cfg.t_h > 0.0 {
-                    self.hold = Some((self.cfg.t_h, p));
+                let mut hold = holds && ch.gap < self.cfg.t_dc;
+                if let Some(current) = last_side.filter(|_| holds) {
+                    if current != ch.side {
+                        // The costs crossed since the last step: keep the
+                        // current side and hold it (module doc).
+                        let seen = std::mem::take(&mut self.debug.candidates);
+                        let its = self.debug.iterations;
+                        if let Some(kept) = self.choose(goal, blk, Some(current)) {
+                            ch = kept;
+                            hold = true;
+                        } else {
+                            self.debug.candidates = seen;
+                            self.debug.iterations = its;
+                        }
+                    }
                 }
-                self.finish(p, TargetKind::Temporary)
+                if hold {
+                    self.hold = Some((self.cfg.t_h, ch.point));
+                } else {
+                    self.last_side = Some(ch.side);
+                }
+                self.finish(ch.point, TargetKind::Temporary)
             }
             None => {
                 self.in_temp = false;
@@ -340,14 +382,15 @@ impl Navigator {
             })
     }
 
-    /// §3.2–3.3: the temporary goal around OP `blk` for `goal`, with the
-    /// first cost gap d_c; `None` when the iteration limit is exceeded or
-    /// the OP has no ends.
-    fn choose(&mut self, goal: [f64; 2], blk: usize) -> Option<([f64; 2], f64)> {
+    /// §3.2–3.3: the temporary goal around OP `blk` for `goal`; `side`
+    /// forces the side of the first choice (0 = before the OP's start, 1 =
+    /// after its end) instead of the cheaper one. `None` when the iteration
+    /// limit is exceeded or the OP has no ends.
+    fn choose(&mut self, goal: [f64; 2], blk: usize, side: Option<usize>) -> Option<Choice> {
         let n = self.debug.ranges_mdf.len();
         let mut target = goal;
         let mut op_i = blk;
-        let mut first_gap = None;
+        let mut first: Option<(usize, f64)> = None;
         for it in 0..=self.cfg.max_iterations {
             let op = self.debug.ops[op_i];
             if op.closed {
@@ -365,15 +408,27 @@ impl Navigator {
                     iteration: it,
                 });
             }
-            let gap = (k[0] - k[1]).abs();
+            let cheaper = usize::from(k[1] < k[0]);
+            let pick = match (it, side) {
+                (0, Some(s)) => s.min(1),
+                _ => cheaper,
+            };
             if it == 0 {
-                first_gap = Some(gap);
+                let gap = (k[0] - k[1]).abs();
+                first = Some((pick, gap));
                 self.debug.cost_gap = Some(gap);
             }
-            let chosen = if k[1] < k[0] { c[1] } else { c[0] };
+            let chosen = c[pick];
             self.debug.iterations = it;
             match self.blocking(chosen) {
-                None => return Some((chosen, first_gap.unwrap_or(gap))),
+                None => {
+                    let (side, gap) = first?;
+                    return Some(Choice {
+                        point: chosen,
+                        side,
+                        gap,
+                    });
+                }
                 Some((next, _)) => {
                     target = chosen;
                     op_i = next;
@@ -382,6 +437,18 @@ impl Navigator {
         }
         None
     }
+}
+
+/// A temporary goal and how it was chosen.
+#[derive(Debug, Clone, Copy)]
+struct Choice {
+    /// The temporary goal (after any iteration), robot frame, m.
+    point: [f64; 2],
+    /// Side of the first choice (around the OP blocking the goal): 0 =
+    /// before its start, 1 = after its end.
+    side: usize,
+    /// Their cost difference d_c, m.
+    gap: f64,
 }
 
 /// A point fixed in the world, expressed in the robot frame after the

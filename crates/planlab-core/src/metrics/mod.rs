@@ -13,6 +13,12 @@
 //!   resampled point is |Δ heading| between the chords before and after it.
 //!   Total = sum, max = largest. Turning on the spot adds nothing (the path
 //!   does not move), so this is the path's geometric turning (\[L\] Table 2).
+//! - **per-step turning** (\[L\] Table 2's "最大转折角度", maximum turning
+//!   angle, read as the paper's path is sampled): the largest |Δ heading|
+//!   between consecutive chords of the trace as recorded, one position per
+//!   control period; steps that do not move are skipped, so a turn on the
+//!   spot shows at the next chord. Unlike the resampled max it depends on
+//!   the time step and the speed (at most ω_max·dt on a smooth drive).
 //! - **speed drops**: with speed s = √(v² + v_y²) and peak P over the
 //!   episode, a drop is a fall of more than [`SPEED_DROP_FRACTION`]·P below
 //!   the running local maximum that is followed by a rise of the same amount
@@ -69,6 +75,10 @@ pub struct EpisodeMetrics {
     pub total_turn_rad: f64,
     /// Largest turning angle at one resampled point, rad.
     pub max_turn_rad: f64,
+    /// Largest heading change between two consecutive moving steps of the
+    /// trace (one point per control period), rad (\[L\] Table 2's maximum
+    /// turning angle as its trajectories are sampled).
+    pub max_turn_step_rad: f64,
     /// Number of speed drops on the way.
     pub speed_drops: u32,
     /// Mean distance to the global path, m.
@@ -110,6 +120,7 @@ impl EpisodeMetrics {
             .fold(f64::INFINITY, f64::min);
         let mean_clearance_m = rows.iter().map(|r| r.clearance).sum::<f64>() / n;
         let (total_turn_rad, max_turn_rad) = turning(&pts, TURN_RESAMPLE_M);
+        let max_turn_step_rad = max_step_turn(&pts);
         let speeds: Vec<f64> = rows.iter().map(|r| hypot(r.v, r.vy)).collect();
         let tracking = tracking_errors(&pts, global_path);
         let loads: Vec<bool> = rows
@@ -137,6 +148,7 @@ impl EpisodeMetrics {
             mean_clearance_m,
             total_turn_rad,
             max_turn_rad,
+            max_turn_step_rad,
             speed_drops: speed_drops(&speeds, SPEED_DROP_FRACTION),
             mean_tracking_error_m: tracking.map(|t| t.0),
             max_tracking_error_m: tracking.map(|t| t.1),
@@ -159,7 +171,7 @@ impl EpisodeMetrics {
     pub fn to_csv(&self) -> String {
         let num = |x: f64| format!("{x}");
         let opt = |x: Option<f64>| x.map_or_else(String::new, num);
-        let rows: [(&str, String, &str); 14] = [
+        let rows: [(&str, String, &str); 15] = [
             ("outcome", self.outcome.as_str().to_string(), ""),
             ("time_s", num(self.time_s), "s"),
             ("path_length_m", num(self.path_length_m), "m"),
@@ -167,6 +179,7 @@ impl EpisodeMetrics {
             ("mean_clearance_m", num(self.mean_clearance_m), "m"),
             ("total_turn_rad", num(self.total_turn_rad), "rad"),
             ("max_turn_rad", num(self.max_turn_rad), "rad"),
+            ("max_turn_step_rad", num(self.max_turn_step_rad), "rad"),
             ("speed_drops", self.speed_drops.to_string(), ""),
             (
                 "temp_goal_switches",
@@ -252,6 +265,29 @@ pub fn turning(pts: &[[f64; 2]], ds: f64) -> (f64, f64) {
         .map(|h| wrap_angle(h[1] - h[0]).abs())
         .fold((0.0, 0.0), |(tot, mx), a| (tot + a, f64::max(mx, a)))
 }
+
+/// Largest |Δ heading| between consecutive chords of `pts` as sampled,
+/// rad; chords shorter than [`STILL_M`] (the robot did not move) are
+/// skipped. 0 with fewer than two moving chords.
+pub fn max_step_turn(pts: &[[f64; 2]]) -> f64 {
+    let mut last: Option<f64> = None;
+    let mut max = 0.0;
+    for w in pts.windows(2) {
+        let (dx, dy) = (w[1][0] - w[0][0], w[1][1] - w[0][1]);
+        if !(hypot(dx, dy) >= STILL_M) {
+            continue;
+        }
+        let h = atan2(dy, dx);
+        if let Some(p) = last {
+            max = f64::max(max, wrap_angle(h - p).abs());
+        }
+        last = Some(h);
+    }
+    max
+}
+
+/// A step shorter than this did not move (its heading is noise), m.
+pub const STILL_M: f64 = 1e-6;
 
 /// Number of drops of `speeds` by more than `fraction` of its peak that are
 /// followed by a rise of the same amount (see the module doc).
@@ -388,6 +424,50 @@ mod tests {
         let straight: Vec<_> = (0..30).map(|i| (i as f64 * 0.07, 1.0, 1.0, 1.0)).collect();
         let m = EpisodeMetrics::from_trace(&trace(&straight), &[], Outcome::Reached, 40.0);
         assert!(m.total_turn_rad < 1e-12);
+    }
+
+    #[test]
+    fn per_step_turn_is_the_largest_heading_change_between_samples() {
+        // East 0.1 m a step, turn 0.3 rad, two steps, turn on the spot
+        // (a repeated point) by 0.5 rad more, then straight on.
+        let mut h = 0.0f64;
+        let mut p = [0.0f64, 0.0];
+        let mut pts = vec![p];
+        let mut go = |h: f64, pts: &mut Vec<[f64; 2]>| {
+            p = [p[0] + 0.1 * h.cos(), p[1] + 0.1 * h.sin()];
+            pts.push(p);
+        };
+        for _ in 0..3 {
+            go(h, &mut pts);
+        }
+        h += 0.3;
+        for _ in 0..2 {
+            go(h, &mut pts);
+        }
+        pts.push(*pts.last().unwrap());
+        h += 0.5;
+        for _ in 0..3 {
+            go(h, &mut pts);
+        }
+        assert!((max_step_turn(&pts) - 0.5).abs() < 1e-12);
+        let rows: Vec<_> = pts.iter().map(|q| (q[0], q[1], 1.0, 1.0)).collect();
+        let m = EpisodeMetrics::from_trace(&trace(&rows), &[], Outcome::Reached, 40.0);
+        assert!((m.max_turn_step_rad - 0.5).abs() < 1e-12);
+        assert!((m.total_turn_rad - 0.8).abs() < 1e-9, "{m:?}");
+        // The same path on 0.05 m steps: the corners are the same angles.
+        let fine: Vec<[f64; 2]> = pts
+            .windows(2)
+            .flat_map(|w| [w[0], [(w[0][0] + w[1][0]) / 2.0, (w[0][1] + w[1][1]) / 2.0]])
+            .chain(pts.last().copied())
+            .collect();
+        assert!((max_step_turn(&fine) - 0.5).abs() < 1e-12);
+        // A wrap across ±π is the small angle; fewer than two moves give 0.
+        let wrap = [[0.0, 0.0], [-1.0, 0.01], [-2.0, -0.01]];
+        let a = max_step_turn(&wrap);
+        assert!(a < 0.031 && a > 0.029, "{a}");
+        assert_eq!(max_step_turn(&[[0.0, 0.0], [1.0, 0.0]]), 0.0);
+        assert_eq!(max_step_turn(&[[0.0, 0.0]; 4]), 0.0);
+        assert_eq!(max_step_turn(&[]), 0.0);
     }
 
     #[test]
