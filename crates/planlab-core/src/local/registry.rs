@@ -24,6 +24,7 @@ use crate::apf::local::{self as apf_local, ApfLocal, ApfLocalConfig};
 use crate::lidar::planner::{
     lidar_fields, motion_fields, LidarPlanner, LidarPlannerConfig, ScanBaselineConfig,
 };
+use crate::lidar::tangent_bug::{tangent_bug_fields, TangentBug, TangentBugConfig};
 use crate::world::{RobotSpec, RobotState, StaticMap};
 
 /// The planner a scenario without a `local_planner` section uses.
@@ -234,6 +235,18 @@ pub fn list() -> Vec<PlannerInfo> {
                 owned_field_infos::<ScanBaselineConfig<DwaConfig>>(&f)
             },
         },
+        PlannerInfo {
+            name: "tangent-bug".into(),
+            paper: "TangentBug (Kamon, Rivlin & Rimon 1998) standing in for \
+                    Critical-PointBug, [L] Chang et al. 2024 ref [21], sim 6; SPEC §6–7"
+                .into(),
+            summary: "Unknown map, scan + pose: motion to the tangent-graph endpoint \
+                      minimising d(x,O)+d(O,goal), boundary following when that stops \
+                      decreasing, leaving when d_reach < d_followed; baseline DWA on the \
+                      scan's local map drives."
+                .into(),
+            fields: owned_field_infos::<TangentBugConfig>(&tangent_bug_fields()),
+        },
     ]
 }
 
@@ -329,6 +342,10 @@ pub fn build(
             "scan-dwa",
             "dwa",
             &parse_config::<ScanBaselineConfig<DwaConfig>>(&choice.name, &choice.config)?,
+            robot,
+        )?)),
+        "tangent-bug" => Ok(Box::new(TangentBug::new(
+            parse_config(&choice.name, &choice.config)?,
             robot,
         )?)),
         _ => Err(LocalError::UnknownPlanner(choice.name.clone())),
