@@ -13,6 +13,9 @@
 //!   fed a local map built from the scan alone, registered as local
 //!   planners `lidar-dwa`, `scan-dwa` (the plain baseline) and friends.
 //! - [`fog`]: the cells the robot has seen so far, from its scans.
+//! - The \[L\] sims 5–8 peers on the same sensor and motion layer
+//!   ([`scan_motion`]): [`tangent_bug`] (TangentBug standing in for
+//!   Critical-PointBug \[21\]), [`rs_apf`] (a scan-only RS-APF \[11\]).
 //!
 //! The navigator's input type [`NavInput`] holds the scan, the robot's
 //! velocity and the goal in the robot frame only, so neither the navigator
@@ -23,7 +26,10 @@ pub mod edges;
 pub mod fog;
 pub mod nav;
 pub mod planner;
+pub mod rs_apf;
 pub mod scan;
+pub mod scan_motion;
+pub mod tangent_bug;
 
 pub use edges::{Edge, GapPattern, ObstaclePattern};
 pub use nav::{LidarNavConfig, NavDebug, NavInput, Navigator, TargetKind, Velocity};

@@ -52,7 +52,7 @@ impl Default for LocalMapConfig {
 pub const MAX_LOCAL_CELLS: f64 = 2000.0;
 
 impl LocalMapConfig {
-    fn validate(&self, prefix: &str) -> Result<(), LidarError> {
+    pub(crate) fn validate(&self, prefix: &str) -> Result<(), LidarError> {
         super::check(prefix, "half_size", self.half_size, 0.0, true)?;
         super::check(prefix, "resolution", self.resolution, 0.0, true)?;
         if 2.0 * self.half_size / self.resolution > MAX_LOCAL_CELLS {
@@ -181,7 +181,7 @@ pub fn motion_fields(fields: &[(&str, &str, &str)]) -> Vec<(String, String, Stri
         .collect()
 }
 
-fn lidar_err(e: LidarError) -> LocalError {
+pub(crate) fn lidar_err(e: LidarError) -> LocalError {
     LocalError::InvalidParameter(e.to_string())
 }
 
@@ -335,7 +335,7 @@ fn local_dims(cfg: &LocalMapConfig) -> usize {
     ((2.0 * cfg.half_size / cfg.resolution).ceil() as usize).max(1)
 }
 
-fn empty_local_map(cfg: &LocalMapConfig) -> Result<StaticMap, LocalError> {
+pub(crate) fn empty_local_map(cfg: &LocalMapConfig) -> Result<StaticMap, LocalError> {
     let n = local_dims(cfg);
     let grid = OccupancyGrid::from_cells(n, n, vec![Cell::Free; n * n])
         .and_then(|g| {

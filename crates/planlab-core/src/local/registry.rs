@@ -24,6 +24,8 @@ use crate::apf::local::{self as apf_local, ApfLocal, ApfLocalConfig};
 use crate::lidar::planner::{
     lidar_fields, motion_fields, LidarPlanner, LidarPlannerConfig, ScanBaselineConfig,
 };
+use crate::lidar::rs_apf::{rs_apf_fields, RsApf, RsApfConfig};
+use crate::lidar::tangent_bug::{tangent_bug_fields, TangentBug, TangentBugConfig};
 use crate::world::{RobotSpec, RobotState, StaticMap};
 
 /// The planner a scenario without a `local_planner` section uses.
@@ -235,6 +237,31 @@ pub fn list() -> Vec<PlannerInfo> {
                 owned_field_infos::<ScanBaselineConfig<DwaConfig>>(&f)
             },
         },
+        PlannerInfo {
+            name: "tangent-bug".into(),
+            paper: "TangentBug (Kamon, Rivlin & Rimon 1998) standing in for \
+                    Critical-PointBug, [L] Chang et al. 2024 ref [21], sim 6; SPEC §6–7"
+                .into(),
+            summary: "Unknown map, scan + pose: motion to the tangent-graph endpoint \
+                      minimising d(x,O)+d(O,goal), boundary following when that stops \
+                      decreasing, leaving when d_reach < d_followed; baseline DWA on the \
+                      scan's local map drives."
+                .into(),
+            fields: owned_field_infos::<TangentBugConfig>(&tangent_bug_fields()),
+        },
+        PlannerInfo {
+            name: "rs-apf".into(),
+            paper: "RS-APF (Li, Tamura, Yamashita & Asama 2013), [L] Chang et al. 2024 \
+                    ref [11], sim 8 — scan-only receding-horizon variant of an offline \
+                    planner; SPEC §6–7"
+                .into(),
+            summary: "Unknown map, scan + pose: every period a virtual point descends the \
+                      basic APF on the scan (following the obstacle after a stall), the \
+                      regression search shortens that path, and the baseline DWA on the \
+                      scan's local map drives to its first corner."
+                .into(),
+            fields: owned_field_infos::<RsApfConfig>(&rs_apf_fields()),
+        },
     ]
 }
 
@@ -330,6 +357,14 @@ pub fn build(
             "scan-dwa",
             "dwa",
             &parse_config::<ScanBaselineConfig<DwaConfig>>(&choice.name, &choice.config)?,
+            robot,
+        )?)),
+        "tangent-bug" => Ok(Box::new(TangentBug::new(
+            parse_config(&choice.name, &choice.config)?,
+            robot,
+        )?)),
+        "rs-apf" => Ok(Box::new(RsApf::new(
+            parse_config(&choice.name, &choice.config)?,
             robot,
         )?)),
         _ => Err(LocalError::UnknownPlanner(choice.name.clone())),

@@ -1,0 +1,224 @@
+//! The sensing and motion layer the \[L\] peers (`tangent-bug`, `rs-apf`,
+//! `rrt-shortcut`) share with `lidar-dwa`: the simulated LiDAR on the map
+//! and the perceived movers, and a motion planner (a registry choice, e.g.
+//! `dwa`) driving to a point on the **local map built from the scan alone**
+//! ([`scan_local_map`]), robot at the origin, heading 0, no movers.
+//!
+//! Unlike `lidar-dwa`'s navigator, the peers also read the robot's pose
+//! (odometry): Bug algorithms keep distances along their path, and the
+//! RRT stand-in accumulates scans into a map. They never read the map:
+//! only [`ScanMotion::sense`] does, through the sensor.
+
+use super::planner::{empty_local_map, lidar_err, scan_local_map, LocalMapConfig};
+use super::scan::{beam_angle, polar, Disc, Lidar, LidarConfig, Scan};
+use super::TargetKind;
+use crate::local::dwa::DwaConfig;
+use crate::local::registry::{self, PlannerChoice};
+use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
+use crate::num::{cos, sin};
+use crate::world::{Command, RobotSpec, RobotState};
+
+/// The DWA the peers drive with by default: the baseline DWA with α 0.2,
+/// the weight the \[L\] presets run `lidar-dwa` with, so navigator and
+/// peers differ only above the motion layer. (With the MATLAB sample's
+/// α 0.05 the clearance and speed critics outweigh the heading and the
+/// robot circles in open space.)
+pub fn peer_dwa() -> DwaConfig {
+    DwaConfig {
+        alpha: 0.2,
+        ..DwaConfig::default()
+    }
+}
+
+/// Sensor + motion planner on the scan's local map (module doc).
+pub struct ScanMotion {
+    lidar: Lidar,
+    motion: Box<dyn LocalPlanner>,
+    local: LocalMapConfig,
+    /// Consecutive hits closer than this are joined on the local map, m.
+    join: f64,
+    time: f64,
+}
+
+impl std::fmt::Debug for ScanMotion {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ScanMotion")
+            .field("motion", &self.motion.name())
+            .finish_non_exhaustive()
+    }
+}
+
+impl ScanMotion {
+    /// The sensor `lidar`, local map `local` and motion planner `motion`
+    /// for `robot`; configs are validated (errors name `prefix.field`).
+    pub fn new(
+        lidar: LidarConfig,
+        local: LocalMapConfig,
+        motion: &PlannerChoice,
+        robot: &RobotSpec,
+    ) -> Result<ScanMotion, LocalError> {
+        let lidar = Lidar::new(lidar, "lidar").map_err(lidar_err)?;
+        local.validate("local").map_err(lidar_err)?;
+        let empty = empty_local_map(&local)?;
+        let motion = registry::build(motion, robot, &empty, &RobotState::default(), [1.0, 0.0])?;
+        Ok(ScanMotion {
+            lidar,
+            motion,
+            local,
+            join: 2.0 * robot.footprint.circumscribed_radius(),
+            time: 0.0,
+        })
+    }
+
+    /// The sensor's range limit, m.
+    pub fn range(&self) -> f64 {
+        self.lidar.config().range
+    }
+
+    /// Scans from the robot's pose: (pose (x, y, θ), scan).
+    pub fn sense(&mut self, obs: &Observation<'_>) -> ([f64; 3], Scan) {
+        let s = obs.state;
+        let pose = [s.x, s.y, s.theta];
+        let discs: Vec<Disc> = obs
+            .movers
+            .iter()
+            .map(|m| Disc {
+                centre: m.pos,
+                radius: m.radius,
+            })
+            .collect();
+        let scan = self.lidar.scan(obs.map, pose, &discs);
+        (pose, scan)
+    }
+
+    /// One command of the motion planner steering to `steer` (world m) on
+    /// the local map of `scan` taken at `pose`.
+    pub fn drive(
+        &mut self,
+        obs: &Observation<'_>,
+        pose: [f64; 3],
+        scan: &Scan,
+        steer: [f64; 2],
+    ) -> Command {
+        let Ok(map) = scan_local_map(scan, &self.local, self.join) else {
+            return Command::default();
+        };
+        let (c, s) = (cos(pose[2]), sin(pose[2]));
+        let (dx, dy) = (steer[0] - pose[0], steer[1] - pose[1]);
+        let mut goal = [c * dx + s * dy, -s * dx + c * dy];
+        if !(goal[0].is_finite() && goal[1].is_finite()) {
+            goal = [0.0, 0.0];
+        }
+        let fin = |x: f64| if x.is_finite() { x } else { 0.0 };
+        let state = RobotState {
+            v: fin(obs.state.v),
+            vy: fin(obs.state.vy),
+            w: fin(obs.state.w),
+            ..Default::default()
+        };
+        let dt = if obs.dt.is_finite() && obs.dt > 0.0 {
+            obs.dt
+        } else {
+            0.1
+        };
+        let local = Observation {
+            time: self.time,
+            dt,
+            state: &state,
+            goal,
+            map: &map,
+            movers: &[],
+            odometry: None,
+            accel_z: 0.0,
+        };
+        self.time += dt;
+        self.motion.step(&local)
+    }
+
+    /// The motion planner's debug (robot frame).
+    pub fn motion_debug(&self) -> &PlannerDebug {
+        self.motion.debug()
+    }
+
+    /// Record the motion planner's rollouts or not.
+    pub fn set_record(&mut self, on: bool) {
+        self.motion.set_record_rollouts(on);
+    }
+
+    /// Fills `d` for drawing: the motion planner's critics and (when
+    /// `record`) rollouts in world coordinates, and the scan.
+    pub fn fill_debug(
+        &self,
+        d: &mut PlannerDebug,
+        pose: [f64; 3],
+        scan: &Scan,
+        target: [f64; 2],
+        kind: TargetKind,
+        record: bool,
+    ) {
+        let (c, s) = (cos(pose[2]), sin(pose[2]));
+        let world = |p: [f64; 2]| [pose[0] + c * p[0] - s * p[1], pose[1] + s * p[0] + c * p[1]];
+        let md = self.motion.debug();
+        d.critics.clone_from(&md.critics);
+        d.chosen = md.chosen;
+        d.rollouts.clear();
+        if record {
+            for r in &md.rollouts {
+                let mut r = r.clone();
+                for p in &mut r.points {
+                    *p = world(*p);
+                }
+                d.rollouts.push(r);
+            }
+        }
+        let mut ld = d.lidar.take().unwrap_or_default();
+        ld.pose = pose;
+        ld.max_range = scan.max_range();
+        ld.ranges.clear();
+        ld.returns.clear();
+        for &r in scan.ranges() {
+            ld.returns.push(r.is_finite());
+            ld.ranges
+                .push(if r.is_finite() { r } else { scan.max_range() });
+        }
+        ld.target = target;
+        ld.kind = kind;
+        d.lidar = Some(ld);
+    }
+}
+
+/// The hit points of `scan` taken at `pose`, world m (None: no return).
+pub fn world_points(pose: [f64; 3], scan: &Scan) -> Vec<Option<[f64; 2]>> {
+    let n = scan.len();
+    scan.ranges()
+        .iter()
+        .enumerate()
+        .map(|(i, &r)| {
+            r.is_finite().then(|| {
+                let p = polar(pose[2] + beam_angle(i, n), r);
+                [pose[0] + p[0], pose[1] + p[1]]
+            })
+        })
+        .collect()
+}
+
+/// How far a disc of radius `rho` centred at `x` can move along the unit
+/// direction `u` before it touches a point of `pts` (`INFINITY` if none is
+/// in the way).
+pub fn free_length(x: [f64; 2], u: [f64; 2], pts: &[Option<[f64; 2]>], rho: f64) -> f64 {
+    let mut best = f64::INFINITY;
+    for p in pts.iter().flatten() {
+        let (dx, dy) = (p[0] - x[0], p[1] - x[1]);
+        let along = dx * u[0] + dy * u[1];
+        let across = dx * u[1] - dy * u[0];
+        if across.abs() >= rho {
+            continue;
+        }
+        let back = (rho * rho - across * across).sqrt();
+        if along + back <= 0.0 {
+            continue; // wholly behind
+        }
+        best = best.min((along - back).max(0.0));
+    }
+    best
+}
