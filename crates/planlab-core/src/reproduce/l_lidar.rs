@@ -40,9 +40,9 @@ pub const COMPARABLE: f64 = 1.05;
 /// standing in for it, the paper's peer).
 pub const PEERS: [(u32, &str, &str, &str, &str); 4] = [
     (5, SIM5, "peer", "scan-dwa", "improved DWA [17]"),
-    (6, SIM6, "peer", "scan-dwa", "Critical-PointBug [21]"),
+    (6, SIM6, "peer", "tangent-bug", "Critical-PointBug [21]"),
     (7, SIM7, "peer", "scan-dwa", "RL-RRT [2]"),
-    (8, SIM8, "peer", "scan-apf", "RS-APF [11]"),
+    (8, SIM8, "peer", "rs-apf", "RS-APF [11]"),
 ];
 
 type R = Runs<EpisodeMetrics>;
@@ -105,8 +105,10 @@ fn deviations(dwa: bool) -> Vec<Deviation> {
         Deviation {
             what: "the peers of sims 5–8",
             path: None,
-            ours: "improved DWA [17] → scan-dwa (plain DWA on the scan); Critical-PointBug \
-                   [21] → scan-dwa; RL-RRT [2] → scan-dwa; RS-APF [11] → scan-apf",
+            ours: "improved DWA [17] → scan-dwa (plain DWA on the scan: [17] learns its \
+                   weights, not built); Critical-PointBug [21] → tangent-bug (TangentBug on \
+                   the scan); RL-RRT [2] → scan-dwa (not built); RS-APF [11] → rs-apf \
+                   (scan-only receding-horizon APF with regression-search shortening)",
             paper: "the peers' own implementations",
         },
     ];
@@ -169,8 +171,11 @@ fn length(m: &EpisodeMetrics) -> f64 {
 fn total_turn(m: &EpisodeMetrics) -> f64 {
     m.total_turn_rad
 }
+/// Table 2's maximum turning angle: the largest heading change between
+/// consecutive trace steps (the paper's trajectories are sampled per
+/// control step), not the resampled path's `max_turn_rad`.
 fn max_turn(m: &EpisodeMetrics) -> f64 {
-    m.max_turn_rad
+    m.max_turn_step_rad
 }
 
 /// A metric read from a run.

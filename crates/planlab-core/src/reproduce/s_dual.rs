@@ -134,6 +134,12 @@ fn deviations() -> Vec<Deviation> {
             paper: "not given",
         },
         Deviation {
+            what: "turn-rate limit and turn acceleration",
+            path: Some("robot.limits.w_max"),
+            ours: "20 °/s (0.349 rad/s) and 50 °/s² (0.873 rad/s²), the MATLAB DWA sample's",
+            paper: "20 rad/s and 50 rad/s² (§5)",
+        },
+        Deviation {
             what: "smallest previous speed the dual velocity model holds",
             path: Some("local_planner.config.hold_min_speed"),
             ours: "0.3 m/s",
