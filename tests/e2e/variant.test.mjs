@@ -92,7 +92,13 @@ test('gallery cards: verdict badge, success intervals, clauses with effects, dev
       continue;
     }
     assert.equal(c.verdict, r.verdict, `${c.id}: verdict badge`);
+    // Every run of the results is shown (a gallery run the results lack shows "—").
+    for (const n of Object.keys(r.runs)) assert.ok(c.runs.some((x) => x.run === n), `${c.id}: run ${n} shown`);
     for (const run of c.runs) {
+      if (!r.runs[run.run]) {
+        assert.equal(run.text, '—', `${c.id} ${run.run}: not in the results`);
+        continue;
+      }
       const s = r.runs[run.run].success;
       assert.ok(run.text.startsWith(`${s.k}/${s.n} · ${Math.round(100 * s.rate)} % [`), `${c.id} ${run.run}: ${run.text}`);
       if (run.href) {

@@ -112,14 +112,20 @@ export function resultsSection(e: GalleryEntry, r: FamilyResult | undefined): HT
   const runs = h('table', 'gtable grunsuccess');
   const cap = h('caption', '', 'Success per run (reached without contact; Wilson 95 %)');
   runs.append(cap);
-  for (const run of e.runs) {
+  // The card's runs, then any the results have that gallery.json does not
+  // (a variant link needs only the experiment and run: the tree carries
+  // the planner and edits; the first run's preset names the page's scene).
+  const extra = Object.keys(r.runs)
+    .filter((n) => !e.runs.some((x) => x.name === n))
+    .map((name) => ({ ...e.runs[0], name, planner: null, set: [] }));
+  for (const run of [...e.runs, ...extra]) {
     const s = r.runs[run.name];
     const tr = h('tr', '');
     tr.dataset.run = run.name;
     tr.append(h('th', '', run.name), h('td', 'num', s ? shareText(s.success) : '—'));
     const td = h('td', 'act');
     if (s && e.page !== 'grid') {
-      const a = h('a', 'variant', '🎲 random variant');
+      const a = h('a', 'variant', '▶ random variant');
       a.dataset.run = run.name;
       const pick = () => {
         a.href = variantUrl(e, run, r, randomVariant(r.variants));

@@ -123,7 +123,7 @@ function fill(el: HTMLElement, v: VariantParams, loaded: LoadedVariant): void {
   const rnd = document.createElement('button');
   rnd.type = 'button';
   rnd.id = 'variant-random';
-  rnd.textContent = '🎲 random';
+  rnd.textContent = 'random';
   const n = v.of ?? 30;
   rnd.title = `Run a random variant (1–${n - 1}) of this family`;
   rnd.addEventListener('click', () => {
