@@ -5,6 +5,9 @@
 #  - web/pkg-arm: planlab-wasm-arm, the arm page's own small module (the arm
 #                 page also loads three.js; one module with everything would
 #                 not fit its 1.5 MB first-load budget),
+#  - web/pkg-reproduce: planlab-wasm-reproduce, the reproduce registry's
+#                 variants (it embeds every preset), which the robot, APF
+#                 and arm pages import only for a variant link,
 # then optimises each with binaryen's wasm-opt -O3 (the npm package
 # `binaryen`, a web/ devDependency: wasm-pack's own download of binaryen
 # is not reachable here, so its wasm-opt step is off in the crates'
@@ -25,7 +28,8 @@ cd "$(dirname "$0")/.."
 export CARGO_PROFILE_RELEASE_OPT_LEVEL="${WASM_OPT_LEVEL:-s}"
 wasm-pack build crates/planlab-wasm --release --target web --out-dir ../../web/pkg --no-pack -- --no-default-features
 wasm-pack build crates/planlab-wasm-arm --release --target web --out-dir ../../web/pkg-arm --no-pack
-modules=(web/pkg/planlab_wasm_bg.wasm web/pkg-arm/planlab_wasm_arm_bg.wasm)
+wasm-pack build crates/planlab-wasm-reproduce --release --target web --out-dir ../../web/pkg-reproduce --no-pack
+modules=(web/pkg/planlab_wasm_bg.wasm web/pkg-arm/planlab_wasm_arm_bg.wasm web/pkg-reproduce/planlab_wasm_reproduce_bg.wasm)
 if [ "${WASM_OPT:-1}" != 0 ]; then
   WASM_OPT_BIN=web/node_modules/.bin/wasm-opt
   if [ ! -x "$WASM_OPT_BIN" ]; then

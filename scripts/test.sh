@@ -19,7 +19,7 @@ step "clippy (native, all targets)"
 cargo clippy --workspace --all-targets -- -D warnings
 
 step "clippy (wasm32)"
-cargo clippy --target wasm32-unknown-unknown -p planlab-core -p planlab-wasm -p planlab-wasm-arm -- -D warnings
+cargo clippy --target wasm32-unknown-unknown -p planlab-core -p planlab-wasm -p planlab-wasm-arm -p planlab-wasm-reproduce -- -D warnings
 
 step "native tests (unit, integration, doc)"
 cargo test --workspace

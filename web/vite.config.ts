@@ -1,5 +1,5 @@
 import { defineConfig, type Plugin } from 'vite';
-import { readdirSync, readFileSync } from 'node:fs';
+import { existsSync, readdirSync, readFileSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -68,13 +68,54 @@ function gallery(): Plugin {
   };
 }
 
+/**
+ * `virtual:reproduce-results`: assets/reproduce-results.jsonl (the family
+ * results of `planlab reproduce --variants 30 --seed 0 --json`, written by
+ * scripts/reproduce-results.sh; crates/planlab-core/tests/gallery.rs keeps
+ * it equal to the registry), read at build time, keyed by id, without the
+ * per-variant rows (trace hashes) that no card shows. A missing file gives
+ * no results: the cards say so.
+ */
+function reproduceResults(): Plugin {
+  const id = 'virtual:reproduce-results';
+  const resolved = '\0' + id;
+  const file = resolve(here, '../assets/reproduce-results.jsonl');
+  return {
+    name: 'planlab-reproduce-results',
+    resolveId: (source) => (source === id ? resolved : null),
+    load(source) {
+      if (source !== resolved) return null;
+      this.addWatchFile(file);
+      const out: Record<string, unknown> = {};
+      if (!existsSync(file)) {
+        this.warn('assets/reproduce-results.jsonl is missing (scripts/reproduce-results.sh): the gallery shows no results');
+        return 'export default {};';
+      }
+      readFileSync(file, 'utf8')
+        .split('\n')
+        .filter((l) => l.trim())
+        .forEach((l, i) => {
+          let r: Record<string, unknown>;
+          try {
+            r = JSON.parse(l);
+          } catch (e) {
+            this.error(`assets/reproduce-results.jsonl line ${i + 1}: ${(e as Error).message}`);
+          }
+          delete r.rows;
+          out[String(r.id)] = r;
+        });
+      return `export default ${JSON.stringify(out)};`;
+    },
+  };
+}
+
 // The served site is web/dist and nothing outside it, so the preset maps in
 // ../assets are copied in as the public dir (served at ./maps/...), and the
 // wasm module from ./pkg is bundled by Vite through its `new URL(...)` import.
 export default defineConfig({
   base: './',
   publicDir: resolve(here, '../assets'),
-  plugins: [robotPresets(), gallery()],
+  plugins: [robotPresets(), gallery(), reproduceResults()],
   build: {
     outDir: 'dist',
     emptyOutDir: true,

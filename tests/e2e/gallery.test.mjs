@@ -133,7 +133,7 @@ test('gallery → robot page: T-fig3-2 improved runs to the goal; S-fig12 and C-
   // The note names the experiment and run and the relation to look for.
   const note = await page.textContent('#gallery-note');
   assert.match(note, /T-fig3-2 · improved/);
-  assert.match(note, /the paper claims: plain DWA ends stuck in the trap/);
+  assert.match(note, /the paper claims: plain DWA ends trapped in the C/);
   await screenshot(page, 'gallery-robot-run.png');
 
   // Back to the card by the note's link; the plain DWA run of the same

@@ -195,3 +195,87 @@ fn robot_entries_open_presets_the_robot_page_lists() {
         }
     }
 }
+
+/// One line of `assets/reproduce-results.jsonl` (a `FamilyResult`), the
+/// fields the gallery cards show.
+#[derive(Debug, Deserialize)]
+struct ResultLine {
+    id: String,
+    relation: String,
+    verdict: reproduce::Verdict,
+    variants: u32,
+    seed: u64,
+    runs: std::collections::BTreeMap<String, serde_json::Value>,
+    clauses: Vec<serde_json::Value>,
+    family: serde_json::Value,
+    deviations: serde_json::Value,
+}
+
+/// The gallery's family results (`scripts/reproduce-results.sh`) are the
+/// registry's: one line per id in `planlab reproduce` order, each with the
+/// registry's relation, family, deviations, clauses and runs, so results
+/// of an older registry fail here instead of showing on the cards.
+#[test]
+fn reproduce_results_match_the_registry() {
+    let text = std::fs::read_to_string(assets().join("reproduce-results.jsonl"))
+        .expect("assets/reproduce-results.jsonl (scripts/reproduce-results.sh writes it)");
+    let lines: Vec<ResultLine> = text
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .enumerate()
+        .map(|(i, l)| {
+            serde_json::from_str(l)
+                .unwrap_or_else(|e| panic!("reproduce-results.jsonl line {}: {e}", i + 1))
+        })
+        .collect();
+    let ids: Vec<&str> = lines.iter().map(|l| l.id.as_str()).collect();
+    assert_eq!(
+        ids,
+        reproduce::ids(),
+        "reproduce-results.jsonl ids (rerun scripts/reproduce-results.sh)"
+    );
+    for l in &lines {
+        let info = reproduce::find(&l.id)
+            .map(|e| e.info())
+            .or_else(|| reproduce::find_path(&l.id).map(|e| e.info()))
+            .unwrap();
+        let stale = |what: &str| {
+            format!(
+                "{}: {what} differs from the registry's (rerun scripts/reproduce-results.sh)",
+                l.id
+            )
+        };
+        assert_eq!(l.relation, info.relation, "{}", stale("relation"));
+        assert_eq!(
+            l.family,
+            serde_json::to_value(&info.family).unwrap(),
+            "{}",
+            stale("family")
+        );
+        assert_eq!(
+            l.deviations,
+            serde_json::to_value(&info.deviations).unwrap(),
+            "{}",
+            stale("deviations")
+        );
+        let clauses: Vec<&str> = l
+            .clauses
+            .iter()
+            .map(|c| c["name"].as_str().unwrap_or(""))
+            .collect();
+        let want: Vec<&str> = info.clauses.iter().map(|c| c.name.as_str()).collect();
+        assert_eq!(clauses, want, "{}", stale("clauses"));
+        let runs: BTreeSet<&str> = l.runs.keys().map(String::as_str).collect();
+        let want: BTreeSet<&str> = info.runs.iter().map(|r| r.name.as_str()).collect();
+        assert_eq!(runs, want, "{}", stale("runs"));
+        // The verdict parsed as one of the three words.
+        assert!(
+            l.variants >= 1,
+            "{}: {:?} on {} variants, seed {}",
+            l.id,
+            l.verdict,
+            l.variants,
+            l.seed
+        );
+    }
+}

@@ -46,6 +46,11 @@ pub use apf::ApfHandle;
 pub use planlab_wasm_arm as arm;
 #[cfg(feature = "arm")]
 pub use planlab_wasm_arm::{arm_choices, ArmHandle};
+/// The reproduce registry's variants, from their own crate (the pages load
+/// that crate's module only for a variant link; the playground pages build
+/// this crate without the feature).
+#[cfg(feature = "reproduce")]
+pub use planlab_wasm_reproduce::{reproduce_variant, reproduce_variant_info};
 pub use sim::{generated_grid_hash, planners, SimHandle};
 
 use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};

@@ -568,3 +568,52 @@ fn map_edits_generate_and_undo_snapshots() {
     assert!(e.contains("density"), "{e}");
     assert_eq!(sim.grid_hash(), h);
 }
+
+/// A variant link's scenario is the core's tree of that run on that
+/// variant (so the page replays what `planlab reproduce` ran), and bad
+/// input arrives as an error with the core's message.
+#[wasm_bindgen_test]
+fn reproduce_variant_is_the_core_tree() {
+    use planlab_core::reproduce;
+    let text = planlab_wasm::reproduce_variant("T-fig3-2", "improved", 3, 0).unwrap();
+    let got: serde_json::Value = serde_json::from_str(&text).unwrap();
+    // It is a scenario the page can load.
+    planlab_core::map::io::scenario::Scenario::from_json(&text).expect("a scenario");
+    let scene = reproduce::find("T-fig3-2")
+        .unwrap()
+        .variant(0, 3, &[])
+        .unwrap();
+    let want = &scene
+        .trees
+        .iter()
+        .find(|(n, _)| *n == "improved")
+        .unwrap()
+        .1;
+    assert_eq!(&got, want);
+    // Another variant is another scene.
+    let other = planlab_wasm::reproduce_variant("T-fig3-2", "improved", 4, 0).unwrap();
+    assert_ne!(text, other);
+    // A path experiment (APF page) too.
+    assert!(planlab_wasm::reproduce_variant("T-fig4-6", "sampling", 2, 0).is_ok());
+}
+
+#[wasm_bindgen_test]
+fn reproduce_variant_bad_input_is_an_error() {
+    use planlab_core::reproduce::MAX_VARIANTS;
+    let err = |r: Result<String, wasm_bindgen::JsError>| message(r.unwrap_err());
+    assert!(
+        err(planlab_wasm::reproduce_variant("T-nope", "improved", 3, 0))
+            .contains("unknown experiment `T-nope`")
+    );
+    assert!(
+        err(planlab_wasm::reproduce_variant("T-fig3-2", "nope", 3, 0)).contains("no run `nope`")
+    );
+    assert!(err(planlab_wasm::reproduce_variant(
+        "T-fig3-2",
+        "improved",
+        MAX_VARIANTS,
+        0
+    ))
+    .contains("variant"));
+    assert!(planlab_wasm::reproduce_variant("T-fig3-2", "improved", MAX_VARIANTS - 1, 0).is_ok());
+}

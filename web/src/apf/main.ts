@@ -6,7 +6,8 @@
 // edits; this file computes no forces.
 
 import init, { ApfHandle } from '../../pkg/planlab_wasm.js';
-import { applyRun, runParams } from '../shell/runlink';
+import { applyRun, runParams, variantParams } from '../shell/runlink';
+import { loadVariant } from '../shell/variant';
 import { installShell } from '../shell/help';
 import { apfHelp } from '../shell/help-content';
 import { showGalleryNote } from '../shell/gallery-note';
@@ -216,7 +217,22 @@ function tick(): void {
 }
 
 async function load(file: string, edit: (text: string) => string = (t) => t): Promise<void> {
-  const text = edit(await (await fetch(`./scenarios/${file}`)).text());
+  loadText(edit(await (await fetch(`./scenarios/${file}`)).text()));
+}
+
+/** A variant's tree: its mode and predictor are the run's, so the page's
+ *  selects take them before the handle is built from the tree. */
+function loadVariantText(text: string): void {
+  const cfg = (JSON.parse(text) as { apf?: { config?: { mode?: string; predictor?: string } } }).apf?.config;
+  const pick = (sel: HTMLSelectElement, v: string | undefined) => {
+    if (v && [...sel.options].some((o) => o.value === v)) sel.value = v;
+  };
+  pick(ui.mode, cfg?.mode);
+  pick(ui.predictor, cfg?.predictor);
+  loadText(text);
+}
+
+function loadText(text: string): void {
   handle?.free();
   handle = new ApfHandle(text);
   document.body.dataset.dims = String(handle.dims());
@@ -251,8 +267,23 @@ async function main(): Promise<void> {
   }
   const mode = link.set.find(([p]) => p === 'apf.config.mode')?.[1] ?? params.get('mode');
   if (mode) ui.mode.value = mode;
-  await load(ui.preset.value, sc ? (t) => applyRun(t, null, link.set) : undefined);
-  if (sc && link.run) setPlaying(true);
+  // A variant link: the registry's tree of that run on that variant; a bad
+  // one shows the core's message over the preset.
+  let variantError: unknown = null;
+  let variant = false;
+  try {
+    const v = variantParams();
+    if (v) {
+      loadVariantText((await loadVariant(v)).text);
+      document.body.dataset.variant = String(v.k);
+      variant = true;
+    }
+  } catch (e) {
+    variantError = e;
+  }
+  if (!variant) await load(ui.preset.value, sc ? (t) => applyRun(t, null, link.set) : undefined);
+  if (variantError !== null) showError(`Could not open the variant: ${messageOf(variantError)}`);
+  else if (sc && link.run) setPlaying(true);
   ui.preset.addEventListener('change', () => void load(ui.preset.value).catch((e) => showError(messageOf(e))));
   ui.mode.addEventListener('change', () => guard(() => handle?.setMode(ui.mode.value)));
   ui.predictor.addEventListener('change', () => guard(() => handle?.setPredictor(ui.predictor.value)));

@@ -5,7 +5,8 @@
 // and the predictor go to the handle as edits; this file computes no
 // kinematics, distances or plans.
 
-import { applyRun, runParams } from '../shell/runlink';
+import { applyRun, runParams, variantParams } from '../shell/runlink';
+import { loadVariant } from '../shell/variant';
 import { installShell } from '../shell/help';
 import { armHelp } from '../shell/help-content';
 import { showGalleryNote } from '../shell/gallery-note';
@@ -312,12 +313,32 @@ async function main(): Promise<void> {
     if (![...ui.preset.options].some((o) => o.value === q)) ui.preset.add(new Option(q, q));
     ui.preset.value = q;
   }
-  await load(ui.preset.value, q ? (t) => applyRun(t, null, link.set) : undefined);
-  if (q && link.planner) {
-    ui.predictor.value = link.planner;
-    ui.predictor.dispatchEvent(new Event('change'));
+  // A variant link: the registry's tree of that run on that variant (its
+  // predictor written into the tree); a bad one shows the core's message
+  // over the preset.
+  let variantError: unknown = null;
+  let variantText: string | null = null;
+  try {
+    const v = variantParams();
+    if (v) {
+      variantText = (await loadVariant(v)).text;
+      ui.body.dataset.variant = String(v.k);
+    }
+  } catch (e) {
+    variantError = e;
   }
-  if (q && link.run) setPlaying(true);
+  if (variantText !== null) {
+    const text = variantText;
+    await load(ui.preset.value, () => text);
+  } else {
+    await load(ui.preset.value, q ? (t) => applyRun(t, null, link.set) : undefined);
+    if (q && link.planner) {
+      ui.predictor.value = link.planner;
+      ui.predictor.dispatchEvent(new Event('change'));
+    }
+  }
+  if (variantError !== null) showError(`Could not open the variant: ${messageOf(variantError)}`);
+  else if (q && link.run) setPlaying(true);
   ui.hint.textContent = 'Play to run; drag the target sliders, change the hand or the predictor at any time.';
   // Hooks for the end-to-end tests.
   (window as unknown as { planlabArm: unknown }).planlabArm = {

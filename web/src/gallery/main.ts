@@ -2,7 +2,9 @@
 // assets/gallery.json (a Rust test keeps it equal to the reproduce
 // registry). Each run of an experiment gets a Run link that opens its preset
 // on the right page with the run's planner and edits and starts it. The
-// thumbnails are drawn from the presets' inline maps.
+// thumbnails are drawn from the presets' inline maps. The family results
+// (assets/reproduce-results.jsonl: verdict, success rates, effects,
+// deviations) are shown on each card, with links to run a random variant.
 
 import entries from 'virtual:gallery';
 import { runUrl, type GalleryEntry, type GalleryRun } from '../shell/runlink';
@@ -10,6 +12,8 @@ import { installShell } from '../shell/help';
 import presets from 'virtual:robot-presets';
 import { compareGroups, compareUrl } from './compare-links';
 import { el } from '../shell/dom';
+import results from 'virtual:reproduce-results';
+import { resultsSection } from './results';
 
 
 const ui = {
@@ -59,6 +63,7 @@ function card(e: GalleryEntry): HTMLElement {
   const dl = h('dl', 'gfacts');
   dl.append(h('dt', '', 'Scene'), h('dd', '', e.what), h('dt', '', 'Paper claims'), h('dd', 'grel', e.relation));
   body.append(dl);
+  body.append(resultsSection(e, results[e.id]));
   const runs = h('div', 'gruns');
   runs.append(h('span', 'gon', `Run on the ${PAGE_LABEL[e.page]} page:`));
   for (const r of e.runs) {

@@ -4,3 +4,10 @@ declare module 'virtual:gallery' {
   const entries: GalleryEntry[];
   export default entries;
 }
+
+// Build-time copy of assets/reproduce-results.jsonl, keyed by id (see vite.config.ts).
+declare module 'virtual:reproduce-results' {
+  import type { FamilyResult } from './results';
+  const results: Record<string, FamilyResult>;
+  export default results;
+}

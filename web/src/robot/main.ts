@@ -11,7 +11,8 @@ import { fillPresetSelect } from '../shell/preset-select';
 import { RobotView, emptyScene, CLASS_NAMES, COLORS, type RobotShape } from './view';
 import { SeriesPlots } from './plots';
 import { ParamPanel, type PlannerInfo } from './params';
-import { applyRun, runParams } from '../shell/runlink';
+import { applyRun, runParams, variantParams } from '../shell/runlink';
+import { loadVariant } from '../shell/variant';
 import { installShell } from '../shell/help';
 import { robotHelp } from '../shell/help-content';
 import { showGalleryNote } from '../shell/gallery-note';
@@ -955,8 +956,26 @@ async function boot(): Promise<void> {
   } catch (e) {
     shared = e;
   }
+  // A variant link: the registry's tree of that run on that variant (its
+  // planner and edits included), instead of the preset; a bad one (unknown
+  // id or run, k too large) shows the core's message over the preset.
+  let variantError: unknown = null;
+  try {
+    const variant = variantParams();
+    if (variant) {
+      const v = await loadVariant(variant);
+      const label = `${variant.exp} variant ${variant.k} (${variant.as})`;
+      loadScenario(v.text, label, await mapFilesOf(v.text, new URL(`scenarios/${first}`, document.baseURI)));
+      ui.body.dataset.variant = String(variant.k);
+      if (link.run) ui.play.click();
+      return;
+    }
+  } catch (e) {
+    variantError = e;
+  }
   await loadPreset(first, first === q ? (t) => applyRun(t, link.planner, link.set) : undefined);
-  if (first === q && link.run) ui.play.click();
+  if (variantError !== null) showError(`Could not open the variant: ${messageOf(variantError)}`);
+  else if (first === q && link.run) ui.play.click();
   if (shared !== null) showError(`Could not open the shared link: ${messageOf(shared)}`);
 }
 

@@ -1,8 +1,11 @@
 // The note a page shows when a gallery card opened it (`…&exp=T-fig3-2
 // &as=improved`): which experiment and run this is, the relation the paper
-// claims (what to look for in the metrics), and a way back to the card.
+// claims (what to look for in the metrics), and a way back to the card;
+// on a variant link (`&variant=K&seed=S`) also which variant this is, with
+// controls to run another (shell/variant.ts).
 
-import type { GalleryEntry } from './runlink';
+import { variantParams, type GalleryEntry, type VariantParams } from './runlink';
+import { variantSlot } from './variant';
 import './gallery-note.css';
 
 /** Adds the note under the top bar when the URL names a gallery experiment
@@ -16,14 +19,23 @@ export function showGalleryNote(search: string = location.search): void {
     .then((r) => (r.ok ? r.json() : null))
     .then((g: { experiments?: GalleryEntry[] } | null) => {
       const e = g?.experiments?.find((x) => x.id === id);
-      if (e) addNote(e, q.get('as'));
+      if (e) addNote(e, q.get('as'), variantOf(q));
     })
     .catch(() => {
       /* no note */
     });
 }
 
-function addNote(e: GalleryEntry, run: string | null): void {
+/** The link's variant; a malformed one the page reports itself. */
+function variantOf(q: URLSearchParams): VariantParams | null {
+  try {
+    return variantParams(q);
+  } catch {
+    return null;
+  }
+}
+
+function addNote(e: GalleryEntry, run: string | null, variant: VariantParams | null): void {
   const note = document.createElement('div');
   note.className = 'gallery-note';
   note.id = 'gallery-note';
@@ -48,7 +60,10 @@ function addNote(e: GalleryEntry, run: string | null): void {
   const text = document.createElement('span');
   text.className = 'gallery-note-text';
   text.append(what, claim);
-  note.append(back, text, close);
+  note.append(back, text);
+  // A variant link: which variant, and controls to run another.
+  if (variant) note.append(variantSlot(variant));
+  note.append(close);
   document.querySelector('.topbar')?.after(note);
   // Canvases size themselves to what is left.
   window.dispatchEvent(new Event('resize'));

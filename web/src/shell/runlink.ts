@@ -36,6 +36,16 @@ export interface RunParams {
   run: boolean;
 }
 
+/** A variant link's experiment, run, variant index and family seed. */
+export interface VariantParams {
+  exp: string;
+  as: string;
+  k: number;
+  /** Decimal u64 (a JS number would round large seeds). */
+  seed: string;
+  of: number | null;
+}
+
 const PAGE_FILE: Record<GalleryEntry['page'], string> = {
   robot: 'robot.html',
   apf: 'apf.html',
@@ -73,6 +83,32 @@ export function runParams(search: string = location.search): RunParams {
     set,
     run: run === '1' || run === 'true',
   };
+}
+
+/** `exp=ID&as=RUN&variant=K&seed=S[&of=N]`: run RUN of variant K of
+ *  experiment ID's family seeded S (N: the family size of the gallery's
+ *  results) instead of the preset; null when the link names no variant. Malformed values
+ *  are errors (the page shows them), not silently the preset. */
+export function variantParams(q: URLSearchParams = new URLSearchParams(location.search)): VariantParams | null {
+  const k = q.get('variant');
+  if (k === null) return null;
+  const exp = q.get('exp');
+  const as = q.get('as');
+  if (!exp || !as) throw new Error('a variant link needs exp=ID and as=RUN');
+  if (!/^\d{1,9}$/.test(k)) throw new Error(`variant “${k}” is not a variant index (0, 1, 2 …)`);
+  const seed = q.get('seed') ?? '0';
+  if (!/^\d{1,20}$/.test(seed) || BigInt(seed) >= 2n ** 64n) throw new Error(`seed “${seed}” is not a seed (0 to 2⁶⁴ − 1)`);
+  const of = q.get('of');
+  const n = of !== null && /^\d{1,9}$/.test(of) ? Number(of) : null;
+  return { exp, as, k: Number(k), seed, of: n };
+}
+
+/** The same page's URL on variant `k` instead (other parameters kept). */
+export function withVariant(k: number, search: string = location.search): string {
+  const q = new URLSearchParams(search);
+  q.set('variant', String(k));
+  q.set('run', '1');
+  return `${location.pathname}?${q.toString()}`;
 }
 
 type Json = null | boolean | number | string | Json[] | { [k: string]: Json };
