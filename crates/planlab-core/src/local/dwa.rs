@@ -18,9 +18,12 @@
 //!    (constant velocity, the default), else at its current position.
 //!    A rollout whose clearance reaches 0 collides and is discarded (early
 //!    exit); so is one breaking V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b)
-//!    with dist its smallest clearance to what is sensed now (the map and
-//!    the movers where they stand, as in Fox et al.; a mover's motion is
-//!    the predicted collision test's business).
+//!    with dist, as in Fox et al., the distance the robot drives *along
+//!    its arc* before the first contact (same contact test: map, movers
+//!    where the rollout predicts them), for ω the angle it turns on the way
+//!    ([`DwaCore`]'s `va_time` has the decision). Within the horizon the
+//!    collision test has decided already; a fast sample whose braking
+//!    outlasts the horizon has its arc followed on until it can stop.
 //! 5. **Critics** on the admissible rollouts: heading = π − |bearing error
 //!    to the goal at the rollout end|, dist = smallest clearance capped at
 //!    `dist_cap`, velocity = v. Each is divided by its sum over the
@@ -129,7 +132,8 @@ pub struct DwaConfig {
     /// Movers move at their observed velocity along the rollout (true) or
     /// stay where they are now (false).
     pub predict_movers: bool,
-    /// Apply the admissible-velocity rule V_a (braking distance).
+    /// Apply the admissible-velocity rule V_a: able to stop before the first
+    /// contact along the sample's arc (Fox et al.'s braking distance).
     pub admissible_window: bool,
     /// With no admissible sample, a circular robot turns in place toward
     /// the goal while braking.
@@ -207,7 +211,7 @@ pub const DWA_FIELDS: &[(&str, &str, &str)] = &[
     (
         "admissible_window",
         "bool",
-        "apply V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b)",
+        "apply V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b), dist along the arc to the first contact",
     ),
     (
         "rotate_in_place",
@@ -358,6 +362,9 @@ pub struct DwaCore {
     /// Rows of the mover table beyond the horizon: one control period, for
     /// braking checks that start after it.
     extra_rows: usize,
+    /// Last rollout step V_a may look at: the arc is followed past the
+    /// horizon while the braking time needs it (see [`Self::rollout`]).
+    va_steps: usize,
     /// Every perceived mover (position, velocity, radius), for rest checks.
     all_movers: Vec<([f64; 2], [f64; 2], f64)>,
     /// Collision threshold and clearance horizon of the last evaluation.
@@ -396,6 +403,7 @@ impl DwaCore {
             mover_rad: Vec::new(),
             kept: Vec::new(),
             extra_rows: 1,
+            va_steps: 0,
             all_movers: Vec::new(),
             last_limit: 0.0,
             last_horizon: 0.0,
@@ -521,7 +529,13 @@ impl DwaCore {
         self.mover_pos
             .len()
             .checked_div(self.mover_rad.len())
-            .unwrap_or(self.steps + self.extra_rows + 1)
+            .unwrap_or(self.table_rows())
+    }
+
+    /// Rows the movers' position table needs: the horizon plus one control
+    /// period, or as far as V_a follows an arc.
+    fn table_rows(&self) -> usize {
+        (self.steps + self.extra_rows).max(self.va_steps) + 1
     }
 
     /// Whether a robot standing at (x, y) lies in the predicted path of a
@@ -694,17 +708,22 @@ impl DwaCore {
         Self::axis(&mut ws, w_lo, w_hi, self.cfg.w_res, self.cfg.w_samples);
 
         // Beyond this distance clearance changes nothing: the critic is
-        // capped and V_a is met by every sample.
+        // capped, and collisions and V_a only ask whether it reaches the
+        // threshold.
         let v_abs = v_lo.abs().max(v_hi.abs());
         let w_abs = w_lo.abs().max(w_hi.abs());
-        let horizon = self
-            .cfg
-            .dist_cap
-            .max(v_abs * v_abs / (2.0 * l.acc_v))
-            .max(w_abs * w_abs / (2.0 * l.acc_w))
-            + 1e-6;
-        let t_total = self.steps as f64 * self.cfg.sim_dt;
-        self.extra_rows = ((dt / self.cfg.sim_dt).round() as usize).clamp(1, MAX_ROLLOUT_STEPS);
+        let horizon = self.cfg.dist_cap + 1e-6;
+        let h = self.cfg.sim_dt;
+        // V_a follows an arc for as long as its braking needs (rollout).
+        self.va_steps = if self.cfg.admissible_window {
+            let t = Self::va_time(v_abs, w_abs, &l) / h;
+            // `as` saturates, and NaN cannot occur (limits are validated).
+            (t.ceil().min(MAX_ROLLOUT_STEPS as f64) as usize + 1).min(MAX_ROLLOUT_STEPS)
+        } else {
+            0
+        };
+        let t_total = (self.steps.max(self.va_steps)) as f64 * h;
+        self.extra_rows = ((dt / h).round() as usize).clamp(1, MAX_ROLLOUT_STEPS);
         self.prepare_movers(obs, &s, v_abs * (t_total + dt), horizon);
 
         // Threshold of collision: 0, or the current clearance when the
@@ -836,7 +855,7 @@ impl DwaCore {
         self.mover_pos.clear();
         self.mover_rad.clear();
         self.all_movers.clear();
-        let t_total = (self.steps + self.extra_rows) as f64 * self.cfg.sim_dt;
+        let t_total = (self.table_rows() - 1) as f64 * self.cfg.sim_dt;
         let predict = self.cfg.predict_movers;
         let mut kept = std::mem::take(&mut self.kept);
         kept.clear();
@@ -864,7 +883,7 @@ impl DwaCore {
         }
         self.mover_rad
             .extend(kept.iter().map(|&j| obs.movers[j].radius));
-        let rows = self.steps + self.extra_rows + 1;
+        let rows = self.table_rows();
         self.mover_pos.resize(rows * n, [0.0, 0.0]);
         for k in 0..rows {
             let t = if predict {
@@ -904,6 +923,26 @@ impl DwaCore {
         best
     }
 
+    /// How long an arc driven at (|v|, |ω|) must stay free of contact for
+    /// V_a, s.
+    ///
+    /// Fox, Burgard & Thrun (1997) admit (v, ω) when the robot can stop
+    /// before the closest obstacle on its arc: v ≤ √(2·dist(v,ω)·v̇_b) and
+    /// ω ≤ √(2·dist(v,ω)·ω̇_b), dist(v,ω) the distance to that obstacle
+    /// *along the arc* (not the nearest wall in any direction: a corridor's
+    /// side walls do not slow a robot driving down it). The paper writes one
+    /// dist for both bounds; **Decision**: for ω we read it as the angle
+    /// the robot turns on the arc before the contact, dist·|ω|/|v| (the
+    /// only reading in which the units agree; for v = 0, turning on the
+    /// spot, it is |ω| times the time until a mover arrives). With t_hit
+    /// the time to the first contact at constant (v, ω), dist = |v|·t_hit
+    /// and the angle = |ω|·t_hit, so both bounds read
+    /// t_hit ≥ max(|v|/(2·v̇_b), |ω|/(2·ω̇_b)), the braking decelerations
+    /// being the robot's `acc_v`, `acc_w`.
+    fn va_time(v_abs: f64, w_abs: f64, l: &crate::world::RobotLimits) -> f64 {
+        (v_abs / (2.0 * l.acc_v)).max(w_abs / (2.0 * l.acc_w))
+    }
+
     /// Rolls (v, ω) out and scores it; fills `self.points` when recording.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
@@ -939,8 +978,6 @@ impl DwaCore {
         let res = map.grid().resolution();
         let skip_above = horizon + res;
         let mut vk = v;
-        // Smallest clearance to the map and the movers' current positions.
-        let mut min_now = f64::INFINITY;
         let mut last = stat0;
         let mut since = 0.0;
         for k in 1..=self.steps {
@@ -966,13 +1003,6 @@ impl DwaCore {
             };
             let c = self.mover_clearance(stat, x, y, k, horizon);
             min_c = min_c.min(c);
-            // Braking distance (V_a): movers where they are now (row 0).
-            let snap = if self.cfg.predict_movers {
-                self.mover_clearance(stat, x, y, 0, horizon)
-            } else {
-                c
-            };
-            min_now = min_now.min(snap);
             if c <= limit {
                 collided = true;
                 break;
@@ -998,21 +1028,46 @@ impl DwaCore {
         }
         let theta = wrap_angle(s.theta + w * h * self.steps as f64);
         let dist = min_c.max(0.0);
-        // V_a (Fox et al.): able to stop before what is sensed now — the
-        // map and the movers where they stand. Movers' motion is covered by
-        // the predicted collision test and, when decelerating, by braking
-        // rollouts that must come to rest out of every mover's way.
-        let brake_dist = min_now.max(0.0);
-        let l = &self.robot.limits;
-        // A braking rollout stops by construction: V_a does not apply.
-        let admissible = !collided
-            && !stranded
-            && (decel > 0.0
-                || !self.cfg.admissible_window
-                || (v.abs() <= (2.0 * brake_dist * l.acc_v).sqrt() + 1e-12
-                    && w.abs() <= (2.0 * brake_dist * l.acc_w).sqrt() + 1e-12));
         let bearing = atan2(req.goal[1] - y, req.goal[0] - x);
         let heading = std::f64::consts::PI - wrap_angle(bearing - theta).abs();
+        // V_a (Fox et al.; see `va_time`): the arc must be free of contact
+        // for the braking time. A rollout that collides is out anyway, so
+        // within the horizon the collision test has decided; past it the
+        // arc is followed on, with the same contact test (map, movers
+        // where the rollout's prediction puts them). A braking rollout
+        // stops by construction: V_a does not apply.
+        let mut va_ok = true;
+        if !collided && !stranded && decel == 0.0 && self.cfg.admissible_window {
+            let t_need = Self::va_time(v.abs(), w.abs(), &self.robot.limits);
+            // A contact at step k leaves (k − 1)·h of free arc.
+            let mut k = self.steps + 1;
+            while (k - 1) as f64 * h < t_need - 1e-12 {
+                if k > self.va_steps {
+                    // Not followed this far: only what was checked is free.
+                    va_ok = false;
+                    break;
+                }
+                x += vk * cs * h;
+                y += vk * sn * h;
+                let (ns, nc) = (sn * cd + cs * sd, cs * cd - sn * sd);
+                sn = ns;
+                cs = nc;
+                since += vk.abs() * h * (1.0 + 1e-9);
+                let stat = if last - std::f64::consts::SQRT_2 * since > skip_above {
+                    skip_above
+                } else {
+                    last = map.clearance(x, y) - self.r_eff - self.slack;
+                    since = 0.0;
+                    last
+                };
+                if self.mover_clearance(stat, x, y, k, horizon) <= limit {
+                    va_ok = false;
+                    break;
+                }
+                k += 1;
+            }
+        }
+        let admissible = !collided && !stranded && va_ok;
         Cand {
             v,
             w,
@@ -1397,6 +1452,151 @@ mod tests {
             assert_ne!(r.end, End::Collision, "mover from {start:?}");
             assert!(r.min_clearance > 0.0);
         }
+    }
+
+    /// A straight corridor `len` cells long (0.1 m), 1.5 m between the
+    /// walls; `block` closes it at that column.
+    fn corridor(len: usize, block: Option<usize>) -> StaticMap {
+        let mut rows = vec!["#".repeat(len)];
+        for _ in 0..15 {
+            let mut r: Vec<u8> = format!("#{}#", ".".repeat(len - 2)).into_bytes();
+            if let Some(c) = block {
+                r[c..].iter_mut().for_each(|b| *b = b'#');
+            }
+            rows.push(String::from_utf8(r).unwrap());
+        }
+        rows.push("#".repeat(len));
+        testkit::map(&(rows.join("\n") + "\n"), 0.1)
+    }
+
+    #[test]
+    fn va_does_not_slow_a_robot_down_an_open_corridor() {
+        // Issue 13's corridor: 1.5 m wide, 18 m from start to goal, 3.9 m
+        // of corridor beyond it. With V_a measured to the nearest wall in
+        // any direction (0.55 m away all along) dwa crawled at 0.42 m/s
+        // (45 s); along the arc nothing is ahead, so V_a must not cost time.
+        let map = corridor(230, None);
+        let robot = RobotSpec::default();
+        let (start, goal) = (at(1.05, 0.85, 0.0), [19.05, 0.85]);
+        let mut times = Vec::new();
+        for va in [true, false] {
+            let cfg = DwaConfig {
+                admissible_window: va,
+                ..Default::default()
+            };
+            let mut p = Dwa::new(cfg, &robot, goal).unwrap();
+            let r = testkit::run(&mut p, &map, &robot, start, goal, &[], 120.0, 0.2);
+            assert_eq!(r.end, End::Reached, "V_a {va}: {:?}", r.states.last());
+            assert!(r.min_clearance > 0.0);
+            let peak = r.states.iter().map(|s| s.v).fold(0.0, f64::max);
+            assert!(peak >= 0.95 * robot.limits.v_max, "V_a {va}: peak {peak}");
+            times.push(r.time);
+        }
+        assert!(
+            times[0] <= 1.1 * times[1],
+            "V_a on {} s, off {} s",
+            times[0],
+            times[1]
+        );
+    }
+
+    #[test]
+    fn va_brakes_before_a_wall_straight_ahead() {
+        // The corridor closed at x = 12 m, the goal just in front of the
+        // wall. At 1 m/s braking takes 2.5 m: with a 1 s horizon only V_a
+        // (which follows the arc on until the robot could stop) sees the
+        // wall in time; with 3 s the rollouts see it too.
+        let map = corridor(160, Some(120));
+        let robot = RobotSpec::default();
+        let a = robot.limits.acc_v;
+        let r0 = robot.footprint.circumscribed_radius();
+        let (start, goal) = (at(1.05, 0.85, 0.0), [11.7, 0.85]);
+        // Speed where the gap to the wall first falls to 0.5 m.
+        let speed_at_half_metre = |r: &testkit::Run| {
+            r.states
+                .iter()
+                .find(|s| 12.0 - s.x - r0 <= 0.5)
+                .map(|s| s.v)
+        };
+        // One control period of driving before braking can start, and the
+        // clearance field's half cell, make the slack.
+        let bound = (2.0 * 0.5 * a).sqrt() + 0.05;
+        for predict_time in [1.0, 3.0] {
+            let cfg = DwaConfig {
+                predict_time,
+                ..Default::default()
+            };
+            let mut p = Dwa::new(cfg, &robot, goal).unwrap();
+            let r = testkit::run(&mut p, &map, &robot, start, goal, &[], 40.0, 0.1);
+            assert_ne!(r.end, End::Collision, "horizon {predict_time}");
+            assert!(r.min_clearance > 0.0, "horizon {predict_time}");
+            let peak = r.states.iter().map(|s| s.v).fold(0.0, f64::max);
+            assert!(peak >= 0.95, "horizon {predict_time}: peak {peak}");
+            let v = speed_at_half_metre(&r).expect("comes within 0.5 m of the wall");
+            assert!(v <= bound, "horizon {predict_time}: {v} m/s at 0.5 m");
+        }
+        // Without V_a the 1 s horizon arrives too fast to stop: V_a is what
+        // keeps the braking distance here.
+        let cfg = DwaConfig {
+            predict_time: 1.0,
+            admissible_window: false,
+            ..Default::default()
+        };
+        let mut p = Dwa::new(cfg, &robot, goal).unwrap();
+        let r = testkit::run(&mut p, &map, &robot, start, goal, &[], 40.0, 0.1);
+        let v = speed_at_half_metre(&r).expect("comes within 0.5 m of the wall");
+        assert!(v > bound, "{v} m/s at 0.5 m without V_a");
+    }
+
+    #[test]
+    fn va_follows_the_arc_past_the_horizon_to_a_mover() {
+        // A still disc 1.9 m ahead (surface to surface 1.4 m); at 1 m/s the
+        // robot needs 2.5 m to stop and a 1 s rollout sees only 1 m: the
+        // straight fast samples collide with nothing within the horizon,
+        // yet V_a must reject them (and every sample of this narrow window
+        // curves into the disc before it could stop).
+        let map = open(200, 100);
+        let s = RobotState {
+            v: 1.0,
+            ..at(2.0, 5.0, 0.0)
+        };
+        let movers = [ObservedMover {
+            id: 1,
+            pos: [3.9, 5.0],
+            vel: [0.0, 0.0],
+            radius: 0.3,
+        }];
+        let straight_fast = |va: bool| {
+            let cfg = DwaConfig {
+                predict_time: 1.0,
+                admissible_window: va,
+                v_samples: 3,
+                w_samples: 5,
+                ..Default::default()
+            };
+            let mut p = Dwa::new(cfg, &RobotSpec::default(), [15.0, 5.0]).unwrap();
+            p.set_record_rollouts(true);
+            let obs = Observation {
+                time: 0.0,
+                dt: 0.1,
+                state: &s,
+                goal: [15.0, 5.0],
+                map: &map,
+                movers: &movers,
+                odometry: None,
+                accel_z: 0.0,
+            };
+            p.step(&obs);
+            let d = p.debug();
+            let r = d
+                .rollouts
+                .iter()
+                .find(|r| r.cmd.w == 0.0 && r.cmd.v >= 0.98)
+                .expect("a straight fast sample");
+            (r.admissible, d.rollouts.iter().any(|r| r.admissible))
+        };
+        assert_eq!(straight_fast(false), (true, true));
+        assert_eq!(straight_fast(true), (false, false));
     }
 
     #[test]
