@@ -132,48 +132,52 @@ fn symmetric_candidates_start_a_hold_that_follows_the_robot() {
 
 #[test]
 fn a_swap_of_sides_between_two_steps_holds_the_current_side() {
-    // Step 1: the wall's lower end is cheaper by far more than T_dc; step
-    // 2: the wall moved up, so its upper end is cheaper by as much. The
-    // costs crossed between the two steps without ever being seen within
-    // T_dc: the lower side is kept and held, as a continuous check would.
+    // Step 1: the wall's lower end is cheaper by far more than T_dc. Step
+    // 2: the wall's upper part is gone, so its upper end is cheaper by more
+    // than T_dc while the lower candidate stays where it was. The costs
+    // crossed between the two steps without ever being seen within T_dc:
+    // the lower candidate is kept and held, as a continuous check would.
     let cfg = LidarNavConfig::default();
-    let low = wall_scan(3.0, -1.0, 4.0);
-    let high = wall_scan(3.0, -4.0, 1.0);
+    let long = wall_scan(3.0, -1.0, 4.0);
+    let short = wall_scan(3.0, -1.0, 0.2);
+    let goal = [8.0, 0.0];
     let mut nav = Navigator::new(cfg, "nav").unwrap();
-    let t1 = nav.step(&input(&low, [8.0, 0.0]));
+    let t1 = nav.step(&input(&long, goal));
     assert!(t1[1] < -1.0, "{t1:?}");
     assert!(nav.debug().cost_gap.unwrap() > cfg.t_dc);
     assert_eq!(nav.debug().hold_remaining, 0.0);
-    let t2 = nav.step(&input(&high, [8.0, 0.0]));
+    let t2 = nav.step(&input(&short, goal));
     let d = nav.debug();
-    assert!(d.cost_gap.unwrap() > cfg.t_dc);
+    assert!(d.cost_gap.unwrap() > cfg.t_dc, "{:?}", d.candidates);
+    assert!(d.candidates.iter().any(|c| c.point[1] > 0.2));
     assert_eq!(d.kind, TargetKind::Temporary);
-    assert!(t2[1] < -4.0, "kept below the wall: {t2:?}");
+    assert_eq!(t2, t1, "kept below the wall");
     assert!((d.hold_remaining - cfg.t_h).abs() < 1e-12);
-    assert_eq!(nav.step(&input(&high, [8.0, 0.0])), t2);
+    assert_eq!(nav.step(&input(&short, goal)), t2);
     assert_eq!(nav.debug().kind, TargetKind::Held);
-    // Without the hold the cheaper side wins at once.
-    let mut free = Navigator::new(
-        LidarNavConfig {
-            hold: false,
-            ..cfg
-        },
-        "nav",
-    )
-    .unwrap();
-    free.step(&input(&low, [8.0, 0.0]));
-    let t = free.step(&input(&high, [8.0, 0.0]));
-    assert!(t[1] > 1.0, "{t:?}");
-    // A fresh choice after a hold has no previous side.
+    // Without the hold the cheaper end wins at once.
+    let free_cfg = LidarNavConfig { hold: false, ..cfg };
+    let mut free = Navigator::new(free_cfg, "nav").unwrap();
+    free.step(&input(&long, goal));
+    let t = free.step(&input(&short, goal));
+    assert!(t[1] > 0.2, "{t:?}");
+    // A fresh choice after the hold has no previous one: the upper end.
     let mut nav = Navigator::new(cfg, "nav").unwrap();
-    nav.step(&input(&low, [8.0, 0.0]));
-    nav.step(&input(&high, [8.0, 0.0]));
+    nav.step(&input(&long, goal));
+    nav.step(&input(&short, goal));
     for _ in 0..31 {
-        nav.step(&input(&high, [8.0, 0.0]));
+        nav.step(&input(&short, goal));
     }
-    let t = nav.step(&input(&high, [8.0, 0.0]));
+    let t = nav.step(&input(&short, goal));
     assert_eq!(nav.debug().kind, TargetKind::Temporary);
-    assert!(t[1] > 1.0, "after the hold: {t:?}");
+    assert!(t[1] > 0.2, "after the hold: {t:?}");
+    // A wall whose lower end moved by more than T_gap gives new candidates:
+    // a fresh choice, no hold.
+    let mut nav = Navigator::new(cfg, "nav").unwrap();
+    nav.step(&input(&long, goal));
+    let t = nav.step(&input(&wall_scan(3.0, -4.0, 1.0), goal));
+    assert!(t[1] > 1.0, "{t:?}");
+    assert_eq!(nav.debug().hold_remaining, 0.0);
 }
 
 #[test]

@@ -29,12 +29,14 @@
 //! current side. At 10 Hz, with candidates that jump with the beam grid (an
 //! OP cut by a weak edge on a wall seen at a grazing angle moves by a metre
 //! when the beams shift by one), the order can swap between two steps with
-//! the lead never seen below T_dc. So when the cheaper first candidate is
-//! on the other side of the goal's bearing (before the blocking OP's start
-//! rather than after its end, or the reverse) from the previous step's
-//! choice, the costs crossed: the current side's candidate is kept and held
-//! for t_h. A fresh choice (from the goal, or when a hold ends) has no
-//! previous side.
+//! the lead never seen below T_dc. So when the previous step's first choice
+//! (carried along) is still one of the two candidates — within T_gap of it,
+//! the distance under which \[L\] joins scan points into one obstacle, so
+//! the robot cannot pass between them — but the other one is now cheaper,
+//! the costs crossed: the current candidate is kept and held for t_h. A
+//! candidate farther than T_gap from the previous choice is a new one (the
+//! blocking OP changed or grew): no crossing is assumed. A fresh choice
+//! (from the goal, or when a hold ends) has no previous one.
 
 use serde::{Deserialize, Serialize};
 
@@ -217,10 +219,9 @@ pub struct Navigator {
     in_temp: bool,
     /// (time left, held goal in the current robot frame).
     hold: Option<(f64, [f64; 2])>,
-    /// Side of the goal's bearing (0 = before the blocking OP's start, 1 =
-    /// after its end) of the previous step's choice, when that step chose
-    /// (not held).
-    last_side: Option<usize>,
+    /// The first candidate chosen at the previous step, when that step
+    /// chose (not held), current robot frame.
+    last_choice: Option<[f64; 2]>,
     debug: NavDebug,
 }
 
@@ -232,7 +233,7 @@ impl Navigator {
             cfg,
             in_temp: false,
             hold: None,
-            last_side: None,
+            last_choice: None,
             debug: NavDebug::default(),
         })
     }
@@ -251,7 +252,7 @@ impl Navigator {
     pub fn reset(&mut self) {
         self.in_temp = false;
         self.hold = None;
-        self.last_side = None;
+        self.last_choice = None;
     }
 
     /// Scan processing alone (§2): edges, Algorithm 1, Algorithm 2 and the
@@ -286,6 +287,9 @@ impl Navigator {
             *g = carry(*g, input.velocity, dt);
             *left -= dt;
         }
+        if let Some(p) = self.last_choice.as_mut() {
+            *p = carry(*p, input.velocity, dt);
+        }
         let goal = input.goal;
         self.debug.candidates.clear();
         self.debug.cost_gap = None;
@@ -305,9 +309,9 @@ impl Navigator {
             return self.finish(goal, TargetKind::Global);
         };
         self.debug.blocking = Some(blk);
-        // The side of the previous step's choice; `None` after a hold or
-        // from the goal (a fresh choice).
-        let last_side = self.last_side.take();
+        // The previous step's first choice; `None` after a hold or from the
+        // goal (a fresh choice).
+        let last_choice = self.last_choice.take();
         if let Some((left, g)) = self.hold {
             if left > 1e-9 {
                 return self.finish(g, TargetKind::Held);
@@ -326,8 +330,10 @@ impl Navigator {
             Some(mut ch) => {
                 self.in_temp = true;
                 let mut hold = holds && ch.gap < self.cfg.t_dc;
-                if let Some(current) = last_side.filter(|_| holds) {
-                    if current != ch.side {
+                if let Some(prev) = last_choice.filter(|_| holds) {
+                    let d = |q: [f64; 2]| hypot(q[0] - prev[0], q[1] - prev[1]);
+                    let current = usize::from(d(ch.pair[1]) < d(ch.pair[0]));
+                    if current != ch.side && d(ch.pair[current]) < self.cfg.t_gap {
                         // The costs crossed since the last step: keep the
                         // current side and hold it (module doc).
                         let seen = std::mem::take(&mut self.debug.candidates);
@@ -344,7 +350,7 @@ impl Navigator {
                 if hold {
                     self.hold = Some((self.cfg.t_h, ch.point));
                 } else {
-                    self.last_side = Some(ch.side);
+                    self.last_choice = Some(ch.pair[ch.side]);
                 }
                 self.finish(ch.point, TargetKind::Temporary)
             }
@@ -390,7 +396,7 @@ impl Navigator {
         let n = self.debug.ranges_mdf.len();
         let mut target = goal;
         let mut op_i = blk;
-        let mut first: Option<(usize, f64)> = None;
+        let mut first: Option<([[f64; 2]; 2], usize, f64)> = None;
         for it in 0..=self.cfg.max_iterations {
             let op = self.debug.ops[op_i];
             if op.closed {
@@ -415,16 +421,17 @@ impl Navigator {
             };
             if it == 0 {
                 let gap = (k[0] - k[1]).abs();
-                first = Some((pick, gap));
+                first = Some((c, pick, gap));
                 self.debug.cost_gap = Some(gap);
             }
             let chosen = c[pick];
             self.debug.iterations = it;
             match self.blocking(chosen) {
                 None => {
-                    let (side, gap) = first?;
+                    let (pair, side, gap) = first?;
                     return Some(Choice {
                         point: chosen,
+                        pair,
                         side,
                         gap,
                     });
@@ -444,8 +451,10 @@ impl Navigator {
 struct Choice {
     /// The temporary goal (after any iteration), robot frame, m.
     point: [f64; 2],
-    /// Side of the first choice (around the OP blocking the goal): 0 =
-    /// before its start, 1 = after its end.
+    /// The two first candidates (around the OP blocking the goal): before
+    /// its start, after its end.
+    pair: [[f64; 2]; 2],
+    /// Which of them was chosen.
     side: usize,
     /// Their cost difference d_c, m.
     gap: f64,
