@@ -58,7 +58,10 @@ fn s_tab1_dual_velocity_is_faster_with_fewer_speed_drops() {
     // by more than 10 %. The time and speed-drop clauses are the mechanism.
     let exp = find("S-tab1").unwrap();
     let r = reproduce::run(&exp).unwrap();
-    assert!(r.runs.values().all(|m| m.outcome == Outcome::Reached && m.min_clearance_m > 0.0));
+    assert!(r
+        .runs
+        .values()
+        .all(|m| m.outcome == Outcome::Reached && m.min_clearance_m > 0.0));
     let (d, p) = (&r.runs["dual"], &r.runs["preliminary"]);
     assert!(d.time_s < 0.8 * p.time_s, "{} vs {}", d.time_s, p.time_s);
     assert!(d.speed_drops < p.speed_drops);

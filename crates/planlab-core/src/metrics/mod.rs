@@ -274,7 +274,9 @@ pub fn max_step_turn(pts: &[[f64; 2]]) -> f64 {
     let mut max = 0.0;
     for w in pts.windows(2) {
         let (dx, dy) = (w[1][0] - w[0][0], w[1][1] - w[0][1]);
-        if !(hypot(dx, dy) >= STILL_M) {
+        let chord = hypot(dx, dy);
+        // A NaN chord is skipped like a still one.
+        if chord.is_nan() || chord < STILL_M {
             continue;
         }
         let h = atan2(dy, dx);
