@@ -60,7 +60,7 @@ fn same_seed_same_file_and_hash() {
 }
 
 #[test]
-fn generated_rooms_scenario_runs_to_the_goal() {
+fn generated_rooms_scenario_joins_start_and_goal_and_runs() {
     let out = tmp("rooms.json");
     let r = json_of(&planlab(&[
         "generate",
@@ -72,8 +72,22 @@ fn generated_rooms_scenario_runs_to_the_goal() {
         "--json",
     ]));
     assert!(r["occupied"].as_u64().unwrap() > 0);
+    // The generator's promise: start and goal joined for the robot
+    // (inflated A* finds a path), and the scenario runs without contact.
+    // Whether the local planner gets through the doors is its own result:
+    // since DWA's V_a follows Fox et al. improved-dwa ends stuck in a
+    // doorway on this map (issue 13's note).
+    let plan = json_of(&planlab(&[
+        "plan",
+        out.to_str().unwrap(),
+        "--inflate",
+        "0.2",
+        "--json",
+    ]));
+    assert!(plan["length_m"].as_f64().unwrap() > 5.0, "{plan}");
     let run = json_of(&planlab(&["run", out.to_str().unwrap(), "--json"]));
-    assert_eq!(run["outcome"], "reached", "{run}");
+    assert_ne!(run["outcome"], "collision", "{run}");
+    assert!(run["min_clearance_m"].as_f64().unwrap() > 0.0, "{run}");
 }
 
 #[test]
