@@ -238,7 +238,9 @@ fn metrics_csv_holds_the_run_metrics() {
     let csv = m.to_csv();
     let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
     assert_eq!(rows[0], ["name", "value", "unit"]);
-    assert_eq!(rows.len(), 14);
+    // Header + 15 metrics, among them [L] Table 2's per-step turning and
+    // [C] Table 5's per-wheel load share.
+    assert_eq!(rows.len(), 16);
     assert!(rows.iter().all(|r| r.len() == 3));
     let get = |k: &str| rows.iter().find(|r| r[0] == k).map(|r| r[1]).unwrap();
     assert_eq!(get("outcome"), "running");
@@ -249,4 +251,9 @@ fn metrics_csv_holds_the_run_metrics() {
     );
     assert!(m.path_length_m > 0.5);
     assert_eq!(get("load_ok_share"), "");
+    assert_eq!(get("wheel_load_share"), "");
+    assert_eq!(
+        get("max_turn_step_rad").parse::<f64>().unwrap(),
+        m.max_turn_step_rad
+    );
 }

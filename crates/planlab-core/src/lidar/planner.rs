@@ -263,36 +263,20 @@ impl ScanNavigation {
             [0.0, 0.0]
         };
         self.target = target;
-        let Ok(map) = scan_local_map(input.scan, &self.local, self.join) else {
-            return Command::default();
-        };
-        let state = RobotState {
-            v: finite_or_zero(input.velocity.v),
-            vy: finite_or_zero(input.velocity.vy),
-            w: finite_or_zero(input.velocity.w),
-            ..Default::default()
-        };
-        let dt = if input.dt.is_finite() && input.dt > 0.0 {
-            input.dt
+        let goal = if steer[0].is_finite() && steer[1].is_finite() {
+            steer
         } else {
-            0.1
+            target
         };
-        let obs = Observation {
-            time: self.time,
-            dt,
-            state: &state,
-            goal: if steer[0].is_finite() && steer[1].is_finite() {
-                steer
-            } else {
-                target
-            },
-            map: &map,
-            movers: &[],
-            odometry: None,
-            accel_z: 0.0,
-        };
-        self.time += dt;
-        self.motion.step(&obs)
+        drive_on_scan(
+            self.motion.as_mut(),
+            input.scan,
+            (&self.local, self.join),
+            &input.velocity,
+            input.dt,
+            &mut self.time,
+            goal,
+        )
     }
 
     /// The navigator, when there is one.
@@ -321,6 +305,44 @@ impl ScanNavigation {
     pub fn set_record(&mut self, on: bool) {
         self.motion.set_record_rollouts(on);
     }
+}
+
+/// One command of `motion` driving to `goal` (robot frame) on the local
+/// map of `scan` (`local` config, hits closer than `join` joined): robot at
+/// the origin, heading 0, no movers. Non-finite velocities count as 0 and
+/// a bad `dt` as 0.1 s; `time` advances by the step. What `lidar-dwa`'s
+/// stack and the \[L\] peers' [`super::scan_motion::ScanMotion`] share.
+pub(crate) fn drive_on_scan(
+    motion: &mut dyn LocalPlanner,
+    scan: &Scan,
+    (local, join): (&LocalMapConfig, f64),
+    velocity: &Velocity,
+    dt: f64,
+    time: &mut f64,
+    goal: [f64; 2],
+) -> Command {
+    let Ok(map) = scan_local_map(scan, local, join) else {
+        return Command::default();
+    };
+    let state = RobotState {
+        v: finite_or_zero(velocity.v),
+        vy: finite_or_zero(velocity.vy),
+        w: finite_or_zero(velocity.w),
+        ..Default::default()
+    };
+    let dt = if dt.is_finite() && dt > 0.0 { dt } else { 0.1 };
+    let obs = Observation {
+        time: *time,
+        dt,
+        state: &state,
+        goal,
+        map: &map,
+        movers: &[],
+        odometry: None,
+        accel_z: 0.0,
+    };
+    *time += dt;
+    motion.step(&obs)
 }
 
 fn finite_or_zero(x: f64) -> f64 {
@@ -717,12 +739,7 @@ impl LocalPlanner for LidarPlanner {
         _state: &RobotState,
         goal: [f64; 2],
     ) -> Result<(), LocalError> {
-        if !(goal[0].is_finite() && goal[1].is_finite()) {
-            return Err(LocalError::InvalidParameter(format!(
-                "goal = ({}, {}): must be finite",
-                goal[0], goal[1]
-            )));
-        }
+        crate::local::dwa::check_goal(goal)?;
         self.stack.reset();
         Ok(())
     }

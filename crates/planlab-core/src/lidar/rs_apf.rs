@@ -436,12 +436,7 @@ impl LocalPlanner for RsApf {
         _state: &RobotState,
         goal: [f64; 2],
     ) -> Result<(), LocalError> {
-        if !(goal[0].is_finite() && goal[1].is_finite()) {
-            return Err(LocalError::InvalidParameter(format!(
-                "goal = ({}, {}): must be finite",
-                goal[0], goal[1]
-            )));
-        }
+        crate::local::dwa::check_goal(goal)?;
         self.side = None;
         Ok(())
     }
@@ -459,7 +454,7 @@ impl LocalPlanner for RsApf {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lidar::tangent_bug::tests::{l_robot, room, run_on};
+    use crate::lidar::tangent_bug::tests::{build_error, l_robot, room, run_on};
     use crate::local::registry;
     use crate::local::testkit::End;
 
@@ -554,22 +549,7 @@ mod tests {
 
     #[test]
     fn bad_rs_apf_settings_name_the_field() {
-        let map = room(4.0, 4.0, &[]);
-        let build = |cfg: serde_json::Value| {
-            registry::build(
-                &PlannerChoice {
-                    name: "rs-apf".into(),
-                    config: cfg,
-                },
-                &l_robot(),
-                &map,
-                &RobotState::default(),
-                [1.0, 1.0],
-            )
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_default()
-        };
+        let build = |cfg| build_error("rs-apf", cfg);
         assert!(build(serde_json::json!({"margin": f64::NAN.to_string()})).contains("margin"));
         assert!(build(serde_json::json!({"margin": -0.1})).contains("rs-apf.margin"));
         assert!(build(serde_json::json!({"stall_steps": 0})).contains("rs-apf.stall_steps"));

@@ -9,7 +9,8 @@
 //! RRT stand-in accumulates scans into a map. They never read the map:
 //! only [`ScanMotion::sense`] does, through the sensor.
 
-use super::planner::{empty_local_map, lidar_err, scan_local_map, LocalMapConfig};
+use super::nav::Velocity;
+use super::planner::{drive_on_scan, empty_local_map, lidar_err, LocalMapConfig};
 use super::scan::{beam_angle, polar, Disc, Lidar, LidarConfig, Scan};
 use super::TargetKind;
 use crate::local::dwa::DwaConfig;
@@ -100,39 +101,26 @@ impl ScanMotion {
         scan: &Scan,
         steer: [f64; 2],
     ) -> Command {
-        let Ok(map) = scan_local_map(scan, &self.local, self.join) else {
-            return Command::default();
-        };
         let (c, s) = (cos(pose[2]), sin(pose[2]));
         let (dx, dy) = (steer[0] - pose[0], steer[1] - pose[1]);
         let mut goal = [c * dx + s * dy, -s * dx + c * dy];
         if !(goal[0].is_finite() && goal[1].is_finite()) {
             goal = [0.0, 0.0];
         }
-        let fin = |x: f64| if x.is_finite() { x } else { 0.0 };
-        let state = RobotState {
-            v: fin(obs.state.v),
-            vy: fin(obs.state.vy),
-            w: fin(obs.state.w),
-            ..Default::default()
+        let v = Velocity {
+            v: obs.state.v,
+            vy: obs.state.vy,
+            w: obs.state.w,
         };
-        let dt = if obs.dt.is_finite() && obs.dt > 0.0 {
-            obs.dt
-        } else {
-            0.1
-        };
-        let local = Observation {
-            time: self.time,
-            dt,
-            state: &state,
+        drive_on_scan(
+            self.motion.as_mut(),
+            scan,
+            (&self.local, self.join),
+            &v,
+            obs.dt,
+            &mut self.time,
             goal,
-            map: &map,
-            movers: &[],
-            odometry: None,
-            accel_z: 0.0,
-        };
-        self.time += dt;
-        self.motion.step(&local)
+        )
     }
 
     /// The motion planner's debug (robot frame).

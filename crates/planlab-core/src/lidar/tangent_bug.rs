@@ -482,12 +482,7 @@ impl LocalPlanner for TangentBug {
         _state: &RobotState,
         goal: [f64; 2],
     ) -> Result<(), LocalError> {
-        if !(goal[0].is_finite() && goal[1].is_finite()) {
-            return Err(LocalError::InvalidParameter(format!(
-                "goal = ({}, {}): must be finite",
-                goal[0], goal[1]
-            )));
-        }
+        crate::local::dwa::check_goal(goal)?;
         self.enter_to_goal();
         Ok(())
     }
@@ -528,6 +523,24 @@ pub(crate) mod tests {
 
     /// A walled room `w` × `h` m (0.1 m cells) with the wall rectangles
     /// `walls` ([x0, y0, x1, y1], m) inside.
+    /// The registry's error for planner `name` with `cfg` on an empty room
+    /// ("" when it builds).
+    pub(crate) fn build_error(name: &str, cfg: serde_json::Value) -> String {
+        registry::build(
+            &PlannerChoice {
+                name: name.into(),
+                config: cfg,
+            },
+            &l_robot(),
+            &room(4.0, 4.0, &[]),
+            &RobotState::default(),
+            [1.0, 1.0],
+        )
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default()
+    }
+
     pub(crate) fn room(w: f64, h: f64, walls: &[[f64; 4]]) -> StaticMap {
         let (cols, rows) = ((w * 10.0).round() as usize, (h * 10.0).round() as usize);
         let mut text = String::new();
@@ -641,22 +654,7 @@ pub(crate) mod tests {
 
     #[test]
     fn bad_tangent_bug_settings_name_the_field() {
-        let map = room(4.0, 4.0, &[]);
-        let build = |cfg: serde_json::Value| {
-            registry::build(
-                &PlannerChoice {
-                    name: "tangent-bug".into(),
-                    config: cfg,
-                },
-                &l_robot(),
-                &map,
-                &RobotState::default(),
-                [1.0, 1.0],
-            )
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_default()
-        };
+        let build = |cfg| build_error("tangent-bug", cfg);
         assert!(build(serde_json::json!({"margin": -1.0})).contains("tangent-bug.margin"));
         assert!(build(serde_json::json!({"t_jump": 0.0})).contains("tangent-bug.t_jump"));
         assert!(build(serde_json::json!({"lidar": {"range": 0.0}})).contains("lidar.range"));
