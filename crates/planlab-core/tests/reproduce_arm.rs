@@ -159,3 +159,26 @@ fn gripper_distance_bounds_the_arm_distance_and_approaches_it() {
         "{equal} of {steps}"
     );
 }
+
+/// Variants 6 and 25 of T-tab5-3's family (seed 0): with the RNN predictor
+/// the tool kept its distance, but the IK swung the wrist into the hand,
+/// which had come to rest (a collision with a hand the arm sees, in 2 of 30
+/// variants). The whole-arm check now refuses such a move and takes the next
+/// free candidate: every run of those variants reaches without contact.
+#[test]
+fn arm_rnn_variants_6_and_25_wrist_does_not_touch_the_resting_hand() {
+    let exp = find_path("T-tab5-3").unwrap();
+    for k in [6, 25] {
+        let scene = exp.variant(0, k, &[]).unwrap();
+        for (name, tree) in &scene.trees {
+            let s = ArmScenario::from_value(tree).unwrap();
+            let mut ep = ArmEpisode::from_scenario(&s).unwrap();
+            let outcome = ep.run().unwrap();
+            assert_eq!(outcome, Outcome::Reached, "variant {k}, {name}");
+            assert!(ep.min_distance() > 0.0, "variant {k}, {name}");
+            if *name == "prediction-rnn" {
+                assert!(ep.refusals() > 0, "variant {k}: the check was not needed");
+            }
+        }
+    }
+}

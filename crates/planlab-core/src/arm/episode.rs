@@ -24,6 +24,11 @@ use crate::sim::Outcome;
 /// The arm scenario file's format version.
 pub const ARM_SCENARIO_VERSION: u32 = 1;
 
+/// Points along a planned joint move at which the whole-arm check looks for
+/// contact (a 0.04 m tool step moves no link more than a few centimetres,
+/// less than the thinnest link's diameter between two checks).
+pub const MOTION_CHECKS: usize = 4;
+
 /// Timing and end conditions of an arm episode.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -233,6 +238,7 @@ pub struct ArmEpisode {
     hand_path: Vec<DVec3>,
     last_step: Option<ApfStep<DVec3>>,
     min_dist: f64,
+    refusals: u32,
     dist_now: f64,
     outcome: Outcome,
     end_time: f64,
@@ -382,6 +388,7 @@ impl ArmEpisode {
             hand_path: vec![hand.hand_at(0.0)],
             last_step: None,
             min_dist: d0,
+            refusals: 0,
             dist_now: d0,
             outcome: Outcome::Running,
             end_time: 0.0,
@@ -498,6 +505,27 @@ impl ArmEpisode {
             .collect()
     }
 
+    /// Whether moving the joints linearly from the current configuration to
+    /// `q_to` brings any link into contact with `obstacles` (checked at
+    /// [`MOTION_CHECKS`] points along the move, the end included).
+    fn motion_touches(&self, q_to: &[f64], obstacles: &[Obstacle3; 2]) -> bool {
+        let mut q = self.q.clone();
+        (1..=MOTION_CHECKS).any(|k| {
+            let f = k as f64 / MOTION_CHECKS as f64;
+            for (qi, (a, b)) in q.iter_mut().zip(self.q.iter().zip(q_to)) {
+                *qi = a + (b - a) * f;
+            }
+            let links = link_capsules(&self.model.fk(&q), &self.radii);
+            min_distance(&links, obstacles).is_some_and(|(d, _)| d <= 0.0)
+        })
+    }
+
+    /// Planned moves the whole-arm check refused so far (another
+    /// candidate was taken, or the arm held).
+    pub fn refusals(&self) -> u32 {
+        self.refusals
+    }
+
     /// Advances one sample period (plans at the start of each planning
     /// period). Returns the outcome (`Running` until the end).
     pub fn step(&mut self) -> Result<Outcome, ArmError> {
@@ -518,6 +546,29 @@ impl ArmEpisode {
             // The IK result is used even when it falls short (a joint
             // limit): the next step plans from where the tool really is.
             self.model.ik_solve(&mut q_to, s.next, &self.scene.ik);
+            // The APF plans the tool only; the other links follow by IK and
+            // can swing into the hand. A move that would touch the hand
+            // where it is now is not taken: the next sampled candidate by
+            // cost whose move is free is, and with none the arm holds (a
+            // protective stop) and plans again next period.
+            let hand_now = self.hand.obstacles_at(t);
+            if self.motion_touches(&q_to, &hand_now) {
+                self.refusals += 1;
+                let mut order: Vec<_> = s
+                    .candidates
+                    .iter()
+                    .enumerate()
+                    .filter(|&(i, _)| Some(i) != s.chosen)
+                    .map(|(_, c)| c)
+                    .collect();
+                order.sort_by(|a, b| a.cost.total_cmp(&b.cost));
+                let free = order.into_iter().find_map(|c| {
+                    let mut q = self.q.clone();
+                    self.model.ik_solve(&mut q, c.point, &self.scene.ik);
+                    (!self.motion_touches(&q, &hand_now)).then_some(q)
+                });
+                q_to = free.unwrap_or_else(|| self.q.clone());
+            }
             self.q_from = self.q.clone();
             self.q_to = q_to;
             self.last_step = Some(s);

@@ -115,6 +115,13 @@ pub fn experiments() -> Vec<PathExperiment> {
                 paper: "0.171 vs 0.077 m (vs [54])",
             },
             Deviation {
+                what: "whole-arm check of each planned move",
+                path: None,
+                ours: "a move whose joint motion would touch the hand where it is now is \
+                       refused; the next sampled candidate by cost is taken, or the arm holds",
+                paper: "not given (the thesis plans the end effector only)",
+            },
+            Deviation {
                 what: "planning period and tool radius",
                 path: Some("arm.sim.plan_period_s"),
                 ours: "0.5 s, 0.04 m",
