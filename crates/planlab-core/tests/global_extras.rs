@@ -18,8 +18,8 @@ use proptest::test_runner::{Config, RngSeed};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-/// Root of the shared test data, beside the repository clone.
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data");
+/// Root of the test data in the repository (`tests/data`).
+const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data");
 
 const NCC: Diagonal = Diagonal::NoCornerCutting;
 
