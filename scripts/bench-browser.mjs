@@ -41,7 +41,7 @@ import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { REPO, SHARED, startSession } from '../tests/e2e/harness.mjs';
+import { REPO, DATA, startSession } from '../tests/e2e/harness.mjs';
 import { FIRST_LOAD_LIMIT, kB, measureFirstLoad, sitePages } from '../tests/e2e/firstload.mjs';
 
 const args = process.argv.slice(2);
@@ -182,7 +182,7 @@ async function ratios(session) {
   const out = { astar: [], dwa: null };
   try {
     for (const m of MAPS) {
-      const mapFile = path.join(SHARED, 'data/movingai', `${m.name}.map`);
+      const mapFile = path.join(DATA, 'movingai', `${m.name}.map`);
       const mapText = fs.readFileSync(mapFile, 'utf8');
       const scenText = sampleScen(fs.readFileSync(`${mapFile}.scen`, 'utf8'), SAMPLE);
       const scenFile = path.join(tmp, `${path.basename(m.name)}.scen`);

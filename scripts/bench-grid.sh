@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Runs `planlab bench grid` on the four shared Moving AI maps in one go and
+# Runs `planlab bench grid` on the four Moving AI maps in tests/data in one go and
 # prints each report plus the geometric means of the speed-ups.
 # Usage: scripts/bench-grid.sh [DATA_DIR] [REPS]   (needs target/release/planlab)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-D="${1:-../shared/data/movingai}"
+D="${1:-tests/data/movingai}"
 REPS="${2:-3}"
 [ -x target/release/planlab ] || cargo build --release -p planlab-cli
 out=$(for m in dao/arena dao/arena2 maze/maze512-1-0 random/random512-10-0; do

@@ -12,12 +12,12 @@ import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { REPO, SHARED, SCREENSHOTS, startSession, screenshot, errorText } from './harness.mjs';
+import { REPO, DATA, SCREENSHOTS, startSession, screenshot, errorText } from './harness.mjs';
 
 const DEMO = 'dwa-demo.json';
 const CLI = path.join(REPO, 'target/release/planlab');
-const TB3 = path.join(SHARED, 'data/rosmaps/turtlebot3');
-const ARENA = path.join(SHARED, 'data/movingai/dao/arena.map');
+const TB3 = path.join(DATA, 'rosmaps/turtlebot3');
+const ARENA = path.join(DATA, 'movingai/dao/arena.map');
 
 let session;
 let tmp;

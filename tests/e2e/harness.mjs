@@ -20,7 +20,8 @@ import { fileURLToPath } from 'node:url';
 export const REPO = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 export const WEB = path.join(REPO, 'web');
 export const DIST = path.join(WEB, 'dist');
-export const SHARED = path.resolve(REPO, '../shared');
+// Real map files (Moving AI, TurtleBot3) kept in the repository.
+export const DATA = path.join(REPO, 'tests/data');
 export const SCREENSHOTS = path.join(REPO, 'tests/e2e/screenshots');
 
 // playwright-core is a devDependency of web/, not of the repo root.

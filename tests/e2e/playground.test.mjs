@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import {
   REPO,
-  SHARED,
+  DATA,
   startSession,
   openPage,
   screenshot,
@@ -25,8 +25,8 @@ import {
   readScen,
 } from './harness.mjs';
 
-const ARENA_SCEN = path.join(SHARED, 'data/movingai/dao/arena.map.scen');
-const ROS_DIR = path.join(SHARED, 'data/rosmaps/turtlebot3');
+const ARENA_SCEN = path.join(DATA, 'movingai/dao/arena.map.scen');
+const ROS_DIR = path.join(DATA, 'rosmaps/turtlebot3');
 
 /** A long query of the arena scenario (the first with optimum > 55 cells). */
 const ROW = readScen(ARENA_SCEN).find((r) => r.optimal > 55);
@@ -236,7 +236,7 @@ test('TurtleBot3 preset, safe A* and Bottom-Up run without console errors', asyn
 
 test('a 512×512 Moving AI map opens from disk and plans the optimum', async () => {
   const { page, problems } = await openPage(session);
-  const mapFile = path.join(SHARED, 'data/movingai/random/random512-10-0.map');
+  const mapFile = path.join(DATA, 'movingai/random/random512-10-0.map');
   await afterReplan(page, () => page.setInputFiles('#file-input', mapFile));
   assert.equal(await errorText(page), null);
   assert.match(await page.textContent('#map-size'), /^512\s*×\s*512$/);

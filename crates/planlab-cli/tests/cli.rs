@@ -5,9 +5,9 @@ use serde_json::Value;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-fn shared(rel: &str) -> PathBuf {
+fn data(rel: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data")
+        .join("../../tests/data")
         .join(rel)
 }
 
@@ -64,7 +64,7 @@ fn s(p: &std::path::Path) -> &str {
 #[test]
 fn plan_json_matches_moving_ai_optimum() {
     // arena.map.scen row: 1 13 -> 4 12, optimal 3.41421
-    let map = shared("movingai/dao/arena.map");
+    let map = data("movingai/dao/arena.map");
     for algo in ["astar", "dijkstra", "jps"] {
         let o = planlab(&[
             "plan",
@@ -91,7 +91,7 @@ fn plan_json_matches_moving_ai_optimum() {
 
 #[test]
 fn plan_on_ros_map_with_inflation_keypoints_and_bottom_up() {
-    let yaml = shared("rosmaps/turtlebot3/map.yaml");
+    let yaml = data("rosmaps/turtlebot3/map.yaml");
     // Two free cells in the TurtleBot3 world, far apart.
     let o = planlab(&[
         "plan",
@@ -128,8 +128,8 @@ fn plan_on_ros_map_with_inflation_keypoints_and_bottom_up() {
 fn scen_json_reports_every_row_and_no_mismatch() {
     let o = planlab(&[
         "scen",
-        s(&shared("movingai/dao/arena.map")),
-        s(&shared("movingai/dao/arena.map.scen")),
+        s(&data("movingai/dao/arena.map")),
+        s(&data("movingai/dao/arena.map.scen")),
         "--algo",
         "jps",
         "--json",
@@ -160,8 +160,8 @@ fn bench_grid_prints_ratios() {
     let o = planlab(&[
         "bench",
         "grid",
-        s(&shared("movingai/dao/arena.map")),
-        s(&shared("movingai/dao/arena.map.scen")),
+        s(&data("movingai/dao/arena.map")),
+        s(&data("movingai/dao/arena.map.scen")),
         "--reps",
         "1",
     ]);
@@ -217,7 +217,7 @@ fn plan_uses_a_scenarios_endpoints_and_options_and_flags_override_them() {
 
 #[test]
 fn bad_input_gives_one_clear_error_line() {
-    let arena = shared("movingai/dao/arena.map");
+    let arena = data("movingai/dao/arena.map");
     let a = s(&arena);
     // Unreachable: a free cell walled in on all sides.
     let walled = temp_file(
@@ -354,7 +354,7 @@ fn inflation_blocking_the_start_is_explained() {
     // (1,11) in arena is free but hugs a wall: 2 m of inflation swallows it.
     let o = planlab(&[
         "plan",
-        s(&shared("movingai/dao/arena.map")),
+        s(&data("movingai/dao/arena.map")),
         "--start",
         "1,11",
         "--goal",

@@ -1,4 +1,4 @@
-//! Criterion benchmark of one sampling-APF step with prediction (SPEC §5:
+//! Criterion benchmark of one sampling-APF step with prediction (docs/algorithms.md §apf:
 //! < 20 µs native): 3D, 13 sampled directions, 5 spheres of which 2 move
 //! (t+1 / t+2 virtual copies), with the constant-velocity and the RNN
 //! predictor; the basic step is measured beside it as the peer. Each

@@ -1,4 +1,4 @@
-//! Criterion benchmarks of the grid planners on the shared Moving AI maps:
+//! Criterion benchmarks of the grid planners on the Moving AI maps in `tests/data`:
 //! our A*, our JPS and the `pathfinding` crate's `astar` (same 8-connected,
 //! no-corner-cutting moves) on the same seeded sample of scenario rows, with
 //! every cost checked against the optimum inside the benchmark.
@@ -19,7 +19,7 @@ const MAPS: [&str; 4] = [
 
 fn load(name: &str) -> (PlanGrid, Vec<ScenRow>) {
     let base = format!(
-        "{}/../../../shared/data/movingai/{name}.map",
+        "{}/../../tests/data/movingai/{name}.map",
         env!("CARGO_MANIFEST_DIR")
     );
     let map = parse_map(&std::fs::read_to_string(&base).expect("map")).expect("parse map");

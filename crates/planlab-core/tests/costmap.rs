@@ -267,7 +267,7 @@ fn invalid_radii_are_errors() {
 fn real_map_inflation_matches_windowed_brute_force() {
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/movingai/dao/arena2.map"
+        "/../../tests/data/movingai/dao/arena2.map"
     ))
     .unwrap();
     let g = movingai::parse_map(&text).unwrap();

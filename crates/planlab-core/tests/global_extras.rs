@@ -18,8 +18,8 @@ use proptest::test_runner::{Config, RngSeed};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-/// Root of the shared test data, beside the repository clone.
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data");
+/// Root of the test data in the repository (`tests/data`).
+const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data");
 
 const NCC: Diagonal = Diagonal::NoCornerCutting;
 
@@ -868,7 +868,7 @@ fn bottom_up_rejects_bad_error_and_passes_tiny_inputs_through() {
 
 #[test]
 fn bottom_up_keeps_few_feature_nodes_of_a_long_path_on_a_real_map() {
-    // [S] Fig 6: 80 A* nodes -> 7 feature nodes; SPEC §7 asks for ≪ 10%.
+    // [S] Fig 6: 80 A* nodes -> 7 feature nodes; docs/algorithms.md §experiments asks for ≪ 10%.
     let g = movingai("movingai/dao/arena2.map");
     let rows = scen("movingai/dao/arena2.map.scen");
     let (s, t, opt) = *rows.iter().rev().find(|r| r.2 > 150.0).unwrap();

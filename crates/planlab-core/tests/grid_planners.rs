@@ -15,8 +15,8 @@ use proptest::test_runner::{Config, RngSeed};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-/// Root of the shared Moving AI data, beside the repository clone.
-const MOVINGAI: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data/movingai");
+/// Root of the Moving AI data in the repository (`tests/data/movingai`).
+const MOVINGAI: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/movingai");
 
 const NCC: Diagonal = Diagonal::NoCornerCutting;
 const SQRT2: f64 = std::f64::consts::SQRT_2;

@@ -1,14 +1,14 @@
 //! Map file formats through the public API: Moving AI `.map`/`.scen`, ROS
 //! map_server YAML + PGM, planlab scenario JSON; real files from
-//! `shared/data` and property tests that feed the parsers garbage.
+//! `tests/data` and property tests that feed the parsers garbage.
 
 use planlab_core::global::GridPos;
 use planlab_core::map::io::movingai::{self, ScenRow};
 use planlab_core::map::{Cell, MapError, OccupancyGrid};
 use proptest::prelude::*;
 
-/// Root of the shared test data, beside the repository clone.
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data");
+/// Root of the test data in the repository (`tests/data`).
+const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data");
 
 fn read_text(rel: &str) -> String {
     let p = format!("{DATA}/{rel}");

@@ -1,4 +1,4 @@
-//! \[T\] ch. 4 reproductions (SPEC §7): every APF relation holds, with the
+//! \[T\] ch. 4 reproductions (docs/algorithms.md §experiments): every APF relation holds, with the
 //! paper's claims checked run by run.
 
 use planlab_core::reproduce::{self, find_path, run_path, PathExperimentResult};

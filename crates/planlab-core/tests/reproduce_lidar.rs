@@ -1,4 +1,4 @@
-//! The \[L\] reproductions (SPEC §7): sims 1–4 reach the goal without
+//! The \[L\] reproductions (docs/algorithms.md §experiments): sims 1–4 reach the goal without
 //! collision and without target chattering, sims 5–8 (Table 2) beat plain
 //! DWA on the same unknown map, sim 9 passes three moving discs.
 

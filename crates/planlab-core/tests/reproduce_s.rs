@@ -1,4 +1,4 @@
-//! The \[S\] Ge & Li 2022 reproductions (SPEC §7): every relation holds,
+//! The \[S\] Ge & Li 2022 reproductions (docs/algorithms.md §experiments): every relation holds,
 //! and the traces show the mechanisms the paper describes — few feature
 //! nodes as temporary goals, the speed held near them, movers avoided
 //! without looping.

@@ -11,7 +11,7 @@ use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
 use planlab_core::sim::{default_endpoints, Episode, Outcome, ENDPOINT_MARGIN_M};
 use planlab_core::world::{MoverSpec, Placement, RobotSpec, StaticMap};
 
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data");
+const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data");
 const ASSETS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/scenarios");
 
 fn read(path: &str) -> Vec<u8> {

@@ -2,7 +2,7 @@
 // parameters come from the wasm planner registry (name, paper, summary and
 // every config field's unit, default and doc), so they cannot drift from
 // the core; the other pages' controls are few and fixed, described here
-// with their paper sections (SPEC §2, §5).
+// with their paper sections (docs/algorithms.md).
 
 import type { HelpContent, HelpParam, HelpPlanner } from './help';
 

@@ -1,4 +1,4 @@
-//! Artificial potential fields (SPEC §5, \[T\] Wu 2022 ch. 4–5), in 2D and
+//! Artificial potential fields (docs/algorithms.md §apf, \[T\] Wu 2022 ch. 4–5), in 2D and
 //! 3D from one generic implementation over [`ApfVector`] (glam `DVec2` /
 //! `DVec3`).
 //!

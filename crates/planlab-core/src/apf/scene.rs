@@ -21,7 +21,7 @@ use crate::num::acos;
 use crate::sim::Outcome;
 
 /// A path point is a spike when the path turns there by more than this,
-/// rad (30°, SPEC §5 Decision).
+/// rad (30°, docs/algorithms.md §metrics).
 pub const SPIKE_ANGLE: f64 = std::f64::consts::PI / 6.0;
 
 /// An obstacle of an APF scene: a sphere / disc moving at constant

@@ -5,7 +5,7 @@
 //! over the period. The hand is observed every sample period (0.1 s, the
 //! thesis's rate), so predictors see a regular history.
 //!
-//! Metrics (SPEC §5, Tables 4-1 / 5-3): outcome, path length and number of
+//! Metrics (docs/algorithms.md §metrics, Tables 4-1 / 5-3): outcome, path length and number of
 //! points of the tool's path at the planning instants, spikes (interior
 //! points turning more than 30°), the minimum distance between any link
 //! capsule and the hand or forearm over every sample, and the time.
@@ -633,7 +633,7 @@ impl ArmEpisode {
         } else {
             self.end_time
         };
-        // Spikes: path points turning more than 30° (SPEC §5 Decision).
+        // Spikes: path points turning more than 30° (docs/algorithms.md §metrics).
         ApfMetrics::of_path(&self.path, self.outcome, self.min_dist, time_s)
     }
 

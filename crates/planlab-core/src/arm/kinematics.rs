@@ -1,6 +1,6 @@
 //! Forward kinematics (every joint frame and the tool point), the
 //! positional Jacobian, and damped-least-squares inverse kinematics with
-//! joint limits (SPEC §5 "Arm"; \[T\] §5.3.3 moves the end effector in
+//! joint limits (docs/algorithms.md §arm; \[T\] §5.3.3 moves the end effector in
 //! 0.04 m steps along the planned path).
 //!
 //! The IK is positional: the planners of \[T\] ch. 4 plan the end

@@ -1,4 +1,4 @@
-//! A 7-DOF arm beside a moving human hand (SPEC §5 "Arm", \[T\] §2.4 and
+//! A 7-DOF arm beside a moving human hand (docs/algorithms.md §arm, \[T\] §2.4 and
 //! §5.3.3).
 //!
 //! - [`model`]: the URDF-style arm file (`assets/arm/tiago.json`), parsed

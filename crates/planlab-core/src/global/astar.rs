@@ -1,4 +1,4 @@
-//! A* and Dijkstra on a [`PlanGrid`] (SPEC §2; Wu 2022 eq 3-6, f = g + w·h).
+//! A* and Dijkstra on a [`PlanGrid`] (docs/algorithms.md §grid; Wu 2022 eq 3-6, f = g + w·h).
 //!
 //! 4- or 8-connected moves of cost 1 and √2 under a [`Diagonal`] rule, any
 //! [`Heuristic`] with a weight w ≥ 1 (cost ≤ w · optimum for a consistent

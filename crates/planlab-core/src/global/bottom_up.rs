@@ -1,4 +1,4 @@
-//! Bottom-Up segmentation of a grid path, Ge & Li (2022) §4.1 (SPEC §2,
+//! Bottom-Up segmentation of a grid path, Ge & Li (2022) §4.1 (docs/algorithms.md §bottom-up,
 //! paper key \[S\]), after Keogh et al.'s time-series Bottom-Up algorithm.
 //!
 //! Start from the finest piecewise-linear segmentation (every consecutive

@@ -1,4 +1,4 @@
-//! Key-point extraction of Wu (2022) §3.2.1 (SPEC §2, paper key \[T\]).
+//! Key-point extraction of Wu (2022) §3.2.1 (docs/algorithms.md §key-points, paper key \[T\]).
 //!
 //! A grid path is reduced to the few points a local planner needs as
 //! intermediate goals, in two steps:

@@ -1,4 +1,4 @@
-//! Grid global planners (SPEC §2): shared types.
+//! Grid global planners (docs/algorithms.md §grid–§bottom-up): shared types.
 //!
 //! Every planner searches a [`PlanGrid`] (the passability of an
 //! [`OccupancyGrid`], built once and reused across queries) and returns a

@@ -16,7 +16,7 @@ use thiserror::Error;
 /// Which grid planner to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub enum Algorithm {
-    /// A* (SPEC §2), with the chosen heuristic and weight.
+    /// A* (docs/algorithms.md §grid), with the chosen heuristic and weight.
     #[default]
     #[serde(rename = "astar")]
     AStar,

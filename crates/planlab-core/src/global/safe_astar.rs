@@ -1,4 +1,4 @@
-//! Safe A* of Ge & Li (2022) §1 (SPEC §2, paper key \[S\]).
+//! Safe A* of Ge & Li (2022) §1 (docs/algorithms.md §safe-astar, paper key \[S\]).
 //!
 //! Two changes to A*: a 24-neighbourhood (every cell of the 5×5 block around
 //! a node, so paths turn less) and a safety term in the heuristic,

@@ -1,5 +1,5 @@
 //! LiDAR heuristic navigation in unknown maps (\[L\] Chang et al. 2024;
-//! SPEC §6).
+//! docs/algorithms.md §lidar).
 //!
 //! - [`scan`]: the 2D LiDAR — n beams over 360°, range limit, exact ray
 //!   casting against the grid (DDA) and the moving discs, seeded noise.

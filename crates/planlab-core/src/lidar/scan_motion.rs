@@ -2,7 +2,8 @@
 //! `rrt-shortcut`) share with `lidar-dwa`: the simulated LiDAR on the map
 //! and the perceived movers, and a motion planner (a registry choice, e.g.
 //! `dwa`) driving to a point on the **local map built from the scan alone**
-//! ([`scan_local_map`]), robot at the origin, heading 0, no movers.
+//! ([`scan_local_map`](super::planner::scan_local_map)), robot at the
+//! origin, heading 0, no movers.
 //!
 //! Unlike `lidar-dwa`'s navigator, the peers also read the robot's pose
 //! (odometry): Bug algorithms keep distances along their path, and the

@@ -34,7 +34,8 @@
 //!   leaves when d_reach < d_followed.
 //!
 //! **Motion layer**: the target is handed to the baseline DWA (`motion`,
-//! SPEC §4.1, α 0.2 as `lidar-dwa` runs in the \[L\] presets) on the local map built from the scan alone, as `lidar-dwa`
+//! docs/algorithms.md §dwa, α 0.2 as `lidar-dwa` runs in the \[L\] presets)
+//! on the local map built from the scan alone, as `lidar-dwa`
 //! does ([`super::scan_motion`]); a target nearer than `lookahead` is
 //! steered to along its bearing at `lookahead` (the same reason as
 //! `lidar-dwa`'s: a DWA heading critic aimed at a point closer than its

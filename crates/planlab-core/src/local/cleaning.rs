@@ -1,4 +1,5 @@
-//! Cleaning-robot DWA of \[C\] (Zhang, Song & Zhang 2020, §2–3; SPEC §4.4)
+//! Cleaning-robot DWA of \[C\] (Zhang, Song & Zhang 2020, §2–3;
+//! docs/algorithms.md §cleaning-dwa)
 //! and its "traditional DWA" baseline, for the omnidirectional / 4WIS robot.
 //! `traditional-dwa` is the same planner and cost with `load_limit` and
 //! `compensate` off.

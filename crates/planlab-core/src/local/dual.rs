@@ -1,5 +1,5 @@
 //! Safe A\* + Bottom-Up + dual-velocity DWA with detour replanning of \[S\]
-//! Ge & Li 2022 §2–4 (SPEC §4.3), and the "preliminary fusion" baseline
+//! Ge & Li 2022 §2–4 (docs/algorithms.md §safe-dual-dwa), and the "preliminary fusion" baseline
 //! the paper improves on (\[S\] §2.4).
 //!
 //! - **Global guidance** (\[S\] §1, §4.1): safe A\* ([`crate::global::safe_astar`],

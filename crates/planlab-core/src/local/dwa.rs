@@ -1,4 +1,4 @@
-//! Baseline Dynamic Window Approach (SPEC §4.1; Fox, Burgard & Thrun 1997 as
+//! Baseline Dynamic Window Approach (docs/algorithms.md §dwa; Fox, Burgard & Thrun 1997 as
 //! restated in \[T\] eq 3-1…3-5), written as a reusable engine.
 //!
 //! One control step:
@@ -9,7 +9,7 @@
 //!    a fixed number per axis (`v_samples`, `w_samples`); 0 is added on an
 //!    axis whose window contains it (stopping, driving straight).
 //! 3. **Rollouts**: each sample is held for `predict_time`, stepping the
-//!    SPEC §3 Euler update of [`crate::world::robot::integrate`] every
+//!    docs/algorithms.md §robot Euler update of [`crate::world::robot::integrate`] every
 //!    `sim_dt`.
 //! 4. **Clearance** of every rollout point: the static map's
 //!    [`StaticMap::clearance`] minus the footprint's circumscribed radius
@@ -29,7 +29,7 @@
 //! 5. **Critics** on the admissible rollouts: heading = π − |bearing error
 //!    to the goal at the rollout end|, dist = smallest clearance capped at
 //!    `dist_cap`, velocity = v. Each is divided by its sum over the
-//!    admissible samples (SPEC Decision) and G = α·head + ρ·β·dist + γ·vel
+//!    admissible samples (docs/algorithms.md §dwa) and G = α·head + ρ·β·dist + γ·vel
 //!    picks the command (ρ = 1 for the baseline; \[T\] eq 3-8 sets it).
 //!
 //! With no admissible sample the robot brakes at its largest deceleration
@@ -105,7 +105,7 @@ impl Weights {
     }
 }
 
-/// Settings of the baseline DWA (SPEC §4.1); `Default` is the MATLAB DWA
+/// Settings of the baseline DWA (docs/algorithms.md §dwa); `Default` is the MATLAB DWA
 /// sample both \[T\] and \[S\] build on (module doc).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]

@@ -1,4 +1,4 @@
-//! Improved DWA + A\* fusion of \[T\] §3.2 (SPEC §4.2), and the "\[53\]"
+//! Improved DWA + A\* fusion of \[T\] §3.2 (docs/algorithms.md §improved-dwa), and the "\[53\]"
 //! baseline fusion \[T\] compares it with.
 //!
 //! - **Global guidance** (\[T\] §3.2.1): A\* on the static map inflated by
@@ -52,7 +52,7 @@
 //! Fig 3-14). So a still disc gets plain DWA, never a wait for it to leave:
 //! \[53\] is never worse than `dwa` by construction, and whether it fails a
 //! special obstacle is left to the simulation. `v_static` defaults to the
-//! improved planner's (SPEC §4.2 Decision, 0.1 m/s) so the two differ only
+//! improved planner's (docs/algorithms.md §improved-dwa, 0.1 m/s) so the two differ only
 //! in what \[T\] adds; \[53\] itself gives no threshold, and \[T\] §3.3's
 //! account of it waiting at the 0.01 m/s obstacle 4 of Table 3-2 suggests a
 //! lower one (a declared deviation; `fusion-53.v_static` sweeps it).

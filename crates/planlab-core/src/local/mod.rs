@@ -1,4 +1,4 @@
-//! Local planners (SPEC §4): the DWA family. Each planner is built complete
+//! Local planners (docs/algorithms.md §local): the DWA family. Each planner is built complete
 //! from its config, the robot and the static map, then called once per
 //! control period with an [`Observation`] and returns a [`Command`].
 //!

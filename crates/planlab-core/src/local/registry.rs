@@ -95,7 +95,9 @@ pub fn list() -> Vec<PlannerInfo> {
     vec![
         PlannerInfo {
             name: "dwa".into(),
-            paper: "[T] Wu 2022 §3.1, eq 3-1…3-5 (Fox, Burgard & Thrun 1997); SPEC §4.1".into(),
+            paper: "[T] Wu 2022 §3.1, eq 3-1…3-5 (Fox, Burgard & Thrun 1997); \
+                    docs/algorithms.md §dwa"
+                .into(),
             summary: "Baseline dynamic window approach straight to the final goal: \
                       window V_s ∩ V_d ∩ V_a, rollouts, normalised heading / clearance / \
                       velocity critics."
@@ -104,7 +106,9 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "improved-dwa".into(),
-            paper: "[T] Wu 2022 §3.2 (Table 3-1, eq 3-7/3-8); SPEC §4.2".into(),
+            paper: "[T] Wu 2022 §3.2 (Table 3-1, eq 3-7/3-8); \
+                    docs/algorithms.md §improved-dwa"
+                .into(),
             summary: "A* key points as intermediate goals; movers classified ordinary \
                       dynamic / static / special with deceleration or detour weights and \
                       virtual goals; relative distance factor ρ near the goal."
@@ -113,7 +117,7 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "fusion-53".into(),
-            paper: "[T] Wu 2022 §3.2–3.3, its reference [53]; SPEC §4.2 baseline".into(),
+            paper: "[T] Wu 2022 §3.2–3.3, its reference [53]; docs/algorithms.md §fusion-53".into(),
             summary: "Baseline fusion: A* key points + DWA with the deceleration weights \
                       while a moving obstacle is near, plain DWA otherwise; no \
                       classification, virtual goal or ρ."
@@ -122,7 +126,9 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "safe-dual-dwa".into(),
-            paper: "[S] Ge & Li 2022 §2–4 (eq 9–12, §4.2, §5); SPEC §4.3".into(),
+            paper: "[S] Ge & Li 2022 §2–4 (eq 9–12, §4.2, §5); \
+                    docs/algorithms.md §safe-dual-dwa"
+                .into(),
             summary: "Safe A* path → Bottom-Up feature nodes as temporary goals; dual \
                       velocity model (speed held within d of a temporary goal); detour \
                       replanning (θa ≥ 90° → next temporary goal)."
@@ -131,7 +137,7 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "preliminary-fusion".into(),
-            paper: "[S] Ge & Li 2022 §2.4 baseline; SPEC §4.3".into(),
+            paper: "[S] Ge & Li 2022 §2.4 baseline; docs/algorithms.md §preliminary-fusion".into(),
             summary: "Baseline fusion: every safe A* path node a temporary goal, the normal \
                       DWA window (the robot slows at each)."
                 .into(),
@@ -147,7 +153,7 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "cleaning-dwa".into(),
-            paper: "[C] Zhang et al. 2020 §2–3; SPEC §4.4".into(),
+            paper: "[C] Zhang et al. 2020 §2–3; docs/algorithms.md §cleaning-dwa".into(),
             summary: "Cleaning-robot DWA (omnidirectional v_x, v_y, ω) along an A* path: \
                       costmap + Manhattan goal / path costs, vertical-load acceleration \
                       limit, least-squares odometry compensation."
@@ -156,7 +162,7 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "traditional-dwa".into(),
-            paper: "[C] Zhang et al. 2020 baseline; SPEC §4.4".into(),
+            paper: "[C] Zhang et al. 2020 baseline; docs/algorithms.md §cleaning-dwa".into(),
             summary: "[C]'s traditional DWA: the cleaning DWA's cost without the load \
                       limit and without odometry compensation."
                 .into(),
@@ -164,7 +170,7 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "apf".into(),
-            paper: "[T] Wu 2022 §4.1, eq 4-1…4-4; SPEC §5".into(),
+            paper: "[T] Wu 2022 §4.1, eq 4-1…4-4; docs/algorithms.md §apf".into(),
             summary: "Basic artificial potential field: one fixed step along the resultant of \
                       goal attraction and mover / nearest-wall repulsion, pursued within the \
                       robot's limits."
@@ -173,7 +179,7 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "sampling-apf".into(),
-            paper: "[T] Wu 2022 §4.2, eq 4-5…4-14; SPEC §5".into(),
+            paper: "[T] Wu 2022 §4.2, eq 4-5…4-14; docs/algorithms.md §apf".into(),
             summary: "Sampling-based improved APF: 13 directions ±90° around the resultant, \
                       cost 0.3‖F_attr‖ + 0.7‖F_rep‖, relative distance rule, predicted movers \
                       (t+1, t+2) with virtual repulsion; the APF point is pursued."
@@ -182,7 +188,9 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "lidar-dwa".into(),
-            paper: "[L] Chang et al. 2024 §2–4 (Alg. 1–2, eq 1–4, Table 1); SPEC §6".into(),
+            paper: "[L] Chang et al. 2024 §2–4 (Alg. 1–2, eq 1–4, Table 1); \
+                    docs/algorithms.md §lidar"
+                .into(),
             summary: "Unknown map, LiDAR only: edges, gap removal, obstacle patterns and \
                       temporary goals around the OP blocking the goal; DWA drives to the \
                       target on a local map built from the scan."
@@ -195,7 +203,9 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "lidar-apf".into(),
-            paper: "[L] Chang et al. 2024 §2–4, sims 8–9 (APF [9] underneath); SPEC §6".into(),
+            paper: "[L] Chang et al. 2024 §2–4, sims 8–9 (APF [9] underneath); \
+                    docs/algorithms.md §lidar"
+                .into(),
             summary: "The LiDAR temporary-goal navigator over the basic APF (eq 4-1…4-4) \
                       on a local map built from the scan."
                 .into(),
@@ -211,7 +221,9 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "scan-apf".into(),
-            paper: "[L] Chang et al. 2024 §4.2 baseline (sim 8); SPEC §7".into(),
+            paper: "[L] Chang et al. 2024 §4.2 baseline (sim 8); \
+                    docs/algorithms.md §scan-baselines"
+                .into(),
             summary: "Plain APF straight to the goal on an unknown map: only the scan's \
                       local map, no temporary goals, no global path."
                 .into(),
@@ -227,7 +239,7 @@ pub fn list() -> Vec<PlannerInfo> {
         },
         PlannerInfo {
             name: "scan-dwa".into(),
-            paper: "[L] Chang et al. 2024 §4.2 baseline; SPEC §7".into(),
+            paper: "[L] Chang et al. 2024 §4.2 baseline; docs/algorithms.md §scan-baselines".into(),
             summary: "Plain DWA straight to the goal on an unknown map: only the scan's \
                       local map, no temporary goals, no global path."
                 .into(),
@@ -240,7 +252,8 @@ pub fn list() -> Vec<PlannerInfo> {
         PlannerInfo {
             name: "tangent-bug".into(),
             paper: "TangentBug (Kamon, Rivlin & Rimon 1998) standing in for \
-                    Critical-PointBug, [L] Chang et al. 2024 ref [21], sim 6; SPEC §6–7"
+                    Critical-PointBug, [L] Chang et al. 2024 ref [21], sim 6; \
+                    docs/algorithms.md §tangent-bug"
                 .into(),
             summary: "Unknown map, scan + pose: motion to the tangent-graph endpoint \
                       minimising d(x,O)+d(O,goal), boundary following when that stops \
@@ -253,7 +266,7 @@ pub fn list() -> Vec<PlannerInfo> {
             name: "rs-apf".into(),
             paper: "RS-APF (Li, Tamura, Yamashita & Asama 2013), [L] Chang et al. 2024 \
                     ref [11], sim 8 — scan-only receding-horizon variant of an offline \
-                    planner; SPEC §6–7"
+                    planner; docs/algorithms.md §rs-apf"
                 .into(),
             summary: "Unknown map, scan + pose: every period a virtual point descends the \
                       basic APF on the scan (following the obstacle after a stall), the \

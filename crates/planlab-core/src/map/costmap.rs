@@ -1,4 +1,4 @@
-//! Obstacle inflation and a ROS-style decaying costmap (SPEC §1).
+//! Obstacle inflation and a ROS-style decaying costmap (docs/algorithms.md §inflation).
 //!
 //! Both rest on [`distance_field`]: the exact Euclidean distance from every
 //! cell centre to the nearest occupied cell centre, computed in O(N) with the

@@ -1,4 +1,4 @@
-//! Occupancy grids, their file formats, inflation and costmaps (SPEC §1).
+//! Occupancy grids, their file formats, inflation and costmaps (docs/algorithms.md §maps).
 //!
 //! Cells are addressed `(col, row)` with row 0 at the **top** of the image, as
 //! in Moving AI files and in the PGM of a ROS map. The world frame is x right,

@@ -1,4 +1,4 @@
-//! Episode metrics (SPEC §4, §7): time, path length, clearance, turning,
+//! Episode metrics (docs/algorithms.md §metrics): time, path length, clearance, turning,
 //! speed drops, tracking error, wheel-load share — the quantities the
 //! papers' tables compare, computed from a [`Trace`] the same way for every
 //! planner.

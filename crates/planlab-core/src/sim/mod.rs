@@ -1,4 +1,4 @@
-//! Fixed-step, seeded, deterministic episodes (SPEC §1, §3): world + robot +
+//! Fixed-step, seeded, deterministic episodes (docs/algorithms.md §episode): world + robot +
 //! local planner → trace and outcome.
 //!
 //! One [`Episode::step`] is one control period of `dt`:

@@ -1,4 +1,5 @@
-//! The simulated world (SPEC §1, §3): the robot's body and kinematics, moving
+//! The simulated world (docs/algorithms.md §robot, §movers): the robot's
+//! body and kinematics, moving
 //! disc obstacles with their motion models, and the static map's geometry.
 //!
 //! Everything here is a pure function of its inputs and of simulated time, so

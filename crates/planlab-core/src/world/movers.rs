@@ -1,4 +1,4 @@
-//! Moving disc obstacles and their motion models (SPEC §1): constant velocity
+//! Moving disc obstacles and their motion models (docs/algorithms.md §movers): constant velocity
 //! stopping at the map edge (\[T\] Fig 3-11), back-and-forth between two points
 //! (\[S\] Fig 12), a waypoint loop and a scripted time series.
 //!

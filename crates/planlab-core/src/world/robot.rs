@@ -1,4 +1,4 @@
-//! Robot body and kinematics (SPEC §3): differential drive \[T\] eq 2-1…2-3
+//! Robot body and kinematics (docs/algorithms.md §robot): differential drive \[T\] eq 2-1…2-3
 //! and omnidirectional / 4WIS \[C\] eq 12, circle or rectangle footprint.
 
 use serde::{Deserialize, Serialize};
@@ -203,7 +203,7 @@ impl RobotSpec {
     }
 }
 
-/// Advances a state by one step of `dt` under `cmd` (SPEC §3 Euler update,
+/// Advances a state by one step of `dt` under `cmd` (docs/algorithms.md §robot Euler update,
 /// the same one DWA rollouts use): x += (v cosθ − v_y sinθ)Δt,
 /// y += (v sinθ + v_y cosθ)Δt, θ += ωΔt. The command becomes the new velocity.
 #[inline]
