@@ -173,7 +173,19 @@ fn arm_rnn_variants_6_and_25_wrist_does_not_touch_the_resting_hand() {
         for (name, tree) in &scene.trees {
             let s = ArmScenario::from_value(tree).unwrap();
             let mut ep = ArmEpisode::from_scenario(&s).unwrap();
-            let outcome = ep.run().unwrap();
+            let mut refused = 0;
+            while ep.step().unwrap() == Outcome::Running {
+                if ep.refusals() > refused {
+                    refused = ep.refusals();
+                    // The recorded step is the move taken, not the refused one.
+                    let st = ep.last_step().unwrap();
+                    match st.chosen {
+                        Some(i) => assert_eq!(st.next, st.candidates[i].point),
+                        None => assert_eq!(st.direction, glam::DVec3::ZERO),
+                    }
+                }
+            }
+            let outcome = ep.outcome();
             assert_eq!(outcome, Outcome::Reached, "variant {k}, {name}");
             assert!(ep.min_distance() > 0.0, "variant {k}, {name}");
             if *name == "prediction-rnn" {

@@ -25,8 +25,8 @@ use crate::sim::Outcome;
 pub const ARM_SCENARIO_VERSION: u32 = 1;
 
 /// Points along a planned joint move at which the whole-arm check looks for
-/// contact (a 0.04 m tool step moves no link more than a few centimetres,
-/// less than the thinnest link's diameter between two checks).
+/// contact (a planned move is one 0.04 m tool step, so the links move
+/// little between two checks).
 pub const MOTION_CHECKS: usize = 4;
 
 /// Timing and end conditions of an arm episode.
@@ -538,7 +538,7 @@ impl ArmEpisode {
         let phase = self.tick % self.per_plan;
         if phase == 0 {
             let tool = self.model.tool_position(&self.q);
-            let s = self
+            let mut s = self
                 .apf
                 .step(t, tool, goal, &obs)
                 .map_err(|e| ArmError::Invalid(e.to_string()))?;
@@ -554,20 +554,31 @@ impl ArmEpisode {
             let hand_now = self.hand.obstacles_at(t);
             if self.motion_touches(&q_to, &hand_now) {
                 self.refusals += 1;
-                let mut order: Vec<_> = s
-                    .candidates
-                    .iter()
-                    .enumerate()
-                    .filter(|&(i, _)| Some(i) != s.chosen)
-                    .map(|(_, c)| c)
+                let mut order: Vec<usize> = (0..s.candidates.len())
+                    .filter(|&i| Some(i) != s.chosen)
                     .collect();
-                order.sort_by(|a, b| a.cost.total_cmp(&b.cost));
-                let free = order.into_iter().find_map(|c| {
+                order.sort_by(|&a, &b| s.candidates[a].cost.total_cmp(&s.candidates[b].cost));
+                let free = order.into_iter().find_map(|i| {
                     let mut q = self.q.clone();
-                    self.model.ik_solve(&mut q, c.point, &self.scene.ik);
-                    (!self.motion_touches(&q, &hand_now)).then_some(q)
+                    self.model
+                        .ik_solve(&mut q, s.candidates[i].point, &self.scene.ik);
+                    (!self.motion_touches(&q, &hand_now)).then_some((i, q))
                 });
-                q_to = free.unwrap_or_else(|| self.q.clone());
+                // The step kept (and drawn on the page) is the one taken.
+                match free {
+                    Some((i, q)) => {
+                        s.chosen = Some(i);
+                        s.next = s.candidates[i].point;
+                        s.direction = s.candidates[i].direction;
+                        q_to = q;
+                    }
+                    None => {
+                        s.chosen = None;
+                        s.next = tool;
+                        s.direction = DVec3::ZERO;
+                        q_to = self.q.clone();
+                    }
+                }
             }
             self.q_from = self.q.clone();
             self.q_to = q_to;

@@ -1,13 +1,13 @@
-//! The sensing and motion layer the \[L\] peers (`tangent-bug`, `rs-apf`,
-//! `rrt-shortcut`) share with `lidar-dwa`: the simulated LiDAR on the map
+//! The sensing and motion layer the \[L\] peers (`tangent-bug`, `rs-apf`)
+//! share with `lidar-dwa`: the simulated LiDAR on the map
 //! and the perceived movers, and a motion planner (a registry choice, e.g.
 //! `dwa`) driving to a point on the **local map built from the scan alone**
 //! ([`scan_local_map`](super::planner::scan_local_map)), robot at the
 //! origin, heading 0, no movers.
 //!
 //! Unlike `lidar-dwa`'s navigator, the peers also read the robot's pose
-//! (odometry): Bug algorithms keep distances along their path, and the
-//! RRT stand-in accumulates scans into a map. They never read the map:
+//! (odometry): Bug algorithms keep distances along their path. They never
+//! read the map:
 //! only [`ScanMotion::sense`] does, through the sensor.
 
 use super::nav::Velocity;
