@@ -336,6 +336,7 @@ pub(crate) fn drive_on_scan(
         dt,
         state: &state,
         goal,
+        goal_tolerance: 0.0,
         map: &map,
         movers: &[],
         odometry: None,

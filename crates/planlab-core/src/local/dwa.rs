@@ -367,6 +367,9 @@ pub struct DwaCore {
     /// Last rollout step V_a may look at: the arc is followed past the
     /// horizon while the braking time needs it (see [`Self::rollout`]).
     va_steps: usize,
+    /// Last rollout step a braking rollout may reach: it is followed past
+    /// the horizon until the robot stands (see [`Self::rollout`]).
+    brake_steps: usize,
     /// Every perceived mover (position, velocity, radius), for rest checks.
     all_movers: Vec<([f64; 2], [f64; 2], f64)>,
     /// Collision threshold and clearance horizon of the last evaluation.
@@ -375,6 +378,9 @@ pub struct DwaCore {
     last_dt: f64,
     /// Half a map cell: allowance for the clearance field's error, m.
     slack: f64,
+    /// The final goal and the squared distance within which the episode
+    /// ends there (`Observation::goal_tolerance`), for this evaluation.
+    arrive: Option<([f64; 2], f64)>,
     points: Vec<[f64; 2]>,
     debug: PlannerDebug,
 }
@@ -406,11 +412,13 @@ impl DwaCore {
             kept: Vec::new(),
             extra_rows: 1,
             va_steps: 0,
+            brake_steps: 0,
             all_movers: Vec::new(),
             last_limit: 0.0,
             last_horizon: 0.0,
             last_dt: 0.1,
             slack: 0.0,
+            arrive: None,
             points: Vec::new(),
             debug,
         })
@@ -518,7 +526,7 @@ impl DwaCore {
                     }
                 }
                 None => {
-                    res.cmd = self.fallback(&s, req.goal, dt);
+                    res.cmd = self.fallback(obs.map, &s, req.goal, dt);
                     self.debug.mode = "no-admissible".into();
                 }
             }
@@ -535,9 +543,12 @@ impl DwaCore {
     }
 
     /// Rows the movers' position table needs: the horizon plus one control
-    /// period, or as far as V_a follows an arc.
+    /// period, or as far as V_a follows an arc or a braking rollout runs.
     fn table_rows(&self) -> usize {
-        (self.steps + self.extra_rows).max(self.va_steps) + 1
+        (self.steps + self.extra_rows)
+            .max(self.va_steps)
+            .max(self.brake_steps)
+            + 1
     }
 
     /// Whether a robot standing at (x, y) lies in the predicted path of a
@@ -584,12 +595,21 @@ impl DwaCore {
     /// from `s` hits something within the horizon, movers predicted as in
     /// the last evaluation.
     fn braking_collides(&self, map: &StaticMap, s: &RobotState) -> bool {
-        self.braking_collides_from(map, s, 0)
+        self.braking_collides_from(map, s, 0, None, false)
     }
 
     /// As [`Self::braking_collides`], starting `row0` rollout steps into the
-    /// movers' predicted future.
-    fn braking_collides_from(&self, map: &StaticMap, s: &RobotState, row0: usize) -> bool {
+    /// movers' predicted future; with `turn_to`, the turn rate follows the
+    /// fallback's turn toward that goal instead of braking to 0; with
+    /// `to_rest`, followed until the robot stands even past the horizon.
+    fn braking_collides_from(
+        &self,
+        map: &StaticMap,
+        s: &RobotState,
+        row0: usize,
+        turn_to: Option<[f64; 2]>,
+        to_rest: bool,
+    ) -> bool {
         let l = &self.robot.limits;
         let h = self.cfg.sim_dt;
         let (mut st, mut v, mut w) = (*s, s.v, s.w);
@@ -601,25 +621,54 @@ impl DwaCore {
                 (x + d).min(0.0)
             }
         };
-        for k in 1..=self.steps {
+        // From speed, or with a short horizon, the robot is still moving at
+        // the horizon's end. (Only the fallback asks past it: for the
+        // evade and stranding decisions, movers predicted at constant
+        // velocity that far out misled more than they helped — S-fig12's
+        // dual-velocity robot then stood beside a mover's turnaround.)
+        let stop = (v.abs() / l.acc_v).max(w.abs() / l.acc_w) / h;
+        let n = if to_rest {
+            self.steps
+                .max(stop.ceil().min(MAX_ROLLOUT_STEPS as f64) as usize + 1)
+        } else {
+            self.steps
+        };
+        for k in 1..=n {
             v = toward_zero(v, l.acc_v * h);
-            w = toward_zero(w, l.acc_w * h);
+            w = match turn_to {
+                Some(g) => self.turn_toward(&st, g, h),
+                None => toward_zero(w, l.acc_w * h),
+            };
             st = integrate(&st, Command { v, vy: 0.0, w }, h);
             let stat = map.clearance(st.x, st.y) - self.r_eff - self.slack;
             let row = (k + row0).min(rows.saturating_sub(1));
             if self.mover_clearance(stat, st.x, st.y, row, self.last_horizon) <= self.last_limit {
                 return true;
             }
-            if v == 0.0 && w == 0.0 && self.mover_rad.is_empty() {
+            // Turning on the spot moves no part of a round footprint.
+            let still = v == 0.0 && (w == 0.0 || turn_to.is_some());
+            if still && self.mover_rad.is_empty() {
                 break;
             }
         }
         self.rest_unsafe(st.x, st.y)
     }
 
+    /// The fallback's turn rate toward `goal`: the rate that closes the
+    /// bearing error in one period `dt`, within the limits and the angular
+    /// window.
+    fn turn_toward(&self, s: &RobotState, goal: [f64; 2], dt: f64) -> f64 {
+        let l = &self.robot.limits;
+        let dw = l.acc_w * dt;
+        let err = wrap_angle(atan2(goal[1] - s.y, goal[0] - s.x) - s.theta);
+        let want = (err / dt).clamp(-l.w_max, l.w_max);
+        want.clamp(s.w - dw, s.w + dw)
+    }
+
     /// Braking fallback: v toward 0 at the largest deceleration; a round
-    /// robot also turns toward the goal (within its angular window).
-    fn fallback(&self, s: &RobotState, goal: [f64; 2], dt: f64) -> Command {
+    /// robot also turns toward the goal (within its angular window) when
+    /// that braking turn hits nothing, else its turn rate goes to 0 too.
+    fn fallback(&self, map: &StaticMap, s: &RobotState, goal: [f64; 2], dt: f64) -> Command {
         let l = &self.robot.limits;
         let dv = l.acc_v * dt;
         let v = if s.v > 0.0 {
@@ -633,12 +682,16 @@ impl DwaCore {
         } else {
             (s.w + dw).min(0.0)
         };
-        let w = if self.cfg.rotate_in_place && self.round {
-            let err = wrap_angle(atan2(goal[1] - s.y, goal[0] - s.x) - s.theta);
-            // Turn at the rate that closes the error in one period, within
-            // the limits and the angular window.
-            let want = (err / dt).clamp(-l.w_max, l.w_max);
-            want.clamp(s.w - dw, s.w + dw)
+        // Turning while still moving sweeps a wider path than braking
+        // straight: it may reach a wall that straight braking stops short
+        // of (T-fig3-11 with a 1 s horizon drove into the side wall so).
+        let turn = self.cfg.rotate_in_place
+            && self.round
+            && (s.v == 0.0
+                || !self.braking_collides_from(map, s, 0, Some(goal), true)
+                || self.braking_collides_from(map, s, 0, None, true));
+        let w = if turn {
+            self.turn_toward(s, goal, dt)
         } else {
             toward_zero
         };
@@ -724,7 +777,17 @@ impl DwaCore {
         } else {
             0
         };
-        let t_total = (self.steps.max(self.va_steps)) as f64 * h;
+        let brake_v = if req.braking && v_lo > 0.0 {
+            Some(v_lo)
+        } else {
+            None
+        };
+        self.brake_steps = brake_v.map_or(0, |v| {
+            // `as` saturates; limits are validated (acc_v > 0).
+            ((v / l.acc_v / h).ceil().min(MAX_ROLLOUT_STEPS as f64) as usize + 1)
+                .min(MAX_ROLLOUT_STEPS)
+        });
+        let t_total = (self.steps.max(self.va_steps).max(self.brake_steps)) as f64 * h;
         self.extra_rows = ((dt / h).round() as usize).clamp(1, MAX_ROLLOUT_STEPS);
         self.prepare_movers(obs, &s, v_abs * (t_total + dt), horizon, dt);
 
@@ -733,6 +796,8 @@ impl DwaCore {
         // The clearance field may exceed the exact distance by up to about
         // a third of a cell: keep half a cell in hand so rollouts never touch.
         self.slack = 0.5 * obs.map.grid().resolution();
+        self.arrive = (obs.goal_tolerance.is_finite() && obs.goal_tolerance > 0.0)
+            .then(|| (obs.goal, obs.goal_tolerance * obs.goal_tolerance));
         let stat0 = obs.map.clearance(s.x, s.y) - self.r_eff - self.slack;
         let c0 = self.mover_clearance(stat0, s.x, s.y, 0, horizon);
         let limit = c0.min(0.0);
@@ -746,11 +811,6 @@ impl DwaCore {
             self.debug.rollouts.clear();
         }
         self.cands.clear();
-        let brake_v = if req.braking && v_lo > 0.0 {
-            Some(v_lo)
-        } else {
-            None
-        };
         let pairs = vs.len() * ws.len();
         let extra = if brake_v.is_some() { ws.len() } else { 0 };
         for i in 0..pairs + extra {
@@ -1020,6 +1080,7 @@ impl DwaCore {
         let (mut x, mut y) = (s.x, s.y);
         let mut min_c = f64::INFINITY;
         let mut collided = false;
+        let mut arrived = false;
         // Skipping map lookups far from walls: the clearance field is
         // √2-Lipschitz (bilinear over samples 1-Lipschitz per axis) up to a
         // cell at blocked-cell borders, so while the last looked-up value
@@ -1058,6 +1119,59 @@ impl DwaCore {
                 collided = true;
                 break;
             }
+            if let Some((g, tol2)) = self.arrive {
+                let (dx, dy) = (g[0] - x, g[1] - y);
+                if dx * dx + dy * dy <= tol2 {
+                    // The episode ends here (the simulator's own test, in
+                    // the same order): what the held command would do
+                    // afterwards is not driven, so it is not scored.
+                    arrived = true;
+                    break;
+                }
+            }
+        }
+        if arrived {
+            return Cand {
+                v,
+                w,
+                raw: [
+                    std::f64::consts::PI,
+                    min_c.max(0.0).min(self.cfg.dist_cap),
+                    v.max(0.0),
+                ],
+                admissible: true,
+                collided: false,
+            };
+        }
+        let theta = wrap_angle(s.theta + w * h * self.steps as f64);
+        let bearing = atan2(req.goal[1] - y, req.goal[0] - x);
+        let heading = std::f64::consts::PI - wrap_angle(bearing - theta).abs();
+        if decel > 0.0 && !collided {
+            // A braking rollout is only safe if the robot stops before any
+            // contact: follow it on past the horizon until it stands (with a
+            // short horizon or from speed it is still moving at the end).
+            let mut k = self.steps + 1;
+            while vk > 0.0 {
+                if k > self.brake_steps {
+                    collided = true;
+                    break;
+                }
+                x += vk * cs * h;
+                y += vk * sn * h;
+                vk = (vk - decel * h).max(0.0);
+                let (ns, nc) = (sn * cd + cs * sd, cs * cd - sn * sd);
+                sn = ns;
+                cs = nc;
+                if record {
+                    self.points.push([x, y]);
+                }
+                let stat = map.clearance(x, y) - self.r_eff - self.slack;
+                if self.mover_clearance(stat, x, y, k, horizon) <= limit {
+                    collided = true;
+                    break;
+                }
+                k += 1;
+            }
         }
         if decel > 0.0 && !collided && self.rest_unsafe(x, y) {
             // Stopping here would leave the robot in a mover's way.
@@ -1075,12 +1189,9 @@ impl DwaCore {
             && self.rest_unsafe(x, y)
         {
             let next = integrate(s, Command { v, vy: 0.0, w }, self.last_dt);
-            stranded = self.braking_collides_from(map, &next, self.extra_rows);
+            stranded = self.braking_collides_from(map, &next, self.extra_rows, None, false);
         }
-        let theta = wrap_angle(s.theta + w * h * self.steps as f64);
         let dist = min_c.max(0.0);
-        let bearing = atan2(req.goal[1] - y, req.goal[0] - x);
-        let heading = std::f64::consts::PI - wrap_angle(bearing - theta).abs();
         // V_a (Fox et al.; see `va_time`): the arc must be free of contact
         // for the braking time. A rollout that collides is out anyway, so
         // within the horizon the collision test has decided; past it the
@@ -1387,6 +1498,7 @@ mod tests {
                 dt: 0.1,
                 state: &s,
                 goal: [19.0, 19.0],
+                goal_tolerance: 0.0,
                 map: &map,
                 movers: &[],
                 odometry: None,
@@ -1432,6 +1544,7 @@ mod tests {
             dt: 0.1,
             state: &s,
             goal: [0.35, 5.0],
+            goal_tolerance: 0.0,
             map: &map,
             movers: &[],
             odometry: None,
@@ -1631,6 +1744,7 @@ mod tests {
                 dt: 0.1,
                 state: &s,
                 goal: [15.0, 5.0],
+                goal_tolerance: 0.0,
                 map: &map,
                 movers: &movers,
                 odometry: None,
@@ -1673,6 +1787,7 @@ mod tests {
             dt: 0.1,
             state: &s,
             goal: [5.0, 3.0],
+            goal_tolerance: 0.0,
             map: &map,
             movers: &movers,
             odometry: None,

@@ -78,6 +78,7 @@ pub fn run(
             dt,
             state: &s,
             goal,
+            goal_tolerance: tol,
             map,
             movers: &obs_movers,
             odometry: None,
