@@ -204,7 +204,10 @@ pub fn resolve(root: &Path, target: &str) -> Target {
     if canon.is_dir() {
         if !slash {
             // Rebuilt from the checked names: `//host` can never come out.
-            let mut loc: String = names.iter().map(|n| format!("/{}", percent_encode(n))).collect();
+            let mut loc: String = names
+                .iter()
+                .map(|n| format!("/{}", percent_encode(n)))
+                .collect();
             loc.push('/');
             if let Some(q) = query {
                 loc.push('?');
@@ -228,7 +231,11 @@ pub fn resolve(root: &Path, target: &str) -> Target {
 type Body = UnsyncBoxBody<Bytes, io::Error>;
 
 fn text(status: StatusCode, msg: &'static str) -> Response<Body> {
-    let mut res = Response::new(Full::new(Bytes::from_static(msg.as_bytes())).map_err(|e| match e {}).boxed_unsync());
+    let mut res = Response::new(
+        Full::new(Bytes::from_static(msg.as_bytes()))
+            .map_err(|e| match e {})
+            .boxed_unsync(),
+    );
     *res.status_mut() = status;
     res.headers_mut().insert(
         header::CONTENT_TYPE,
