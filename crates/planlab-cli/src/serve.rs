@@ -78,24 +78,29 @@ impl Default for Limits {
 impl Limits {
     /// The defaults, with any of the `PLANLAB_SERVE_*` variables applied.
     pub fn from_env() -> Result<Self, String> {
-        let var = |name: &str| -> Result<Option<u64>, String> {
+        // Bounded so that no value can overflow a deadline or the semaphore.
+        let var = |name: &str, max: u64| -> Result<Option<u64>, String> {
             match std::env::var(name) {
                 Err(_) => Ok(None),
                 Ok(v) => match v.trim().parse::<u64>() {
-                    Ok(n) if n > 0 => Ok(Some(n)),
-                    _ => Err(format!("{name} must be a whole number above 0, not {v:?}")),
+                    Ok(n) if (1..=max).contains(&n) => Ok(Some(n)),
+                    _ => Err(format!(
+                        "{name} must be a whole number from 1 to {max}, not {v:?}"
+                    )),
                 },
             }
         };
+        const DAY_MS: u64 = 86_400_000;
         let mut limits = Limits::default();
-        if let Some(ms) = var("PLANLAB_SERVE_HEADER_TIMEOUT_MS")? {
+        if let Some(ms) = var("PLANLAB_SERVE_HEADER_TIMEOUT_MS", DAY_MS)? {
             limits.header_timeout = Duration::from_millis(ms);
         }
-        if let Some(ms) = var("PLANLAB_SERVE_WRITE_TIMEOUT_MS")? {
+        if let Some(ms) = var("PLANLAB_SERVE_WRITE_TIMEOUT_MS", DAY_MS)? {
             limits.write_timeout = Duration::from_millis(ms);
         }
-        if let Some(n) = var("PLANLAB_SERVE_MAX_CONNECTIONS")? {
-            limits.max_connections = usize::try_from(n).unwrap_or(usize::MAX);
+        if let Some(n) = var("PLANLAB_SERVE_MAX_CONNECTIONS", 100_000)? {
+            // At most 100 000, so it fits any usize.
+            limits.max_connections = n as usize;
         }
         Ok(limits)
     }

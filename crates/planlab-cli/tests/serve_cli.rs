@@ -523,4 +523,12 @@ fn start_errors_are_one_line() {
         &[("PLANLAB_SERVE_WRITE_TIMEOUT_MS", "soon")],
     );
     assert!(e.contains("PLANLAB_SERVE_WRITE_TIMEOUT_MS"), "{e}");
+    for (var, value) in [
+        ("PLANLAB_SERVE_MAX_CONNECTIONS", "0"),
+        ("PLANLAB_SERVE_MAX_CONNECTIONS", "18446744073709551615"),
+        ("PLANLAB_SERVE_HEADER_TIMEOUT_MS", "18446744073709551615"),
+    ] {
+        let e = start_error(&["--dir", dir, "--port", "0"], &[(var, value)]);
+        assert!(e.contains(var), "{e}");
+    }
 }
