@@ -260,7 +260,16 @@ async fn respond(req: Request<Incoming>, root: Arc<PathBuf>) -> Response<Body> {
     if target.len() > MAX_TARGET {
         return text(StatusCode::URI_TOO_LONG, "request target too long\n");
     }
-    match resolve(&root, target) {
+    // `resolve` stats and canonicalizes: blocking calls, kept off the
+    // runtime's few worker threads.
+    let lookup = {
+        let target = target.to_owned();
+        tokio::task::spawn_blocking(move || resolve(&root, &target)).await
+    };
+    let Ok(found) = lookup else {
+        return text(StatusCode::INTERNAL_SERVER_ERROR, "lookup failed\n");
+    };
+    match found {
         Target::NotFound => text(StatusCode::NOT_FOUND, "not found\n"),
         Target::Redirect(loc) => {
             let mut res = text(StatusCode::TEMPORARY_REDIRECT, "moved\n");
