@@ -372,7 +372,7 @@ enum Command {
         /// Site folder to serve (must contain index.html).
         #[arg(long, default_value = "web/dist")]
         dir: PathBuf,
-        /// Address to bind; keep the default unless you know why.
+        /// Loopback address to bind (127.0.0.1, ::1 or localhost).
         #[arg(long, default_value = "127.0.0.1")]
         host: String,
         /// Port; 0 picks a free one (printed on start).

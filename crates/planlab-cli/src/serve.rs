@@ -1,14 +1,110 @@
-//! `planlab serve`: a small static file server for the playground.
+//! `planlab serve`: the static file server the playground runs on.
 //!
-//! Binds loopback by default, answers GET and HEAD only, serves `.wasm` as
-//! `application/wasm`, and never serves anything outside the site folder
-//! (paths are percent-decoded, `..` is refused, and the resolved file must
-//! stay under the canonical root, so symlinks cannot escape either).
+//! HTTP/1.1 by hyper, files by tower-http's `ServeFile` (streamed in 64 KiB
+//! chunks, `Range` answered 206 or 416, `Last-Modified`/`If-Modified-Since`).
+//! This module adds what those leave to the caller:
+//!
+//! - loopback only: a `--host` that resolves to anything else is refused;
+//! - GET and HEAD only (405 otherwise), `.wasm` as `application/wasm`;
+//! - nothing outside the site folder: paths are percent-decoded, `..`, roots
+//!   and NUL/backslash are refused, and the resolved file must stay under the
+//!   canonical root, so symlinks cannot escape either (404 in every case);
+//! - a folder without its trailing slash is redirected (307) to it, a folder
+//!   with it serves its `index.html`; no listings;
+//! - a request target over [`MAX_TARGET`] bytes is 414 (hyper itself answers
+//!   414 above 64 KiB and 431 when the whole head outgrows its ~400 KiB
+//!   buffer);
+//! - time and connection limits, see [`Limits`].
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::net::{TcpListener, TcpStream};
+use std::convert::Infallible;
+use std::future::Future;
+use std::io;
+use std::net::{SocketAddr, ToSocketAddrs};
 use std::path::{Component, Path, PathBuf};
+use std::pin::Pin;
+use std::sync::Arc;
+use std::task::{Context, Poll};
 use std::time::Duration;
+
+use bytes::Bytes;
+use http_body_util::{combinators::UnsyncBoxBody, BodyExt, Full};
+use hyper::body::Incoming;
+use hyper::header::{self, HeaderValue};
+use hyper::server::conn::http1;
+use hyper::service::service_fn;
+use hyper::{Method, Request, Response, StatusCode};
+use hyper_util::rt::{TokioIo, TokioTimer};
+use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
+use tokio::net::TcpStream;
+use tokio::sync::Semaphore;
+use tokio::time::Sleep;
+use tower_http::services::ServeFile;
+
+/// Longest request target (path and query) served; longer is 414. Far above
+/// any URL the playground makes, and the usual limit of other servers.
+pub const MAX_TARGET: usize = 8 * 1024;
+
+/// Time and connection limits of the server.
+///
+/// The defaults are meant for a browser on the same machine. Tests shorten
+/// them through environment variables, deliberately left out of `--help`:
+/// `PLANLAB_SERVE_HEADER_TIMEOUT_MS`, `PLANLAB_SERVE_WRITE_TIMEOUT_MS`,
+/// `PLANLAB_SERVE_MAX_CONNECTIONS`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    /// Time for a whole request head to arrive, counted from when the server
+    /// starts waiting for it: this closes slowloris clients and idle
+    /// keep-alive connections alike. Default 10 s.
+    pub header_timeout: Duration,
+    /// Longest a response write may make no progress (a client that stopped
+    /// reading) before the connection is dropped. Default 15 s.
+    pub write_timeout: Duration,
+    /// Connections served at once; further ones wait in the listen backlog
+    /// until a slot frees, which the two timeouts bound. Default 64 (a
+    /// browser opens about 6 per host).
+    pub max_connections: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            header_timeout: Duration::from_secs(10),
+            write_timeout: Duration::from_secs(15),
+            max_connections: 64,
+        }
+    }
+}
+
+impl Limits {
+    /// The defaults, with any of the `PLANLAB_SERVE_*` variables applied.
+    pub fn from_env() -> Result<Self, String> {
+        // Bounded so that no value can overflow a deadline or the semaphore.
+        let var = |name: &str, max: u64| -> Result<Option<u64>, String> {
+            match std::env::var(name) {
+                Err(_) => Ok(None),
+                Ok(v) => match v.trim().parse::<u64>() {
+                    Ok(n) if (1..=max).contains(&n) => Ok(Some(n)),
+                    _ => Err(format!(
+                        "{name} must be a whole number from 1 to {max}, not {v:?}"
+                    )),
+                },
+            }
+        };
+        const DAY_MS: u64 = 86_400_000;
+        let mut limits = Limits::default();
+        if let Some(ms) = var("PLANLAB_SERVE_HEADER_TIMEOUT_MS", DAY_MS)? {
+            limits.header_timeout = Duration::from_millis(ms);
+        }
+        if let Some(ms) = var("PLANLAB_SERVE_WRITE_TIMEOUT_MS", DAY_MS)? {
+            limits.write_timeout = Duration::from_millis(ms);
+        }
+        if let Some(n) = var("PLANLAB_SERVE_MAX_CONNECTIONS", 100_000)? {
+            // At most 100 000, so it fits any usize.
+            limits.max_connections = n as usize;
+        }
+        Ok(limits)
+    }
+}
 
 /// Content type for a file name, by extension.
 pub fn content_type(path: &Path) -> &'static str {
@@ -51,113 +147,318 @@ fn percent_decode(s: &str) -> Option<String> {
     String::from_utf8(out).ok()
 }
 
-/// Maps a request target to a file under `root` (already canonical), or
-/// `None` when it would leave the root or does not exist.
-pub fn resolve(root: &Path, target: &str) -> Option<PathBuf> {
-    let path = target.split(['?', '#']).next().unwrap_or("");
-    let decoded = percent_decode(path)?;
-    if decoded.contains('\0') || decoded.contains('\\') {
-        return None;
+/// Percent-encodes all but RFC 3986 unreserved bytes, for a `Location`.
+fn percent_encode(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for b in s.bytes() {
+        if b.is_ascii_alphanumeric() || b"-._~".contains(&b) {
+            out.push(char::from(b));
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
     }
-    let mut rel = PathBuf::new();
+    out
+}
+
+/// What a request target maps to under the site root.
+#[derive(Debug, PartialEq, Eq)]
+pub enum Target {
+    /// A file under the root (canonical path).
+    File(PathBuf),
+    /// A folder named without its trailing slash: redirect to this
+    /// root-relative location (always one leading `/`, so never off-site).
+    Redirect(String),
+    /// Missing, outside the root, or not a valid path.
+    NotFound,
+}
+
+/// Maps a request target (path, optional query) to a file under `root`
+/// (already canonical).
+pub fn resolve(root: &Path, target: &str) -> Target {
+    let target = target.split('#').next().unwrap_or("");
+    let (path, query) = match target.split_once('?') {
+        Some((p, q)) => (p, Some(q)),
+        None => (target, None),
+    };
+    let Some(decoded) = percent_decode(path) else {
+        return Target::NotFound;
+    };
+    if decoded.contains('\0') || decoded.contains('\\') {
+        return Target::NotFound;
+    }
+    let mut names = Vec::new();
     for comp in Path::new(decoded.trim_start_matches('/')).components() {
         match comp {
-            Component::Normal(c) => rel.push(c),
+            Component::Normal(c) => match c.to_str() {
+                Some(c) => names.push(c),
+                None => return Target::NotFound,
+            },
             Component::CurDir => {}
             // `..`, a root or a drive prefix inside the path: refuse outright.
-            _ => return None,
+            _ => return Target::NotFound,
         }
     }
-    let mut full = root.join(&rel);
-    if full.is_dir() {
-        full.push("index.html");
-    }
-    let canon = full.canonicalize().ok()?;
-    if canon.starts_with(root) && canon.is_file() {
-        Some(canon)
-    } else {
-        None
-    }
-}
-
-fn respond(stream: &mut TcpStream, status: &str, ctype: &str, body: &[u8], head_only: bool) {
-    let header = format!(
-        "HTTP/1.1 {status}\r\nContent-Type: {ctype}\r\nContent-Length: {}\r\nCache-Control: no-cache\r\nX-Content-Type-Options: nosniff\r\nConnection: close\r\n\r\n",
-        body.len()
-    );
-    // A client that hung up mid-response is not our error to report.
-    let _ = stream.write_all(header.as_bytes());
-    if !head_only {
-        let _ = stream.write_all(body);
-    }
-    let _ = stream.flush();
-}
-
-fn handle(mut stream: TcpStream, root: &Path) {
-    let _ = stream.set_read_timeout(Some(Duration::from_secs(10)));
-    let mut reader = BufReader::new(match stream.try_clone() {
-        Ok(s) => s,
-        Err(_) => return,
-    });
-    let mut request_line = String::new();
-    // Cap the request line so a client cannot make us buffer without limit.
-    if (&mut reader)
-        .take(8192)
-        .read_line(&mut request_line)
-        .is_err()
-    {
-        return;
-    }
-    // Drain headers (bounded) so the client sees a clean close.
-    let mut line = String::new();
-    for _ in 0..100 {
-        line.clear();
-        match (&mut reader).take(8192).read_line(&mut line) {
-            Ok(0) | Err(_) => break,
-            Ok(_) if line == "\r\n" || line == "\n" => break,
-            Ok(_) => {}
-        }
-    }
-    let mut parts = request_line.split_whitespace();
-    let (method, target) = match (parts.next(), parts.next()) {
-        (Some(m), Some(t)) => (m, t),
-        _ => {
-            respond(
-                &mut stream,
-                "400 Bad Request",
-                "text/plain",
-                b"bad request\n",
-                false,
-            );
-            return;
-        }
+    let inside = |p: PathBuf| match p.canonicalize() {
+        Ok(canon) if canon.starts_with(root) => Some(canon),
+        _ => None,
     };
-    let head_only = method == "HEAD";
-    if method != "GET" && !head_only {
-        respond(
-            &mut stream,
-            "405 Method Not Allowed",
-            "text/plain",
-            b"only GET and HEAD\n",
-            false,
-        );
-        return;
+    let Some(canon) = inside(names.iter().fold(root.to_path_buf(), |p, n| p.join(n))) else {
+        return Target::NotFound;
+    };
+    let slash = names.is_empty() || decoded.ends_with('/');
+    if canon.is_dir() {
+        if !slash {
+            // Rebuilt from the checked names: `//host` can never come out.
+            let mut loc: String = names
+                .iter()
+                .map(|n| format!("/{}", percent_encode(n)))
+                .collect();
+            loc.push('/');
+            if let Some(q) = query {
+                loc.push('?');
+                loc.push_str(q);
+            }
+            return Target::Redirect(loc);
+        }
+        return match inside(canon.join("index.html")) {
+            Some(index) if index.is_file() => Target::File(index),
+            _ => Target::NotFound,
+        };
     }
-    match resolve(root, target).and_then(|p| std::fs::read(&p).ok().map(|b| (p, b))) {
-        Some((path, body)) => respond(&mut stream, "200 OK", content_type(&path), &body, head_only),
-        None => respond(
-            &mut stream,
-            "404 Not Found",
-            "text/plain; charset=utf-8",
-            b"not found\n",
-            head_only,
-        ),
+    // `file.js/` names a folder that is not there.
+    if canon.is_file() && !slash {
+        Target::File(canon)
+    } else {
+        Target::NotFound
     }
 }
 
-/// Serves `dir` on `host:port` until the process is killed. Port 0 picks a
-/// free port; the bound address is printed on stdout first.
+type Body = UnsyncBoxBody<Bytes, io::Error>;
+
+fn text(status: StatusCode, msg: &'static str) -> Response<Body> {
+    let mut res = Response::new(
+        Full::new(Bytes::from_static(msg.as_bytes()))
+            .map_err(|e| match e {})
+            .boxed_unsync(),
+    );
+    *res.status_mut() = status;
+    res.headers_mut().insert(
+        header::CONTENT_TYPE,
+        HeaderValue::from_static("text/plain; charset=utf-8"),
+    );
+    res
+}
+
+async fn respond(req: Request<Incoming>, root: Arc<PathBuf>) -> Response<Body> {
+    if req.method() != Method::GET && req.method() != Method::HEAD {
+        let mut res = text(StatusCode::METHOD_NOT_ALLOWED, "only GET and HEAD\n");
+        res.headers_mut()
+            .insert(header::ALLOW, HeaderValue::from_static("GET, HEAD"));
+        return res;
+    }
+    let target = req.uri().path_and_query().map_or("/", |pq| pq.as_str());
+    if target.len() > MAX_TARGET {
+        return text(StatusCode::URI_TOO_LONG, "request target too long\n");
+    }
+    // `resolve` stats and canonicalizes: blocking calls, kept off the
+    // runtime's few worker threads.
+    let lookup = {
+        let target = target.to_owned();
+        tokio::task::spawn_blocking(move || resolve(&root, &target)).await
+    };
+    let Ok(found) = lookup else {
+        return text(StatusCode::INTERNAL_SERVER_ERROR, "lookup failed\n");
+    };
+    match found {
+        Target::NotFound => text(StatusCode::NOT_FOUND, "not found\n"),
+        Target::Redirect(loc) => {
+            let mut res = text(StatusCode::TEMPORARY_REDIRECT, "moved\n");
+            // `loc` is built from unreserved bytes, `/`, `%` and a query hyper
+            // already accepted, so it is a valid header value.
+            if let Ok(v) = HeaderValue::from_str(&loc) {
+                res.headers_mut().insert(header::LOCATION, v);
+            }
+            res
+        }
+        Target::File(path) => {
+            // A valid multi-range is answered with the whole file (allowed by
+            // RFC 9110) instead of tower-http's 416.
+            let served = ServeFile::new(&path)
+                .ignore_multi_range_requests(true)
+                .try_call(req)
+                .await;
+            match served {
+                Ok(res) => {
+                    let mut res = res.map(|b| b.boxed_unsync());
+                    if res.status().is_success() {
+                        // Our table, not mime_guess: charsets, and the same
+                        // types on every platform.
+                        res.headers_mut().insert(
+                            header::CONTENT_TYPE,
+                            HeaderValue::from_static(content_type(&path)),
+                        );
+                    }
+                    res
+                }
+                // Gone between resolving and opening, or unreadable.
+                Err(e) if e.kind() == io::ErrorKind::NotFound => {
+                    text(StatusCode::NOT_FOUND, "not found\n")
+                }
+                Err(_) => text(StatusCode::INTERNAL_SERVER_ERROR, "cannot read file\n"),
+            }
+        }
+    }
+}
+
+async fn handle(req: Request<Incoming>, root: Arc<PathBuf>) -> Result<Response<Body>, Infallible> {
+    let mut res = respond(req, root).await;
+    let h = res.headers_mut();
+    // The playground is rebuilt in place; make browsers revalidate.
+    h.insert(header::CACHE_CONTROL, HeaderValue::from_static("no-cache"));
+    h.insert(
+        header::X_CONTENT_TYPE_OPTIONS,
+        HeaderValue::from_static("nosniff"),
+    );
+    Ok(res)
+}
+
+/// A TCP stream whose writes fail once they make no progress for `limit`:
+/// hyper has no write timeout, and without one a client that stops reading
+/// holds its connection (and open file) for as long as it likes. Reads are
+/// left alone: hyper polls them mid-response to notice hang-ups, and its
+/// header timeout already covers the reads that matter.
+struct StallGuard {
+    inner: TcpStream,
+    limit: Duration,
+    stalled: Option<Pin<Box<Sleep>>>,
+}
+
+impl StallGuard {
+    fn guard<T>(&mut self, cx: &mut Context<'_>, r: Poll<io::Result<T>>) -> Poll<io::Result<T>> {
+        if r.is_ready() {
+            self.stalled = None;
+            return r;
+        }
+        let limit = self.limit;
+        let timer = self
+            .stalled
+            .get_or_insert_with(|| Box::pin(tokio::time::sleep(limit)));
+        match timer.as_mut().poll(cx) {
+            Poll::Ready(()) => Poll::Ready(Err(io::Error::new(
+                io::ErrorKind::TimedOut,
+                "client stopped reading",
+            ))),
+            Poll::Pending => Poll::Pending,
+        }
+    }
+}
+
+impl AsyncRead for StallGuard {
+    fn poll_read(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &mut ReadBuf<'_>,
+    ) -> Poll<io::Result<()>> {
+        Pin::new(&mut self.inner).poll_read(cx, buf)
+    }
+}
+
+impl AsyncWrite for StallGuard {
+    fn poll_write(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &[u8],
+    ) -> Poll<io::Result<usize>> {
+        let r = Pin::new(&mut self.inner).poll_write(cx, buf);
+        self.guard(cx, r)
+    }
+
+    fn poll_write_vectored(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        bufs: &[io::IoSlice<'_>],
+    ) -> Poll<io::Result<usize>> {
+        let r = Pin::new(&mut self.inner).poll_write_vectored(cx, bufs);
+        self.guard(cx, r)
+    }
+
+    fn is_write_vectored(&self) -> bool {
+        self.inner.is_write_vectored()
+    }
+
+    fn poll_flush(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<io::Result<()>> {
+        let r = Pin::new(&mut self.inner).poll_flush(cx);
+        self.guard(cx, r)
+    }
+
+    fn poll_shutdown(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<io::Result<()>> {
+        let r = Pin::new(&mut self.inner).poll_shutdown(cx);
+        self.guard(cx, r)
+    }
+}
+
+/// The addresses `host:port` names, all of them loopback, or an error.
+fn loopback_addrs(host: &str, port: u16) -> Result<Vec<SocketAddr>, String> {
+    let addrs: Vec<SocketAddr> = (host, port)
+        .to_socket_addrs()
+        .map_err(|e| format!("cannot resolve --host {host}: {e}"))?
+        .collect();
+    if addrs.is_empty() || addrs.iter().any(|a| !a.ip().is_loopback()) {
+        return Err(format!(
+            "--host {host} is not a loopback address: planlab serve binds loopback only (127.0.0.1, ::1, localhost)"
+        ));
+    }
+    Ok(addrs)
+}
+
+async fn run(root: PathBuf, addrs: Vec<SocketAddr>, limits: Limits) -> Result<(), String> {
+    let bound = std::net::TcpListener::bind(&addrs[..])
+        .and_then(|l| l.set_nonblocking(true).map(|()| l))
+        .and_then(tokio::net::TcpListener::from_std);
+    let listener = bound.map_err(|e| format!("cannot bind {}: {e}", addrs[0]))?;
+    let addr = listener
+        .local_addr()
+        .map_err(|e| format!("cannot read bound address: {e}"))?;
+    println!("serving {} on http://{addr}/", root.display());
+    let root = Arc::new(root);
+    let slots = Arc::new(Semaphore::new(limits.max_connections));
+    loop {
+        // Take a slot before accepting, so extra clients wait in the backlog.
+        let Ok(slot) = Arc::clone(&slots).acquire_owned().await else {
+            return Ok(());
+        };
+        let stream = match listener.accept().await {
+            Ok((s, _)) => s,
+            Err(e) => {
+                eprintln!("planlab serve: connection failed: {e}");
+                // Out of descriptors and the like: do not spin on it.
+                tokio::time::sleep(Duration::from_millis(100)).await;
+                continue;
+            }
+        };
+        let _ = stream.set_nodelay(true);
+        let io = TokioIo::new(StallGuard {
+            inner: stream,
+            limit: limits.write_timeout,
+            stalled: None,
+        });
+        let root = Arc::clone(&root);
+        let conn = http1::Builder::new()
+            .timer(TokioTimer::new())
+            .header_read_timeout(limits.header_timeout)
+            .serve_connection(io, service_fn(move |req| handle(req, Arc::clone(&root))));
+        tokio::spawn(async move {
+            // Timeouts and hang-ups end connections; nothing to report.
+            let _ = conn.await;
+            drop(slot);
+        });
+    }
+}
+
+/// Serves `dir` on `host:port` (loopback only) until the process is killed.
+/// Port 0 picks a free port; the bound address is printed on stdout first.
 pub fn serve(dir: &Path, host: &str, port: u16) -> Result<(), String> {
+    let limits = Limits::from_env()?;
     let root = dir
         .canonicalize()
         .map_err(|e| format!("cannot serve {}: {e}", dir.display()))?;
@@ -167,22 +468,12 @@ pub fn serve(dir: &Path, host: &str, port: u16) -> Result<(), String> {
             root.display()
         ));
     }
-    let listener =
-        TcpListener::bind((host, port)).map_err(|e| format!("cannot bind {host}:{port}: {e}"))?;
-    let addr = listener
-        .local_addr()
-        .map_err(|e| format!("cannot read bound address: {e}"))?;
-    println!("serving {} on http://{addr}/", root.display());
-    for stream in listener.incoming() {
-        match stream {
-            Ok(s) => {
-                let root = root.clone();
-                std::thread::spawn(move || handle(s, &root));
-            }
-            Err(e) => eprintln!("planlab serve: connection failed: {e}"),
-        }
-    }
-    Ok(())
+    let addrs = loopback_addrs(host, port)?;
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+        .map_err(|e| format!("cannot start the server runtime: {e}"))?;
+    runtime.block_on(run(root, addrs, limits))
 }
 
 #[cfg(test)]
@@ -193,8 +484,10 @@ mod tests {
         let base = std::env::temp_dir().join(format!("planlab-serve-test-{}", std::process::id()));
         let root = base.join("site");
         std::fs::create_dir_all(root.join("pkg")).unwrap();
+        std::fs::create_dir_all(root.join("empty")).unwrap();
         std::fs::write(root.join("index.html"), "<html></html>").unwrap();
         std::fs::write(root.join("pkg/a.wasm"), b"\0asm").unwrap();
+        std::fs::write(root.join("pkg/index.html"), "pkg").unwrap();
         std::fs::write(base.join("secret.txt"), "secret").unwrap();
         (base, root.canonicalize().unwrap())
     }
@@ -202,15 +495,11 @@ mod tests {
     #[test]
     fn resolves_inside_and_refuses_outside() {
         let (_base, root) = site();
-        assert_eq!(resolve(&root, "/"), Some(root.join("index.html")));
-        assert_eq!(
-            resolve(&root, "/pkg/a.wasm?x=1"),
-            Some(root.join("pkg/a.wasm"))
-        );
-        assert_eq!(
-            resolve(&root, "/pkg/%61.wasm"),
-            Some(root.join("pkg/a.wasm"))
-        );
+        let file = |p: &str| Target::File(root.join(p));
+        assert_eq!(resolve(&root, "/"), file("index.html"));
+        assert_eq!(resolve(&root, "/pkg/a.wasm?x=1"), file("pkg/a.wasm"));
+        assert_eq!(resolve(&root, "/pkg/%61.wasm"), file("pkg/a.wasm"));
+        assert_eq!(resolve(&root, "/pkg/"), file("pkg/index.html"));
         for evil in [
             "/../secret.txt",
             "/%2e%2e/secret.txt",
@@ -220,9 +509,23 @@ mod tests {
             "/%00",
             "/%zz",
             "/missing.js",
+            "/index.html/",
+            "/empty/",
         ] {
-            assert_eq!(resolve(&root, evil), None, "{evil}");
+            assert_eq!(resolve(&root, evil), Target::NotFound, "{evil}");
         }
+    }
+
+    #[test]
+    fn folder_without_slash_redirects_on_site() {
+        let (_base, root) = site();
+        let to = |l: &str| Target::Redirect(l.to_string());
+        assert_eq!(resolve(&root, "/pkg"), to("/pkg/"));
+        assert_eq!(resolve(&root, "/pkg?a=1#f"), to("/pkg/?a=1"));
+        assert_eq!(resolve(&root, "/./pkg"), to("/pkg/"));
+        // Not `//pkg/`, which a browser reads as the host `pkg`.
+        assert_eq!(resolve(&root, "//pkg"), to("/pkg/"));
+        assert_eq!(resolve(&root, "/empty"), to("/empty/"));
     }
 
     #[test]
@@ -238,28 +541,10 @@ mod tests {
     }
 
     #[test]
-    fn serves_over_tcp() {
-        let (_base, root) = site();
-        let listener = TcpListener::bind(("127.0.0.1", 0)).unwrap();
-        let addr = listener.local_addr().unwrap();
-        let r = root.clone();
-        std::thread::spawn(move || {
-            for s in listener.incoming().take(2) {
-                handle(s.unwrap(), &r);
-            }
-        });
-        let get = |target: &str| {
-            let mut s = TcpStream::connect(addr).unwrap();
-            write!(s, "GET {target} HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
-            let mut out = String::new();
-            s.read_to_string(&mut out).unwrap();
-            out
-        };
-        let ok = get("/pkg/a.wasm");
-        assert!(ok.starts_with("HTTP/1.1 200"), "{ok}");
-        assert!(ok.contains("Content-Type: application/wasm"));
-        let bad = get("/../secret.txt");
-        assert!(bad.starts_with("HTTP/1.1 404"), "{bad}");
-        assert!(!bad.contains("secret"));
+    fn only_loopback_hosts() {
+        assert!(loopback_addrs("127.0.0.1", 0).is_ok());
+        assert!(loopback_addrs("::1", 0).is_ok());
+        let e = loopback_addrs("0.0.0.0", 0).unwrap_err();
+        assert!(e.contains("loopback only"), "{e}");
     }
 }
