@@ -32,9 +32,13 @@
 //!    admissible samples (docs/algorithms.md §dwa) and G = α·head + ρ·β·dist + γ·vel
 //!    picks the command (ρ = 1 for the baseline; \[T\] eq 3-8 sets it).
 //!
+//! A braking rollout is followed past the horizon until the robot stands;
+//! a rollout that comes within the episode's goal tolerance of the final
+//! goal ends there and scores the full heading critic (the episode ends).
+//!
 //! With no admissible sample the robot brakes at its largest deceleration
 //! and, for a circular footprint, turns in place toward the goal (mode
-//! `"no-admissible"`) — unless that braking manoeuvre itself would be hit
+//! `"no-admissible"`; only when that braking turn hits nothing) — unless that braking manoeuvre itself would be hit
 //! or would stop the robot in a mover's predicted path (a mover that keeps
 //! coming): then it takes what Fox et al.'s DWA takes, the collision-free
 //! sample with the best G, the critics normalised over those samples
