@@ -38,7 +38,7 @@ use serde::{Deserialize, Serialize};
 
 use super::planner::LocalMapConfig;
 use super::scan::LidarConfig;
-use super::scan_motion::{free_length, peer_dwa, world_points, ScanMotion};
+use super::scan_motion::{free_length, peer_dwa, regression_search, world_points, ScanMotion};
 use super::TargetKind;
 use crate::apf::field::{attraction, repulsion};
 use crate::apf::{ApfConfig, ApfMode, APF_FIELDS};
@@ -304,31 +304,15 @@ pub fn plan(
     let reached = path.last().is_some_and(|p| (*p - g).length() < 1e-9);
     let points: Vec<[f64; 2]> = path.iter().map(|v| (*v).into()).collect();
     RsPath {
-        shortened: regression_search(&scene, &path),
+        shortened: regression_search(&path, |a, b| scene.segment_free(a, b))
+            .into_iter()
+            .map(Into::into)
+            .collect(),
         points,
         // The side is kept until a plan reaches the goal without a stall.
         side: if stalled || !reached { side } else { None },
         stalled,
     }
-}
-
-/// \[11\]'s regression search: from the last point back to the first,
-/// join each point to the earliest one a disc can reach straight.
-fn regression_search(scene: &Scene<'_>, path: &[DVec2]) -> Vec<[f64; 2]> {
-    let Some(&last) = path.last() else {
-        return Vec::new();
-    };
-    let mut out = vec![last];
-    let mut j = path.len() - 1;
-    while j > 0 {
-        let i = (0..j)
-            .find(|&i| scene.segment_free(path[i], path[j]))
-            .unwrap_or(j - 1);
-        out.push(path[i]);
-        j = i;
-    }
-    out.reverse();
-    out.into_iter().map(Into::into).collect()
 }
 
 /// The `rs-apf` planner (module doc).

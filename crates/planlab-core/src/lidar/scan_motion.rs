@@ -1,4 +1,5 @@
-//! The sensing and motion layer the \[L\] peers (`tangent-bug`, `rs-apf`)
+//! The sensing and motion layer the \[L\] peers (`tangent-bug`, `rs-apf`,
+//! `rrt-shortcut`)
 //! share with `lidar-dwa`: the simulated LiDAR on the map
 //! and the perceived movers, and a motion planner (a registry choice, e.g.
 //! `dwa`) driving to a point on the **local map built from the scan alone**
@@ -210,4 +211,24 @@ pub fn free_length(x: [f64; 2], u: [f64; 2], pts: &[Option<[f64; 2]>], rho: f64)
         best = best.min((along - back).max(0.0));
     }
     best
+}
+
+/// \[11\]'s regression search, the greedy line-of-sight shortcut `rs-apf`
+/// and `rrt-shortcut` share: from the last point back to the first, join
+/// each point to the earliest one `free` says is reachable straight (the
+/// previous point when none is). The result keeps the ends and is never
+/// longer than `path` (each join replaces a sub-path by a straight line).
+pub fn regression_search<P: Copy>(path: &[P], free: impl Fn(P, P) -> bool) -> Vec<P> {
+    let Some(&last) = path.last() else {
+        return Vec::new();
+    };
+    let mut out = vec![last];
+    let mut j = path.len() - 1;
+    while j > 0 {
+        let i = (0..j).find(|&i| free(path[i], path[j])).unwrap_or(j - 1);
+        out.push(path[i]);
+        j = i;
+    }
+    out.reverse();
+    out
 }
