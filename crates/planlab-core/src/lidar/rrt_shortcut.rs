@@ -47,13 +47,12 @@ use serde::{Deserialize, Serialize};
 
 use super::planner::LocalMapConfig;
 use super::scan::{beam_angle, polar, LidarConfig, Scan};
-use super::scan_motion::{peer_dwa, regression_search, ScanMotion};
-use super::TargetKind;
+use super::scan_motion::{peer_dwa, regression_search, steer_point, ScanMotion};
 use crate::global::keypoints::segment_free;
 use crate::global::{supercover, Diagonal, GridPos, PlanGrid};
 use crate::local::dwa::{DwaConfig, DWA_FIELDS};
-use crate::local::registry::{check_param, PlannerChoice};
-use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
+use crate::local::registry::check_param;
+use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::map::costmap::distance_field;
 use crate::map::{Cell, OccupancyGrid, Pose2};
 use crate::metrics::distance_to_polyline;
@@ -508,12 +507,7 @@ impl RrtShortcut {
     /// Builds the planner for `robot`; errors name the bad field.
     pub fn new(cfg: RrtShortcutConfig, robot: &RobotSpec) -> Result<RrtShortcut, LocalError> {
         cfg.validate()?;
-        let motion = PlannerChoice {
-            name: "dwa".into(),
-            config: serde_json::to_value(cfg.motion)
-                .map_err(|e| LocalError::InvalidParameter(format!("rrt-shortcut.motion: {e}")))?,
-        };
-        let io = ScanMotion::new(cfg.lidar, cfg.local, &motion, robot)?;
+        let io = ScanMotion::with_dwa("rrt-shortcut", cfg.lidar, cfg.local, cfg.motion, robot)?;
         Ok(RrtShortcut {
             radius: robot.footprint.circumscribed_radius(),
             cfg,
@@ -722,30 +716,12 @@ impl LocalPlanner for RrtShortcut {
             Some(&w) => (w, self.next + 1 == self.path.len()),
             None => (goal, true),
         };
-        let d = hypot(target[0] - x[0], target[1] - x[1]);
-        let steer = if !is_goal && d > 1e-9 && d < self.cfg.lookahead {
-            let k = self.cfg.lookahead / d;
-            [x[0] + (target[0] - x[0]) * k, x[1] + (target[1] - x[1]) * k]
-        } else {
-            target
-        };
+        let steer = steer_point(x, target, self.cfg.lookahead, !is_goal);
         let cmd = self.io.drive(obs, pose, &scan, steer);
-        let kind = if is_goal {
-            TargetKind::Global
-        } else {
-            TargetKind::Temporary
-        };
         let mode = if phase == "follow" || phase == "no-path" {
             format!("rrt-{phase}")
         } else {
             format!("rrt-replan-{phase}")
-        };
-        self.debug.mode = format!("{mode}/{}", self.io.motion_debug().mode);
-        self.debug.current_goal = target;
-        self.debug.goal_kind = if is_goal {
-            GoalKind::Final
-        } else {
-            GoalKind::Temporary
         };
         self.debug.global_path.clone_from(&self.path);
         self.debug.keypoints = if self.record {
@@ -755,7 +731,7 @@ impl LocalPlanner for RrtShortcut {
         };
         let mut dbg = std::mem::take(&mut self.debug);
         self.io
-            .fill_debug(&mut dbg, pose, &scan, target, kind, self.record);
+            .report(&mut dbg, &mode, pose, &scan, target, is_goal, self.record);
         self.debug = dbg;
         cmd
     }
@@ -791,22 +767,21 @@ impl LocalPlanner for RrtShortcut {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lidar::tangent_bug::tests::{build_error, l_robot, room, run_on};
-    use crate::local::registry;
+    use crate::lidar::tangent_bug::tests::{build_error, build_on_room, room, run_on};
     use crate::local::testkit::End;
 
     fn planner(cfg: serde_json::Value) -> Box<dyn LocalPlanner> {
-        registry::build(
-            &PlannerChoice {
-                name: "rrt-shortcut".into(),
-                config: cfg,
-            },
-            &l_robot(),
-            &room(4.0, 4.0, &[]),
-            &RobotState::default(),
-            [1.0, 1.0],
+        build_on_room("rrt-shortcut", cfg).unwrap()
+    }
+
+    /// L-sim7's scene: 20 × 14 m, walls x 6–6.3 (y 2–10) and x 12–12.3
+    /// (y 4–12).
+    fn sim7_room() -> StaticMap {
+        room(
+            20.0,
+            14.0,
+            &[[6.0, 2.0, 6.3, 10.0], [12.0, 4.0, 12.3, 12.0]],
         )
-        .unwrap()
     }
 
     /// A 10 × 8 m room with a 4 m wall across the way, known (2 m gaps
@@ -908,13 +883,8 @@ mod tests {
 
     #[test]
     fn rrt_shortcut_reaches_the_goal_past_two_offset_walls_without_collision() {
-        // L-sim7's scene: 20 × 14 m, walls x 6–6.3 (y 2–10) and x 12–12.3
-        // (y 4–12), unknown to the planner.
-        let map = room(
-            20.0,
-            14.0,
-            &[[6.0, 2.0, 6.3, 10.0], [12.0, 4.0, 12.3, 12.0]],
-        );
+        // Unknown to the planner: it sees it only through the scan.
+        let map = sim7_room();
         for seed in [0, 1] {
             let mut p = planner(serde_json::json!({}));
             p.set_seed(seed);
@@ -931,11 +901,7 @@ mod tests {
 
     #[test]
     fn rrt_shortcut_is_deterministic() {
-        let map = room(
-            20.0,
-            14.0,
-            &[[6.0, 2.0, 6.3, 10.0], [12.0, 4.0, 12.3, 12.0]],
-        );
+        let map = sim7_room();
         let runs: Vec<_> = (0..2)
             .map(|_| {
                 let mut p = planner(serde_json::json!({}));

@@ -17,8 +17,8 @@ use super::scan::{beam_angle, polar, Disc, Lidar, LidarConfig, Scan};
 use super::TargetKind;
 use crate::local::dwa::DwaConfig;
 use crate::local::registry::{self, PlannerChoice};
-use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
-use crate::num::{cos, sin};
+use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
+use crate::num::{cos, hypot, sin};
 use crate::world::{Command, RobotSpec, RobotState};
 
 /// The DWA the peers drive with by default: the baseline DWA with α 0.2,
@@ -71,6 +71,23 @@ impl ScanMotion {
             join: 2.0 * robot.footprint.circumscribed_radius(),
             time: 0.0,
         })
+    }
+
+    /// [`ScanMotion::new`] with the baseline DWA `motion` as the motion
+    /// planner, as the peers drive (errors name `planner.motion`).
+    pub fn with_dwa(
+        planner: &str,
+        lidar: LidarConfig,
+        local: LocalMapConfig,
+        motion: DwaConfig,
+        robot: &RobotSpec,
+    ) -> Result<ScanMotion, LocalError> {
+        let choice = PlannerChoice {
+            name: "dwa".into(),
+            config: serde_json::to_value(motion)
+                .map_err(|e| LocalError::InvalidParameter(format!("{planner}.motion: {e}")))?,
+        };
+        ScanMotion::new(lidar, local, &choice, robot)
     }
 
     /// The sensor's range limit, m.
@@ -135,6 +152,32 @@ impl ScanMotion {
         self.motion.set_record_rollouts(on);
     }
 
+    /// Ends a peer's step in `d`: mode `phase/<motion planner's mode>`,
+    /// the target (world) as the current goal, final when `is_goal`, and
+    /// [`ScanMotion::fill_debug`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn report(
+        &self,
+        d: &mut PlannerDebug,
+        phase: &str,
+        pose: [f64; 3],
+        scan: &Scan,
+        target: [f64; 2],
+        is_goal: bool,
+        record: bool,
+    ) {
+        d.mode = format!("{phase}/{}", self.motion.debug().mode);
+        d.current_goal = target;
+        let kind = if is_goal {
+            d.goal_kind = GoalKind::Final;
+            TargetKind::Global
+        } else {
+            d.goal_kind = GoalKind::Temporary;
+            TargetKind::Temporary
+        };
+        self.fill_debug(d, pose, scan, target, kind, record);
+    }
+
     /// Fills `d` for drawing: the motion planner's critics and (when
     /// `record`) rollouts in world coordinates, and the scan.
     pub fn fill_debug(
@@ -174,6 +217,20 @@ impl ScanMotion {
         ld.target = target;
         ld.kind = kind;
         d.lidar = Some(ld);
+    }
+}
+
+/// The point the motion planner steers to for `target` seen from `x`: a
+/// waypoint (`extend`) nearer than `lookahead` is pushed out to
+/// `lookahead` along its bearing (a DWA heading critic aimed at a point
+/// nearer than its rollouts reach makes the robot circle it).
+pub fn steer_point(x: [f64; 2], target: [f64; 2], lookahead: f64, extend: bool) -> [f64; 2] {
+    let d = hypot(target[0] - x[0], target[1] - x[1]);
+    if extend && d > 1e-9 && d < lookahead {
+        let k = lookahead / d;
+        [x[0] + (target[0] - x[0]) * k, x[1] + (target[1] - x[1]) * k]
+    } else {
+        target
     }
 }
 
