@@ -15,7 +15,9 @@
 //! - [`fog`]: the cells the robot has seen so far, from its scans.
 //! - The \[L\] sims 5–8 peers on the same sensor and motion layer
 //!   ([`scan_motion`]): [`tangent_bug`] (TangentBug standing in for
-//!   Critical-PointBug \[21\]), [`rs_apf`] (a scan-only RS-APF \[11\]).
+//!   Critical-PointBug \[21\]), [`rs_apf`] (a scan-only RS-APF \[11\]),
+//!   [`rrt_shortcut`] (RRT + shortcutting on the scan's memory, standing in
+//!   for RL-RRT \[2\]).
 //!
 //! The navigator's input type [`NavInput`] holds the scan, the robot's
 //! velocity and the goal in the robot frame only, so neither the navigator
@@ -26,6 +28,7 @@ pub mod edges;
 pub mod fog;
 pub mod nav;
 pub mod planner;
+pub mod rrt_shortcut;
 pub mod rs_apf;
 pub mod scan;
 pub mod scan_motion;

@@ -38,13 +38,14 @@ use serde::{Deserialize, Serialize};
 
 use super::planner::LocalMapConfig;
 use super::scan::LidarConfig;
-use super::scan_motion::{free_length, peer_dwa, world_points, ScanMotion};
-use super::TargetKind;
+use super::scan_motion::{
+    free_length, peer_dwa, regression_search, steer_point, world_points, ScanMotion,
+};
 use crate::apf::field::{attraction, repulsion};
 use crate::apf::{ApfConfig, ApfMode, APF_FIELDS};
 use crate::local::dwa::{DwaConfig, DWA_FIELDS};
-use crate::local::registry::{check_param, PlannerChoice};
-use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
+use crate::local::registry::check_param;
+use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::num::hypot;
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
 
@@ -304,31 +305,15 @@ pub fn plan(
     let reached = path.last().is_some_and(|p| (*p - g).length() < 1e-9);
     let points: Vec<[f64; 2]> = path.iter().map(|v| (*v).into()).collect();
     RsPath {
-        shortened: regression_search(&scene, &path),
+        shortened: regression_search(&path, |a, b| scene.segment_free(a, b))
+            .into_iter()
+            .map(Into::into)
+            .collect(),
         points,
         // The side is kept until a plan reaches the goal without a stall.
         side: if stalled || !reached { side } else { None },
         stalled,
     }
-}
-
-/// \[11\]'s regression search: from the last point back to the first,
-/// join each point to the earliest one a disc can reach straight.
-fn regression_search(scene: &Scene<'_>, path: &[DVec2]) -> Vec<[f64; 2]> {
-    let Some(&last) = path.last() else {
-        return Vec::new();
-    };
-    let mut out = vec![last];
-    let mut j = path.len() - 1;
-    while j > 0 {
-        let i = (0..j)
-            .find(|&i| scene.segment_free(path[i], path[j]))
-            .unwrap_or(j - 1);
-        out.push(path[i]);
-        j = i;
-    }
-    out.reverse();
-    out.into_iter().map(Into::into).collect()
 }
 
 /// The `rs-apf` planner (module doc).
@@ -347,12 +332,7 @@ impl RsApf {
     /// Builds the planner for `robot`; errors name the bad field.
     pub fn new(cfg: RsApfConfig, robot: &RobotSpec) -> Result<RsApf, LocalError> {
         cfg.validate()?;
-        let motion = PlannerChoice {
-            name: "dwa".into(),
-            config: serde_json::to_value(cfg.motion)
-                .map_err(|e| LocalError::InvalidParameter(format!("rs-apf.motion: {e}")))?,
-        };
-        let io = ScanMotion::new(cfg.lidar, cfg.local, &motion, robot)?;
+        let io = ScanMotion::with_dwa("rs-apf", cfg.lidar, cfg.local, cfg.motion, robot)?;
         Ok(RsApf {
             radius: robot.footprint.circumscribed_radius(),
             cfg,
@@ -391,30 +371,12 @@ impl LocalPlanner for RsApf {
         self.side = path.side;
         let target = path.shortened.get(1).copied().unwrap_or(obs.goal);
         let is_goal = hypot(target[0] - obs.goal[0], target[1] - obs.goal[1]) < 1e-9;
-        let d = hypot(target[0] - x[0], target[1] - x[1]);
-        let steer = if !is_goal && d > 1e-9 && d < self.cfg.lookahead {
-            let k = self.cfg.lookahead / d;
-            [x[0] + (target[0] - x[0]) * k, x[1] + (target[1] - x[1]) * k]
-        } else {
-            target
-        };
+        let steer = steer_point(x, target, self.cfg.lookahead, !is_goal);
         let cmd = self.io.drive(obs, pose, &scan, steer);
-        let kind = if is_goal {
-            TargetKind::Global
-        } else {
-            TargetKind::Temporary
-        };
         let phase = if path.stalled {
             "rs-apf-follow"
         } else {
             "rs-apf"
-        };
-        self.debug.mode = format!("{phase}/{}", self.io.motion_debug().mode);
-        self.debug.current_goal = target;
-        self.debug.goal_kind = if is_goal {
-            GoalKind::Final
-        } else {
-            GoalKind::Temporary
         };
         self.debug.global_path.clone_from(&path.shortened);
         self.debug.keypoints = if self.record {
@@ -425,7 +387,7 @@ impl LocalPlanner for RsApf {
         self.path = path;
         let mut d = std::mem::take(&mut self.debug);
         self.io
-            .fill_debug(&mut d, pose, &scan, target, kind, self.record);
+            .report(&mut d, phase, pose, &scan, target, is_goal, self.record);
         self.debug = d;
         cmd
     }
@@ -454,23 +416,13 @@ impl LocalPlanner for RsApf {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lidar::tangent_bug::tests::{build_error, l_robot, room, run_on};
+    use crate::lidar::tangent_bug::tests::{build_error, build_on_room, l_robot, room, run_on};
     use crate::local::registry;
+    use crate::local::registry::PlannerChoice;
     use crate::local::testkit::End;
 
     fn rs(cfg: serde_json::Value) -> Box<dyn LocalPlanner> {
-        let map = room(4.0, 4.0, &[]);
-        registry::build(
-            &PlannerChoice {
-                name: "rs-apf".into(),
-                config: cfg,
-            },
-            &l_robot(),
-            &map,
-            &RobotState::default(),
-            [1.0, 1.0],
-        )
-        .unwrap()
+        build_on_room("rs-apf", cfg).unwrap()
     }
 
     fn length(p: &[[f64; 2]]) -> f64 {

@@ -1,4 +1,5 @@
-//! The sensing and motion layer the \[L\] peers (`tangent-bug`, `rs-apf`)
+//! The sensing and motion layer the \[L\] peers (`tangent-bug`, `rs-apf`,
+//! `rrt-shortcut`)
 //! share with `lidar-dwa`: the simulated LiDAR on the map
 //! and the perceived movers, and a motion planner (a registry choice, e.g.
 //! `dwa`) driving to a point on the **local map built from the scan alone**
@@ -16,8 +17,8 @@ use super::scan::{beam_angle, polar, Disc, Lidar, LidarConfig, Scan};
 use super::TargetKind;
 use crate::local::dwa::DwaConfig;
 use crate::local::registry::{self, PlannerChoice};
-use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
-use crate::num::{cos, sin};
+use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
+use crate::num::{cos, hypot, sin};
 use crate::world::{Command, RobotSpec, RobotState};
 
 /// The DWA the peers drive with by default: the baseline DWA with α 0.2,
@@ -70,6 +71,23 @@ impl ScanMotion {
             join: 2.0 * robot.footprint.circumscribed_radius(),
             time: 0.0,
         })
+    }
+
+    /// [`ScanMotion::new`] with the baseline DWA `motion` as the motion
+    /// planner, as the peers drive (errors name `planner.motion`).
+    pub fn with_dwa(
+        planner: &str,
+        lidar: LidarConfig,
+        local: LocalMapConfig,
+        motion: DwaConfig,
+        robot: &RobotSpec,
+    ) -> Result<ScanMotion, LocalError> {
+        let choice = PlannerChoice {
+            name: "dwa".into(),
+            config: serde_json::to_value(motion)
+                .map_err(|e| LocalError::InvalidParameter(format!("{planner}.motion: {e}")))?,
+        };
+        ScanMotion::new(lidar, local, &choice, robot)
     }
 
     /// The sensor's range limit, m.
@@ -134,6 +152,32 @@ impl ScanMotion {
         self.motion.set_record_rollouts(on);
     }
 
+    /// Ends a peer's step in `d`: mode `phase/<motion planner's mode>`,
+    /// the target (world) as the current goal, final when `is_goal`, and
+    /// [`ScanMotion::fill_debug`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn report(
+        &self,
+        d: &mut PlannerDebug,
+        phase: &str,
+        pose: [f64; 3],
+        scan: &Scan,
+        target: [f64; 2],
+        is_goal: bool,
+        record: bool,
+    ) {
+        d.mode = format!("{phase}/{}", self.motion.debug().mode);
+        d.current_goal = target;
+        let kind = if is_goal {
+            d.goal_kind = GoalKind::Final;
+            TargetKind::Global
+        } else {
+            d.goal_kind = GoalKind::Temporary;
+            TargetKind::Temporary
+        };
+        self.fill_debug(d, pose, scan, target, kind, record);
+    }
+
     /// Fills `d` for drawing: the motion planner's critics and (when
     /// `record`) rollouts in world coordinates, and the scan.
     pub fn fill_debug(
@@ -176,6 +220,20 @@ impl ScanMotion {
     }
 }
 
+/// The point the motion planner steers to for `target` seen from `x`: a
+/// waypoint (`extend`) nearer than `lookahead` is pushed out to
+/// `lookahead` along its bearing (a DWA heading critic aimed at a point
+/// nearer than its rollouts reach makes the robot circle it).
+pub fn steer_point(x: [f64; 2], target: [f64; 2], lookahead: f64, extend: bool) -> [f64; 2] {
+    let d = hypot(target[0] - x[0], target[1] - x[1]);
+    if extend && d > 1e-9 && d < lookahead {
+        let k = lookahead / d;
+        [x[0] + (target[0] - x[0]) * k, x[1] + (target[1] - x[1]) * k]
+    } else {
+        target
+    }
+}
+
 /// The hit points of `scan` taken at `pose`, world m (None: no return).
 pub fn world_points(pose: [f64; 3], scan: &Scan) -> Vec<Option<[f64; 2]>> {
     let n = scan.len();
@@ -210,4 +268,24 @@ pub fn free_length(x: [f64; 2], u: [f64; 2], pts: &[Option<[f64; 2]>], rho: f64)
         best = best.min((along - back).max(0.0));
     }
     best
+}
+
+/// \[11\]'s regression search, the greedy line-of-sight shortcut `rs-apf`
+/// and `rrt-shortcut` share: from the last point back to the first, join
+/// each point to the earliest one `free` says is reachable straight (the
+/// previous point when none is). The result keeps the ends and is never
+/// longer than `path` (each join replaces a sub-path by a straight line).
+pub fn regression_search<P: Copy>(path: &[P], free: impl Fn(P, P) -> bool) -> Vec<P> {
+    let Some(&last) = path.last() else {
+        return Vec::new();
+    };
+    let mut out = vec![last];
+    let mut j = path.len() - 1;
+    while j > 0 {
+        let i = (0..j).find(|&i| free(path[i], path[j])).unwrap_or(j - 1);
+        out.push(path[i]);
+        j = i;
+    }
+    out.reverse();
+    out
 }

@@ -46,11 +46,10 @@ use serde::{Deserialize, Serialize};
 
 use super::planner::LocalMapConfig;
 use super::scan::LidarConfig;
-use super::scan_motion::{free_length, peer_dwa, world_points, ScanMotion};
-use super::TargetKind;
+use super::scan_motion::{free_length, peer_dwa, steer_point, world_points, ScanMotion};
 use crate::local::dwa::{DwaConfig, DWA_FIELDS};
-use crate::local::registry::{check_param, PlannerChoice};
-use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
+use crate::local::registry::check_param;
+use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::num::hypot;
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
 
@@ -230,12 +229,7 @@ impl TangentBug {
     /// Builds the planner for `robot`; errors name the bad field.
     pub fn new(cfg: TangentBugConfig, robot: &RobotSpec) -> Result<TangentBug, LocalError> {
         cfg.validate()?;
-        let motion = PlannerChoice {
-            name: "dwa".into(),
-            config: serde_json::to_value(cfg.motion)
-                .map_err(|e| LocalError::InvalidParameter(format!("tangent-bug.motion: {e}")))?,
-        };
-        let io = ScanMotion::new(cfg.lidar, cfg.local, &motion, robot)?;
+        let io = ScanMotion::with_dwa("tangent-bug", cfg.lidar, cfg.local, cfg.motion, robot)?;
         Ok(TangentBug {
             radius: robot.footprint.circumscribed_radius(),
             cfg,
@@ -445,34 +439,16 @@ impl LocalPlanner for TangentBug {
         let x = [pose[0], pose[1]];
         let pts = world_points(pose, &scan);
         let (target, is_goal) = self.decide(x, obs.goal, &pts);
-        let d = hypot(target[0] - x[0], target[1] - x[1]);
-        let steer = if !is_goal && !self.following() && d > 1e-9 && d < self.cfg.lookahead {
-            let k = self.cfg.lookahead / d;
-            [x[0] + (target[0] - x[0]) * k, x[1] + (target[1] - x[1]) * k]
-        } else {
-            target
-        };
+        let steer = steer_point(x, target, self.cfg.lookahead, !is_goal && !self.following());
         let cmd = self.io.drive(obs, pose, &scan, steer);
-        let kind = if is_goal {
-            TargetKind::Global
-        } else {
-            TargetKind::Temporary
-        };
         let phase = if self.following() {
             "boundary-following"
         } else {
             "motion-to-goal"
         };
-        self.debug.mode = format!("{phase}/{}", self.io.motion_debug().mode);
-        self.debug.current_goal = target;
-        self.debug.goal_kind = if is_goal {
-            GoalKind::Final
-        } else {
-            GoalKind::Temporary
-        };
         let mut d = std::mem::take(&mut self.debug);
         self.io
-            .fill_debug(&mut d, pose, &scan, target, kind, self.record);
+            .report(&mut d, phase, pose, &scan, target, is_goal, self.record);
         self.debug = d;
         cmd
     }
@@ -502,6 +478,7 @@ impl LocalPlanner for TangentBug {
 pub(crate) mod tests {
     use super::*;
     use crate::local::registry;
+    use crate::local::registry::PlannerChoice;
     use crate::local::testkit::{self, End};
     use crate::world::{Footprint, RobotLimits};
 
@@ -527,6 +504,17 @@ pub(crate) mod tests {
     /// The registry's error for planner `name` with `cfg` on an empty room
     /// ("" when it builds).
     pub(crate) fn build_error(name: &str, cfg: serde_json::Value) -> String {
+        build_on_room(name, cfg)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default()
+    }
+
+    /// Planner `name` with `cfg`, built on an empty room.
+    pub(crate) fn build_on_room(
+        name: &str,
+        cfg: serde_json::Value,
+    ) -> Result<Box<dyn LocalPlanner>, LocalError> {
         registry::build(
             &PlannerChoice {
                 name: name.into(),
@@ -537,9 +525,6 @@ pub(crate) mod tests {
             &RobotState::default(),
             [1.0, 1.0],
         )
-        .err()
-        .map(|e| e.to_string())
-        .unwrap_or_default()
     }
 
     pub(crate) fn room(w: f64, h: f64, walls: &[[f64; 4]]) -> StaticMap {
@@ -575,18 +560,7 @@ pub(crate) mod tests {
     }
 
     fn bug(cfg: serde_json::Value) -> Box<dyn LocalPlanner> {
-        let map = room(4.0, 4.0, &[]);
-        registry::build(
-            &PlannerChoice {
-                name: "tangent-bug".into(),
-                config: cfg,
-            },
-            &l_robot(),
-            &map,
-            &RobotState::default(),
-            [1.0, 1.0],
-        )
-        .unwrap()
+        build_on_room("tangent-bug", cfg).unwrap()
     }
 
     #[test]

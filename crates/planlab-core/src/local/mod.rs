@@ -158,6 +158,9 @@ pub trait LocalPlanner {
     fn debug(&self) -> &PlannerDebug;
     /// Record every rollout's points (for drawing) or not (faster batches).
     fn set_record_rollouts(&mut self, on: bool);
+    /// The episode's seed, for planners that sample (the episode calls this
+    /// once after building the planner; the rest ignore it).
+    fn set_seed(&mut self, _seed: u64) {}
 }
 
 /// Errors building or re-targeting a local planner.

@@ -24,6 +24,7 @@ use crate::apf::local::{self as apf_local, ApfLocal, ApfLocalConfig};
 use crate::lidar::planner::{
     lidar_fields, motion_fields, LidarPlanner, LidarPlannerConfig, ScanBaselineConfig,
 };
+use crate::lidar::rrt_shortcut::{rrt_shortcut_fields, RrtShortcut, RrtShortcutConfig};
 use crate::lidar::rs_apf::{rs_apf_fields, RsApf, RsApfConfig};
 use crate::lidar::tangent_bug::{tangent_bug_fields, TangentBug, TangentBugConfig};
 use crate::world::{RobotSpec, RobotState, StaticMap};
@@ -275,6 +276,20 @@ pub fn list() -> Vec<PlannerInfo> {
                 .into(),
             fields: owned_field_infos::<RsApfConfig>(&rs_apf_fields()),
         },
+        PlannerInfo {
+            name: "rrt-shortcut".into(),
+            paper: "RRT (LaValle 1998) with shortcutting standing in for RL-RRT, \
+                    [L] Chang et al. 2024 ref [2], sim 7 — no learned component; \
+                    docs/algorithms.md §rrt-shortcut"
+                .into(),
+            summary: "Unknown map, scan + pose: an occupancy memory of what the scan has \
+                      shown (unknown counts as free); a goal-biased RRT over it, inflated by \
+                      the robot, shortened by line-of-sight shortcuts and replanned when \
+                      blocked, off course or stalled; the baseline DWA on the scan's local \
+                      map drives to the next waypoint."
+                .into(),
+            fields: owned_field_infos::<RrtShortcutConfig>(&rrt_shortcut_fields()),
+        },
     ]
 }
 
@@ -377,6 +392,10 @@ pub fn build(
             robot,
         )?)),
         "rs-apf" => Ok(Box::new(RsApf::new(
+            parse_config(&choice.name, &choice.config)?,
+            robot,
+        )?)),
+        "rrt-shortcut" => Ok(Box::new(RrtShortcut::new(
             parse_config(&choice.name, &choice.config)?,
             robot,
         )?)),

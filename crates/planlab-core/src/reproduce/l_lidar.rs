@@ -41,7 +41,7 @@ pub const COMPARABLE: f64 = 1.05;
 pub const PEERS: [(u32, &str, &str, &str, &str); 4] = [
     (5, SIM5, "peer", "scan-dwa", "improved DWA [17]"),
     (6, SIM6, "peer", "tangent-bug", "Critical-PointBug [21]"),
-    (7, SIM7, "peer", "scan-dwa", "RL-RRT [2]"),
+    (7, SIM7, "peer", "rrt-shortcut", "RL-RRT [2]"),
     (8, SIM8, "peer", "rs-apf", "RS-APF [11]"),
 ];
 
@@ -107,8 +107,9 @@ fn deviations(dwa: bool) -> Vec<Deviation> {
             path: None,
             ours: "improved DWA [17] → scan-dwa (plain DWA on the scan: [17] learns its \
                    weights, not built); Critical-PointBug [21] → tangent-bug (TangentBug on \
-                   the scan); RL-RRT [2] → scan-dwa (not built); RS-APF [11] → rs-apf \
-                   (scan-only receding-horizon APF with regression-search shortening)",
+                   the scan); RL-RRT [2] → rrt-shortcut (RRT + shortcutting on the scan's memory; no \
+                   learned component: stand-in); RS-APF [11] → rs-apf (scan-only \
+                   receding-horizon APF with regression-search shortening)",
             paper: "the peers' own implementations",
         },
     ];

@@ -13,6 +13,7 @@ impl Episode {
     pub fn set_planner(&mut self, choice: PlannerChoice) -> Result<(), SimError> {
         let mut planner = registry::build(&choice, &self.robot, &self.map, &self.state, self.goal)?;
         planner.set_record_rollouts(self.config.record_rollouts);
+        planner.set_seed(self.seed);
         self.planner = planner;
         self.choice = choice;
         Ok(())

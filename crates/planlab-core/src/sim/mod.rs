@@ -469,6 +469,7 @@ impl Episode {
         let terrain = Terrain::new(terrain_spec.clone(), seed)?;
         let mut planner = registry::build(&choice, &robot, &map, &start, goal)?;
         planner.set_record_rollouts(config.record_rollouts);
+        planner.set_seed(seed);
         let mut ep = Episode {
             max_steps: config.max_steps(),
             progress: (hypot(goal[0] - start.x, goal[1] - start.y), 0.0),
@@ -780,6 +781,7 @@ impl Episode {
             let mut planner =
                 registry::build(&self.choice, &self.robot, &self.map, &self.state, goal)?;
             planner.set_record_rollouts(self.config.record_rollouts);
+            planner.set_seed(self.seed);
             self.planner = planner;
         } else {
             self.planner.set_goal(&self.map, &self.state, goal)?;
