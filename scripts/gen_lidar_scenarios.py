@@ -146,7 +146,7 @@ def sim6():
                              (19, 2, 20, 5)]:
         wall(g, x0, y0, x1, y1)
     return scenario(
-        "[L] sim 6: scattered blocks (vs DWA)",
+        "[L] sim 6: scattered blocks (vs TangentBug)",
         "Scattered rectangular obstacles between start and goal ([L] Fig 16).",
         g, (1.5, 8.0), (22.5, 9.0), 0.0, "lidar-dwa", 150.0)
 
@@ -157,7 +157,7 @@ def sim7():
     wall(g, 6.0, 2.0, 6.3, 10.0)
     wall(g, 12.0, 4.0, 12.3, 12.0)
     return scenario(
-        "[L] sim 7: two offset walls (vs DWA)",
+        "[L] sim 7: two offset walls (vs RRT)",
         "Two free-standing walls, offset, across the way ([L] Fig 17).",
         g, (2.0, 6.0), (18.0, 8.0), 0.0, "lidar-dwa", 150.0)
 

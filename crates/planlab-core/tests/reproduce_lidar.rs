@@ -1,6 +1,7 @@
 //! The \[L\] reproductions (docs/algorithms.md §experiments): sims 1–4 reach the goal without
-//! collision and without target chattering, sims 5–8 (Table 2) beat plain
-//! DWA on the same unknown map, sim 9 passes three moving discs.
+//! collision and without target chattering, sims 5–8 (Table 2) are run
+//! against their peers on the same unknown map (scan-dwa, tangent-bug,
+//! rrt-shortcut, rs-apf), sim 9 passes three moving discs.
 
 use planlab_core::local::GoalKind;
 use planlab_core::metrics::TEMP_GOAL_JUMP_M;
