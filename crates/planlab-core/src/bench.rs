@@ -153,7 +153,6 @@ impl DwaStepBench {
             dt: 0.1,
             state: &self.state,
             goal: self.goal,
-            goal_tolerance: 0.0,
             map: &self.map,
             movers: &self.movers,
             odometry: None,

@@ -336,7 +336,6 @@ pub(crate) fn drive_on_scan(
         dt,
         state: &state,
         goal,
-        goal_tolerance: 0.0,
         map: &map,
         movers: &[],
         odometry: None,

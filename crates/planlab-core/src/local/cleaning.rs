@@ -1467,7 +1467,6 @@ mod tests {
             dt: 0.1,
             state,
             goal: [8.0, 3.0],
-            goal_tolerance: 0.0,
             map,
             movers: &[],
             odometry: None,

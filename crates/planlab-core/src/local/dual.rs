@@ -584,7 +584,6 @@ mod tests {
             dt: 0.1,
             state: s,
             goal: GOAL,
-            goal_tolerance: 0.0,
             map,
             movers: &[],
             odometry: None,

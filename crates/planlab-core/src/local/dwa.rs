@@ -32,9 +32,7 @@
 //!    admissible samples (docs/algorithms.md §dwa) and G = α·head + ρ·β·dist + γ·vel
 //!    picks the command (ρ = 1 for the baseline; \[T\] eq 3-8 sets it).
 //!
-//! A braking rollout is followed past the horizon until the robot stands;
-//! a rollout that comes within the episode's goal tolerance of the final
-//! goal ends there and scores the full heading critic (the episode ends).
+//! A braking rollout is followed past the horizon until the robot stands.
 //!
 //! With no admissible sample the robot brakes at its largest deceleration
 //! and, for a circular footprint, turns in place toward the goal (mode
@@ -382,9 +380,6 @@ pub struct DwaCore {
     last_dt: f64,
     /// Half a map cell: allowance for the clearance field's error, m.
     slack: f64,
-    /// The final goal and the squared distance within which the episode
-    /// ends there (`Observation::goal_tolerance`), for this evaluation.
-    arrive: Option<([f64; 2], f64)>,
     points: Vec<[f64; 2]>,
     debug: PlannerDebug,
 }
@@ -422,7 +417,6 @@ impl DwaCore {
             last_horizon: 0.0,
             last_dt: 0.1,
             slack: 0.0,
-            arrive: None,
             points: Vec::new(),
             debug,
         })
@@ -800,8 +794,6 @@ impl DwaCore {
         // The clearance field may exceed the exact distance by up to about
         // a third of a cell: keep half a cell in hand so rollouts never touch.
         self.slack = 0.5 * obs.map.grid().resolution();
-        self.arrive = (obs.goal_tolerance.is_finite() && obs.goal_tolerance > 0.0)
-            .then(|| (obs.goal, obs.goal_tolerance * obs.goal_tolerance));
         let stat0 = obs.map.clearance(s.x, s.y) - self.r_eff - self.slack;
         let c0 = self.mover_clearance(stat0, s.x, s.y, 0, horizon);
         let limit = c0.min(0.0);
@@ -1084,7 +1076,6 @@ impl DwaCore {
         let (mut x, mut y) = (s.x, s.y);
         let mut min_c = f64::INFINITY;
         let mut collided = false;
-        let mut arrived = false;
         // Skipping map lookups far from walls: the clearance field is
         // √2-Lipschitz (bilinear over samples 1-Lipschitz per axis) up to a
         // cell at blocked-cell borders, so while the last looked-up value
@@ -1123,29 +1114,6 @@ impl DwaCore {
                 collided = true;
                 break;
             }
-            if let Some((g, tol2)) = self.arrive {
-                let (dx, dy) = (g[0] - x, g[1] - y);
-                if dx * dx + dy * dy <= tol2 {
-                    // The episode ends here (the simulator's own test, in
-                    // the same order): what the held command would do
-                    // afterwards is not driven, so it is not scored.
-                    arrived = true;
-                    break;
-                }
-            }
-        }
-        if arrived {
-            return Cand {
-                v,
-                w,
-                raw: [
-                    std::f64::consts::PI,
-                    min_c.max(0.0).min(self.cfg.dist_cap),
-                    v.max(0.0),
-                ],
-                admissible: true,
-                collided: false,
-            };
         }
         let theta = wrap_angle(s.theta + w * h * self.steps as f64);
         let bearing = atan2(req.goal[1] - y, req.goal[0] - x);
@@ -1502,7 +1470,6 @@ mod tests {
                 dt: 0.1,
                 state: &s,
                 goal: [19.0, 19.0],
-                goal_tolerance: 0.0,
                 map: &map,
                 movers: &[],
                 odometry: None,
@@ -1548,7 +1515,6 @@ mod tests {
             dt: 0.1,
             state: &s,
             goal: [0.35, 5.0],
-            goal_tolerance: 0.0,
             map: &map,
             movers: &[],
             odometry: None,
@@ -1748,7 +1714,6 @@ mod tests {
                 dt: 0.1,
                 state: &s,
                 goal: [15.0, 5.0],
-                goal_tolerance: 0.0,
                 map: &map,
                 movers: &movers,
                 odometry: None,
@@ -1791,7 +1756,6 @@ mod tests {
             dt: 0.1,
             state: &s,
             goal: [5.0, 3.0],
-            goal_tolerance: 0.0,
             map: &map,
             movers: &movers,
             odometry: None,

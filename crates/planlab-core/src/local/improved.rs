@@ -738,7 +738,6 @@ mod tests {
             dt: 0.1,
             state: s,
             goal: [9.0, 3.0],
-            goal_tolerance: 0.0,
             map,
             movers,
             odometry: None,

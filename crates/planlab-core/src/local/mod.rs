@@ -56,9 +56,6 @@ pub struct Observation<'a> {
     pub state: &'a RobotState,
     /// The final goal, metres.
     pub goal: [f64; 2],
-    /// The episode ends when the robot's centre comes within this of
-    /// `goal`, m; 0 when no episode ends there (a planner's own sub-goal).
-    pub goal_tolerance: f64,
     /// The static map (grid, clearance field, exact collision).
     pub map: &'a StaticMap,
     /// Movers within sensing range.

@@ -78,7 +78,6 @@ pub fn run(
             dt,
             state: &s,
             goal,
-            goal_tolerance: tol,
             map,
             movers: &obs_movers,
             odometry: None,

@@ -638,7 +638,6 @@ impl Episode {
             dt,
             state: &self.state,
             goal: self.goal,
-            goal_tolerance: self.config.goal_tolerance,
             map: &self.map,
             movers: &observed,
             odometry: self.odometry,
