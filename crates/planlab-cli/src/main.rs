@@ -524,7 +524,8 @@ fn run(cli: Cli) -> Result<(), String> {
             if let Some(r) = inflate {
                 if !(r.is_finite() && r >= 0.0) {
                     return Err(format!(
-                        "--inflate {r}: must be a finite number ≥ 0 (metres)"
+                        "--inflate {}: must be a finite number ≥ 0 (metres)",
+                        planlab_core::num::fmt_num(r)
                     ));
                 }
                 options.inflate_m = r;
@@ -587,8 +588,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 },
         } => {
             let grid = load::load_movingai(&map)?;
-            let text = std::fs::read_to_string(&scen)
-                .map_err(|e| format!("cannot read {}: {e}", scen.display()))?;
+            let text = load::read_text(&scen)?;
             let report = bench::bench_scen(&grid, &text, reps, inner)?;
             println!(
                 "{}",

@@ -47,7 +47,7 @@ pub enum ArmError {
     #[error("{0} is not a finite number")]
     NotFinite(String),
     /// A joint's lower limit exceeds its upper limit.
-    #[error("joint {joint}: lower limit {min} rad exceeds upper limit {max} rad")]
+    #[error("joint {joint}: lower limit {} rad exceeds upper limit {} rad", crate::num::fmt_num(*.min), crate::num::fmt_num(*.max))]
     LimitsInverted {
         /// Joint name.
         joint: String,
@@ -70,7 +70,7 @@ pub enum ArmError {
         found: usize,
     },
     /// A joint value lies outside its limits.
-    #[error("joint {joint}: {value} rad is outside its limits [{min}, {max}] rad")]
+    #[error("joint {joint}: {} rad is outside its limits [{}, {}] rad", crate::num::fmt_num(*.value), crate::num::fmt_num(*.min), crate::num::fmt_num(*.max))]
     OutsideLimits {
         /// Joint name.
         joint: String,

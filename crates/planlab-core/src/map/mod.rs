@@ -93,10 +93,10 @@ pub enum MapError {
         got: u64,
     },
     /// Resolution not finite and positive.
-    #[error("invalid resolution {0}: must be a finite number > 0 (metres per cell)")]
+    #[error("invalid resolution {}: must be a finite number > 0 (metres per cell)", crate::num::fmt_num(*.0))]
     BadResolution(f64),
     /// Origin not finite.
-    #[error("invalid origin ({x}, {y}, {yaw}): all components must be finite")]
+    #[error("invalid origin ({}, {}, {}): all components must be finite", crate::num::fmt_num(*.x), crate::num::fmt_num(*.y), crate::num::fmt_num(*.yaw))]
     BadOrigin {
         /// x in metres.
         x: f64,

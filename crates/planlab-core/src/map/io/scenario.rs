@@ -23,6 +23,7 @@ use crate::global::GridPos;
 use crate::local::registry::{self, PlannerChoice};
 use crate::map::io::{movingai, ros};
 use crate::map::{check_dimensions, Cell, MapError, OccupancyGrid, Pose2};
+use crate::num::{fmt_num, param_problem};
 use crate::sim::SimConfig;
 use crate::world::{MoverSpec, RobotSpec, TerrainSpec};
 use serde::{Deserialize, Serialize};
@@ -871,16 +872,17 @@ impl Scenario {
         }
         let p = &self.grid_planner;
         build_planner(p).map_err(|e| ScenarioError::Invalid(format!("grid_planner: {e}")))?;
-        if !(p.inflate_m.is_finite() && p.inflate_m >= 0.0) {
+        if let Some(problem) = param_problem(p.inflate_m, 0.0, false) {
             return Err(ScenarioError::Invalid(format!(
-                "grid_planner.inflate_m is {}; it must be a finite number ≥ 0 (metres)",
-                p.inflate_m
+                "grid_planner.inflate_m is {} (metres): it {problem}",
+                fmt_num(p.inflate_m)
             )));
         }
         if let Some(eps) = p.bottom_up_eps {
-            if !(eps.is_finite() && eps >= 0.0) {
+            if let Some(problem) = param_problem(eps, 0.0, false) {
                 return Err(ScenarioError::Invalid(format!(
-                    "grid_planner.bottom_up_eps is {eps}; it must be a finite number ≥ 0 (cells)"
+                    "grid_planner.bottom_up_eps is {} (cells): it {problem}",
+                    fmt_num(eps)
                 )));
             }
         }
@@ -934,7 +936,8 @@ impl Scenario {
         if let Some(yaw) = self.start_yaw {
             if !yaw.is_finite() {
                 return Err(ScenarioError::Invalid(format!(
-                    "start_yaw = {yaw}: must be a finite number (rad)"
+                    "start_yaw = {}: must be a finite number (rad)",
+                    fmt_num(yaw)
                 )));
             }
         }
@@ -990,7 +993,10 @@ impl Scenario {
                     };
                     return Err(ScenarioError::Invalid(format!(
                         "{what}.world ({}, {}) {where_}, not in the {what} cell ({}, {})",
-                        w.x, w.y, pt.col, pt.row
+                        fmt_num(w.x),
+                        fmt_num(w.y),
+                        pt.col,
+                        pt.row
                     )));
                 }
             }
