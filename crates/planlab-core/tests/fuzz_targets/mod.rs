@@ -101,9 +101,14 @@ pub const TARGETS: &[Target] = &[
     },
 ];
 
-/// The repository root (two levels above planlab-core's manifest).
+/// The repository root: the nearest folder above the including crate's
+/// manifest (planlab-core or fuzz/) that holds `assets/`.
 pub fn repo_root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+    let here = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    here.ancestors()
+        .find(|d| d.join("assets/scenarios").is_dir())
+        .unwrap_or(&here)
+        .to_path_buf()
 }
 
 /// The seed files of `t`, read (a `*` in the last component matches any
