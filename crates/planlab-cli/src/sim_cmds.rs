@@ -368,8 +368,10 @@ pub fn train_predictor(
     }
     let w = train(&cfg).map_err(|e| e.to_string())?;
     let r = &w.report;
-    // Weights that fail the quality check never replace the file.
-    if !(r.heldout_mse < r.heldout_mse_constant_velocity) {
+    // Weights that fail the quality check never replace the file (a NaN
+    // MSE fails too).
+    let beats = r.heldout_mse < r.heldout_mse_constant_velocity;
+    if !beats {
         return Err(format!(
             "the RNN does not beat constant velocity on the held-out set (MSE {:.3e} vs {:.3e} m²); {} not written",
             r.heldout_mse,
