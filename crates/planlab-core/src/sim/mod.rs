@@ -50,8 +50,10 @@ use crate::world::{
 pub const CLEARANCE_CAP: f64 = 5.0;
 
 /// The most steps one episode may take (`max_time / dt`), so a typo cannot
-/// start an endless run.
-pub const MAX_STEPS: f64 = 10_000_000.0;
+/// start an endless run. The trace keeps a row (a few hundred bytes) per
+/// step, so this also bounds an episode's memory (~0.3 GB; the presets
+/// take at most 8000 steps).
+pub const MAX_STEPS: f64 = 1_000_000.0;
 
 /// The longest control period, s. A step integrates the command over `dt`
 /// and checks collisions only at its end, so a long period moves the robot
