@@ -647,7 +647,9 @@ fn main() -> ExitCode {
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("planlab: error: {e}");
+            // One line whatever the message quotes (the core escapes its
+            // own; this covers file names and I/O errors).
+            eprintln!("planlab: error: {}", planlab_core::text::one_line(&e));
             ExitCode::FAILURE
         }
     }

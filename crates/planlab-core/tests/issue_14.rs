@@ -131,3 +131,22 @@ fn issue_14_numbers_in_errors_are_compact() {
     let e = planlab_core::map::MapError::BadResolution(-1e308).to_string();
     assert!(e.contains("-1e308") && e.len() < 100, "{e}");
 }
+
+#[test]
+fn issue_14_fuzz_found_newline_in_a_json_key_stays_one_line() {
+    // cargo fuzz (scenario_sim) found a scenario whose key holds an escaped
+    // newline: serde's "unknown field" message quoted it raw, two lines.
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../tests/data/malformed/fuzz-newline-in-key.scenario.json"),
+    )
+    .unwrap();
+    let e = Scenario::from_json(&text).unwrap_err().to_string();
+    assert!(!e.contains('\n'), "{e:?}");
+    assert!(
+        e.contains("unknown field `width") && e.contains("\\n"),
+        "{e}"
+    );
+    let e = edited(&[("local_planner.name", "dwa\nx")]).unwrap_err();
+    assert!(e.contains("unknown planner `dwa\\nx`"), "{e}");
+}

@@ -43,7 +43,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum LidarError {
     /// A parameter is NaN, infinite or out of range; the text names it.
-    #[error("invalid LiDAR parameter: {0}")]
+    #[error("invalid LiDAR parameter: {}", crate::text::one_line(.0))]
     InvalidParameter(String),
 }
 

@@ -104,7 +104,7 @@ pub const MAX_DENSITY: f64 = 0.6;
 #[non_exhaustive]
 pub enum GenerateError {
     /// A number is NaN, infinite or out of range; the text names it.
-    #[error("invalid generator setting: {0}")]
+    #[error("invalid generator setting: {}", crate::text::one_line(.0))]
     InvalidParameter(String),
     /// Random-fill density outside [0, [`MAX_DENSITY`]].
     #[error("density {}: must be a number from 0 to {MAX_DENSITY} (fraction of the area)", crate::num::fmt_num(*.0))]

@@ -118,7 +118,7 @@ pub enum MapError {
         height: usize,
     },
     /// A file could not be parsed; `line` is 1-based, 0 when not applicable.
-    #[error("{format} parse error{}: {message}", if *line > 0 { format!(" at line {line}") } else { String::new() })]
+    #[error("{format} parse error{}: {}", if *line > 0 { format!(" at line {line}") } else { String::new() }, crate::text::one_line(message))]
     Parse {
         /// Which format ("Moving AI map", "ROS yaml", "PGM", …).
         format: &'static str,
@@ -128,10 +128,14 @@ pub enum MapError {
         message: String,
     },
     /// A numeric parameter (a radius, a factor) is out of range.
-    #[error("invalid parameter: {0}")]
+    #[error("invalid parameter: {}", crate::text::one_line(.0))]
     InvalidParameter(String),
     /// A referenced file could not be read.
-    #[error("cannot read {path}: {message}")]
+    #[error(
+        "cannot read {}: {}",
+        crate::text::one_line(path),
+        crate::text::one_line(message)
+    )]
     Io {
         /// The path as given.
         path: String,

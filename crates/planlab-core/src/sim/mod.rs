@@ -196,7 +196,7 @@ pub enum SimError {
     #[error(transparent)]
     Map(#[from] MapError),
     /// A simulation setting is out of range; the text names it.
-    #[error("invalid simulation setting: {0}")]
+    #[error("invalid simulation setting: {}", crate::text::one_line(.0))]
     InvalidConfig(String),
     /// The goal is not a free point of the map.
     #[error("the goal ({x:.3}, {y:.3}) m {reason}")]

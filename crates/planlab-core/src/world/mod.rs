@@ -23,10 +23,10 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum WorldError {
     /// A parameter is NaN, infinite or out of its range; the text names it.
-    #[error("invalid {0}")]
+    #[error("invalid {}", crate::text::one_line(.0))]
     InvalidParameter(String),
     /// The map cannot be simulated (e.g. a rotated origin).
-    #[error("map not supported by the simulator: {0}")]
+    #[error("map not supported by the simulator: {}", crate::text::one_line(.0))]
     UnsupportedMap(String),
     /// The robot starts overlapping an obstacle.
     #[error("the robot starts in collision at ({x:.3}, {y:.3}) m: {with}")]

@@ -43,7 +43,10 @@ pub const PLAIN_ROWS_MAX_SIDE: usize = 100;
 pub enum ScenarioError {
     /// Malformed JSON, a wrong type, a missing or unknown field, or a bad
     /// inline map (serde reports where).
-    #[error("scenario JSON error at line {line}, column {column}: {message}")]
+    #[error(
+        "scenario JSON error at line {line}, column {column}: {}",
+        crate::text::one_line(message)
+    )]
     Json {
         /// 1-based line.
         line: usize,
@@ -61,7 +64,7 @@ pub enum ScenarioError {
         supported: u32,
     },
     /// A value is out of range or inconsistent (message names the field).
-    #[error("invalid scenario: {0}")]
+    #[error("invalid scenario: {}", crate::text::one_line(.0))]
     Invalid(String),
     /// The map (inline or referenced) is unusable.
     #[error(transparent)]
