@@ -2,25 +2,13 @@
 //! and hostile use. Scratch files live under this crate's
 //! `CARGO_TARGET_TMPDIR` (inside the repository's target/), never outside.
 
+mod common;
+
+use common::{asset, planlab};
 use serde_json::Value;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 use std::time::Instant;
-
-fn asset(rel: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets")
-        .join(rel)
-        .display()
-        .to_string()
-}
-
-fn planlab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_planlab"))
-        .args(args)
-        .output()
-        .expect("run planlab")
-}
 
 /// A fresh scratch folder for one test.
 fn scratch(name: &str) -> PathBuf {
