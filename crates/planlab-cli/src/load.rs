@@ -86,6 +86,15 @@ pub fn read_pgm(path: &Path) -> Result<Vec<u8>, String> {
             format!("{}: {e}", path.display())
         }
     })?;
+    // P5 bytes after the last pixel are ignored, so reading `limit` bytes
+    // is exact; a P2's spacing is free-form, so a longer P2 is refused
+    // rather than cut short.
+    if head.starts_with(b"P2") && len > limit {
+        return Err(format!(
+            "{}: too large for an ASCII PGM of its width × height ({len} bytes; at most {limit})",
+            path.display()
+        ));
+    }
     let want = len.min(limit);
     let mut bytes = Vec::with_capacity(want as usize);
     bytes.extend_from_slice(&head[..head.len().min(want as usize)]);

@@ -303,3 +303,30 @@ fn issue_14_huge_numbers_print_compactly() {
     );
     assert!(e.contains("1e300") && e.len() < 250, "{e}");
 }
+
+#[test]
+fn issue_14_fuzz_found_spacious_p2_is_refused_not_cut() {
+    // cargo fuzz (pgm) found that a valid P2 with long runs of whitespace
+    // between pixels exceeded the per-pixel read bound and was cut short,
+    // giving a misleading "truncated" error: it is refused by size instead.
+    let dir = scratch("p2");
+    let mut p2 = b"P2\n3 1\n255\n254".to_vec();
+    p2.extend(std::iter::repeat_n(b'\r', 100));
+    p2.extend_from_slice(b" 254 254\n");
+    std::fs::write(dir.join("m.pgm"), &p2).unwrap();
+    std::fs::write(
+        dir.join("m.yaml"),
+        "image: m.pgm\nresolution: 1\norigin: [0, 0, 0]\n",
+    )
+    .unwrap();
+    let yaml = dir.join("m.yaml").display().to_string();
+    let e = error_line(
+        &planlab(&["plan", &yaml, "--start", "0,0", "--goal", "1,0"]),
+        1,
+    );
+    assert!(e.contains("too large for an ASCII PGM"), "{e}");
+    // The same pixels with ordinary spacing load.
+    std::fs::write(dir.join("m.pgm"), b"P2\n3 1\n255\n254 254 254\n").unwrap();
+    let o = planlab(&["plan", &yaml, "--start", "0,0", "--goal", "2,0", "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

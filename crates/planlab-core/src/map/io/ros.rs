@@ -840,12 +840,13 @@ pub const P2_BYTES_PER_PIXEL: u64 = 16;
 /// accept before the pixels: callers read this much to learn the size.
 pub const PGM_HEADER_MAX_BYTES: usize = 64 * 1024;
 
-/// How many bytes of a PGM file [`parse_pgm`] can use, from its header
-/// (`bytes` holds at least the header; up to [`PGM_HEADER_MAX_BYTES`] is
-/// enough): the header plus width × height × bytes per pixel for P5 (bytes
-/// after the last pixel are ignored), and [`P2_BYTES_PER_PIXEL`] a pixel for
-/// P2. Checks the dimensions first, so a caller can read no more than this
-/// and never allocates for a file that lies about its size.
+/// How many bytes of a PGM file a reader needs, from its header (`bytes`
+/// holds at least the header; up to [`PGM_HEADER_MAX_BYTES`] is enough):
+/// for P5 exactly the header plus width × height × bytes per pixel (bytes
+/// after the last pixel are ignored); for P2, whose spacing and comments
+/// are free-form, a cap of [`P2_BYTES_PER_PIXEL`] a pixel (a longer P2 file
+/// is for the caller to refuse, not to cut). Checks the dimensions first,
+/// so a caller never allocates for a file that lies about its size.
 pub fn pgm_byte_limit(bytes: &[u8]) -> Result<u64, MapError> {
     let h = pgm_header(bytes)?;
     let n = check_dimensions(h.width, h.height)? as u64;
