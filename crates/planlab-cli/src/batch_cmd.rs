@@ -54,10 +54,25 @@ struct BatchFooter<'a> {
     seconds: f64,
 }
 
+/// The planner `name` of a batch of a scenario whose own planner is `own`:
+/// the scenario's own keeps its tuning; others start from their papers'
+/// defaults, as `planlab run --planner` does.
+pub(crate) fn choice_for(own: &PlannerChoice, name: &str) -> PlannerChoice {
+    if own.name == name {
+        own.clone()
+    } else {
+        PlannerChoice::named(name)
+    }
+}
+
 /// `planlab batch`.
 pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
-    if args.variants == 0 {
-        return Err("--variants must be at least 1".into());
+    if args.variants == 0 || args.variants > batch::MAX_VARIANTS {
+        return Err(format!(
+            "--variants {}: must be from 1 to {}",
+            args.variants,
+            batch::MAX_VARIANTS
+        ));
     }
     let text = load::read_text(path)?;
     let base = Scenario::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -79,56 +94,38 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
             if out.iter().any(|c| c.name == name) {
                 return Err(format!("--planners: `{name}` is listed twice"));
             }
-            // The scenario's own planner keeps its tuning; others start
-            // from their papers' defaults, as `planlab run --planner` does.
-            out.push(if own.name == name {
-                own.clone()
-            } else {
-                PlannerChoice::named(name)
-            });
+            out.push(choice_for(&own, name));
         }
         out
     };
     let started = Instant::now();
-    // Variants first (cheap, and identical for every planner), then every
-    // (variant, planner) episode in parallel.
-    let variants: Vec<Scenario> = (0..args.variants)
-        .into_par_iter()
-        .map(|i| batch::variant(&base, &grid, i, args.seed, args.jitter))
-        .collect::<Result<_, _>>()
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    let jobs: Vec<(u32, usize)> = (0..args.variants)
-        .flat_map(|v| (0..choices.len()).map(move |p| (v, p)))
-        .collect();
-    let rows: Vec<RunRow> = jobs
-        .par_iter()
-        .map(|&(v, p)| {
-            let mut s = variants[v as usize].clone();
-            s.local_planner = Some(choices[p].clone());
-            let mut ep = Episode::from_scenario(&s, grid.clone()).map_err(|e| {
-                format!(
-                    "{}: variant {v}, planner {}: {e}",
-                    path.display(),
-                    choices[p].name
-                )
-            })?;
-            let outcome = ep.run();
-            let metrics = EpisodeMetrics::from_trace(
-                ep.trace(),
-                &ep.planner_debug().global_path,
-                outcome,
-                DEFAULT_LOAD_THRESHOLD_N,
-            );
-            Ok(RunRow {
-                variant: v,
-                planner: p,
-                seed: s.seed.unwrap_or(0),
-                steps: ep.steps(),
-                hash: ep.trace().hash(),
-                metrics,
-            })
-        })
-        .collect::<Result<_, String>>()?;
+    // The CSV is opened first and written a chunk of variants at a time, so
+    // a long batch shows its rows as they finish and a bad path fails fast.
+    let mut csv = match args.csv {
+        Some(p) => {
+            let f = std::fs::File::create(p)
+                .map_err(|e| format!("cannot write {}: {e}", p.display()))?;
+            let mut w = std::io::BufWriter::new(f);
+            std::io::Write::write_all(&mut w, csv_header().as_bytes())
+                .map_err(|e| format!("cannot write {}: {e}", p.display()))?;
+            Some((p, w))
+        }
+        None => None,
+    };
+    let chunk = (rayon::current_num_threads() as u32 * 4).max(8);
+    let mut rows: Vec<RunRow> = Vec::new();
+    let mut from = 0u32;
+    while from < args.variants {
+        let to = from.saturating_add(chunk).min(args.variants);
+        let chunk_rows = run_variants(path, &base, &grid, &choices, from..to, args)?;
+        if let Some((p, w)) = csv.as_mut() {
+            std::io::Write::write_all(w, runs_csv(&chunk_rows, &choices, args).as_bytes())
+                .and_then(|()| std::io::Write::flush(w))
+                .map_err(|e| format!("cannot write {}: {e}", p.display()))?;
+        }
+        rows.extend(chunk_rows);
+        from = to;
+    }
     let seconds = started.elapsed().as_secs_f64();
 
     let summaries: Vec<PlannerSummary> = choices
@@ -144,10 +141,6 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
         })
         .collect();
 
-    if let Some(csv) = args.csv {
-        std::fs::write(csv, runs_csv(&rows, &choices))
-            .map_err(|e| format!("cannot write {}: {e}", csv.display()))?;
-    }
     let footer = BatchFooter {
         scenario: if base.name.is_empty() {
             path.to_str().unwrap_or("")
@@ -178,19 +171,78 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
     Ok(())
 }
 
-/// One CSV row per episode.
-fn runs_csv(rows: &[RunRow], choices: &[PlannerChoice]) -> String {
-    let mut s = format!(
-        "variant,planner,seed,steps,trace_hash,outcome,{}\n",
+/// Variants `range` (built in parallel, identical for every planner), then
+/// every (variant, planner) episode in parallel.
+fn run_variants(
+    path: &Path,
+    base: &Scenario,
+    grid: &planlab_core::map::OccupancyGrid,
+    choices: &[PlannerChoice],
+    range: std::ops::Range<u32>,
+    args: &BatchArgs<'_>,
+) -> Result<Vec<RunRow>, String> {
+    let variants: Vec<Scenario> = range
+        .clone()
+        .into_par_iter()
+        .map(|i| batch::variant(base, grid, i, args.seed, args.jitter))
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let jobs: Vec<(u32, usize)> = range
+        .flat_map(|v| (0..choices.len()).map(move |p| (v, p)))
+        .collect();
+    let first = jobs.first().map_or(0, |j| j.0);
+    jobs.par_iter()
+        .map(|&(v, p)| {
+            let mut s = variants[(v - first) as usize].clone();
+            s.local_planner = Some(choices[p].clone());
+            let mut ep = Episode::from_scenario(&s, grid.clone()).map_err(|e| {
+                format!(
+                    "{}: variant {v}, planner {}: {e}",
+                    path.display(),
+                    choices[p].name
+                )
+            })?;
+            let outcome = ep.run();
+            let metrics = EpisodeMetrics::from_trace(
+                ep.trace(),
+                &ep.planner_debug().global_path,
+                outcome,
+                DEFAULT_LOAD_THRESHOLD_N,
+            );
+            Ok(RunRow {
+                variant: v,
+                planner: p,
+                seed: s.seed.unwrap_or(0),
+                steps: ep.steps(),
+                hash: ep.trace().hash(),
+                metrics,
+            })
+        })
+        .collect()
+}
+
+/// The CSV's first line. `batch_seed` and `jitter_m` with `variant` and
+/// `planner` replay a row: `planlab run SCENARIO --planner P --variant K
+/// --seed BATCH_SEED --jitter J` (`seed` is the episode's own seed).
+fn csv_header() -> String {
+    format!(
+        "variant,planner,seed,batch_seed,jitter_m,steps,trace_hash,outcome,{}\n",
         batch::METRIC_NAMES.join(",")
-    );
+    )
+}
+
+/// One CSV row per episode (no header).
+fn runs_csv(rows: &[RunRow], choices: &[PlannerChoice], args: &BatchArgs<'_>) -> String {
+    let mut s = String::new();
     for r in rows {
         let _ = write!(
             s,
-            "{},{},{},{},{:016x},{}",
+            "{},{},{},{},{:?},{},{:016x},{}",
             r.variant,
             choices[r.planner].name,
             r.seed,
+            args.seed,
+            args.jitter,
             r.steps,
             r.hash,
             r.metrics.outcome.as_str()

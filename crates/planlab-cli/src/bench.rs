@@ -42,6 +42,7 @@ pub fn bench_grid(
     rows: &[ScenRow],
     reps: usize,
 ) -> Result<BenchReport, String> {
+    check_count("--reps", reps, MAX_BENCH_REPS)?;
     if rows.is_empty() {
         return Err("the scenario has no rows".into());
     }
@@ -136,9 +137,25 @@ fn median(xs: &[f64]) -> f64 {
     }
 }
 
+/// Most repetitions, blocks or passes of a benchmark (each is at least one
+/// full run; more is a typo, and the timings are kept in memory).
+const MAX_BENCH_REPS: usize = 10_000;
+/// Most DWA steps per timed block.
+const MAX_BENCH_STEPS: usize = 1_000_000;
+
+/// Refuses a count above `max` before anything is sized by it.
+fn check_count(flag: &str, n: usize, max: usize) -> Result<(), String> {
+    if n > max {
+        return Err(format!("{flag} {n}: at most {max}"));
+    }
+    Ok(())
+}
+
 /// Times [`DwaStepBench`](planlab_core::bench::DwaStepBench) in `blocks`
 /// blocks of `steps` steps after one untimed warm-up block.
 pub fn bench_step(steps: usize, blocks: usize) -> Result<StepReport, String> {
+    check_count("--steps", steps, MAX_BENCH_STEPS)?;
+    check_count("--blocks", blocks, MAX_BENCH_REPS)?;
     let (steps, blocks) = (steps.max(1), blocks.max(1));
     let mut b = planlab_core::bench::DwaStepBench::reference().map_err(|e| e.to_string())?;
     let checksum = b.run(steps);
@@ -170,6 +187,8 @@ pub fn bench_scen(
     reps: usize,
     inner: usize,
 ) -> Result<ScenReport, String> {
+    check_count("--reps", reps, MAX_BENCH_REPS)?;
+    check_count("--inner", inner, MAX_BENCH_REPS)?;
     let (reps, inner) = (reps.max(1), inner.max(1));
     let options = planlab_core::global::plan::GridPlanOptions::default();
     let batch = planlab_core::bench::ScenBatch::new(grid, scen_text, &options)

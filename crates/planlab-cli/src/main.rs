@@ -221,9 +221,22 @@ enum Command {
         /// config is reset to the defaults when the name changes.
         #[arg(long)]
         planner: Option<String>,
-        /// Seed of the episode's random streams.
+        /// Seed of the episode's random streams (with --variant: the
+        /// batch's seed, default 0).
         #[arg(long)]
         seed: Option<u64>,
+        /// Run variant K of `planlab batch` (same --seed and --jitter) to
+        /// replay a row of its CSV.
+        #[arg(long, value_name = "K")]
+        variant: Option<u32>,
+        /// With --variant: the batch's jitter, metres.
+        #[arg(
+            long,
+            default_value_t = 0.3,
+            allow_hyphen_values = true,
+            requires = "variant"
+        )]
+        jitter: f64,
         /// Edit the scenario before reading it: a dotted path and a JSON
         /// value (or plain text), e.g. `sim.dt=0.05`, `movers.0.radius=0.4`,
         /// `local_planner.config.alpha=0.2`. Repeatable.
@@ -388,6 +401,8 @@ fn run(cli: Cli) -> Result<(), String> {
             scenario,
             planner,
             seed,
+            variant,
+            jitter,
             set,
             json,
             trace,
@@ -399,6 +414,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 set: &set,
                 json,
                 trace: trace.as_deref(),
+                variant: variant.map(|k| (k, jitter)),
             },
         ),
         Command::Planners { json } => sim_cmds::planners(json),
@@ -524,7 +540,8 @@ fn run(cli: Cli) -> Result<(), String> {
             if let Some(r) = inflate {
                 if !(r.is_finite() && r >= 0.0) {
                     return Err(format!(
-                        "--inflate {r}: must be a finite number ≥ 0 (metres)"
+                        "--inflate {}: must be a finite number ≥ 0 (metres)",
+                        planlab_core::num::fmt_num(r)
                     ));
                 }
                 options.inflate_m = r;
@@ -587,8 +604,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 },
         } => {
             let grid = load::load_movingai(&map)?;
-            let text = std::fs::read_to_string(&scen)
-                .map_err(|e| format!("cannot read {}: {e}", scen.display()))?;
+            let text = load::read_text(&scen)?;
             let report = bench::bench_scen(&grid, &text, reps, inner)?;
             println!(
                 "{}",
@@ -599,12 +615,41 @@ fn run(cli: Cli) -> Result<(), String> {
     }
 }
 
+/// clap's usage error as one line: its message and the list under it
+/// (missing arguments, valid values, the tip), without the usage block.
+fn usage_error_line(e: &clap::Error) -> String {
+    let text = e.render().to_string();
+    let body = text.split("\nUsage:").next().unwrap_or(&text);
+    let body = body.split("\nFor more information").next().unwrap_or(body);
+    let body = body.trim().strip_prefix("error:").unwrap_or(body).trim();
+    let mut line = body.split_whitespace().collect::<Vec<_>>().join(" ");
+    line = line.replace(" tip:", "; tip:");
+    format!("{line} (see --help)")
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    use clap::error::ErrorKind;
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) => {
+            e.exit()
+        }
+        Err(e) => {
+            let line = if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                "a command is required (see planlab --help)".to_string()
+            } else {
+                usage_error_line(&e)
+            };
+            eprintln!("planlab: error: {line}");
+            return ExitCode::from(2);
+        }
+    };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("planlab: error: {e}");
+            // One line whatever the message quotes (the core escapes its
+            // own; this covers file names and I/O errors).
+            eprintln!("planlab: error: {}", planlab_core::text::one_line(&e));
             ExitCode::FAILURE
         }
     }

@@ -39,6 +39,9 @@ pub struct RunArgs<'a> {
     pub json: bool,
     /// Write the per-step trace CSV here.
     pub trace: Option<&'a Path>,
+    /// Run `planlab batch`'s variant K (with `seed` as the batch seed and
+    /// this jitter) instead of the scenario as written.
+    pub variant: Option<(u32, f64)>,
 }
 
 /// What `planlab run --json` prints: the run's identity, then the metrics.
@@ -94,6 +97,36 @@ fn edited_scenario(
     })?;
     let grid = load::grid_of(path, &scenario)?;
     Ok((scenario, grid))
+}
+
+/// Variant `k` of `planlab batch SCENARIO --seed S --jitter J`, built the
+/// way the batch builds it (from the scenario with the `--set` edits, the
+/// planner swapped in afterwards), so a CSV row's trace is reproduced.
+fn batch_variant(
+    path: &Path,
+    args: &RunArgs<'_>,
+    k: u32,
+    jitter: f64,
+) -> Result<(Scenario, OccupancyGrid), String> {
+    if k >= planlab_core::batch::MAX_VARIANTS {
+        return Err(format!(
+            "--variant {k}: must be below {}",
+            planlab_core::batch::MAX_VARIANTS
+        ));
+    }
+    let base_args = RunArgs {
+        planner: None,
+        seed: None,
+        ..*args
+    };
+    let (base, grid) = edited_scenario(path, &base_args)?;
+    let mut s = planlab_core::batch::variant(&base, &grid, k, args.seed.unwrap_or(0), jitter)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    if let Some(name) = args.planner {
+        let own = base.local_planner.clone().unwrap_or_default();
+        s.local_planner = Some(crate::batch_cmd::choice_for(&own, name));
+    }
+    Ok((s, grid))
 }
 
 /// What `planlab run --json` prints for a scenario with an `apf` section.
@@ -183,11 +216,20 @@ pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
     // An arm scenario (`arm` section, no map) runs the arm episode.
     if let Ok(tree) = serde_json::from_str::<serde_json::Value>(&load::read_text(path)?) {
         if planlab_core::arm::ArmScenario::is_arm(&tree) {
+            if args.variant.is_some() {
+                return Err("--variant: arm scenarios have no batch variants".into());
+            }
             return crate::arm_cmds::run(path, tree, args);
         }
     }
-    let (scenario, grid) = edited_scenario(path, args)?;
+    let (scenario, grid) = match args.variant {
+        None => edited_scenario(path, args)?,
+        Some((k, jitter)) => batch_variant(path, args, k, jitter)?,
+    };
     if scenario.apf.is_some() {
+        if args.variant.is_some() {
+            return Err("--variant: APF scenarios have no batch variants".into());
+        }
         return run_apf(path, &scenario, &grid, args);
     }
     let mut ep =
@@ -312,13 +354,33 @@ pub fn train_predictor(
         trajectories,
         ..TrainConfig::default()
     };
-    let w = train(&cfg).map_err(|e| e.to_string())?;
-    let text = serde_json::to_string_pretty(&w).map_err(|e| e.to_string())?;
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    // The folder must exist: a typo in --out should not create folders.
+    let dir = out
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or_else(|| Path::new("."));
+    if !dir.is_dir() {
+        return Err(format!(
+            "--out {}: the folder {} does not exist",
+            out.display(),
+            dir.display()
+        ));
     }
-    std::fs::write(out, text + "\n").map_err(|e| format!("cannot write {}: {e}", out.display()))?;
+    let w = train(&cfg).map_err(|e| e.to_string())?;
+    let r = &w.report;
+    // Weights that fail the quality check never replace the file (a NaN
+    // MSE fails too).
+    let beats = r.heldout_mse < r.heldout_mse_constant_velocity;
+    if !beats {
+        return Err(format!(
+            "the RNN does not beat constant velocity on the held-out set (MSE {:.3e} vs {:.3e} m²); {} not written",
+            r.heldout_mse,
+            r.heldout_mse_constant_velocity,
+            out.display()
+        ));
+    }
+    let text = serde_json::to_string_pretty(&w).map_err(|e| e.to_string())? + "\n";
+    write_atomically(out, text.as_bytes())?;
     let r = &w.report;
     if json {
         println!("{}", serde_json::to_string(r).map_err(|e| e.to_string())?);
@@ -340,9 +402,25 @@ pub fn train_predictor(
         );
         println!("weights written to {}", out.display());
     }
-    if r.heldout_mse < r.heldout_mse_constant_velocity {
-        Ok(())
-    } else {
-        Err("the RNN does not beat constant velocity on the held-out set".into())
+    Ok(())
+}
+
+/// Writes `bytes` to `out` through a temporary file in the same folder
+/// renamed over it, so a reader never sees half a file and a failed write
+/// leaves the old one.
+pub(crate) fn write_atomically(out: &Path, bytes: &[u8]) -> Result<(), String> {
+    let name = out
+        .file_name()
+        .ok_or_else(|| format!("{}: not a file name", out.display()))?;
+    let mut tmp_name = std::ffi::OsString::from(".");
+    tmp_name.push(name);
+    tmp_name.push(format!(".tmp{}", std::process::id()));
+    let tmp = out.with_file_name(tmp_name);
+    let result = std::fs::write(&tmp, bytes)
+        .and_then(|()| std::fs::rename(&tmp, out))
+        .map_err(|e| format!("cannot write {}: {e}", out.display()));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
     }
+    result
 }

@@ -1,23 +1,15 @@
 //! `planlab batch`: seeded variants, several planners, per-planner
 //! statistics, the per-run CSV, determinism and one-line errors.
 
+mod common;
+
+use common::planlab;
 use serde_json::Value;
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
 fn preset(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/scenarios")
-        .join(name)
-        .display()
-        .to_string()
-}
-
-fn planlab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_planlab"))
-        .args(args)
-        .output()
-        .expect("run planlab")
+    common::asset(&format!("scenarios/{name}"))
 }
 
 fn lines_of(o: &Output) -> Vec<Value> {

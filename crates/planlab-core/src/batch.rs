@@ -20,10 +20,10 @@ use crate::world::MotionModel;
 #[non_exhaustive]
 pub enum BatchError {
     /// The jitter radius is negative or not finite.
-    #[error("jitter must be a finite number of metres ≥ 0, got {0}")]
+    #[error("jitter must be a finite number of metres from 0 to {}, got {}", crate::num::fmt_num(crate::num::MAX_PARAM), crate::num::fmt_num(*.0))]
     BadJitter(f64),
     /// No valid placement was found for a variant within the retry budget.
-    #[error("variant {index}: no valid start/goal/mover placement in {tries} draws within {jitter} m (last error: {last})")]
+    #[error("variant {index}: no valid start/goal/mover placement in {tries} draws within {} m (last error: {last})", crate::num::fmt_num(*.jitter))]
     NoPlacement {
         /// Variant index.
         index: u32,
@@ -35,6 +35,11 @@ pub enum BatchError {
         last: String,
     },
 }
+
+/// The most variants one batch may ask for: each is an episode per planner,
+/// so this is hours of work already; more is a typo (issue 14:
+/// `--variants 4294967295` ran for minutes with no output).
+pub const MAX_VARIANTS: u32 = 10_000;
 
 /// Draws tried per variant before giving up: a draw is rejected when the
 /// episode cannot start (start or goal in a wall, robot on a mover …).
@@ -60,7 +65,7 @@ pub fn variant(
     seed: u64,
     jitter: f64,
 ) -> Result<Scenario, BatchError> {
-    if !(jitter.is_finite() && jitter >= 0.0) {
+    if !(jitter.is_finite() && (0.0..=crate::num::MAX_PARAM).contains(&jitter)) {
         return Err(BatchError::BadJitter(jitter));
     }
     let vseed = variant_seed(seed, index);

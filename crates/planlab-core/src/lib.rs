@@ -28,4 +28,5 @@ pub mod metrics;
 pub mod num;
 pub mod reproduce;
 pub mod sim;
+pub mod text;
 pub mod world;

@@ -9,6 +9,48 @@
 
 use std::f64::consts::PI;
 
+/// The largest value any time (s), speed (m/s, rad/s), acceleration,
+/// size or distance (m) parameter of a scenario may take. Far above any
+/// robot's (a million metres, 11 days), low enough that products of a few
+/// of them stay finite and that sizes derived from them are refused before
+/// anything is allocated.
+pub const MAX_PARAM: f64 = 1e6;
+
+/// `x` for an error message: the shortest decimal that reads back as `x`,
+/// in exponent form when that is shorter for huge or tiny magnitudes
+/// (`1e308`, not 309 digits).
+///
+/// ```
+/// use planlab_core::num::fmt_num;
+/// assert_eq!(fmt_num(0.05), "0.05");
+/// assert_eq!(fmt_num(1e308), "1e308");
+/// assert_eq!(fmt_num(-2.5e-12), "-2.5e-12");
+/// assert_eq!(fmt_num(f64::NAN), "NaN");
+/// ```
+pub fn fmt_num(x: f64) -> String {
+    let plain = format!("{x}");
+    let exp = format!("{x:e}");
+    if x.is_finite() && exp.len() < plain.len() {
+        exp
+    } else {
+        plain
+    }
+}
+
+/// Why `value` is not a valid parameter that must be finite, ≥ `min` (>
+/// when `strict`) and at most [`MAX_PARAM`]; `None` when it is valid. The
+/// validators of every section word their errors with it.
+pub(crate) fn param_problem(value: f64, min: f64, strict: bool) -> Option<String> {
+    let rel = if strict { ">" } else { "≥" };
+    if !(value.is_finite() && if strict { value > min } else { value >= min }) {
+        Some(format!("must be a finite number {rel} {}", fmt_num(min)))
+    } else if value > MAX_PARAM {
+        Some(format!("must be at most {}", fmt_num(MAX_PARAM)))
+    } else {
+        None
+    }
+}
+
 /// Sine (deterministic across targets).
 #[inline]
 pub fn sin(x: f64) -> f64 {

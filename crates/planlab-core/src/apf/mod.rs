@@ -55,7 +55,7 @@ pub use vector::{ApfVector, Sampling};
 #[non_exhaustive]
 pub enum ApfError {
     /// A config value is NaN, infinite or out of range; the text names it.
-    #[error("invalid APF parameter: {0}")]
+    #[error("invalid APF parameter: {}", crate::text::one_line(.0))]
     InvalidParameter(String),
     /// The goal lies inside an obstacle (unreachable).
     #[error("the goal {goal:?} is inside obstacle {id} (unreachable)")]
@@ -84,7 +84,7 @@ pub enum ApfError {
         got: Vec<f64>,
     },
     /// Predictor weights are malformed.
-    #[error("predictor weights: {0}")]
+    #[error("predictor weights: {}", crate::text::one_line(.0))]
     BadWeights(String),
 }
 

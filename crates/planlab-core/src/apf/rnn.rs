@@ -409,6 +409,13 @@ pub fn loss_and_grads(w: &RnnWeights, batch: &[Window]) -> (f64, Grads) {
     (loss, g)
 }
 
+/// Most passes over the training set (the shipped weights take 60).
+pub const MAX_TRAIN_EPOCHS: usize = 10_000;
+/// Most training (or held-out) trajectories (the shipped weights take 80).
+pub const MAX_TRAIN_TRAJECTORIES: usize = 10_000;
+/// Largest Adam batch.
+pub const MAX_TRAIN_BATCH: usize = 100_000;
+
 /// Training settings of `planlab train-predictor`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -444,10 +451,21 @@ impl Default for TrainConfig {
 /// halved for the last third) and evaluates it and constant velocity on
 /// held-out trajectories. Deterministic for a config.
 pub fn train(cfg: &TrainConfig) -> Result<RnnWeights, ApfError> {
-    if cfg.batch == 0 || cfg.trajectories == 0 || cfg.heldout_trajectories == 0 {
-        return Err(ApfError::InvalidParameter(
-            "train: batch and trajectory counts must be > 0".into(),
-        ));
+    for (name, n, max) in [
+        ("epochs", cfg.epochs as usize, MAX_TRAIN_EPOCHS),
+        ("trajectories", cfg.trajectories, MAX_TRAIN_TRAJECTORIES),
+        (
+            "heldout_trajectories",
+            cfg.heldout_trajectories,
+            MAX_TRAIN_TRAJECTORIES,
+        ),
+        ("batch", cfg.batch, MAX_TRAIN_BATCH),
+    ] {
+        if n == 0 || n > max {
+            return Err(ApfError::InvalidParameter(format!(
+                "train: {name} = {n}: must be from 1 to {max}"
+            )));
+        }
     }
     if !(cfg.learning_rate.is_finite() && cfg.learning_rate > 0.0) {
         return Err(ApfError::InvalidParameter(format!(

@@ -256,10 +256,12 @@ impl std::fmt::Debug for ArmEpisode {
 }
 
 fn check_pos(what: &str, v: f64) -> Result<(), ArmError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(ArmError::Invalid(format!("{what} must be > 0, got {v}")))
+    match crate::num::param_problem(v, 0.0, true) {
+        None => Ok(()),
+        Some(p) => Err(ArmError::Invalid(format!(
+            "{what} = {}: {p}",
+            crate::num::fmt_num(v)
+        ))),
     }
 }
 

@@ -42,9 +42,10 @@ impl Obstacle3 {
         if pts.iter().flatten().any(|x| !x.is_finite()) || !r.is_finite() {
             return Err(ArmError::NotFinite(what.to_string()));
         }
-        if r < 0.0 {
+        if let Some(p) = crate::num::param_problem(r, 0.0, false) {
             return Err(ArmError::Invalid(format!(
-                "{what}: radius must be ≥ 0 m, got {r}"
+                "{what}: radius {} m: {p}",
+                crate::num::fmt_num(r)
             )));
         }
         Ok(())

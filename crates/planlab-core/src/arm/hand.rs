@@ -152,20 +152,16 @@ fn min_jerk(t: f64) -> f64 {
 impl HandMotion {
     /// Validates `spec` and draws its variation from `seed`.
     pub fn new(spec: &HandSpec, seed: u64) -> Result<HandMotion, ArmError> {
-        let pos = |f: &str, v: f64| -> Result<(), ArmError> {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(ArmError::Invalid(format!("hand.{f} must be > 0, got {v}")))
-            }
+        let check = |f: &str, v: f64, strict: bool| match crate::num::param_problem(v, 0.0, strict)
+        {
+            None => Ok(()),
+            Some(p) => Err(ArmError::Invalid(format!(
+                "hand.{f} = {}: {p}",
+                crate::num::fmt_num(v)
+            ))),
         };
-        let nonneg = |f: &str, v: f64| -> Result<(), ArmError> {
-            if v.is_finite() && v >= 0.0 {
-                Ok(())
-            } else {
-                Err(ArmError::Invalid(format!("hand.{f} must be ≥ 0, got {v}")))
-            }
-        };
+        let pos = |f: &str, v: f64| check(f, v, true);
+        let nonneg = |f: &str, v: f64| check(f, v, false);
         pos("speed", spec.speed)?;
         pos("hand_radius_m", spec.hand_radius_m)?;
         pos("forearm_radius_m", spec.forearm_radius_m)?;

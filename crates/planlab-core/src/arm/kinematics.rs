@@ -126,14 +126,20 @@ impl Default for IkConfig {
 impl IkConfig {
     /// Refuses non-finite or out-of-range values, naming the field.
     pub fn validate(&self) -> Result<(), ArmError> {
-        let bad = |f: &str, v: f64| ArmError::Invalid(format!("ik.{f} must be > 0, got {v}"));
+        let bad = |f: &str, v: f64| {
+            ArmError::Invalid(format!(
+                "ik.{f} = {}: must be > 0 and at most {}",
+                crate::num::fmt_num(v),
+                crate::num::fmt_num(crate::num::MAX_PARAM)
+            ))
+        };
         for (f, v) in [
             ("damping", self.damping),
             ("damping_threshold", self.damping_threshold),
             ("tolerance_m", self.tolerance_m),
             ("max_joint_step_rad", self.max_joint_step_rad),
         ] {
-            if !v.is_finite() || v <= 0.0 {
+            if crate::num::param_problem(v, 0.0, true).is_some() {
                 return Err(bad(f, v));
             }
         }

@@ -30,7 +30,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum ArmError {
     /// Malformed JSON, a wrong type, a missing or unknown field.
-    #[error("arm JSON error: {0}")]
+    #[error("arm JSON error: {}", crate::text::one_line(.0))]
     Json(String),
     /// The chain has no joints.
     #[error("the arm has no joints: `joints` needs at least one")]
@@ -44,10 +44,10 @@ pub enum ArmError {
         max: usize,
     },
     /// A number is NaN or infinite (names the field).
-    #[error("{0} is not a finite number")]
+    #[error("{} is not a finite number", crate::text::one_line(.0))]
     NotFinite(String),
     /// A joint's lower limit exceeds its upper limit.
-    #[error("joint {joint}: lower limit {min} rad exceeds upper limit {max} rad")]
+    #[error("joint {}: lower limit {} rad exceeds upper limit {} rad", crate::text::one_line(.joint), crate::num::fmt_num(*.min), crate::num::fmt_num(*.max))]
     LimitsInverted {
         /// Joint name.
         joint: String,
@@ -57,7 +57,7 @@ pub enum ArmError {
         max: f64,
     },
     /// A joint axis has zero length.
-    #[error("joint {0}: the axis must not be zero")]
+    #[error("joint {}: the axis must not be zero", crate::text::one_line(.0))]
     ZeroAxis(String),
     /// A joint vector has the wrong number of entries.
     #[error("{what} has {found} joint values; the arm has {expected} joints")]
@@ -70,7 +70,7 @@ pub enum ArmError {
         found: usize,
     },
     /// A joint value lies outside its limits.
-    #[error("joint {joint}: {value} rad is outside its limits [{min}, {max}] rad")]
+    #[error("joint {}: {} rad is outside its limits [{}, {}] rad", crate::text::one_line(.joint), crate::num::fmt_num(*.value), crate::num::fmt_num(*.min), crate::num::fmt_num(*.max))]
     OutsideLimits {
         /// Joint name.
         joint: String,
@@ -115,7 +115,7 @@ pub enum ArmError {
         error_m: f64,
     },
     /// Any other out-of-range or inconsistent value (names the field).
-    #[error("invalid arm setting: {0}")]
+    #[error("invalid arm setting: {}", crate::text::one_line(.0))]
     Invalid(String),
 }
 

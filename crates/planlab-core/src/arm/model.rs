@@ -341,8 +341,11 @@ fn check_radius(what: &str, r: f64) -> Result<(), ArmError> {
     if !r.is_finite() {
         return Err(ArmError::NotFinite(what.to_string()));
     }
-    if r < 0.0 {
-        return Err(ArmError::Invalid(format!("{what} must be ≥ 0 m, got {r}")));
+    match crate::num::param_problem(r, 0.0, false) {
+        None => Ok(()),
+        Some(p) => Err(ArmError::Invalid(format!(
+            "{what} = {} m: {p}",
+            crate::num::fmt_num(r)
+        ))),
     }
-    Ok(())
 }

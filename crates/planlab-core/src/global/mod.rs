@@ -160,7 +160,7 @@ pub enum PlanError {
         expanded: usize,
     },
     /// A configuration value is out of range.
-    #[error("invalid planner configuration: {0}")]
+    #[error("invalid planner configuration: {}", crate::text::one_line(.0))]
     InvalidConfig(String),
 }
 

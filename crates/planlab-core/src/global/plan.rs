@@ -134,7 +134,7 @@ pub enum GridPlanError {
     Map(#[from] MapError),
     /// The endpoint is free on the map but inside the inflated obstacles.
     #[error(
-        "{which} ({col}, {row}) is within {inflate_m} m of an obstacle: blocked after inflation"
+        "{which} ({col}, {row}) is within {} m of an obstacle: blocked after inflation", crate::num::fmt_num(*.inflate_m)
     )]
     BlockedByInflation {
         /// Start or goal.

@@ -46,7 +46,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum LidarError {
     /// A parameter is NaN, infinite or out of range; the text names it.
-    #[error("invalid LiDAR parameter: {0}")]
+    #[error("invalid LiDAR parameter: {}", crate::text::one_line(.0))]
     InvalidParameter(String),
 }
 
@@ -59,13 +59,11 @@ pub(crate) fn check(
     min: f64,
     strict: bool,
 ) -> Result<(), LidarError> {
-    let ok = value.is_finite() && if strict { value > min } else { value >= min };
-    if ok {
-        Ok(())
-    } else {
-        let rel = if strict { ">" } else { "≥" };
-        Err(LidarError::InvalidParameter(format!(
-            "{prefix}.{field} = {value}: must be a finite number {rel} {min}"
-        )))
+    match crate::num::param_problem(value, min, strict) {
+        None => Ok(()),
+        Some(p) => Err(LidarError::InvalidParameter(format!(
+            "{prefix}.{field} = {}: {p}",
+            crate::num::fmt_num(value)
+        ))),
     }
 }

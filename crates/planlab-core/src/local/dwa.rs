@@ -243,19 +243,19 @@ pub(crate) fn check(
     min: f64,
     strict: bool,
 ) -> Result<(), LocalError> {
-    let ok = value.is_finite() && if strict { value > min } else { value >= min };
-    if ok {
-        Ok(())
-    } else {
-        let rel = if strict { ">" } else { "≥" };
-        let name = if prefix.is_empty() {
-            field.to_string()
-        } else {
-            format!("{prefix}.{field}")
-        };
-        Err(LocalError::InvalidParameter(format!(
-            "{name} = {value}: must be a finite number {rel} {min}"
-        )))
+    match crate::num::param_problem(value, min, strict) {
+        None => Ok(()),
+        Some(p) => {
+            let name = if prefix.is_empty() {
+                field.to_string()
+            } else {
+                format!("{prefix}.{field}")
+            };
+            Err(LocalError::InvalidParameter(format!(
+                "{name} = {}: {p}",
+                crate::num::fmt_num(value)
+            )))
+        }
     }
 }
 

@@ -165,12 +165,12 @@ pub trait LocalPlanner {
 #[non_exhaustive]
 pub enum LocalError {
     /// A config value is NaN, infinite or out of range; the text names it.
-    #[error("invalid planner parameter: {0}")]
+    #[error("invalid planner parameter: {}", crate::text::one_line(.0))]
     InvalidParameter(String),
     /// No name in the registry matches.
-    #[error("unknown planner `{0}` (see `planlab planners`)")]
+    #[error("unknown planner `{}` (see `planlab planners`)", crate::text::one_line(.0))]
     UnknownPlanner(String),
     /// The global planner found no path.
-    #[error("no global path: {0}")]
+    #[error("no global path: {}", crate::text::one_line(.0))]
     NoGlobalPath(String),
 }

@@ -104,16 +104,16 @@ pub const MAX_DENSITY: f64 = 0.6;
 #[non_exhaustive]
 pub enum GenerateError {
     /// A number is NaN, infinite or out of range; the text names it.
-    #[error("invalid generator setting: {0}")]
+    #[error("invalid generator setting: {}", crate::text::one_line(.0))]
     InvalidParameter(String),
     /// Random-fill density outside [0, [`MAX_DENSITY`]].
-    #[error("density {0}: must be a number from 0 to {MAX_DENSITY} (fraction of the area)")]
+    #[error("density {}: must be a number from 0 to {MAX_DENSITY} (fraction of the area)", crate::num::fmt_num(*.0))]
     BadDensity(f64),
     /// The map is empty or larger than [`GENERATE_MAX_CELLS`].
     #[error(transparent)]
     Map(#[from] MapError),
     /// Corridors (or doors) too narrow for the robot.
-    #[error("corridor {corridor_m} m is too narrow for a robot of radius {robot_radius} m at {resolution} m per cell: at least {needed_m:.2} m")]
+    #[error("corridor {} m is too narrow for a robot of radius {} m at {} m per cell: at least {needed_m:.2} m", crate::num::fmt_num(*.corridor_m), crate::num::fmt_num(*.robot_radius), crate::num::fmt_num(*.resolution))]
     TooNarrow {
         /// The corridor width asked for, m.
         corridor_m: f64,
@@ -125,7 +125,7 @@ pub enum GenerateError {
         needed_m: f64,
     },
     /// The map is too small for the structure asked for.
-    #[error("a {width_m} × {height_m} m map is too small for {what}")]
+    #[error("a {} × {} m map is too small for {what}", crate::num::fmt_num(*.width_m), crate::num::fmt_num(*.height_m))]
     TooSmall {
         /// Map width, m.
         width_m: f64,
@@ -135,7 +135,7 @@ pub enum GenerateError {
         what: String,
     },
     /// No two cells the robot can stand on are connected.
-    #[error("the generated map has no connected free space for a robot of radius {robot_radius} m (seed {seed})")]
+    #[error("the generated map has no connected free space for a robot of radius {} m (seed {seed})", crate::num::fmt_num(*.robot_radius))]
     NoFreeSpace {
         /// The robot radius, m.
         robot_radius: f64,

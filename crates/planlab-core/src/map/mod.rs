@@ -93,10 +93,10 @@ pub enum MapError {
         got: u64,
     },
     /// Resolution not finite and positive.
-    #[error("invalid resolution {0}: must be a finite number > 0 (metres per cell)")]
+    #[error("invalid resolution {}: must be a finite number > 0 (metres per cell)", crate::num::fmt_num(*.0))]
     BadResolution(f64),
     /// Origin not finite.
-    #[error("invalid origin ({x}, {y}, {yaw}): all components must be finite")]
+    #[error("invalid origin ({}, {}, {}): all components must be finite", crate::num::fmt_num(*.x), crate::num::fmt_num(*.y), crate::num::fmt_num(*.yaw))]
     BadOrigin {
         /// x in metres.
         x: f64,
@@ -118,7 +118,7 @@ pub enum MapError {
         height: usize,
     },
     /// A file could not be parsed; `line` is 1-based, 0 when not applicable.
-    #[error("{format} parse error{}: {message}", if *line > 0 { format!(" at line {line}") } else { String::new() })]
+    #[error("{format} parse error{}: {}", if *line > 0 { format!(" at line {line}") } else { String::new() }, crate::text::one_line(message))]
     Parse {
         /// Which format ("Moving AI map", "ROS yaml", "PGM", …).
         format: &'static str,
@@ -128,10 +128,14 @@ pub enum MapError {
         message: String,
     },
     /// A numeric parameter (a radius, a factor) is out of range.
-    #[error("invalid parameter: {0}")]
+    #[error("invalid parameter: {}", crate::text::one_line(.0))]
     InvalidParameter(String),
     /// A referenced file could not be read.
-    #[error("cannot read {path}: {message}")]
+    #[error(
+        "cannot read {}: {}",
+        crate::text::one_line(path),
+        crate::text::one_line(message)
+    )]
     Io {
         /// The path as given.
         path: String,

@@ -226,8 +226,13 @@ pub fn temp_goal_switches(trace: &Trace) -> u32 {
     n
 }
 
+/// The most points [`resample`] returns (plus the first): issue 14's
+/// 7.6·10⁸ m step resampled every 0.1 m aborted on allocation.
+pub const MAX_RESAMPLE_POINTS: usize = 1_000_000;
+
 /// Points every `ds` of arc length along the polyline, from its start
-/// (the remainder shorter than `ds` at the end is dropped).
+/// (the remainder shorter than `ds` at the end is dropped); at most
+/// [`MAX_RESAMPLE_POINTS`] spacings (a longer path is sampled coarser).
 pub fn resample(pts: &[[f64; 2]], ds: f64) -> Vec<[f64; 2]> {
     let Some(&first) = pts.first() else {
         return Vec::new();
@@ -236,6 +241,17 @@ pub fn resample(pts: &[[f64; 2]], ds: f64) -> Vec<[f64; 2]> {
     if ds.is_nan() || ds <= 0.0 {
         return out;
     }
+    // A path longer than MAX_RESAMPLE_POINTS spacings is sampled coarser, so
+    // the output (and memory) stays bounded whatever the path; normal paths
+    // are far below the cap and keep `ds`.
+    let total: f64 = pts
+        .windows(2)
+        .map(|w| hypot(w[1][0] - w[0][0], w[1][1] - w[0][1]))
+        .sum();
+    if !total.is_finite() {
+        return out;
+    }
+    let ds = ds.max(total / MAX_RESAMPLE_POINTS as f64);
     // Distance still to go from the segment start to the next sample.
     let mut need = ds;
     for w in pts.windows(2) {
@@ -470,6 +486,15 @@ mod tests {
         assert_eq!(max_step_turn(&[[0.0, 0.0], [1.0, 0.0]]), 0.0);
         assert_eq!(max_step_turn(&[[0.0, 0.0]; 4]), 0.0);
         assert_eq!(max_step_turn(&[]), 0.0);
+    }
+
+    #[test]
+    fn issue_14_resample_is_capped() {
+        // 7.6·10⁸ m at 0.1 m would be 7.6·10⁹ points.
+        let r = resample(&[[0.0, 0.0], [7.6e8, 0.0]], 0.1);
+        assert!(r.len() <= MAX_RESAMPLE_POINTS + 2, "{}", r.len());
+        assert!(r.len() >= MAX_RESAMPLE_POINTS - 1, "{}", r.len());
+        assert_eq!(resample(&[[0.0, 0.0], [f64::INFINITY, 0.0]], 0.1).len(), 1);
     }
 
     #[test]

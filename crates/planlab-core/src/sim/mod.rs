@@ -38,7 +38,7 @@ use crate::local::registry::{self, PlannerChoice};
 use crate::local::{LocalError, LocalPlanner, ObservedMover, OdometrySample, PlannerDebug};
 use crate::map::io::scenario::{Scenario, ScenarioError};
 use crate::map::{MapError, OccupancyGrid};
-use crate::num::{cos, hypot, sin};
+use crate::num::{cos, fmt_num, hypot, param_problem, sin};
 use crate::world::{
     Footprint, MoverSpec, MoverState, RobotSpec, RobotState, StaticMap, Terrain, TerrainSpec,
     WorldError,
@@ -50,8 +50,15 @@ use crate::world::{
 pub const CLEARANCE_CAP: f64 = 5.0;
 
 /// The most steps one episode may take (`max_time / dt`), so a typo cannot
-/// start an endless run.
-pub const MAX_STEPS: f64 = 10_000_000.0;
+/// start an endless run. The trace keeps a row (a few hundred bytes) per
+/// step, so this also bounds an episode's memory (~0.3 GB; the presets
+/// take at most 8000 steps).
+pub const MAX_STEPS: f64 = 1_000_000.0;
+
+/// The longest control period, s. A step integrates the command over `dt`
+/// and checks collisions only at its end, so a long period moves the robot
+/// through walls (issue 14: `sim.dt=1e9` moved it 7.6·10⁸ m in one step).
+pub const MAX_DT: f64 = 1.0;
 
 /// Simulation settings of an episode.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -96,17 +103,22 @@ impl Default for SimConfig {
 impl SimConfig {
     /// Checks every number; the error names the field (`sim.dt`, …).
     pub fn validate(&self) -> Result<(), SimError> {
-        let field = |name: &str, unit: &str, v: f64, min: f64, strict: bool| {
-            let ok = v.is_finite() && if strict { v > min } else { v >= min };
-            if ok {
-                Ok(())
-            } else {
-                let rel = if strict { ">" } else { "≥" };
-                Err(SimError::InvalidConfig(format!(
-                    "sim.{name} = {v} {unit}: must be a finite number {rel} {min}"
-                )))
-            }
+        let field = |name: &str, unit: &str, v: f64, min: f64, strict: bool| match param_problem(
+            v, min, strict,
+        ) {
+            None => Ok(()),
+            Some(p) => Err(SimError::InvalidConfig(format!(
+                "sim.{name} = {} {unit}: {p}",
+                fmt_num(v)
+            ))),
         };
+        // Before the general bound, whose limit is far above a control period.
+        if self.dt.is_finite() && self.dt > MAX_DT {
+            return Err(SimError::InvalidConfig(format!(
+                "sim.dt = {} s: must be at most {MAX_DT} s (one control period)",
+                fmt_num(self.dt)
+            )));
+        }
         field("dt", "s", self.dt, 0.0, true)?;
         field("max_time", "s", self.max_time, 0.0, true)?;
         field("goal_tolerance", "m", self.goal_tolerance, 0.0, true)?;
@@ -116,7 +128,8 @@ impl SimConfig {
         if self.max_time / self.dt > MAX_STEPS {
             return Err(SimError::InvalidConfig(format!(
                 "sim.max_time = {} s with sim.dt = {} s is more than {MAX_STEPS} steps",
-                self.max_time, self.dt
+                fmt_num(self.max_time),
+                fmt_num(self.dt)
             )));
         }
         Ok(())
@@ -183,7 +196,7 @@ pub enum SimError {
     #[error(transparent)]
     Map(#[from] MapError),
     /// A simulation setting is out of range; the text names it.
-    #[error("invalid simulation setting: {0}")]
+    #[error("invalid simulation setting: {}", crate::text::one_line(.0))]
     InvalidConfig(String),
     /// The goal is not a free point of the map.
     #[error("the goal ({x:.3}, {y:.3}) m {reason}")]

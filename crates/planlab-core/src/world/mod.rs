@@ -23,10 +23,10 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum WorldError {
     /// A parameter is NaN, infinite or out of its range; the text names it.
-    #[error("invalid {0}")]
+    #[error("invalid {}", crate::text::one_line(.0))]
     InvalidParameter(String),
     /// The map cannot be simulated (e.g. a rotated origin).
-    #[error("map not supported by the simulator: {0}")]
+    #[error("map not supported by the simulator: {}", crate::text::one_line(.0))]
     UnsupportedMap(String),
     /// The robot starts overlapping an obstacle.
     #[error("the robot starts in collision at ({x:.3}, {y:.3}) m: {with}")]
@@ -40,26 +40,26 @@ pub enum WorldError {
     },
 }
 
-/// Checks that `value` is finite and ≥ `min`; the error names `what`.
-pub(crate) fn check_min(what: &str, value: f64, min: f64) -> Result<(), WorldError> {
-    if value.is_finite() && value >= min {
-        Ok(())
-    } else {
-        Err(WorldError::InvalidParameter(format!(
-            "{what} = {value}: must be a finite number ≥ {min}"
-        )))
+/// Checks that `value` is finite, ≥ `min` (> when `strict`) and at most
+/// [`crate::num::MAX_PARAM`]; the error names `what`.
+fn check_range(what: &str, value: f64, min: f64, strict: bool) -> Result<(), WorldError> {
+    match crate::num::param_problem(value, min, strict) {
+        None => Ok(()),
+        Some(p) => Err(WorldError::InvalidParameter(format!(
+            "{what} = {}: {p}",
+            crate::num::fmt_num(value)
+        ))),
     }
 }
 
-/// Checks that `value` is finite and > 0; the error names `what`.
+/// Checks that `value` is finite, ≥ `min` and not huge; the error names `what`.
+pub(crate) fn check_min(what: &str, value: f64, min: f64) -> Result<(), WorldError> {
+    check_range(what, value, min, false)
+}
+
+/// Checks that `value` is finite, > 0 and not huge; the error names `what`.
 pub(crate) fn check_positive(what: &str, value: f64) -> Result<(), WorldError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
-    } else {
-        Err(WorldError::InvalidParameter(format!(
-            "{what} = {value}: must be a finite number > 0"
-        )))
-    }
+    check_range(what, value, 0.0, true)
 }
 
 /// Checks that both coordinates of a point are finite.

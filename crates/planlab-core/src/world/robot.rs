@@ -156,10 +156,11 @@ impl RobotSpec {
         self.footprint.validate()?;
         let l = &self.limits;
         check_positive("robot.limits.v_max (m/s)", l.v_max)?;
-        if !(l.v_min.is_finite() && l.v_min <= l.v_max) {
+        if !(l.v_min.is_finite() && l.v_min <= l.v_max && l.v_min >= -crate::num::MAX_PARAM) {
             return Err(WorldError::InvalidParameter(format!(
-                "robot.limits.v_min = {} m/s: must be finite and ≤ v_max",
-                l.v_min
+                "robot.limits.v_min = {} m/s: must be finite, ≥ -{} and ≤ v_max",
+                crate::num::fmt_num(l.v_min),
+                crate::num::fmt_num(crate::num::MAX_PARAM)
             )));
         }
         check_min("robot.limits.vy_max (m/s)", l.vy_max, 0.0)?;

@@ -11,7 +11,12 @@
 //!
 //! # YAML subset
 //! map_server files are flat `key: value` maps, so this module reads that
-//! subset itself instead of pulling in a YAML crate: `#` comments, plain,
+//! subset itself instead of pulling in a YAML crate (issue 14 measured
+//! yaml-rust2, the maintained pure-Rust parser: +115 kB to the page's wasm
+//! after wasm-opt, over the page's size budget; its current release also
+//! needs a newer Rust than the workspace's 1.80, and its tree keeps no line
+//! numbers for our errors). The reader is linear in the input (a key set
+//! for the duplicate check). It reads `#` comments, plain,
 //! `"double"` and `'single'` quoted scalars, `[a, b, c]` flow lists (which may
 //! span lines), `- item` block lists under a key, and `---` / `...` markers.
 //! Unknown keys are ignored, as map_server does, and nested mappings under
@@ -332,6 +337,9 @@ fn split_key(line: &str) -> Option<(&str, &str)> {
 /// The flat YAML subset: `(line, key, value)` in file order.
 fn parse_flat_yaml(text: &str) -> Result<Vec<(usize, String, Value)>, MapError> {
     let mut out: Vec<(usize, String, Value)> = Vec::new();
+    // Keys seen so far (a set: scanning `out` made the reader quadratic, issue 14:
+    // 160 000 keys took 247 s).
+    let mut seen = std::collections::BTreeSet::new();
     // A flow list still open: (line of its key, key, text so far).
     let mut open_list: Option<(usize, String, String)> = None;
     // Whether the last key had an empty value (so indented lines belong to it).
@@ -400,7 +408,7 @@ fn parse_flat_yaml(text: &str) -> Result<Vec<(usize, String, Value)>, MapError> 
         if key.is_empty() {
             return Err(MapError::parse(YAML_FORMAT, n, "a line has `:` but no key"));
         }
-        if out.iter().any(|(_, k, _)| k == key) {
+        if !seen.insert(key.to_string()) {
             return Err(MapError::parse(
                 YAML_FORMAT,
                 n,
@@ -753,13 +761,18 @@ impl Cursor<'_> {
     }
 }
 
-/// Parses a binary (P5) or ASCII (P2) PGM image.
-///
-/// P5 pixels take one byte when maxval ≤ 255, else two bytes big-endian.
-/// Header comments (`#`) are allowed between fields; dimensions are checked
-/// with [`check_dimensions`] before the pixel buffer is allocated, and every
-/// pixel must be ≤ maxval. Bytes after the last pixel are ignored.
-pub fn parse_pgm(bytes: &[u8]) -> Result<Pgm, MapError> {
+/// The header of a PGM: what [`parse_pgm`] reads before the pixels.
+struct PgmHeader<'a> {
+    ascii: bool,
+    width: u64,
+    height: u64,
+    maxval: u16,
+    /// Positioned just after maxval.
+    cur: Cursor<'a>,
+}
+
+/// Reads the magic number, width, height and maxval.
+fn pgm_header(bytes: &[u8]) -> Result<PgmHeader<'_>, MapError> {
     let magic = bytes.get(..2).unwrap_or(bytes);
     let ascii =
         match magic {
@@ -810,6 +823,58 @@ pub fn parse_pgm(bytes: &[u8]) -> Result<Pgm, MapError> {
         ));
     }
     let maxval = maxval as u16;
+    Ok(PgmHeader {
+        ascii,
+        width,
+        height,
+        maxval,
+        cur,
+    })
+}
+
+/// Bytes a PGM file beyond its header may hold per pixel in ASCII (P2):
+/// `65535` and a separator, with room for spacing and short comments.
+pub const P2_BYTES_PER_PIXEL: u64 = 16;
+
+/// The longest PGM header (magic, sizes, maxval and comments) readers
+/// accept before the pixels: callers read this much to learn the size.
+pub const PGM_HEADER_MAX_BYTES: usize = 64 * 1024;
+
+/// How many bytes of a PGM file a reader needs, from its header (`bytes`
+/// holds at least the header; up to [`PGM_HEADER_MAX_BYTES`] is enough):
+/// for P5 exactly the header plus width × height × bytes per pixel (bytes
+/// after the last pixel are ignored); for P2, whose spacing and comments
+/// are free-form, a cap of [`P2_BYTES_PER_PIXEL`] a pixel (a longer P2 file
+/// is for the caller to refuse, not to cut). Checks the dimensions first,
+/// so a caller never allocates for a file that lies about its size.
+pub fn pgm_byte_limit(bytes: &[u8]) -> Result<u64, MapError> {
+    let h = pgm_header(bytes)?;
+    let n = check_dimensions(h.width, h.height)? as u64;
+    let per_pixel = if h.ascii {
+        P2_BYTES_PER_PIXEL
+    } else if h.maxval > 255 {
+        2
+    } else {
+        1
+    };
+    // +1: the single whitespace byte between maxval and the raster.
+    Ok(h.cur.pos as u64 + 1 + n * per_pixel)
+}
+
+/// Parses a binary (P5) or ASCII (P2) PGM image.
+///
+/// P5 pixels take one byte when maxval ≤ 255, else two bytes big-endian.
+/// Header comments (`#`) are allowed between fields; dimensions are checked
+/// with [`check_dimensions`] before the pixel buffer is allocated, and every
+/// pixel must be ≤ maxval. Bytes after the last pixel are ignored.
+pub fn parse_pgm(bytes: &[u8]) -> Result<Pgm, MapError> {
+    let PgmHeader {
+        ascii,
+        width,
+        height,
+        maxval,
+        mut cur,
+    } = pgm_header(bytes)?;
     let n = check_dimensions(width, height)?;
     let (width, height) = (width as usize, height as usize);
     let mut pixels;

@@ -23,6 +23,7 @@ use crate::global::GridPos;
 use crate::local::registry::{self, PlannerChoice};
 use crate::map::io::{movingai, ros};
 use crate::map::{check_dimensions, Cell, MapError, OccupancyGrid, Pose2};
+use crate::num::{fmt_num, param_problem};
 use crate::sim::SimConfig;
 use crate::world::{MoverSpec, RobotSpec, TerrainSpec};
 use serde::{Deserialize, Serialize};
@@ -42,7 +43,10 @@ pub const PLAIN_ROWS_MAX_SIDE: usize = 100;
 pub enum ScenarioError {
     /// Malformed JSON, a wrong type, a missing or unknown field, or a bad
     /// inline map (serde reports where).
-    #[error("scenario JSON error at line {line}, column {column}: {message}")]
+    #[error(
+        "scenario JSON error at line {line}, column {column}: {}",
+        crate::text::one_line(message)
+    )]
     Json {
         /// 1-based line.
         line: usize,
@@ -60,7 +64,7 @@ pub enum ScenarioError {
         supported: u32,
     },
     /// A value is out of range or inconsistent (message names the field).
-    #[error("invalid scenario: {0}")]
+    #[error("invalid scenario: {}", crate::text::one_line(.0))]
     Invalid(String),
     /// The map (inline or referenced) is unusable.
     #[error(transparent)]
@@ -871,16 +875,17 @@ impl Scenario {
         }
         let p = &self.grid_planner;
         build_planner(p).map_err(|e| ScenarioError::Invalid(format!("grid_planner: {e}")))?;
-        if !(p.inflate_m.is_finite() && p.inflate_m >= 0.0) {
+        if let Some(problem) = param_problem(p.inflate_m, 0.0, false) {
             return Err(ScenarioError::Invalid(format!(
-                "grid_planner.inflate_m is {}; it must be a finite number ≥ 0 (metres)",
-                p.inflate_m
+                "grid_planner.inflate_m is {} (metres): it {problem}",
+                fmt_num(p.inflate_m)
             )));
         }
         if let Some(eps) = p.bottom_up_eps {
-            if !(eps.is_finite() && eps >= 0.0) {
+            if let Some(problem) = param_problem(eps, 0.0, false) {
                 return Err(ScenarioError::Invalid(format!(
-                    "grid_planner.bottom_up_eps is {eps}; it must be a finite number ≥ 0 (cells)"
+                    "grid_planner.bottom_up_eps is {} (cells): it {problem}",
+                    fmt_num(eps)
                 )));
             }
         }
@@ -934,7 +939,8 @@ impl Scenario {
         if let Some(yaw) = self.start_yaw {
             if !yaw.is_finite() {
                 return Err(ScenarioError::Invalid(format!(
-                    "start_yaw = {yaw}: must be a finite number (rad)"
+                    "start_yaw = {}: must be a finite number (rad)",
+                    fmt_num(yaw)
                 )));
             }
         }
@@ -990,7 +996,10 @@ impl Scenario {
                     };
                     return Err(ScenarioError::Invalid(format!(
                         "{what}.world ({}, {}) {where_}, not in the {what} cell ({}, {})",
-                        w.x, w.y, pt.col, pt.row
+                        fmt_num(w.x),
+                        fmt_num(w.y),
+                        pt.col,
+                        pt.row
                     )));
                 }
             }

@@ -1,0 +1,152 @@
+//! Issue 14 §2, core side: one regression test per defect found by
+//! fuzzing and hostile use (the CLI side is in planlab-cli's
+//! `tests/issue_14_cli.rs`).
+
+use planlab_core::map::io::ros;
+use planlab_core::map::io::scenario::{set_json_path, Scenario};
+use planlab_core::metrics::{resample, MAX_RESAMPLE_POINTS};
+use planlab_core::num::fmt_num;
+use planlab_core::sim::Episode;
+use std::time::Instant;
+
+const DWA_DEMO: &str = include_str!("../../../assets/scenarios/dwa-demo.json");
+
+/// Builds the episode of the DWA demo with `edits` (`path`, `value`)
+/// applied; the error of whichever step refused it.
+fn edited(edits: &[(&str, &str)]) -> Result<(), String> {
+    let mut tree: serde_json::Value = serde_json::from_str(DWA_DEMO).unwrap();
+    for (k, v) in edits {
+        set_json_path(&mut tree, k, v).map_err(|e| e.to_string())?;
+    }
+    let s = Scenario::from_value(&tree).map_err(|e| e.to_string())?;
+    let mut no_files = |_: &str| Err::<Vec<u8>, String>("no files".into());
+    let grid = s.load_grid(&mut no_files).map_err(|e| e.to_string())?;
+    Episode::from_scenario(&s, grid)
+        .map(|_| ())
+        .map_err(|e| e.to_string())
+}
+
+#[test]
+fn issue_14_dt_1e9_is_refused() {
+    let e = edited(&[("sim.dt", "1e9")]).unwrap_err();
+    assert!(e.contains("sim.dt = 1e9 s: must be at most 1 s"), "{e}");
+    // The largest allowed period still builds, and the paper's 0.1 s too.
+    assert!(edited(&[("sim.dt", "1")]).is_ok());
+    assert!(edited(&[("sim.dt", "0.1")]).is_ok());
+}
+
+#[test]
+fn issue_14_every_time_speed_and_size_has_an_upper_bound() {
+    for (path, needle) in [
+        (
+            "sim.max_time",
+            "sim.max_time = 1e300 s: must be at most 1e6",
+        ),
+        ("sim.goal_tolerance", "sim.goal_tolerance = 1e300 m"),
+        ("sim.sensing_range", "sim.sensing_range = 1e300 m"),
+        (
+            "robot.limits.v_max",
+            "v_max (m/s) = 1e300: must be at most 1e6",
+        ),
+        ("robot.limits.acc_v", "acc_v (m/s²) = 1e300"),
+        ("movers.0.radius", "radius (m) = 1e300"),
+        (
+            "grid_planner.inflate_m",
+            "inflate_m is 1e300 (metres): it must be at most 1e6",
+        ),
+        ("local_planner.config.predict_time", "predict_time = 1e300"),
+    ] {
+        let e = edited(&[(path, "1e300")]).expect_err(path);
+        assert!(e.contains(needle), "{path}: {e}");
+        assert!(e.len() < 200, "{path}: long message {e}");
+    }
+}
+
+#[test]
+fn issue_14_resample_is_bounded() {
+    // One 7.6·10⁸ m step (what sim.dt = 1e9 produced) resampled every
+    // 0.1 m asked for 7.6·10⁹ points and aborted.
+    let r = resample(&[[0.0, 0.0], [7.6e8, 0.0]], 0.1);
+    assert!(r.len() <= MAX_RESAMPLE_POINTS + 2, "{}", r.len());
+    // A normal path keeps its spacing exactly.
+    assert_eq!(resample(&[[0.0, 0.0], [1.0, 0.0]], 0.1).len(), 11);
+}
+
+#[test]
+fn issue_14_ros_yaml_reader_is_linear_in_the_keys() {
+    // 160 000 keys took 247 s with the quadratic duplicate check.
+    let mut yaml = String::from("image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
+    for i in 0..160_000 {
+        yaml.push_str(&format!("key_{i}: {i}\n"));
+    }
+    let t = Instant::now();
+    let meta = ros::parse_yaml(&yaml).unwrap();
+    let secs = t.elapsed().as_secs_f64();
+    assert_eq!(meta.image, "m.pgm");
+    assert!(secs < 5.0, "160 000 keys took {secs} s");
+    // Duplicates are still found, at the end of a long file too.
+    yaml.push_str("key_7: again\n");
+    let e = ros::parse_yaml(&yaml).unwrap_err().to_string();
+    assert!(e.contains("key `key_7` appears twice"), "{e}");
+}
+
+#[test]
+fn issue_14_pgm_read_limit_comes_from_the_header() {
+    // P5 8-bit: header + 1 + w·h; 16-bit: 2 bytes a pixel; P2: a bound per
+    // pixel; a lying header is refused before any pixel is read.
+    let p5 = b"P5\n4 3\n255\n";
+    assert_eq!(
+        ros::pgm_byte_limit(p5).unwrap(),
+        (p5.len() - 1 + 1 + 12) as u64
+    );
+    let p5w = b"P5\n4 3\n1000\n";
+    assert_eq!(
+        ros::pgm_byte_limit(p5w).unwrap(),
+        (p5w.len() - 1 + 1 + 24) as u64
+    );
+    let p2 = b"P2\n4 3\n255\n";
+    assert_eq!(
+        ros::pgm_byte_limit(p2).unwrap(),
+        (p2.len() - 1 + 1) as u64 + 12 * ros::P2_BYTES_PER_PIXEL
+    );
+    let e = ros::pgm_byte_limit(b"P5\n100000 100000\n255\n").unwrap_err();
+    assert!(e.to_string().contains("map too large"), "{e}");
+    // Bytes after the last pixel are ignored, so reading up to the limit
+    // gives the same image.
+    let mut full = b"P5\n2 2\n255\n\x00\x01\x02\x03".to_vec();
+    let limit = ros::pgm_byte_limit(&full).unwrap() as usize;
+    assert_eq!(limit, full.len());
+    let img = ros::parse_pgm(&full).unwrap();
+    full.extend_from_slice(&[9; 1000]);
+    assert_eq!(ros::parse_pgm(&full[..limit]).unwrap(), img);
+}
+
+#[test]
+fn issue_14_numbers_in_errors_are_compact() {
+    assert_eq!(fmt_num(1e308), "1e308");
+    assert_eq!(fmt_num(-1e308), "-1e308");
+    assert_eq!(fmt_num(0.1), "0.1");
+    assert_eq!(fmt_num(1e-300), "1e-300");
+    assert_eq!(fmt_num(123456.5), "123456.5");
+    let e = planlab_core::map::MapError::BadResolution(-1e308).to_string();
+    assert!(e.contains("-1e308") && e.len() < 100, "{e}");
+}
+
+#[test]
+fn issue_14_fuzz_found_newline_in_a_json_key_stays_one_line() {
+    // cargo fuzz (scenario_sim) found a scenario whose key holds an escaped
+    // newline: serde's "unknown field" message quoted it raw, two lines.
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../tests/data/malformed/fuzz-newline-in-key.scenario.json"),
+    )
+    .unwrap();
+    let e = Scenario::from_json(&text).unwrap_err().to_string();
+    assert!(!e.contains('\n'), "{e:?}");
+    assert!(
+        e.contains("unknown field `width") && e.contains("\\n"),
+        "{e}"
+    );
+    let e = edited(&[("local_planner.name", "dwa\nx")]).unwrap_err();
+    assert!(e.contains("unknown planner `dwa\\nx`"), "{e}");
+}

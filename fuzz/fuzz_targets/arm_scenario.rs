@@ -1,0 +1,7 @@
+#![no_main]
+//! `cargo fuzz run arm_scenario`: see `fuzz/README.md`.
+
+#[path = "../../crates/planlab-core/tests/fuzz_targets/mod.rs"]
+mod targets;
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| targets::arm_scenario(data));

@@ -1,0 +1,7 @@
+#![no_main]
+//! `cargo fuzz run scenario_sim`: see `fuzz/README.md`.
+
+#[path = "../../crates/planlab-core/tests/fuzz_targets/mod.rs"]
+mod targets;
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| targets::scenario_sim(data));
