@@ -311,6 +311,20 @@ test('malformed files show the error banner with the core message; the page keep
     console.log(`${file.name}: ${msg}`);
     if (file.name === 'garbage.map') await screenshot(page, 'files-07-error.png');
   }
+  // A file over the page's 64 MB limit is refused by its size before it is
+  // read (Playwright passes files over 50 MB by path, not as a buffer).
+  const hugeDir = fs.mkdtempSync(path.join(os.tmpdir(), 'planlab-huge-'));
+  const huge = path.join(hugeDir, 'huge.map');
+  fs.writeFileSync(huge, Buffer.alloc(65 * 1024 * 1024, 0x2e));
+  try {
+    await page.setInputFiles('#file-input', huge);
+    await page
+      .waitForFunction(() => /huge\.map is 65 MB/.test(document.getElementById('error').textContent), null, { timeout: 5000 })
+      .catch(() => {});
+    assert.match((await errorText(page)) ?? '(no error shown)', /huge\.map is 65 MB: the page opens files up to 64 MB/);
+  } finally {
+    fs.rmSync(hugeDir, { recursive: true, force: true });
+  }
   // A damaged share link on boot: the banner, and the preset loads anyway.
   const bad = await session.context.newPage();
   const badProblems = watch(bad);

@@ -15,7 +15,7 @@ import { MapView, type Cell } from './render';
 import { installShell } from './shell/help';
 import { gridHelp } from './shell/help-content';
 import { gridUrl } from './grid-url';
-import { loadPresetFiles } from './shell/scenario-files';
+import { checkSizes, loadPresetFiles } from './shell/scenario-files';
 import { el, messageOf } from './shell/dom';
 
 type Tool = 'start' | 'goal' | 'wall' | 'erase';
@@ -406,6 +406,7 @@ const ext = (f: File) => f.name.toLowerCase().split('.').pop() ?? '';
 async function loadFiles(list: FileList | null): Promise<void> {
   const files = Array.from(list ?? []);
   if (!files.length) return;
+  checkSizes(files);
   const yaml = files.find((f) => ext(f) === 'yaml' || ext(f) === 'yml');
   const pgms = files.filter((f) => ext(f) === 'pgm');
   const movingai = files.find((f) => ext(f) === 'map');

@@ -9,6 +9,7 @@
 
 import { MapHandle, rosImageName, scenarioForMap, type SimHandle } from '../../pkg/planlab_wasm.js';
 import { decodeScenarioHash, shareLink } from '../shell/share';
+import { checkSizes } from '../shell/scenario-files';
 import { sceneSvg } from './svg';
 import type { MapInfo, Scene } from './view';
 import './files.css';
@@ -74,6 +75,7 @@ function bareMap(map: MapHandle, label: string): { text: string; label: string; 
  *  stands for. Throws with a message saying what to open instead. */
 export async function scenarioFromFiles(picked: File[]): Promise<{ text: string; label: string; files: Record<string, Uint8Array> }> {
   if (!picked.length) throw new Error('no file to open');
+  checkSizes(picked);
   const bytes = async (f: File) => new Uint8Array(await f.arrayBuffer());
   const json = picked.find((f) => lower(f).endsWith('.json'));
   if (json) {

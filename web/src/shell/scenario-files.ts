@@ -8,6 +8,22 @@ import { rosImageName } from '../../pkg/planlab_wasm.js';
 
 export type MapFiles = Record<string, Uint8Array>;
 
+/** Largest file the pages read (a browser tab holds it whole, then the
+ *  core parses it): far above any real map (a 4000×4000 ROS image is
+ *  16 MB), far below what would stall the tab. The CLI reads larger. */
+export const MAX_OPEN_BYTES = 64 * 1024 * 1024;
+
+/** Throws a one-line message when any picked file is over
+ *  [`MAX_OPEN_BYTES`], before anything is read. */
+export function checkSizes(picked: File[]): void {
+  for (const f of picked) {
+    if (f.size > MAX_OPEN_BYTES) {
+      const mb = (n: number) => `${Math.round(n / (1024 * 1024))} MB`;
+      throw new Error(`${f.name} is ${mb(f.size)}: the page opens files up to ${mb(MAX_OPEN_BYTES)} (the planlab CLI reads larger ones).`);
+    }
+  }
+}
+
 export async function fetchText(url: URL): Promise<string> {
   const r = await fetch(url);
   if (!r.ok) throw new Error(`cannot load ${url.pathname}: HTTP ${r.status}`);
@@ -53,6 +69,7 @@ export async function loadPresetFiles(file: string): Promise<{ text: string; fil
 /** Picked files: the scenario .json and the others as map files; null when
  *  nothing was picked. Throws when no .json is among them. */
 export async function readPicked(picked: File[]): Promise<{ name: string; text: string; files: MapFiles } | null> {
+  checkSizes(picked);
   const f = picked.find((x) => x.name.toLowerCase().endsWith('.json'));
   if (!f) {
     if (picked.length) throw new Error(`Open a scenario .json (with the map files it refers to), not ${picked.map((x) => x.name).join(', ')}.`);
