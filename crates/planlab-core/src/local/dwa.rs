@@ -36,8 +36,9 @@
 //!
 //! With no admissible sample the robot brakes at its largest deceleration
 //! and, for a circular footprint, turns in place toward the goal (mode
-//! `"no-admissible"`; only when that braking turn hits nothing) — unless that braking manoeuvre itself would be hit
-//! or would stop the robot in a mover's predicted path (a mover that keeps
+//! `"no-admissible"`; only when that braking turn hits nothing) — unless
+//! braking itself would be hit or would stop the robot in a mover's
+//! predicted path (a mover that keeps
 //! coming): then it takes what Fox et al.'s DWA takes, the collision-free
 //! sample with the best G, the critics normalised over those samples
 //! (`"no-admissible-evade"`).
@@ -342,6 +343,25 @@ struct Cand {
     admissible: bool,
     /// Collides within the horizon.
     collided: bool,
+}
+
+/// One rollout step of `h` s at speed `v`: the position advances along
+/// the heading whose (sin, cos) is `sc`, then the heading turns by the
+/// exact rotation `rot` = (sin ωh, cos ωh) — the Euler update of
+/// [`integrate`] without a sin/cos per step.
+#[inline(always)]
+fn arc_step(
+    (x, y): (&mut f64, &mut f64),
+    (sn, cs): (&mut f64, &mut f64),
+    v: f64,
+    (sd, cd): (f64, f64),
+    h: f64,
+) {
+    *x += v * *cs * h;
+    *y += v * *sn * h;
+    let (ns, nc) = (*sn * cd + *cs * sd, *cs * cd - *sn * sd);
+    *sn = ns;
+    *cs = nc;
 }
 
 /// The DWA engine: window, sampling, rollouts, clearance, critics. Reused by
@@ -1088,15 +1108,11 @@ impl DwaCore {
         let mut last = stat0;
         let mut since = 0.0;
         for k in 1..=self.steps {
-            x += vk * cs * h;
-            y += vk * sn * h;
             let step_len = vk.abs() * h * (1.0 + 1e-9);
+            arc_step((&mut x, &mut y), (&mut sn, &mut cs), vk, (sd, cd), h);
             if decel > 0.0 {
                 vk = (vk - decel * h).max(0.0);
             }
-            let (ns, nc) = (sn * cd + cs * sd, cs * cd - sn * sd);
-            sn = ns;
-            cs = nc;
             if record {
                 self.points.push([x, y]);
             }
@@ -1128,12 +1144,8 @@ impl DwaCore {
                     collided = true;
                     break;
                 }
-                x += vk * cs * h;
-                y += vk * sn * h;
+                arc_step((&mut x, &mut y), (&mut sn, &mut cs), vk, (sd, cd), h);
                 vk = (vk - decel * h).max(0.0);
-                let (ns, nc) = (sn * cd + cs * sd, cs * cd - sn * sd);
-                sn = ns;
-                cs = nc;
                 if record {
                     self.points.push([x, y]);
                 }
@@ -1181,11 +1193,7 @@ impl DwaCore {
                     va_ok = false;
                     break;
                 }
-                x += vk * cs * h;
-                y += vk * sn * h;
-                let (ns, nc) = (sn * cd + cs * sd, cs * cd - sn * sd);
-                sn = ns;
-                cs = nc;
+                arc_step((&mut x, &mut y), (&mut sn, &mut cs), vk, (sd, cd), h);
                 since += vk.abs() * h * (1.0 + 1e-9);
                 let stat = if last - std::f64::consts::SQRT_2 * since > skip_above {
                     skip_above
