@@ -7,8 +7,8 @@ use std::time::Instant;
 
 use planlab_core::batch::{self, metric_values, PlannerSummary};
 use planlab_core::local::registry::{self, PlannerChoice};
-use planlab_core::map::io::scenario::Scenario;
-use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::metrics::EpisodeMetrics;
+use planlab_core::scenario::Scenario;
 use planlab_core::sim::Episode;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -202,13 +202,8 @@ fn run_variants(
                     choices[p].name
                 )
             })?;
-            let outcome = ep.run();
-            let metrics = EpisodeMetrics::from_trace(
-                ep.trace(),
-                &ep.planner_debug().global_path,
-                outcome,
-                DEFAULT_LOAD_THRESHOLD_N,
-            );
+            ep.run();
+            let metrics = EpisodeMetrics::of_episode(&ep);
             Ok(RunRow {
                 variant: v,
                 planner: p,

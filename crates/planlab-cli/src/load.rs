@@ -1,9 +1,9 @@
 //! Reading maps from disk for the CLI: the core parses bytes, this module
 //! finds and reads the files (the core never touches the file system).
 
-use planlab_core::map::io::scenario::Scenario;
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::{OccupancyGrid, MAX_CELLS};
+use planlab_core::scenario::Scenario;
 use std::path::Path;
 
 /// The largest text input (scenario JSON, Moving AI `.map` / `.scen`, arm
@@ -181,11 +181,16 @@ pub fn load_scenario(path: &Path) -> Result<(OccupancyGrid, Scenario), String> {
 /// The map of the scenario read from `path`: inline, or the referenced file
 /// resolved relative to the scenario's folder.
 pub fn grid_of(path: &Path, scenario: &Scenario) -> Result<OccupancyGrid, String> {
-    let dir = path.parent().unwrap_or_else(|| Path::new("."));
-    let mut read = |rel: &str| read_map_file(&dir.join(rel));
     scenario
-        .load_grid(&mut read)
+        .load_grid(&mut map_reader(path))
         .map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Reads the map files a scenario at `path` refers to, by paths relative
+/// to its folder (what the core's `load_grid` asks for).
+pub fn map_reader(path: &Path) -> impl FnMut(&str) -> Result<Vec<u8>, String> + '_ {
+    let dir = path.parent().unwrap_or_else(|| Path::new("."));
+    move |rel: &str| read_map_file(&dir.join(rel))
 }
 
 /// Loads a map of any supported kind; scenarios come with their scenario.

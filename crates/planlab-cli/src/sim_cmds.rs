@@ -4,11 +4,13 @@
 use std::path::Path;
 
 use planlab_core::apf::{AnyApfRun, ApfMetrics};
+use planlab_core::arm::ArmPredictor;
 use planlab_core::local::registry;
-use planlab_core::map::io::scenario::{set_json_path, set_planner_name, Scenario};
 use planlab_core::map::OccupancyGrid;
-use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
-use planlab_core::reproduce;
+use planlab_core::metrics::EpisodeMetrics;
+use planlab_core::scenario::{
+    set_json_path, set_planner_name, AnyRun, AnyScenario, FinishedRun, ScenarioError, ScenarioKind,
+};
 use planlab_core::sim::Episode;
 use serde::Serialize;
 
@@ -57,45 +59,58 @@ struct RunReport<'a> {
     metrics: &'a EpisodeMetrics,
 }
 
-/// Reads the scenario at `path` with the planner, seed and `--set` edits
-/// applied to its JSON tree, and its map.
+/// Reads the scenario at `path` (text `text`) with the planner, seed and
+/// `--set` edits applied to its JSON tree, and its map (none for an arm
+/// scenario). An arm scenario's `--planner` is its hand predictor, set on
+/// the parsed scenario.
 fn edited_scenario(
     path: &Path,
+    text: &str,
     args: &RunArgs<'_>,
-) -> Result<(Scenario, planlab_core::map::OccupancyGrid), String> {
+) -> Result<(AnyScenario, Option<OccupancyGrid>), String> {
     let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-    let text = load::read_text(path)?;
-    let mut tree: serde_json::Value = serde_json::from_str(&text)
-        .map_err(|e| at(&planlab_core::map::io::scenario::ScenarioError::from(e)))?;
-    if let Some(p) = args.planner {
+    let mut tree: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| at(&ScenarioError::from(e)))?;
+    let arm = ScenarioKind::of(&tree) == ScenarioKind::Arm;
+    if let (Some(p), false) = (args.planner, arm) {
         set_planner_name(&mut tree, p).map_err(|e| at(&e))?;
     }
     if let Some(seed) = args.seed {
         set_json_path(&mut tree, "seed", &seed.to_string()).map_err(|e| at(&e))?;
     }
+    let like = if arm {
+        "arm.hand.speed=2"
+    } else {
+        "sim.dt=0.05"
+    };
     for edit in args.set {
         let Some((key, value)) = edit.split_once('=') else {
-            return Err(format!(
-                "--set {edit}: expected PATH=VALUE, like sim.dt=0.05"
-            ));
+            return Err(format!("--set {edit}: expected PATH=VALUE, like {like}"));
         };
         set_json_path(&mut tree, key.trim(), value).map_err(|e| at(&e))?;
     }
     // Errors in an edited tree point at lines of the re-written text, so
-    // say so when edits were made.
-    let scenario = if args.planner.is_none() && args.seed.is_none() && args.set.is_empty() {
-        Scenario::from_json(&text)
+    // say so when edits were made (an arm file is always read as a tree).
+    let edited = args.planner.is_some() || args.seed.is_some() || !args.set.is_empty();
+    let mut scenario = if edited {
+        AnyScenario::from_value(&tree)
     } else {
-        Scenario::from_value(&tree)
+        AnyScenario::from_json(text)
     }
     .map_err(|e| {
-        if args.set.is_empty() && args.planner.is_none() && args.seed.is_none() {
+        if arm || !edited {
             at(&e)
         } else {
             format!("{} (after --planner/--seed/--set): {e}", path.display())
         }
     })?;
-    let grid = load::grid_of(path, &scenario)?;
+    if let (Some(p), AnyScenario::Arm(s)) = (args.planner, &mut scenario) {
+        let p = ArmPredictor::parse(p).map_err(|e| at(&e))?;
+        p.apply(&mut s.arm.apf);
+    }
+    let grid = scenario
+        .load_grid(&mut load::map_reader(path))
+        .map_err(|e| at(&e))?;
     Ok((scenario, grid))
 }
 
@@ -104,10 +119,11 @@ fn edited_scenario(
 /// planner swapped in afterwards), so a CSV row's trace is reproduced.
 fn batch_variant(
     path: &Path,
+    text: &str,
     args: &RunArgs<'_>,
     k: u32,
     jitter: f64,
-) -> Result<(Scenario, OccupancyGrid), String> {
+) -> Result<(AnyScenario, Option<OccupancyGrid>), String> {
     if k >= planlab_core::batch::MAX_VARIANTS {
         return Err(format!(
             "--variant {k}: must be below {}",
@@ -119,14 +135,20 @@ fn batch_variant(
         seed: None,
         ..*args
     };
-    let (base, grid) = edited_scenario(path, &base_args)?;
-    let mut s = planlab_core::batch::variant(&base, &grid, k, args.seed.unwrap_or(0), jitter)
+    let (base, grid) = edited_scenario(path, text, &base_args)?;
+    let (AnyScenario::Robot(base), Some(grid)) = (&base, grid) else {
+        return Err(format!(
+            "--variant: {} scenarios have no batch variants",
+            base.kind().name()
+        ));
+    };
+    let mut s = planlab_core::batch::variant(base, &grid, k, args.seed.unwrap_or(0), jitter)
         .map_err(|e| format!("{}: {e}", path.display()))?;
     if let Some(name) = args.planner {
         let own = base.local_planner.clone().unwrap_or_default();
         s.local_planner = Some(crate::batch_cmd::choice_for(&own, name));
     }
-    Ok((s, grid))
+    Ok((AnyScenario::Robot(s), Some(grid)))
 }
 
 /// What `planlab run --json` prints for a scenario with an `apf` section.
@@ -142,36 +164,30 @@ struct ApfRunReport<'a> {
     metrics: &'a ApfMetrics,
 }
 
-/// `planlab run` of an APF scenario: the kinematic run and its metrics
-/// (`--trace` writes the path points as CSV).
-fn run_apf(
-    path: &Path,
-    scenario: &Scenario,
-    grid: &OccupancyGrid,
+/// The report of a finished APF run (`--trace` writes the path points as
+/// CSV).
+fn report_apf(
+    name: &str,
+    title: &str,
+    r: &AnyApfRun,
+    m: &ApfMetrics,
+    hash: u64,
     args: &RunArgs<'_>,
 ) -> Result<(), String> {
-    let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-    let mut r = reproduce::apf_run_of(scenario, grid).map_err(|e| at(&e))?;
-    let m = r.run().map_err(|e| at(&e))?;
-    let pts = r.path_xyz();
     let dims = match r {
         AnyApfRun::D2(_) => 2,
         AnyApfRun::D3(_) => 3,
     };
     if let Some(t) = args.trace {
-        let mut csv = String::from("i,x,y,z\n");
-        for (i, p) in pts.iter().enumerate() {
-            csv.push_str(&format!("{i},{},{},{}\n", p.x, p.y, p.z));
-        }
-        std::fs::write(t, csv).map_err(|e| format!("cannot write {}: {e}", t.display()))?;
+        write_path_csv(t, r.path_xyz().iter().map(|p| [p.x, p.y, p.z]))?;
     }
     let report = ApfRunReport {
-        scenario: &scenario.name,
+        scenario: name,
         planner: format!("apf:{}", r.mode_label()),
         dims,
         steps: r.steps(),
-        trace_hash: format!("{:016x}", planlab_core::apf::scene::path_hash(&pts)),
-        metrics: &m,
+        trace_hash: format!("{hash:016x}"),
+        metrics: m,
     };
     if args.json {
         println!(
@@ -179,17 +195,24 @@ fn run_apf(
             serde_json::to_string(&report).map_err(|e| e.to_string())?
         );
     } else {
-        let title = if scenario.name.is_empty() {
-            path.display().to_string()
-        } else {
-            scenario.name.clone()
-        };
         println!("{title} — {} ({dims}D)", report.planner);
-        print!("{}", apf_metrics_table(&m));
+        print!("{}", apf_metrics_table(m));
         println!("{:<22}{}", "steps", report.steps);
         println!("{:<22}{}", "trace hash", report.trace_hash);
     }
     Ok(())
+}
+
+/// Writes a path's points as CSV `i,x,y,z` (`--trace` of APF and arm runs).
+pub(crate) fn write_path_csv(
+    out: &Path,
+    pts: impl IntoIterator<Item = [f64; 3]>,
+) -> Result<(), String> {
+    let mut csv = String::from("i,x,y,z\n");
+    for (i, [x, y, z]) in pts.into_iter().enumerate() {
+        csv.push_str(&format!("{i},{x},{y},{z}\n"));
+    }
+    std::fs::write(out, csv).map_err(|e| format!("cannot write {}: {e}", out.display()))
 }
 
 /// APF (and arm) metrics as `name value unit` lines.
@@ -211,58 +234,66 @@ pub fn apf_metrics_table(m: &ApfMetrics) -> String {
     )
 }
 
-/// `planlab run`: one episode (or APF run), metrics on stdout.
+/// `planlab run`: one episode (or APF or arm run), metrics on stdout.
 pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
-    // An arm scenario (`arm` section, no map) runs the arm episode.
-    if let Ok(tree) = serde_json::from_str::<serde_json::Value>(&load::read_text(path)?) {
-        if planlab_core::arm::ArmScenario::is_arm(&tree) {
-            if args.variant.is_some() {
-                return Err("--variant: arm scenarios have no batch variants".into());
-            }
-            return crate::arm_cmds::run(path, tree, args);
-        }
-    }
+    let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let text = load::read_text(path)?;
+    let kind = serde_json::from_str::<serde_json::Value>(&text)
+        .map_or(ScenarioKind::Robot, |tree| ScenarioKind::of(&tree));
     let (scenario, grid) = match args.variant {
-        None => edited_scenario(path, args)?,
-        Some((k, jitter)) => batch_variant(path, args, k, jitter)?,
-    };
-    if scenario.apf.is_some() {
-        if args.variant.is_some() {
-            return Err("--variant: APF scenarios have no batch variants".into());
+        None => edited_scenario(path, &text, args)?,
+        Some(_) if kind == ScenarioKind::Arm => {
+            return Err("--variant: arm scenarios have no batch variants".into())
         }
-        return run_apf(path, &scenario, &grid, args);
+        Some((k, jitter)) => batch_variant(path, &text, args, k, jitter)?,
+    };
+    let done = scenario
+        .start(grid)
+        .and_then(AnyRun::run)
+        .map_err(|e| at(&e))?;
+    let hash = done.trace_hash();
+    let title = if scenario.name().is_empty() {
+        path.display().to_string()
+    } else {
+        scenario.name().to_string()
+    };
+    match &done {
+        FinishedRun::Robot(ep, m) => {
+            let seed = scenario.seed();
+            report_episode(scenario.name(), &title, ep, m, seed, hash, args)
+        }
+        FinishedRun::Apf(r, m) => report_apf(scenario.name(), &title, r, m, hash, args),
+        FinishedRun::Arm(ep, m) => crate::arm_cmds::report(&title, &scenario, ep, m, hash, args),
     }
-    let mut ep =
-        Episode::from_scenario(&scenario, grid).map_err(|e| format!("{}: {e}", path.display()))?;
-    let outcome = ep.run();
-    let m = EpisodeMetrics::from_trace(
-        ep.trace(),
-        &ep.planner_debug().global_path,
-        outcome,
-        DEFAULT_LOAD_THRESHOLD_N,
-    );
+}
+
+/// The report of a finished robot episode (`--trace` writes its trace CSV).
+fn report_episode(
+    name: &str,
+    title: &str,
+    ep: &Episode,
+    m: &EpisodeMetrics,
+    seed: u64,
+    hash: u64,
+    args: &RunArgs<'_>,
+) -> Result<(), String> {
     if let Some(t) = args.trace {
         std::fs::write(t, ep.trace().to_csv())
             .map_err(|e| format!("cannot write {}: {e}", t.display()))?;
     }
     let report = RunReport {
-        scenario: &scenario.name,
+        scenario: name,
         planner: &ep.planner_choice().name,
-        seed: scenario.seed.unwrap_or(0),
+        seed,
         steps: ep.steps(),
-        trace_hash: format!("{:016x}", ep.trace().hash()),
-        metrics: &m,
+        trace_hash: format!("{hash:016x}"),
+        metrics: m,
     };
     if args.json {
         emit(&(serde_json::to_string(&report).map_err(|e| e.to_string())? + "\n"))?;
     } else {
-        let title = if scenario.name.is_empty() {
-            path.display().to_string()
-        } else {
-            scenario.name.clone()
-        };
         emit(&(format!("{title} — planner {}, seed {}", report.planner, report.seed) + "\n"))?;
-        emit(&metrics_table(&m))?;
+        emit(&metrics_table(m))?;
         emit(&(format!("{:<22}{}", "steps", report.steps) + "\n"))?;
         emit(&(format!("{:<22}{}", "trace hash", report.trace_hash) + "\n"))?;
     }

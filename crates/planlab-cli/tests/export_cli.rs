@@ -3,7 +3,7 @@
 //! in the CLI as in the core (the page runs the core in wasm, and the e2e
 //! test `files.test.mjs` checks the page against this CLI too).
 
-use planlab_core::map::io::scenario::Scenario;
+use planlab_core::scenario::Scenario;
 use planlab_core::sim::Episode;
 use planlab_core::world::{MoverSpec, Placement};
 use serde_json::Value;

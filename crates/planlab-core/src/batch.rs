@@ -8,10 +8,10 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 use thiserror::Error;
 
-use crate::map::io::scenario::{Scenario, ScenarioPoint, WorldPoint};
 use crate::map::OccupancyGrid;
 use crate::metrics::EpisodeMetrics;
 use crate::num::Rng;
+use crate::scenario::{Scenario, ScenarioPoint, WorldPoint};
 use crate::sim::{Episode, Outcome};
 use crate::world::MotionModel;
 

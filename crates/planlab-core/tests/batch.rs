@@ -2,9 +2,9 @@
 //! for every planner; statistics per planner.
 
 use planlab_core::batch::{self, BatchError};
-use planlab_core::map::io::scenario::Scenario;
 use planlab_core::map::OccupancyGrid;
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::scenario::Scenario;
 use planlab_core::sim::{Episode, Outcome};
 use planlab_core::world::MotionModel;
 
@@ -77,7 +77,7 @@ fn bad_jitter_and_impossible_placements_are_errors() {
         .flat_map(|r| (0..grid.width()).map(move |c| (c, r)))
         .find(|&(c, r)| !grid.get(c, r).unwrap().passable(false))
         .unwrap();
-    walled.start = planlab_core::map::io::scenario::ScenarioPoint::cell(c as u32, r as u32);
+    walled.start = planlab_core::scenario::ScenarioPoint::cell(c as u32, r as u32);
     assert!(matches!(
         batch::variant(&walled, &grid, 3, 0, 0.0),
         Err(BatchError::NoPlacement { tries: 1, .. })

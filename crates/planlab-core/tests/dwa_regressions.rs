@@ -3,8 +3,8 @@
 
 use planlab_core::batch;
 use planlab_core::local::registry::PlannerChoice;
-use planlab_core::map::io::scenario::Scenario;
 use planlab_core::map::OccupancyGrid;
+use planlab_core::scenario::Scenario;
 use planlab_core::sim::{Episode, Outcome, Trace};
 
 fn preset(file: &str) -> (Scenario, OccupancyGrid) {

@@ -3,9 +3,9 @@
 //! `tests/issue_14_cli.rs`).
 
 use planlab_core::map::io::ros;
-use planlab_core::map::io::scenario::{set_json_path, Scenario};
 use planlab_core::metrics::{resample, MAX_RESAMPLE_POINTS};
 use planlab_core::num::fmt_num;
+use planlab_core::scenario::{set_json_path, Scenario};
 use planlab_core::sim::Episode;
 use std::time::Instant;
 

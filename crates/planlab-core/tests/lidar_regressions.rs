@@ -2,9 +2,9 @@
 //! reviewer found (a shifted start that made it chatter or collide) stays
 //! fixed.
 
-use planlab_core::map::io::scenario::Scenario;
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
 use planlab_core::reproduce::l_lidar::MAX_SWITCHES;
+use planlab_core::scenario::Scenario;
 use planlab_core::sim::{Episode, Outcome};
 
 const SIM1: &str = include_str!("../../../assets/scenarios/L-sim1.json");

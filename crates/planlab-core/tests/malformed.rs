@@ -8,9 +8,9 @@
 //! `.rnn.json` (predictor weights).
 
 use planlab_core::apf::rnn::SimpleRnn;
-use planlab_core::arm::{ArmEpisode, ArmModel, ArmScenario};
-use planlab_core::map::io::scenario::Scenario;
+use planlab_core::arm::{ArmEpisode, ArmModel};
 use planlab_core::map::io::{movingai, ros};
+use planlab_core::scenario::{ArmScenario, Scenario};
 use planlab_core::sim::Episode;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -79,8 +79,8 @@ fn error_of(name: &str, bytes: &[u8]) -> Option<(&'static str, String)> {
     panic!("{name}: no reader for this suffix");
 }
 
-fn kind_of_scenario_error(e: &planlab_core::map::io::scenario::ScenarioError) -> &'static str {
-    use planlab_core::map::io::scenario::ScenarioError as E;
+fn kind_of_scenario_error(e: &planlab_core::scenario::ScenarioError) -> &'static str {
+    use planlab_core::scenario::ScenarioError as E;
     match e {
         E::Map(_) => "ScenarioError::Map",
         E::Json { .. } => "ScenarioError::Json",

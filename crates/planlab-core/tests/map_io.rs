@@ -565,7 +565,7 @@ proptest! {
 
 use planlab_core::global::plan::{Algorithm, GridPlanOptions};
 use planlab_core::global::{Diagonal, Heuristic};
-use planlab_core::map::io::scenario::{
+use planlab_core::scenario::{
     InlineMap, MapFileRef, MapSpec, RowEncoding, Scenario, ScenarioError, ScenarioPoint,
     WorldPoint, SCENARIO_VERSION,
 };
@@ -1041,7 +1041,7 @@ fn schema_doc_examples_are_valid_scenarios() {
     );
     // The arm example is an arm scenario, not a grid one.
     let (grid_blocks, arm_block) = blocks.split_at(4);
-    planlab_core::arm::ArmScenario::from_json(arm_block[0])
+    planlab_core::scenario::ArmScenario::from_json(arm_block[0])
         .unwrap_or_else(|e| panic!("{e}\n{}", arm_block[0]));
     for block in grid_blocks {
         let s = Scenario::from_json(block).unwrap_or_else(|e| panic!("{e}\n{block}"));

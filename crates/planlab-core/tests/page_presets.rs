@@ -6,7 +6,7 @@
 
 use planlab_core::local::registry::PlannerChoice;
 use planlab_core::local::GoalKind;
-use planlab_core::map::io::scenario::Scenario;
+use planlab_core::scenario::Scenario;
 use planlab_core::sim::{Episode, Outcome};
 
 fn episode(file: &str) -> Episode {

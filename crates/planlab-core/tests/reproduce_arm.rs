@@ -2,8 +2,9 @@
 //! a moving hand keeps a larger minimum distance to the hand with obstacle
 //! prediction than without; plus the arm scenario's error cases.
 
-use planlab_core::arm::{ArmEpisode, ArmError, ArmPredictor, ArmScenario, HandPreset};
+use planlab_core::arm::{ArmEpisode, ArmError, ArmPredictor, HandPreset};
 use planlab_core::reproduce::{find_path, run_path};
+use planlab_core::scenario::ArmScenario;
 use planlab_core::sim::Outcome;
 
 const PRESET: &str = include_str!("../../../assets/scenarios/T-tab5-3.json");

@@ -4,11 +4,13 @@
 //! goal; inline maps of real size round-trip; bad files give typed errors;
 //! the metrics CSV holds the `planlab run` metrics.
 
-use planlab_core::map::io::scenario::{MapSpec, Scenario, ScenarioError};
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::{MapError, OccupancyGrid};
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
-use planlab_core::sim::{default_endpoints, Episode, Outcome, ENDPOINT_MARGIN_M};
+use planlab_core::scenario::{
+    default_endpoints, MapSpec, Scenario, ScenarioError, ENDPOINT_MARGIN_M,
+};
+use planlab_core::sim::{Episode, Outcome};
 use planlab_core::world::{MoverSpec, Placement, RobotSpec, StaticMap};
 
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data");

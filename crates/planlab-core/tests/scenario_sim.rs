@@ -1,8 +1,8 @@
 //! The scenario JSON's simulation sections: round trip, old files, field
 //! errors, and episodes built from a scenario.
 
-use planlab_core::map::io::scenario::{Scenario, ScenarioError};
 use planlab_core::metrics::EpisodeMetrics;
+use planlab_core::scenario::{Scenario, ScenarioError};
 use planlab_core::sim::{Episode, Outcome, SimError};
 use planlab_core::world::{Drive, Footprint, MotionModel};
 
@@ -197,7 +197,7 @@ fn a_scenario_becomes_an_episode() {
 
 #[test]
 fn set_json_path_edits_the_tree() {
-    use planlab_core::map::io::scenario::{set_json_path, set_planner_name};
+    use planlab_core::scenario::{set_json_path, set_planner_name};
     let mut v: serde_json::Value = serde_json::from_str(FULL).unwrap();
     set_json_path(&mut v, "sim.dt", "0.2").unwrap();
     set_json_path(&mut v, "movers.1.radius", "0.5").unwrap();

@@ -8,7 +8,8 @@
 //! module would not fit the page's 1.5 MB first-load budget. `planlab-wasm`
 //! re-exports it (feature `arm`, on by default) as `planlab_wasm::arm`.
 
-use planlab_core::arm::{ArmEpisode, ArmPredictor, ArmScenario, HandPreset, Obstacle3};
+use planlab_core::arm::{ArmEpisode, ArmPredictor, HandPreset, Obstacle3};
+use planlab_core::scenario::ArmScenario;
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
 

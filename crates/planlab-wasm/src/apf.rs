@@ -12,7 +12,7 @@ use glam::{DVec2, DVec3};
 use planlab_core::apf::{
     ApfMode, ApfRun, ApfScene, ApfVector, ObstacleObs, PredictorKind, StepKind,
 };
-use planlab_core::map::io::scenario::Scenario;
+use planlab_core::scenario::Scenario;
 use wasm_bindgen::prelude::*;
 
 fn js(e: impl std::fmt::Display) -> JsError {

@@ -4,8 +4,8 @@
 //! computed by the core ([`Scenario::from_setup`], [`Scenario::for_map`],
 //! [`EpisodeMetrics::to_csv`]); this file converts at the boundary.
 
-use planlab_core::map::io::scenario::Scenario;
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::scenario::Scenario;
 use wasm_bindgen::prelude::*;
 
 use crate::{MapHandle, SimHandle};

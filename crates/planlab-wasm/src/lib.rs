@@ -55,9 +55,9 @@ pub use sim::{generated_grid_hash, planners, SimHandle};
 
 use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};
 use planlab_core::global::{GridPos, PlanGrid};
-use planlab_core::map::io::scenario::{MapSpec, Scenario};
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::{Cell, OccupancyGrid};
+use planlab_core::scenario::{MapSpec, Scenario};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 

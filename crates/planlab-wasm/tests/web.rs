@@ -578,7 +578,7 @@ fn reproduce_variant_is_the_core_tree() {
     let text = planlab_wasm::reproduce_variant("T-fig3-2", "improved", 3, 0).unwrap();
     let got: serde_json::Value = serde_json::from_str(&text).unwrap();
     // It is a scenario the page can load.
-    planlab_core::map::io::scenario::Scenario::from_json(&text).expect("a scenario");
+    planlab_core::scenario::Scenario::from_json(&text).expect("a scenario");
     let scene = reproduce::find("T-fig3-2")
         .unwrap()
         .variant(0, 3, &[])

@@ -4,8 +4,22 @@
 //! [`ApfConfig::robot_radius`]): an obstacle is a sphere (3D) or disc (2D)
 //! with a centre and a radius, a point obstacle has radius 0.
 
-use super::planner::VirtualObstacle;
 use super::{ApfConfig, ApfVector};
+
+/// A predicted obstacle position with its virtual repulsion range.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VirtualObstacle<V> {
+    /// The obstacle's id.
+    pub id: u32,
+    /// 1 for t+1, 2 for t+2.
+    pub k: u8,
+    /// Predicted centre, m.
+    pub centre: V,
+    /// Virtual range from the centre, m.
+    pub range: f64,
+    /// Virtual repulsion at the centre as a share of the attraction, 1.
+    pub gain: f64,
+}
 
 /// Surface distances below this count as this (the repulsion of eq 4-4
 /// grows as 1/p³ and must stay finite), m.

@@ -44,7 +44,8 @@ pub mod vector;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-pub use planner::{Apf, ApfStep, Candidate, ObstacleObs, StepKind, VirtualObstacle};
+pub use field::VirtualObstacle;
+pub use planner::{Apf, ApfStep, Candidate, ObstacleObs, StepKind};
 pub use predict::{ConstantVelocity, Predictor, PredictorKind, Track};
 pub use rnn::SimpleRnn;
 pub use scene::{AnyApfRun, ApfMetrics, ApfRun, ApfScene, SceneObstacle};

@@ -23,7 +23,7 @@
 //! 4. relative distance rule: while the goal is nearer than every obstacle
 //!    surface, β = 0 and the sampling is centred on the attraction.
 
-use super::field::{attraction, repulsion, surface_distance, virtual_repulsion};
+use super::field::{attraction, repulsion, surface_distance, virtual_repulsion, VirtualObstacle};
 use super::predict::{Predictor, Track};
 use super::{ApfConfig, ApfError, ApfMode, ApfVector, Sampling};
 
@@ -62,21 +62,6 @@ impl<V: ApfVector> ObstacleObs<V> {
             velocity: Some(velocity),
         }
     }
-}
-
-/// A predicted obstacle position with its virtual repulsion range.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct VirtualObstacle<V> {
-    /// The obstacle's id.
-    pub id: u32,
-    /// 1 for t+1, 2 for t+2.
-    pub k: u8,
-    /// Predicted centre, m.
-    pub centre: V,
-    /// Virtual range from the centre, m.
-    pub range: f64,
-    /// Virtual repulsion at the centre as a share of the attraction, 1.
-    pub gain: f64,
 }
 
 /// One sampled candidate of an improved step.

@@ -18,7 +18,7 @@ use super::field::surface_distance;
 use super::planner::{Apf, ApfStep, ObstacleObs};
 use super::{ApfConfig, ApfError, ApfVector};
 use crate::num::acos;
-use crate::sim::Outcome;
+use crate::world::Outcome;
 
 /// A path point is a spike when the path turns there by more than this,
 /// rad (30°, docs/algorithms.md §metrics).

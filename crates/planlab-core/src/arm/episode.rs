@@ -19,10 +19,7 @@ use super::kinematics::IkConfig;
 use super::model::{ArmModel, ArmSpec};
 use super::ArmError;
 use crate::apf::{Apf, ApfConfig, ApfMetrics, ApfMode, ApfStep, ObstacleObs, PredictorKind};
-use crate::sim::Outcome;
-
-/// The arm scenario file's format version.
-pub const ARM_SCENARIO_VERSION: u32 = 1;
+use crate::world::Outcome;
 
 /// Points along a planned joint move at which the whole-arm check looks for
 /// contact (a planned move is one 0.04 m tool step, so the links move
@@ -169,52 +166,6 @@ pub fn arm_apf_default() -> ApfConfig {
     }
 }
 
-/// An arm scenario file: `version`, `name`, `description`, `seed` and the
-/// `arm` section (documented in `docs/scenario-schema.md`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ArmScenario {
-    /// Must be [`ARM_SCENARIO_VERSION`].
-    pub version: u32,
-    /// Short title.
-    #[serde(default)]
-    pub name: String,
-    /// Free text.
-    #[serde(default)]
-    pub description: String,
-    /// Seed of the hand motion's variation (default 0).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub seed: Option<u64>,
-    /// The scene.
-    pub arm: ArmScene,
-}
-
-impl ArmScenario {
-    /// Parses an arm scenario.
-    pub fn from_json(text: &str) -> Result<ArmScenario, ArmError> {
-        let v: serde_json::Value =
-            serde_json::from_str(text).map_err(|e| ArmError::Json(e.to_string()))?;
-        ArmScenario::from_value(&v)
-    }
-
-    /// Parses an arm scenario from a JSON tree (after `--set` edits).
-    pub fn from_value(v: &serde_json::Value) -> Result<ArmScenario, ArmError> {
-        if let Some(ver) = v.get("version").and_then(|x| x.as_u64()) {
-            if ver != ARM_SCENARIO_VERSION as u64 {
-                return Err(ArmError::Invalid(format!(
-                    "scenario version {ver} is not supported: this planlab reads version {ARM_SCENARIO_VERSION}"
-                )));
-            }
-        }
-        serde_json::from_value(v.clone()).map_err(|e| ArmError::Json(e.to_string()))
-    }
-
-    /// Whether a JSON document is an arm scenario (has an `arm` section).
-    pub fn is_arm(v: &serde_json::Value) -> bool {
-        v.get("arm").is_some()
-    }
-}
-
 /// What one arm episode measured: the APF metrics (`planlab run --json` /
 /// `planlab reproduce --json` field names), with the minimum distance
 /// taken between any link capsule and the hand or forearm.
@@ -266,11 +217,6 @@ fn check_pos(what: &str, v: f64) -> Result<(), ArmError> {
 }
 
 impl ArmEpisode {
-    /// Builds the episode of a scenario (seed from the file, default 0).
-    pub fn from_scenario(s: &ArmScenario) -> Result<ArmEpisode, ArmError> {
-        ArmEpisode::new(s.arm.clone(), s.seed.unwrap_or(0))
-    }
-
     /// Builds an episode: validates everything, puts the tool on the start
     /// by IK and checks that start and goal are reachable and free.
     pub fn new(scene: ArmScene, seed: u64) -> Result<ArmEpisode, ArmError> {

@@ -9,7 +9,8 @@
 //!   and capsule obstacles (parry3d).
 //! - [`hand`]: the moving hand and forearm with scripted reaching motions.
 //! - [`episode`]: the end effector planned by the 3D APF of [`crate::apf`]
-//!   among the moving hand, followed by IK; arm scenarios and metrics.
+//!   among the moving hand, followed by IK; the `arm` section of an arm
+//!   scenario (the file is [`crate::scenario::ArmScenario`]) and metrics.
 
 pub mod episode;
 pub mod geometry;
@@ -17,7 +18,7 @@ pub mod hand;
 pub mod kinematics;
 pub mod model;
 
-pub use episode::{ArmEpisode, ArmMetrics, ArmPredictor, ArmScenario, ArmScene, ArmSimConfig};
+pub use episode::{ArmEpisode, ArmMetrics, ArmPredictor, ArmScene, ArmSimConfig};
 pub use geometry::{link_capsules, min_distance, LinkCapsule, Obstacle3};
 pub use hand::{HandMotion, HandPreset, HandSpec};
 pub use kinematics::{Frames, IkConfig, IkReport};

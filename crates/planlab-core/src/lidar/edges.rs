@@ -21,44 +21,10 @@
 use serde::{Deserialize, Serialize};
 
 use super::scan::{beam_angle, dist, polar};
+/// The edge type is named by the planner debug data in `local`, so it is
+/// defined there.
+pub use crate::local::scan_debug::Edge;
 use crate::num::{asin, cos, sin};
-
-/// Edge type of \[L\] definition 1.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-pub enum Edge {
-    /// No edge.
-    #[default]
-    Null,
-    /// Strong rising: in range → no return.
-    SR,
-    /// Weak rising: range jumps up by more than T_gap.
-    WR,
-    /// Strong falling: no return → in range.
-    SF,
-    /// Weak falling: range drops by more than T_gap.
-    WF,
-}
-
-impl Edge {
-    /// SR or WR.
-    pub fn is_rising(self) -> bool {
-        matches!(self, Edge::SR | Edge::WR)
-    }
-    /// SF or WF.
-    pub fn is_falling(self) -> bool {
-        matches!(self, Edge::SF | Edge::WF)
-    }
-    /// Small integer code for typed arrays: Null 0, SR 1, WR 2, SF 3, WF 4.
-    pub fn code(self) -> u8 {
-        match self {
-            Edge::Null => 0,
-            Edge::SR => 1,
-            Edge::WR => 2,
-            Edge::SF => 3,
-            Edge::WF => 4,
-        }
-    }
-}
 
 /// Edges of every beam pair (i, i+1 mod n) of `ranges` (`INFINITY` = no
 /// return) with threshold `t_gap`, into `out`.

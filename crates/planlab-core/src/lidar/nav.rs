@@ -43,6 +43,8 @@ use serde::{Deserialize, Serialize};
 use super::edges::{self, Edge, GapPattern, ObstaclePattern};
 use super::scan::{polar, Scan};
 use super::LidarError;
+/// Defined with the planner debug data in `local`, which names it.
+pub use crate::local::scan_debug::TargetKind;
 use crate::num::{atan2, cos, hypot, sin};
 
 /// \[L\] Table 1 navigation parameters (defaults) and the switches of §3.4.
@@ -155,19 +157,6 @@ pub struct NavInput<'a> {
     pub goal: [f64; 2],
     /// Control period, s.
     pub dt: f64,
-}
-
-/// What the navigator steers to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "kebab-case")]
-pub enum TargetKind {
-    /// The global goal (not blocked, or no usable temporary goal).
-    #[default]
-    Global,
-    /// A temporary goal chosen this step.
-    Temporary,
-    /// A temporary goal kept from an earlier step (hold period).
-    Held,
 }
 
 /// One temporary-goal candidate, robot frame.

@@ -23,6 +23,8 @@ use super::nav::{LidarNavConfig, NavInput, Navigator, TargetKind, Velocity};
 use super::scan::{beam_angle, polar, Disc, Lidar, LidarConfig, Scan};
 use super::LidarError;
 use crate::local::registry::{self, PlannerChoice};
+/// The debug data lives in `local` (carried by [`PlannerDebug`]).
+pub use crate::local::scan_debug::{CandidateMark, EdgeMark, LidarDebug};
 use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::map::{Cell, OccupancyGrid, Pose2};
 use crate::num::{cos, hypot, sin};
@@ -426,65 +428,6 @@ pub fn scan_local_map(
         })
         .map_err(|e| LocalError::InvalidParameter(format!("local map: {e}")))?;
     StaticMap::new(grid, true).map_err(|e| LocalError::InvalidParameter(format!("local map: {e}")))
-}
-
-/// An edge for drawing: beam, type and the in-range point it marks (world).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct EdgeMark {
-    /// Beam index i of e_i.
-    pub beam: usize,
-    /// Type.
-    pub kind: Edge,
-    /// The obstacle point on the edge's in-range side, m.
-    pub point: [f64; 2],
-}
-
-/// A temporary-goal candidate for drawing (world).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct CandidateMark {
-    /// Position, m.
-    pub point: [f64; 2],
-    /// Cost (eq 3), m.
-    pub cost: f64,
-    /// Iteration (0 = around the OP blocking the goal).
-    pub iteration: u32,
-}
-
-/// What the LiDAR navigator saw and chose in its last step, world frame,
-/// for the page. `pose`, `ranges`, `returns`, `kind` and the hold timer are
-/// filled every step; the geometry only while rollouts are recorded.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-pub struct LidarDebug {
-    /// Sensor pose (x, y, θ) of the scan.
-    pub pose: [f64; 3],
-    /// Range limit, m.
-    pub max_range: f64,
-    /// Raw ranges, m; beams with no return hold `max_range`.
-    pub ranges: Vec<f64>,
-    /// Whether each beam returned.
-    pub returns: Vec<bool>,
-    /// Edges of the raw scan.
-    pub edges_raw: Vec<EdgeMark>,
-    /// Edges after gap removal (Algorithm 1).
-    pub edges: Vec<EdgeMark>,
-    /// Removed gap patterns: the straight line that replaced each.
-    pub gaps: Vec<[[f64; 2]; 2]>,
-    /// Obstacle patterns before expansion (polylines through their beams).
-    pub ops_raw: Vec<Vec<[f64; 2]>>,
-    /// Obstacle patterns after expansion (eq 1).
-    pub ops: Vec<Vec<[f64; 2]>>,
-    /// Index into `ops` of the OP blocking the goal.
-    pub blocking: Option<usize>,
-    /// Every temporary-goal candidate evaluated.
-    pub candidates: Vec<CandidateMark>,
-    /// The target steered to.
-    pub target: [f64; 2],
-    /// Its kind.
-    pub kind: TargetKind,
-    /// Time left in the hold period, s.
-    pub hold_remaining: f64,
-    /// The hold period t_h, s.
-    pub hold_period: f64,
 }
 
 /// The navigator stack as a simulator local planner (see the module doc).

@@ -48,6 +48,7 @@ use serde::{Deserialize, Serialize};
 use super::planner::LocalMapConfig;
 use super::scan::{beam_angle, polar, LidarConfig, Scan};
 use super::scan_motion::{peer_dwa, regression_search, steer_point, ScanMotion};
+use crate::geom::distance_to_polyline;
 use crate::global::keypoints::segment_free;
 use crate::global::{supercover, Diagonal, GridPos, PlanGrid};
 use crate::local::dwa::{DwaConfig, DWA_FIELDS};
@@ -55,7 +56,6 @@ use crate::local::registry::check_param;
 use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::map::costmap::distance_field;
 use crate::map::{Cell, OccupancyGrid, Pose2};
-use crate::metrics::distance_to_polyline;
 use crate::num::{hypot, Rng};
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
 

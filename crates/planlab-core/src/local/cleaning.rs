@@ -1674,7 +1674,7 @@ mod tests {
         assert_eq!(*path.last().unwrap(), [8.0, 3.0]);
         let near = |q: [f64; 2]| {
             path.windows(2)
-                .any(|w| crate::metrics::distance_to_polyline(q, w).unwrap() < 0.05)
+                .any(|w| crate::geom::distance_to_polyline(q, w).unwrap() < 0.05)
         };
         assert!(near([3.0, 1.5]));
         // Every vertex keeps the robot radius from the box (and walls).

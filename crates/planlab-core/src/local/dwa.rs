@@ -59,6 +59,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug, Rollout};
+use crate::geom::closest_along;
 use crate::num::{atan2, cos, hypot, sin, wrap_angle};
 use crate::world::robot::integrate;
 use crate::world::{Command, Footprint, RobotSpec, RobotState, StaticMap};
@@ -600,12 +601,8 @@ impl DwaCore {
             if cross * cross > reach * reach * len2 * (1.0 + 1e-9) {
                 return false;
             }
-            let t = if len2 > 0.0 {
-                ((ex * dx + ey * dy) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            hypot(p[0] + t * dx - x, p[1] + t * dy - y) - r - self.r_eff <= self.last_limit
+            let (q, _) = closest_along([x, y], p, [dx, dy]);
+            hypot(q[0] - x, q[1] - y) - r - self.r_eff <= self.last_limit
         })
     }
 

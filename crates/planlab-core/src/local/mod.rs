@@ -13,12 +13,16 @@ pub mod improved;
 pub mod pursuit;
 pub mod registry;
 pub mod route;
+pub mod scan_debug;
 #[cfg(test)]
 pub(crate) mod testkit;
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+/// Sensor samples are world data (the terrain model makes them); named
+/// here too because planners read them in their [`Observation`].
+pub use crate::world::OdometrySample;
 use crate::world::{Command, RobotState, StaticMap};
 
 /// A mover as the robot perceives it.
@@ -32,17 +36,6 @@ pub struct ObservedMover {
     pub vel: [f64; 2],
     /// Radius, metres.
     pub radius: f64,
-}
-
-/// One odometry sample for the last control period (\[C\] eq 15–18): the
-/// body-frame increment (Δx, Δy, Δθ) the wheels report (what was commanded)
-/// and the true one a laser odometry measures.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
-pub struct OdometrySample {
-    /// Wheel-odometry increment (Δx, Δy, Δθ), body frame.
-    pub wheel: [f64; 3],
-    /// Laser-odometry (true) increment (Δx, Δy, Δθ), body frame.
-    pub laser: [f64; 3],
 }
 
 /// What a local planner may know at one control step.
@@ -135,7 +128,7 @@ pub struct PlannerDebug {
     /// Strategy in force ("normal", "decelerate", "detour", "hold-v" …).
     pub mode: String,
     /// What the LiDAR navigator saw and chose (\[L\]), for its planners.
-    pub lidar: Option<crate::lidar::LidarDebug>,
+    pub lidar: Option<scan_debug::LidarDebug>,
 }
 
 /// A local planner: called once per control period.

@@ -7,6 +7,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{Cell, MapError, OccupancyGrid};
+use crate::geom::segment_distance2;
 
 /// Longest brush stroke accepted, in points (a pointer sample each).
 pub const MAX_STROKE_POINTS: usize = 100_000;
@@ -69,19 +70,6 @@ fn check_radius(what: &str, r: f64) -> Result<(), MapError> {
     } else {
         Err(bad(format!("{what} {r} m: must be a finite number ≥ 0")))
     }
-}
-
-/// Distance² from `p` to the segment `a`–`b`.
-fn seg_dist2(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 {
-        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let (ex, ey) = (a[0] + t * dx - p[0], a[1] + t * dy - p[1]);
-    ex * ex + ey * ey
 }
 
 /// Grid-local frame helper: cell boxes and centres in metres from the
@@ -193,7 +181,7 @@ impl MapEdit {
                     );
                     for up in u0..u1 {
                         for col in c0..c1 {
-                            if seg_dist2(f.centre(col, up), a, b) <= r2 {
+                            if segment_distance2(f.centre(col, up), a, b) <= r2 {
                                 paint(grid, col, up, *cell);
                             }
                         }

@@ -9,7 +9,10 @@
 pub mod costmap;
 pub mod edit;
 pub mod generate;
+mod grid_pos;
 pub mod io;
+
+pub use grid_pos::{supercover, supercover_while, GridPos};
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -403,10 +406,10 @@ impl OccupancyGrid {
         }
         let mut changed = 0;
         let (a, b) = (
-            crate::global::GridPos::new(col0 as u32, row0 as u32),
-            crate::global::GridPos::new(col1 as u32, row1 as u32),
+            GridPos::new(col0 as u32, row0 as u32),
+            GridPos::new(col1 as u32, row1 as u32),
         );
-        crate::global::supercover(a, b, |c, r, corner| {
+        supercover(a, b, |c, r, corner| {
             // Crossed cells lie in the endpoints' bounding box, so on the map.
             if corner.is_none() {
                 let i = r as usize * self.width + c as usize;

@@ -39,8 +39,11 @@
 
 use serde::{Deserialize, Serialize};
 
+/// Tracking error is the distance to the global path polyline; re-exported
+/// here because callers that report it look for it with the metrics.
+pub use crate::geom::distance_to_polyline;
 use crate::num::{atan2, hypot, wrap_angle};
-use crate::sim::{Outcome, Trace};
+use crate::sim::{Episode, Outcome, Trace};
 
 /// Arc-length step of the resampling used for turning angles, m.
 pub const TURN_RESAMPLE_M: f64 = 0.1;
@@ -98,6 +101,19 @@ pub struct EpisodeMetrics {
 }
 
 impl EpisodeMetrics {
+    /// The metrics of episode `ep` so far (run it to its end first): its
+    /// trace and outcome, tracking error against its planner's global path,
+    /// wheel loads against [`DEFAULT_LOAD_THRESHOLD_N`]. What `planlab run`,
+    /// `planlab batch` and `planlab reproduce` report.
+    pub fn of_episode(ep: &Episode) -> EpisodeMetrics {
+        EpisodeMetrics::from_trace(
+            ep.trace(),
+            &ep.planner_debug().global_path,
+            ep.outcome(),
+            DEFAULT_LOAD_THRESHOLD_N,
+        )
+    }
+
     /// Computes every metric of `trace` (see the module doc for the
     /// definitions). `global_path` may be empty (no tracking error);
     /// `load_threshold_n` is the wheel-load threshold, N.
@@ -336,30 +352,6 @@ pub fn speed_drops(speeds: &[f64], fraction: f64) -> u32 {
         }
     }
     count
-}
-
-/// Distance from `p` to segment a–b.
-fn point_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    hypot(p[0] - (a[0] + t * dx), p[1] - (a[1] + t * dy))
-}
-
-/// Distance from `p` to the polyline (a single point counts as one).
-pub fn distance_to_polyline(p: [f64; 2], path: &[[f64; 2]]) -> Option<f64> {
-    match path {
-        [] => None,
-        [a] => Some(hypot(p[0] - a[0], p[1] - a[1])),
-        _ => path
-            .windows(2)
-            .map(|w| point_segment(p, w[0], w[1]))
-            .reduce(f64::min),
-    }
 }
 
 /// (mean, max, variance) of the distances from `pts` to `path`.

@@ -17,9 +17,9 @@
 use serde::Serialize;
 use serde_json::{json, Value};
 
-use crate::map::io::scenario::{Scenario, ScenarioError};
 use crate::map::{Cell, OccupancyGrid};
 use crate::num::Rng;
+use crate::scenario::{Scenario, ScenarioError};
 
 /// One named perturbation of a preset.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -42,9 +42,13 @@ use serde_json::Value;
 pub use family::{Draw, Family, Perturbation, MAX_DRAWS, MAX_VARIANTS};
 pub use stats::{EffectKind, MedianCi, Share};
 
-use crate::apf::{AnyApfRun, ApfMetrics};
-use crate::map::io::scenario::{set_json_path, set_planner_name, Scenario, ScenarioError};
-use crate::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use crate::apf::ApfMetrics;
+use crate::map::OccupancyGrid;
+use crate::metrics::EpisodeMetrics;
+use crate::scenario::{
+    set_json_path, set_planner_name, AnyRun, AnyScenario, AnyScenarioError, FinishedRun, Scenario,
+    ScenarioError, ScenarioKind,
+};
 use crate::sim::{Episode, Outcome, SimError};
 
 /// A relation holds on at least this share of a family's variants (every
@@ -217,36 +221,35 @@ impl RunMetrics for EpisodeMetrics {
     }
     fn run_tree(tree: &Value) -> Result<(Self, u64), SimError> {
         let mut ep = episode_of(tree)?;
-        let outcome = ep.run();
-        let m = EpisodeMetrics::from_trace(
-            ep.trace(),
-            &ep.planner_debug().global_path,
-            outcome,
-            DEFAULT_LOAD_THRESHOLD_N,
-        );
-        Ok((m, ep.trace().hash()))
+        ep.run();
+        Ok((EpisodeMetrics::of_episode(&ep), ep.trace().hash()))
     }
 }
 
-/// A path scenario's run: the arm episode or the APF run.
-enum PathRun {
-    Arm(Box<crate::arm::ArmEpisode>),
-    Apf(Box<AnyApfRun>),
+/// The experiments' errors are [`SimError`]s; the arm's and the APF run's
+/// own errors are reported as invalid settings.
+fn sim_error(e: AnyScenarioError) -> SimError {
+    match e {
+        AnyScenarioError::Scenario(e) => SimError::Scenario(e),
+        AnyScenarioError::Sim(e) => e,
+        other => SimError::InvalidConfig(other.to_string()),
+    }
 }
 
-fn path_run_of(tree: &Value) -> Result<PathRun, SimError> {
-    if crate::arm::ArmScenario::is_arm(tree) {
-        let arm = |e: crate::arm::ArmError| SimError::InvalidConfig(e.to_string());
-        let s = crate::arm::ArmScenario::from_value(tree).map_err(arm)?;
-        return Ok(PathRun::Arm(Box::new(
-            crate::arm::ArmEpisode::from_scenario(&s).map_err(arm)?,
-        )));
+/// A path scenario (an arm scenario, or an embedded preset with an inline
+/// map and an `apf` section), parsed.
+fn path_scenario_of(tree: &Value) -> Result<(AnyScenario, Option<OccupancyGrid>), SimError> {
+    let s = AnyScenario::from_value(tree).map_err(sim_error)?;
+    let grid = match &s {
+        AnyScenario::Arm(_) => return Ok((s, None)),
+        AnyScenario::Robot(doc) | AnyScenario::Apf(doc) => doc
+            .inline_grid()?
+            .ok_or_else(|| invalid("an embedded preset needs an inline map".into()))?,
+    };
+    if s.kind() == ScenarioKind::Robot {
+        return Err(invalid("the scenario has no `apf` section".into()));
     }
-    let scenario = Scenario::from_value(tree)?;
-    let grid = scenario
-        .inline_grid()?
-        .ok_or_else(|| invalid("an embedded preset needs an inline map".into()))?;
-    Ok(PathRun::Apf(Box::new(apf_run_of(&scenario, &grid)?)))
+    Ok((s, Some(grid)))
 }
 
 impl RunMetrics for ApfMetrics {
@@ -257,21 +260,16 @@ impl RunMetrics for ApfMetrics {
         self.outcome
     }
     fn check(tree: &Value) -> Result<(), SimError> {
-        path_run_of(tree).map(|_| ())
+        let (s, grid) = path_scenario_of(tree)?;
+        s.start(grid).map(|_| ()).map_err(sim_error)
     }
     fn run_tree(tree: &Value) -> Result<(Self, u64), SimError> {
-        match path_run_of(tree)? {
-            PathRun::Arm(mut ep) => {
-                ep.run()
-                    .map_err(|e| SimError::InvalidConfig(e.to_string()))?;
-                Ok((ep.metrics(), crate::apf::scene::path_hash(ep.tool_path())))
-            }
-            PathRun::Apf(mut r) => {
-                let m = r
-                    .run()
-                    .map_err(|e| SimError::InvalidConfig(e.to_string()))?;
-                Ok((m, crate::apf::scene::path_hash(&r.path_xyz())))
-            }
+        let (s, grid) = path_scenario_of(tree)?;
+        let done = s.start(grid).and_then(AnyRun::run).map_err(sim_error)?;
+        let hash = done.trace_hash();
+        match done {
+            FinishedRun::Apf(_, m) | FinishedRun::Arm(_, m) => Ok((m, hash)),
+            FinishedRun::Robot(..) => Err(invalid("the scenario has no `apf` section".into())),
         }
     }
 }
@@ -348,7 +346,7 @@ pub fn run_tree(
     extra: &[(String, String)],
 ) -> Result<Value, SimError> {
     let mut tree = preset.clone();
-    let arm = crate::arm::ArmScenario::is_arm(&tree);
+    let arm = ScenarioKind::of(&tree) == ScenarioKind::Arm;
     if let (Some(p), false) = (spec.planner, arm) {
         set_planner_name(&mut tree, p)?;
     }
@@ -377,13 +375,8 @@ pub fn run_spec(spec: &RunSpec) -> Result<(Episode, EpisodeMetrics), SimError> {
     let preset: Value = serde_json::from_str(spec.scenario_json)
         .map_err(|e| SimError::Scenario(ScenarioError::from(e)))?;
     let mut ep = episode_of(&run_tree(spec, &preset, &[])?)?;
-    let outcome = ep.run();
-    let m = EpisodeMetrics::from_trace(
-        ep.trace(),
-        &ep.planner_debug().global_path,
-        outcome,
-        DEFAULT_LOAD_THRESHOLD_N,
-    );
+    ep.run();
+    let m = EpisodeMetrics::of_episode(&ep);
     Ok((ep, m))
 }
 
@@ -392,21 +385,6 @@ pub fn run_path_spec(spec: &RunSpec) -> Result<ApfMetrics, SimError> {
     let preset: Value = serde_json::from_str(spec.scenario_json)
         .map_err(|e| SimError::Scenario(ScenarioError::from(e)))?;
     Ok(ApfMetrics::run_tree(&run_tree(spec, &preset, &[])?)?.0)
-}
-
-/// Builds the APF run of a scenario with an `apf` section (2D start / goal
-/// default to the scenario's world points).
-pub fn apf_run_of(
-    scenario: &Scenario,
-    grid: &crate::map::OccupancyGrid,
-) -> Result<AnyApfRun, SimError> {
-    let apf = scenario
-        .apf
-        .as_ref()
-        .ok_or_else(|| invalid("the scenario has no `apf` section".into()))?;
-    let s = scenario.start_world(grid);
-    let g = scenario.goal_world(grid);
-    AnyApfRun::new(apf, &s, &g).map_err(|e| SimError::InvalidConfig(e.to_string()))
 }
 
 /// One variant's scene: the tree of every run (in run order) and the

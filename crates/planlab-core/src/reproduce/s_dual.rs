@@ -15,8 +15,8 @@ use super::{Deviation, Experiment, Family, Perturbation, RunSpec, Runs};
 use crate::global::plan::plan_on_map;
 use crate::global::{Diagonal, GridPos};
 use crate::local::dual::{grid_options, DualConfig, DualVariant};
-use crate::map::io::scenario::{Scenario, ScenarioError};
 use crate::metrics::EpisodeMetrics;
+use crate::scenario::{Scenario, ScenarioError};
 use crate::sim::SimError;
 use crate::world::StaticMap;
 

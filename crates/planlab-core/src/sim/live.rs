@@ -23,28 +23,11 @@ impl Episode {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::map::io::scenario::Scenario;
-    use crate::map::OccupancyGrid;
     use crate::sim::Outcome;
 
     fn episode(planner: &str) -> Episode {
         // A 4 × 2 m room, start on the left, goal on the right.
-        let wall = "#".repeat(20);
-        let inside = format!("#{}#", ".".repeat(18));
-        let mut cells = vec![wall.clone()];
-        cells.extend(vec![inside; 8]);
-        cells.push(wall);
-        let text = serde_json::json!({
-            "version": 1,
-            "map": {"width": 20, "height": 10, "resolution": 0.2, "cells": cells},
-            "start": {"col": 2, "row": 5},
-            "goal": {"col": 17, "row": 5},
-            "local_planner": {"name": planner},
-        })
-        .to_string();
-        let sc = Scenario::from_json(&text).unwrap();
-        let grid: OccupancyGrid = sc.load_grid(&mut |_| Err("inline".into())).unwrap();
-        Episode::from_scenario(&sc, grid).unwrap()
+        crate::sim::walled_room(20, 10, PlannerChoice::named(planner), 0)
     }
 
     #[test]

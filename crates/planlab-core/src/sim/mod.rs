@@ -19,15 +19,16 @@
 //! give a bit-identical [`Trace`] natively and in WebAssembly.
 
 mod edit;
-mod export;
 mod live;
 mod replay;
 mod trace;
 
+/// Every kind of run reports it, so it is a world type; named here too as
+/// the episode's result.
+pub use crate::world::Outcome;
 pub use edit::{
     generated_sim_config, is_start_collision, SetupEdit, GENERATED_MAX_TIME, GENERATED_STUCK_TIME,
 };
-pub use export::{default_endpoints, ENDPOINT_MARGIN_M};
 pub use replay::{Edit, Recording};
 pub use trace::{Trace, TraceStep, CSV_HEADER};
 
@@ -35,13 +36,13 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use crate::local::registry::{self, PlannerChoice};
-use crate::local::{LocalError, LocalPlanner, ObservedMover, OdometrySample, PlannerDebug};
-use crate::map::io::scenario::{Scenario, ScenarioError};
-use crate::map::{MapError, OccupancyGrid};
+use crate::local::{LocalError, LocalPlanner, ObservedMover, PlannerDebug};
+use crate::map::io::ScenarioError;
+use crate::map::MapError;
 use crate::num::{cos, fmt_num, hypot, param_problem, sin};
 use crate::world::{
-    Footprint, MoverSpec, MoverState, RobotSpec, RobotState, StaticMap, Terrain, TerrainSpec,
-    WorldError,
+    Footprint, MoverSpec, MoverState, OdometrySample, RobotSpec, RobotState, StaticMap, Terrain,
+    TerrainSpec, WorldError,
 };
 
 /// Clearance values in traces and metrics are capped here, metres: farther
@@ -139,42 +140,6 @@ impl SimConfig {
     fn max_steps(&self) -> u64 {
         // The small slack keeps 120 / 0.1 = 1200.0000000000002 at 1200.
         (self.max_time / self.dt - 1e-9).ceil().max(1.0) as u64
-    }
-}
-
-/// How an episode ended (or that it has not).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "kebab-case")]
-pub enum Outcome {
-    /// Still going.
-    #[default]
-    Running,
-    /// The robot's centre came within `goal_tolerance` of the goal.
-    Reached,
-    /// The footprint touched a wall, the map edge or a mover.
-    Collision,
-    /// `max_time` passed.
-    Timeout,
-    /// No progress toward the goal for `stuck_time`.
-    Stuck,
-}
-
-impl Outcome {
-    /// The kebab-case name (`reached`, `collision`, …).
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Outcome::Running => "running",
-            Outcome::Reached => "reached",
-            Outcome::Collision => "collision",
-            Outcome::Timeout => "timeout",
-            Outcome::Stuck => "stuck",
-        }
-    }
-}
-
-impl std::fmt::Display for Outcome {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.as_str())
     }
 }
 
@@ -509,35 +474,6 @@ impl Episode {
         Ok(ep)
     }
 
-    /// Builds the episode a scenario describes on `grid` (its map, already
-    /// loaded: see [`Scenario::load_grid`]). Start and goal are the points'
-    /// `world` positions when given, else their cell centres; sections left
-    /// out take their defaults (the planner: [`registry::DEFAULT_PLANNER`]).
-    pub fn from_scenario(scenario: &Scenario, grid: OccupancyGrid) -> Result<Episode, SimError> {
-        scenario.validate_against(&grid)?;
-        let config = scenario.sim.unwrap_or_default();
-        config.validate()?;
-        let [x, y] = scenario.start_world(&grid);
-        let goal = scenario.goal_world(&grid);
-        let map = StaticMap::new(grid, config.unknown_is_obstacle)?;
-        Episode::new(EpisodeSetup {
-            map,
-            robot: scenario.robot.unwrap_or_default(),
-            start: RobotState {
-                x,
-                y,
-                theta: scenario.start_yaw.unwrap_or(0.0),
-                ..Default::default()
-            },
-            goal,
-            movers: scenario.movers.clone().unwrap_or_default(),
-            planner: scenario.local_planner.clone().unwrap_or_default(),
-            config,
-            terrain: scenario.terrain.clone().unwrap_or_default(),
-            seed: scenario.seed.unwrap_or(0),
-        })
-    }
-
     /// The setup this episode would restart from: the original start, map,
     /// robot, planner, settings and seed with the *current* goal and movers
     /// (after [`Episode::set_goal`] / [`Episode::set_movers`]).
@@ -827,6 +763,45 @@ impl Episode {
         self.rewrite_start_row();
         Ok(())
     }
+}
+
+/// A walled room of `width` × `height` cells of 0.2 m, the robot at rest
+/// on cell (2, height / 2) facing +x and the goal on the cell as far from
+/// the right wall: the episode the sim's unit tests drive (the scenario file
+/// is a layer above, so they build the setup directly).
+#[cfg(test)]
+pub(crate) fn walled_room(
+    width: usize,
+    height: usize,
+    planner: PlannerChoice,
+    seed: u64,
+) -> Episode {
+    let wall = "#".repeat(width);
+    let inside = format!("#{}#", ".".repeat(width - 2));
+    let mut rows = vec![wall.clone()];
+    rows.extend(vec![inside; height - 2]);
+    rows.push(wall);
+    let grid = crate::map::OccupancyGrid::from_ascii(&rows.join("\n"))
+        .and_then(|g| g.with_frame(0.2, crate::map::Pose2::default()))
+        .expect("a valid room");
+    let (x, y) = grid.cell_to_world(2, height / 2);
+    let (gx, gy) = grid.cell_to_world(width - 3, height / 2);
+    Episode::new(EpisodeSetup {
+        map: StaticMap::new(grid, true).expect("a simulable map"),
+        robot: RobotSpec::default(),
+        start: RobotState {
+            x,
+            y,
+            ..Default::default()
+        },
+        goal: [gx, gy],
+        movers: Vec::new(),
+        planner,
+        config: SimConfig::default(),
+        terrain: TerrainSpec::default(),
+        seed,
+    })
+    .expect("the room episode starts")
 }
 
 #[cfg(test)]

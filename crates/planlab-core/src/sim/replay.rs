@@ -140,28 +140,11 @@ impl Recording {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::map::io::scenario::Scenario;
-    use crate::map::OccupancyGrid;
     use crate::world::{MotionModel, MoverSpec};
 
     fn episode() -> Episode {
         // A 6 × 3 m room, start on the left, goal on the right.
-        let wall = "#".repeat(30);
-        let inside = format!("#{}#", ".".repeat(28));
-        let mut cells = vec![wall.clone()];
-        cells.extend(vec![inside; 13]);
-        cells.push(wall);
-        let text = serde_json::json!({
-            "version": 1,
-            "map": {"width": 30, "height": 15, "resolution": 0.2, "cells": cells},
-            "start": {"col": 2, "row": 7},
-            "goal": {"col": 27, "row": 7},
-            "seed": 5,
-        })
-        .to_string();
-        let sc = Scenario::from_json(&text).unwrap();
-        let grid: OccupancyGrid = sc.load_grid(&mut |_| Err("inline".into())).unwrap();
-        Episode::from_scenario(&sc, grid).unwrap()
+        crate::sim::walled_room(30, 15, Default::default(), 5)
     }
 
     fn mover(id: u32) -> MoverSpec {

@@ -7,12 +7,16 @@
 //! goes through `libm`).
 
 pub mod movers;
+mod outcome;
 pub mod robot;
+mod sensors;
 pub mod static_map;
 pub mod terrain;
 
 pub use movers::{MotionModel, MoverSpec, MoverState, Placement, ScriptSample};
+pub use outcome::Outcome;
 pub use robot::{Command, Drive, Footprint, RobotLimits, RobotSpec, RobotState};
+pub use sensors::OdometrySample;
 pub use static_map::StaticMap;
 pub use terrain::{Road, SlipSpec, Terrain, TerrainSpec, TerrainStep, VehicleSpec};
 

@@ -46,8 +46,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::robot::{integrate, Command, RobotState};
-use super::{check_min, check_positive, WorldError};
-use crate::local::OdometrySample;
+use super::{check_min, check_positive, OdometrySample, WorldError};
 use crate::num::{cos, exp, sin, Rng};
 
 /// Standard gravity used by the vehicle model, m/s².

@@ -9,10 +9,10 @@
 #![allow(dead_code)] // each fuzz target uses one function
 
 use planlab_core::apf::rnn::SimpleRnn;
-use planlab_core::arm::{ArmEpisode, ArmModel, ArmScenario};
-use planlab_core::map::io::scenario::{set_json_path, Scenario};
+use planlab_core::arm::{ArmEpisode, ArmModel};
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::scenario::{set_json_path, ArmScenario, Scenario};
 use planlab_core::sim::Episode;
 use std::fmt::Display;
 use std::path::PathBuf;

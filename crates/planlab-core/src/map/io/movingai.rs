@@ -29,7 +29,7 @@
 //! Optimal lengths assume 8-connectivity, diagonal cost √2 and no corner
 //! cutting.
 
-use crate::global::GridPos;
+use crate::map::GridPos;
 use crate::map::{check_dimensions, Cell, MapError, OccupancyGrid};
 use serde::{Deserialize, Serialize};
 

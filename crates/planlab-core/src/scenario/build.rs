@@ -1,5 +1,9 @@
-//! Episodes as scenario files, and scenarios for bare maps.
+//! Scenarios to runs and back: the episode (or APF run) a scenario
+//! describes, episodes as scenario files, and scenarios for bare maps.
 //!
+//! - [`Episode::from_scenario`]: the robot episode of a scenario on its
+//!   loaded map; [`Scenario::apf_run`]: the kinematic APF run of a scenario
+//!   with an `apf` section.
 //! - [`Scenario::from_setup`] / [`Episode::to_scenario`]: a complete,
 //!   self-contained scenario (the map inline) that rebuilds the same setup,
 //!   so `planlab run` on it gives the trace the page recorded, bit for bit.
@@ -8,10 +12,12 @@
 //!   apart along the free space, joined by it, with room for the robot) and
 //!   the default robot.
 
-use crate::map::io::scenario::{Scenario, ScenarioError, ScenarioPoint, WorldPoint};
+use super::document::{Scenario, ScenarioPoint, WorldPoint};
+use crate::apf::AnyApfRun;
+use crate::map::io::ScenarioError;
 use crate::map::OccupancyGrid;
-use crate::sim::{Episode, EpisodeSetup, SimConfig};
-use crate::world::{RobotSpec, StaticMap};
+use crate::sim::{Episode, EpisodeSetup, SimConfig, SimError};
+use crate::world::{RobotSpec, RobotState, StaticMap};
 use std::collections::VecDeque;
 
 /// Room kept around the robot's circumscribed radius when placing default
@@ -38,6 +44,20 @@ fn point_on(grid: &OccupancyGrid, what: &str, p: [f64; 2]) -> Result<ScenarioPoi
 }
 
 impl Scenario {
+    /// The kinematic APF run of the `apf` section (\[T\] ch. 4) on `grid`,
+    /// the scenario's loaded map: a 2D start or goal the section leaves out
+    /// is the scenario's world point.
+    pub fn apf_run(&self, grid: &OccupancyGrid) -> Result<AnyApfRun, SimError> {
+        let apf = self.apf.as_ref().ok_or_else(|| {
+            SimError::Scenario(ScenarioError::Invalid(
+                "the scenario has no `apf` section".into(),
+            ))
+        })?;
+        let s = self.start_world(grid);
+        let g = self.goal_world(grid);
+        AnyApfRun::new(apf, &s, &g).map_err(|e| SimError::InvalidConfig(e.to_string()))
+    }
+
     /// The scenario that rebuilds `setup` exactly: map inline (plain rows up
     /// to 100 cells a side, run-length encoded above), start and goal as
     /// exact world positions, robot, start heading, movers, planner with its
@@ -105,6 +125,35 @@ impl Scenario {
 }
 
 impl Episode {
+    /// Builds the episode a scenario describes on `grid` (its map, already
+    /// loaded: see [`Scenario::load_grid`]). Start and goal are the points'
+    /// `world` positions when given, else their cell centres; sections left
+    /// out take their defaults (the planner: [`crate::local::registry::DEFAULT_PLANNER`]).
+    pub fn from_scenario(scenario: &Scenario, grid: OccupancyGrid) -> Result<Episode, SimError> {
+        scenario.validate_against(&grid)?;
+        let config = scenario.sim.unwrap_or_default();
+        config.validate()?;
+        let [x, y] = scenario.start_world(&grid);
+        let goal = scenario.goal_world(&grid);
+        let map = StaticMap::new(grid, config.unknown_is_obstacle)?;
+        Episode::new(EpisodeSetup {
+            map,
+            robot: scenario.robot.unwrap_or_default(),
+            start: RobotState {
+                x,
+                y,
+                theta: scenario.start_yaw.unwrap_or(0.0),
+                ..Default::default()
+            },
+            goal,
+            movers: scenario.movers.clone().unwrap_or_default(),
+            planner: scenario.local_planner.clone().unwrap_or_default(),
+            config,
+            terrain: scenario.terrain.clone().unwrap_or_default(),
+            seed: scenario.seed.unwrap_or(0),
+        })
+    }
+
     /// This episode as a self-contained scenario ([`Scenario::from_setup`]
     /// of [`Episode::setup`]): the current map, goal, movers and planner,
     /// from the original start.
