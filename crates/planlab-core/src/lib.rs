@@ -3,17 +3,44 @@
 //! No clock, no global randomness, no wasm bindings: the same inputs give the
 //! same outputs natively and in WebAssembly.
 //!
-//! # Algorithms (see `docs/algorithms.md` for the equations)
-//! - [`map`]: occupancy grids with resolution and origin; readers for ROS
-//!   map_server YAML + PGM, Moving AI `.map` / `.scen`, planlab's scenario
-//!   JSON and ASCII art; inflation and a ROS-style decaying costmap
-//!   (docs/algorithms.md §maps, §inflation).
+//! # Modules, bottom layer first
+//! Each module uses only modules listed in a layer before its own
+//! (`ARCHITECTURE.md`; `tests/layering.rs` checks it). Algorithms follow
+//! the papers; `docs/algorithms.md` gives the equations.
+//! - [`text`]: one-line error text.
+//! - [`num`]: deterministic numerics: `libm` trigonometry, the seeded RNG,
+//!   parameter checks, number formatting.
+//! - [`geom`]: plane geometry: closest point of a segment, distance to a
+//!   polyline.
+//! - [`map`]: occupancy grids with resolution and origin, cells and the
+//!   supercover line, editing and generated maps, inflation and a ROS-style
+//!   decaying costmap; readers for ROS map_server YAML + PGM, Moving AI
+//!   `.map` / `.scen` and a scenario's `map` section (docs/algorithms.md
+//!   §maps, §inflation).
 //! - [`global`]: A* with four heuristics and a weight, Dijkstra, Jump Point
 //!   Search, safe A* of Ge & Li (2022) §1, key-point extraction of Wu (2022)
-//!   §3.2.1 and Bottom-Up segmentation of Ge & Li §4.1 (docs/algorithms.md §grid–§bottom-up).
+//!   §3.2.1 and Bottom-Up segmentation of Ge & Li §4.1 (docs/algorithms.md
+//!   §grid–§bottom-up).
+//! - [`world`]: the robot's body and kinematics, moving obstacles, terrain
+//!   and vehicle dynamics, the static map's geometry, sensor samples and
+//!   run outcomes (§robot, §terrain, §movers).
+//! - [`local`]: the local-planner interface and the DWA family of Wu
+//!   (2022), Ge & Li (2022) and Zhang et al. (2020) (§dwa–§cleaning-dwa).
+//! - [`apf`]: artificial potential fields in 2D and 3D with obstacle
+//!   prediction and the SimpleRNN predictor, Wu (2022) ch. 4 (§apf).
 //! - [`lidar`]: LiDAR heuristic navigation in unknown maps of Chang et al.
 //!   (2024): scan simulation, edges, gap and obstacle patterns, temporary
-//!   goals over a pluggable motion planner (docs/algorithms.md §lidar).
+//!   goals over a pluggable motion planner, and its peers (§lidar).
+//! - [`arm`]: the 7-DOF arm beside a moving hand, Wu (2022) §5.3.3 (§arm).
+//! - [`sim`]: fixed-step, seeded episodes, their traces, recordings and
+//!   edits (§episode).
+//! - [`metrics`]: what an episode measured, from its trace (§metrics).
+//! - [`scenario`]: the scenario files of every kind and the one way from a
+//!   file to a finished run.
+//! - [`batch`]: seeded variants of a scenario and per-planner statistics.
+//! - [`reproduce`]: the papers' experiments: presets, clauses, families,
+//!   verdicts (§reproduce).
+//! - [`bench`]: the benchmark scenes shared by the CLI and the page.
 #![warn(missing_docs)]
 
 pub mod apf;
