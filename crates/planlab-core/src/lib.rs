@@ -40,7 +40,7 @@
 //! - [`batch`]: seeded variants of a scenario and per-planner statistics.
 //! - [`reproduce`]: the papers' experiments: presets, clauses, families,
 //!   verdicts (§reproduce).
-//! - [`bench`]: the benchmark scenes shared by the CLI and the page.
+//! - [`bench`](mod@bench): the benchmark scenes shared by the CLI and the page.
 #![warn(missing_docs)]
 
 pub mod apf;
