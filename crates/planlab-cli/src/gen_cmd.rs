@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use planlab_core::global::GridPos;
-use planlab_core::local::registry::PlannerChoice;
+use planlab_core::planners::PlannerChoice;
 use planlab_core::map::generate::{generate, GenerateConfig};
 use planlab_core::map::io::movingai;
 use planlab_core::map::io::scenario::{Scenario, WorldPoint};

@@ -26,6 +26,8 @@ pub mod local;
 pub mod map;
 pub mod metrics;
 pub mod num;
+pub mod params;
+pub mod planners;
 pub mod reproduce;
 pub mod sim;
 pub mod text;

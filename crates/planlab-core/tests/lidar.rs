@@ -6,7 +6,7 @@ use planlab_core::lidar::nav::carry;
 use planlab_core::lidar::planner::{LocalMapConfig, ScanNavigation};
 use planlab_core::lidar::scan::{beam_angle, Lidar, LidarConfig};
 use planlab_core::lidar::{LidarNavConfig, NavInput, Navigator, Scan, TargetKind, Velocity};
-use planlab_core::local::registry::PlannerChoice;
+use planlab_core::planners::PlannerChoice;
 use planlab_core::map::{OccupancyGrid, Pose2};
 use planlab_core::world::{Footprint, RobotLimits, RobotSpec, StaticMap};
 
@@ -310,7 +310,7 @@ fn bad_configs_name_the_field() {
     )
     .unwrap_err();
     assert!(e.to_string().contains("lidar.beams"), "{e}");
-    let e = planlab_core::local::registry::build(
+    let e = planlab_core::planners::build(
         &PlannerChoice {
             name: "lidar-dwa".into(),
             config: serde_json::json!({"nav": {"t_gap": -1.0}}),

@@ -19,6 +19,7 @@ use super::kinematics::IkConfig;
 use super::model::{ArmModel, ArmSpec};
 use super::ArmError;
 use crate::apf::{Apf, ApfConfig, ApfMetrics, ApfMode, ApfStep, ObstacleObs, PredictorKind};
+use crate::params::{check_param, Bound};
 use crate::sim::Outcome;
 
 /// The arm scenario file's format version.
@@ -256,13 +257,7 @@ impl std::fmt::Debug for ArmEpisode {
 }
 
 fn check_pos(what: &str, v: f64) -> Result<(), ArmError> {
-    match crate::num::param_problem(v, 0.0, true) {
-        None => Ok(()),
-        Some(p) => Err(ArmError::Invalid(format!(
-            "{what} = {}: {p}",
-            crate::num::fmt_num(v)
-        ))),
-    }
+    Ok(check_param(what, v, Bound::above(0.0))?)
 }
 
 impl ArmEpisode {

@@ -34,11 +34,12 @@ pub use trace::{Trace, TraceStep, CSV_HEADER};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use crate::local::registry::{self, PlannerChoice};
+use crate::planners::{self, PlannerChoice};
 use crate::local::{LocalError, LocalPlanner, ObservedMover, OdometrySample, PlannerDebug};
 use crate::map::io::scenario::{Scenario, ScenarioError};
 use crate::map::{MapError, OccupancyGrid};
-use crate::num::{cos, fmt_num, hypot, param_problem, sin};
+use crate::num::{cos, fmt_num, hypot, sin};
+use crate::params::param_problem;
 use crate::world::{
     Footprint, MoverSpec, MoverState, RobotSpec, RobotState, StaticMap, Terrain, TerrainSpec,
     WorldError,
@@ -480,7 +481,7 @@ impl Episode {
         }
         check_reachable(&map, [start.x, start.y], goal)?;
         let terrain = Terrain::new(terrain_spec.clone(), seed)?;
-        let mut planner = registry::build(&choice, &robot, &map, &start, goal)?;
+        let mut planner = planners::build(&choice, &robot, &map, &start, goal)?;
         planner.set_record_rollouts(config.record_rollouts);
         planner.set_seed(seed);
         let mut ep = Episode {
@@ -512,7 +513,7 @@ impl Episode {
     /// Builds the episode a scenario describes on `grid` (its map, already
     /// loaded: see [`Scenario::load_grid`]). Start and goal are the points'
     /// `world` positions when given, else their cell centres; sections left
-    /// out take their defaults (the planner: [`registry::DEFAULT_PLANNER`]).
+    /// out take their defaults (the planner: [`planners::DEFAULT_PLANNER`]).
     pub fn from_scenario(scenario: &Scenario, grid: OccupancyGrid) -> Result<Episode, SimError> {
         scenario.validate_against(&grid)?;
         let config = scenario.sim.unwrap_or_default();
@@ -791,7 +792,7 @@ impl Episode {
             // is built afresh, as from a scenario with this goal, so a saved
             // scenario replays the edited episode exactly.
             let mut planner =
-                registry::build(&self.choice, &self.robot, &self.map, &self.state, goal)?;
+                planners::build(&self.choice, &self.robot, &self.map, &self.state, goal)?;
             planner.set_record_rollouts(self.config.record_rollouts);
             planner.set_seed(self.seed);
             self.planner = planner;

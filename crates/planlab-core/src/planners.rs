@@ -1,32 +1,30 @@
-//! Planner registry: names, config fields and construction of every local
-//! planner, so scenarios, the CLI (`planlab planners`, `planlab run
-//! --planner`) and the page pick planners by name.
+//! The planner catalogue: names, config fields and construction of every
+//! local planner, so scenarios, the CLI (`planlab planners`, `planlab run
+//! --planner`) and the pages pick planners by name.
 //!
-//! Adding a planner: one arm in [`build`], one entry in [`list`]. Its config
-//! struct derives `Serialize + Deserialize + Default` with
-//! `#[serde(default, deny_unknown_fields)]`; [`parse_config`] reads it from
-//! the scenario's JSON with errors naming the field, and [`field_infos`]
-//! derives the field list (with defaults) from `Default` plus a static
-//! `(name, unit, doc)` table.
+//! It sits above [`crate::local`], [`crate::apf`] and [`crate::lidar`] (it
+//! builds their planners; none of them looks it up) and below the
+//! simulator. Adding a planner: one arm in [`build`], one entry in
+//! [`list`]. Its config is declared with [`crate::params`]'s `params!`
+//! (one line per field: doc, unit, default, bounds); [`parse_config`] reads
+//! it from the scenario's JSON with errors naming the field, and
+//! [`field_infos`] lists its fields with their defaults.
 
-use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
-use super::cleaning;
-use super::dual::{dual_fields, preliminary_fields, DualConfig, PreliminaryConfig, SafeDualDwa};
-use super::dwa::{Dwa, DwaConfig, DWA_FIELDS};
-use super::improved::{
-    fusion53_fields, improved_fields, Fusion53Config, ImprovedConfig, ImprovedDwa,
-};
-use super::pursuit::{Pursuit, PursuitConfig};
-use super::{LocalError, LocalPlanner};
-use crate::apf::local::{self as apf_local, ApfLocal, ApfLocalConfig};
-use crate::lidar::planner::{
-    lidar_fields, motion_fields, LidarPlanner, LidarPlannerConfig, ScanBaselineConfig,
-};
-use crate::lidar::rrt_shortcut::{rrt_shortcut_fields, RrtShortcut, RrtShortcutConfig};
-use crate::lidar::rs_apf::{rs_apf_fields, RsApf, RsApfConfig};
-use crate::lidar::tangent_bug::{tangent_bug_fields, TangentBug, TangentBugConfig};
+use crate::apf::local::{ApfLocal, ApfLocalConfig};
+use crate::lidar::planner::{LidarPlannerConfig, ScanBaselineConfig, MOTION_GOAL};
+use crate::lidar::rrt_shortcut::{RrtShortcut, RrtShortcutConfig};
+use crate::lidar::rs_apf::{RsApf, RsApfConfig};
+use crate::lidar::tangent_bug::{TangentBug, TangentBugConfig};
+use crate::lidar::LidarPlanner;
+use crate::local::cleaning;
+use crate::local::dual::{DualConfig, PreliminaryConfig, SafeDualDwa};
+use crate::local::dwa::{Dwa, DwaConfig};
+use crate::local::improved::{Fusion53Config, ImprovedConfig, ImprovedDwa};
+use crate::local::pursuit::{Pursuit, PursuitConfig};
+use crate::local::{LocalError, LocalPlanner};
+pub use crate::params::{field_infos, parse_config, FieldInfo};
 use crate::world::{RobotSpec, RobotState, StaticMap};
 
 /// The planner a scenario without a `local_planner` section uses.
@@ -65,19 +63,6 @@ fn empty_object() -> serde_json::Value {
     serde_json::Value::Object(Default::default())
 }
 
-/// One config field, for `planlab planners` and the page's parameter panel.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct FieldInfo {
-    /// Field name (dotted for nested fields).
-    pub name: String,
-    /// Unit ("m", "m/s", "rad", "1" …).
-    pub unit: String,
-    /// Default value (the paper's).
-    pub default: serde_json::Value,
-    /// What it does.
-    pub doc: String,
-}
-
 /// A registered planner.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct PlannerInfo {
@@ -103,7 +88,7 @@ pub fn list() -> Vec<PlannerInfo> {
                       window V_s ∩ V_d ∩ V_a, rollouts, normalised heading / clearance / \
                       velocity critics."
                 .into(),
-            fields: field_infos::<DwaConfig>(DWA_FIELDS),
+            fields: field_infos::<DwaConfig>(),
         },
         PlannerInfo {
             name: "improved-dwa".into(),
@@ -114,7 +99,7 @@ pub fn list() -> Vec<PlannerInfo> {
                       dynamic / static / special with deceleration or detour weights and \
                       virtual goals; relative distance factor ρ near the goal."
                 .into(),
-            fields: owned_field_infos::<ImprovedConfig>(&improved_fields()),
+            fields: field_infos::<ImprovedConfig>(),
         },
         PlannerInfo {
             name: "fusion-53".into(),
@@ -123,7 +108,7 @@ pub fn list() -> Vec<PlannerInfo> {
                       while a moving obstacle is near, plain DWA otherwise; no \
                       classification, virtual goal or ρ."
                 .into(),
-            fields: owned_field_infos::<Fusion53Config>(&fusion53_fields()),
+            fields: field_infos::<Fusion53Config>(),
         },
         PlannerInfo {
             name: "safe-dual-dwa".into(),
@@ -134,7 +119,7 @@ pub fn list() -> Vec<PlannerInfo> {
                       velocity model (speed held within d of a temporary goal); detour \
                       replanning (θa ≥ 90° → next temporary goal)."
                 .into(),
-            fields: owned_field_infos::<DualConfig>(&dual_fields()),
+            fields: field_infos::<DualConfig>(),
         },
         PlannerInfo {
             name: "preliminary-fusion".into(),
@@ -142,7 +127,7 @@ pub fn list() -> Vec<PlannerInfo> {
             summary: "Baseline fusion: every safe A* path node a temporary goal, the normal \
                       DWA window (the robot slows at each)."
                 .into(),
-            fields: owned_field_infos::<PreliminaryConfig>(&preliminary_fields()),
+            fields: field_infos::<PreliminaryConfig>(),
         },
         PlannerInfo {
             name: "pursuit".into(),
@@ -150,7 +135,7 @@ pub fn list() -> Vec<PlannerInfo> {
             summary: "Naive baseline: steers straight at the goal with a braking profile; \
                   no obstacle avoidance."
                 .into(),
-            fields: field_infos::<PursuitConfig>(PursuitConfig::FIELDS),
+            fields: field_infos::<PursuitConfig>(),
         },
         PlannerInfo {
             name: "cleaning-dwa".into(),
@@ -176,7 +161,7 @@ pub fn list() -> Vec<PlannerInfo> {
                       goal attraction and mover / nearest-wall repulsion, pursued within the \
                       robot's limits."
                 .into(),
-            fields: owned_field_infos::<ApfLocalConfig>(&apf_local::field_table()),
+            fields: field_infos::<ApfLocalConfig>(),
         },
         PlannerInfo {
             name: "sampling-apf".into(),
@@ -185,7 +170,7 @@ pub fn list() -> Vec<PlannerInfo> {
                       cost 0.3‖F_attr‖ + 0.7‖F_rep‖, relative distance rule, predicted movers \
                       (t+1, t+2) with virtual repulsion; the APF point is pursued."
                 .into(),
-            fields: owned_field_infos::<ApfLocalConfig>(&apf_local::field_table()),
+            fields: field_infos::<ApfLocalConfig>(),
         },
         PlannerInfo {
             name: "lidar-dwa".into(),
@@ -196,11 +181,7 @@ pub fn list() -> Vec<PlannerInfo> {
                       temporary goals around the OP blocking the goal; DWA drives to the \
                       target on a local map built from the scan."
                 .into(),
-            fields: {
-                let mut f = lidar_fields(true);
-                f.extend(motion_fields(DWA_FIELDS));
-                owned_field_infos::<LidarPlannerConfig<DwaConfig>>(&f)
-            },
+            fields: field_infos::<LidarPlannerConfig<DwaConfig>>(),
         },
         PlannerInfo {
             name: "lidar-apf".into(),
@@ -210,15 +191,7 @@ pub fn list() -> Vec<PlannerInfo> {
             summary: "The LiDAR temporary-goal navigator over the basic APF (eq 4-1…4-4) \
                       on a local map built from the scan."
                 .into(),
-            fields: {
-                let mut f = lidar_fields(true);
-                f.extend(
-                    apf_local::field_table()
-                        .into_iter()
-                        .map(|(n, u, d)| (format!("motion.{n}"), u, d)),
-                );
-                owned_field_infos::<LidarPlannerConfig<ApfLocalConfig>>(&f)
-            },
+            fields: field_infos::<LidarPlannerConfig<ApfLocalConfig>>(),
         },
         PlannerInfo {
             name: "scan-apf".into(),
@@ -228,15 +201,7 @@ pub fn list() -> Vec<PlannerInfo> {
             summary: "Plain APF straight to the goal on an unknown map: only the scan's \
                       local map, no temporary goals, no global path."
                 .into(),
-            fields: {
-                let mut f = lidar_fields(false);
-                f.extend(
-                    apf_local::field_table()
-                        .into_iter()
-                        .map(|(n, u, d)| (format!("motion.{n}"), u, d)),
-                );
-                owned_field_infos::<ScanBaselineConfig<ApfLocalConfig>>(&f)
-            },
+            fields: field_infos::<ScanBaselineConfig<ApfLocalConfig>>(),
         },
         PlannerInfo {
             name: "scan-dwa".into(),
@@ -244,11 +209,7 @@ pub fn list() -> Vec<PlannerInfo> {
             summary: "Plain DWA straight to the goal on an unknown map: only the scan's \
                       local map, no temporary goals, no global path."
                 .into(),
-            fields: {
-                let mut f = lidar_fields(false);
-                f.extend(motion_fields(DWA_FIELDS));
-                owned_field_infos::<ScanBaselineConfig<DwaConfig>>(&f)
-            },
+            fields: field_infos::<ScanBaselineConfig<DwaConfig>>(),
         },
         PlannerInfo {
             name: "tangent-bug".into(),
@@ -261,7 +222,7 @@ pub fn list() -> Vec<PlannerInfo> {
                       decreasing, leaving when d_reach < d_followed; baseline DWA on the \
                       scan's local map drives."
                 .into(),
-            fields: owned_field_infos::<TangentBugConfig>(&tangent_bug_fields()),
+            fields: field_infos::<TangentBugConfig>(),
         },
         PlannerInfo {
             name: "rs-apf".into(),
@@ -274,7 +235,7 @@ pub fn list() -> Vec<PlannerInfo> {
                       regression search shortens that path, and the baseline DWA on the \
                       scan's local map drives to its first corner."
                 .into(),
-            fields: owned_field_infos::<RsApfConfig>(&rs_apf_fields()),
+            fields: field_infos::<RsApfConfig>(),
         },
         PlannerInfo {
             name: "rrt-shortcut".into(),
@@ -288,7 +249,7 @@ pub fn list() -> Vec<PlannerInfo> {
                       blocked, off course or stalled; the baseline DWA on the scan's local \
                       map drives to the next waypoint."
                 .into(),
-            fields: owned_field_infos::<RrtShortcutConfig>(&rrt_shortcut_fields()),
+            fields: field_infos::<RrtShortcutConfig>(),
         },
     ]
 }
@@ -363,30 +324,42 @@ pub fn build(
             robot,
             goal,
         )?)),
-        "lidar-dwa" => Ok(Box::new(LidarPlanner::with_nav(
-            "lidar-dwa",
-            "dwa",
-            &parse_config::<LidarPlannerConfig<DwaConfig>>(&choice.name, &choice.config)?,
-            robot,
-        )?)),
-        "lidar-apf" => Ok(Box::new(LidarPlanner::with_nav(
-            "lidar-apf",
-            "apf",
-            &parse_config::<LidarPlannerConfig<ApfLocalConfig>>(&choice.name, &choice.config)?,
-            robot,
-        )?)),
-        "scan-apf" => Ok(Box::new(LidarPlanner::baseline(
-            "scan-apf",
-            "apf",
-            &parse_config::<ScanBaselineConfig<ApfLocalConfig>>(&choice.name, &choice.config)?,
-            robot,
-        )?)),
-        "scan-dwa" => Ok(Box::new(LidarPlanner::baseline(
-            "scan-dwa",
-            "dwa",
-            &parse_config::<ScanBaselineConfig<DwaConfig>>(&choice.name, &choice.config)?,
-            robot,
-        )?)),
+        "lidar-dwa" => {
+            let cfg: LidarPlannerConfig<DwaConfig> = parse_config(&choice.name, &choice.config)?;
+            let motion = dwa_motion(cfg.motion, robot)?;
+            Ok(Box::new(LidarPlanner::with_nav(
+                "lidar-dwa",
+                &cfg,
+                motion,
+                robot,
+            )?))
+        }
+        "lidar-apf" => {
+            let cfg: LidarPlannerConfig<ApfLocalConfig> =
+                parse_config(&choice.name, &choice.config)?;
+            let motion = apf_motion(cfg.motion, robot)?;
+            Ok(Box::new(LidarPlanner::with_nav(
+                "lidar-apf",
+                &cfg,
+                motion,
+                robot,
+            )?))
+        }
+        "scan-apf" => {
+            let cfg: ScanBaselineConfig<ApfLocalConfig> =
+                parse_config(&choice.name, &choice.config)?;
+            let motion = apf_motion(cfg.motion, robot)?;
+            Ok(Box::new(LidarPlanner::baseline(
+                "scan-apf", &cfg, motion, robot,
+            )?))
+        }
+        "scan-dwa" => {
+            let cfg: ScanBaselineConfig<DwaConfig> = parse_config(&choice.name, &choice.config)?;
+            let motion = dwa_motion(cfg.motion, robot)?;
+            Ok(Box::new(LidarPlanner::baseline(
+                "scan-dwa", &cfg, motion, robot,
+            )?))
+        }
         "tangent-bug" => Ok(Box::new(TangentBug::new(
             parse_config(&choice.name, &choice.config)?,
             robot,
@@ -408,125 +381,23 @@ pub fn is_registered(name: &str) -> bool {
     list().iter().any(|p| p.name == name)
 }
 
-/// Reads a planner config from JSON: `null` and `{}` give `T::default()`,
-/// left-out fields their defaults. On error the message names the planner
-/// and the offending field (`dwa.config.alpha: invalid type: string "x",
-/// expected f64`). `T` should be `#[serde(default, deny_unknown_fields)]`.
-pub fn parse_config<T>(planner: &str, value: &serde_json::Value) -> Result<T, LocalError>
-where
-    T: DeserializeOwned + Serialize + Default,
-{
-    use serde_json::Value;
-    if value.is_null() {
-        return Ok(T::default());
-    }
-    // serde would also take a struct written as an array of its fields.
-    let Value::Object(input) = value else {
-        return Err(LocalError::InvalidParameter(format!(
-            "{planner}.config must be a JSON object of fields, got {value}"
-        )));
-    };
-    let err = match T::deserialize(value) {
-        Ok(t) => return Ok(t),
-        Err(e) => e,
-    };
-    // serde_json does not say which field a type error is in: put the input
-    // fields one at a time on top of the defaults; the first that fails is it.
-    if let Ok(Value::Object(mut probe)) = serde_json::to_value(T::default()) {
-        for (k, v) in input {
-            probe.insert(k.clone(), v.clone());
-            if let Err(e) = T::deserialize(&Value::Object(probe.clone())) {
-                let msg = e.to_string();
-                let named = if msg.starts_with("unknown field") {
-                    format!(": {msg}")
-                } else {
-                    format!(".{k}: {msg}")
-                };
-                return Err(LocalError::InvalidParameter(format!(
-                    "{planner}.config{named}"
-                )));
-            }
-        }
-    }
-    Err(LocalError::InvalidParameter(format!(
-        "{planner}.config: {err}"
-    )))
+/// The baseline DWA as the motion planner under a LiDAR navigator.
+fn dwa_motion(cfg: DwaConfig, robot: &RobotSpec) -> Result<Box<dyn LocalPlanner>, LocalError> {
+    Ok(Box::new(Dwa::new(cfg, robot, MOTION_GOAL)?))
 }
 
-/// The field list of config `T`: each `(name, unit, doc)` of `table` (in
-/// its order) with the default taken from `T::default()` (dotted names reach
-/// into nested objects), then any field the table forgot, with empty unit
-/// and doc (a unit test per planner checks there are none).
-pub fn field_infos<T: Serialize + Default>(table: &[(&str, &str, &str)]) -> Vec<FieldInfo> {
-    let defaults = serde_json::to_value(T::default()).unwrap_or(serde_json::Value::Null);
-    let lookup = |name: &str| {
-        name.split('.')
-            .try_fold(&defaults, |v, k| v.get(k))
-            .cloned()
-            .unwrap_or(serde_json::Value::Null)
-    };
-    let mut out: Vec<FieldInfo> = table
-        .iter()
-        .map(|&(name, unit, doc)| FieldInfo {
-            name: name.to_string(),
-            unit: unit.to_string(),
-            default: lookup(name),
-            doc: doc.to_string(),
-        })
-        .collect();
-    if let serde_json::Value::Object(m) = &defaults {
-        for (k, v) in m {
-            let covered = table
-                .iter()
-                .any(|&(n, _, _)| n == k || n.starts_with(&format!("{k}.")));
-            if !covered {
-                out.push(FieldInfo {
-                    name: k.clone(),
-                    unit: String::new(),
-                    default: v.clone(),
-                    doc: String::new(),
-                });
-            }
-        }
-    }
-    out
-}
-
-/// [`field_infos`] for a table of owned strings (tables built at run time,
-/// e.g. a nested engine's fields under a prefix).
-pub fn owned_field_infos<T: Serialize + Default>(
-    table: &[(String, String, String)],
-) -> Vec<FieldInfo> {
-    let refs: Vec<(&str, &str, &str)> = table
-        .iter()
-        .map(|(n, u, d)| (n.as_str(), u.as_str(), d.as_str()))
-        .collect();
-    field_infos::<T>(&refs)
-}
-
-/// Checks a planner parameter is finite and ≥ `min` (or > `min` when
-/// `strict`); the error names `planner.field`.
-pub fn check_param(
-    planner: &str,
-    field: &str,
-    value: f64,
-    min: f64,
-    strict: bool,
-) -> Result<(), LocalError> {
-    let ok = value.is_finite() && if strict { value > min } else { value >= min };
-    if ok {
-        Ok(())
-    } else {
-        let rel = if strict { ">" } else { "≥" };
-        Err(LocalError::InvalidParameter(format!(
-            "{planner}.{field} = {value}: must be a finite number {rel} {min}"
-        )))
-    }
+/// The basic APF (`apf`) as the motion planner under a LiDAR navigator.
+fn apf_motion(
+    cfg: ApfLocalConfig,
+    robot: &RobotSpec,
+) -> Result<Box<dyn LocalPlanner>, LocalError> {
+    Ok(Box::new(ApfLocal::new(true, cfg, robot, MOTION_GOAL)?))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::local::testkit;
     use serde_json::json;
 
     #[test]
@@ -542,25 +413,39 @@ mod tests {
         assert!(is_registered("pursuit"));
     }
 
+    /// Table and struct agree: every listed field, set to its listed
+    /// default at its dotted name, is a field the planner's config accepts
+    /// (unknown fields are refused), and the planner builds from them.
     #[test]
-    fn parse_config_names_the_field() {
-        let c: PursuitConfig = parse_config("pursuit", &json!({"k_w": 3.0})).unwrap();
-        assert_eq!(c.k_w, 3.0);
-        let e = parse_config::<PursuitConfig>("pursuit", &json!({"k_w": 1, "turn_angle": "x"}))
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("pursuit.config.turn_angle"), "{e}");
-        let e = parse_config::<PursuitConfig>("pursuit", &json!({"kw": 1}))
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("unknown field `kw`"), "{e}");
-        let e = parse_config::<PursuitConfig>("pursuit", &json!([1]))
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("object"), "{e}");
-        assert_eq!(
-            parse_config::<PursuitConfig>("pursuit", &serde_json::Value::Null).unwrap(),
-            PursuitConfig::default()
-        );
+    fn the_table_written_back_as_a_config_builds_the_planner() {
+        let map = testkit::map(&format!("{}\n", ".".repeat(40)).repeat(30), 0.1);
+        let start = RobotState {
+            x: 0.5,
+            y: 1.5,
+            ..Default::default()
+        };
+        for p in list() {
+            let mut config = json!({});
+            for f in &p.fields {
+                let mut at = &mut config;
+                for k in f.name.split('.') {
+                    at = &mut at[k];
+                }
+                *at = f.default.clone();
+            }
+            let choice = PlannerChoice {
+                name: p.name.clone(),
+                config,
+            };
+            let built = build(&choice, &RobotSpec::default(), &map, &start, [3.5, 1.5]);
+            assert!(built.is_ok(), "{}: {:?}", p.name, built.err());
+        }
+        // A name the config does not have is refused.
+        let choice = PlannerChoice {
+            name: "dwa".into(),
+            config: json!({"dwa": {"alpha": 1.0}}),
+        };
+        let e = build(&choice, &RobotSpec::default(), &map, &start, [3.5, 1.5]);
+        assert!(e.is_err());
     }
 }
