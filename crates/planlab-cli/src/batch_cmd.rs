@@ -6,9 +6,9 @@ use std::path::Path;
 use std::time::Instant;
 
 use planlab_core::batch::{self, metric_values, PlannerSummary};
-use planlab_core::planners::{self, PlannerChoice};
 use planlab_core::map::io::scenario::Scenario;
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::planners::{self, PlannerChoice};
 use planlab_core::sim::Episode;
 use rayon::prelude::*;
 use serde::Serialize;

@@ -4,10 +4,10 @@
 use std::path::Path;
 
 use planlab_core::apf::{AnyApfRun, ApfMetrics};
-use planlab_core::planners;
 use planlab_core::map::io::scenario::{set_json_path, set_planner_name, Scenario};
 use planlab_core::map::OccupancyGrid;
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::planners;
 use planlab_core::reproduce;
 use planlab_core::sim::Episode;
 use serde::Serialize;

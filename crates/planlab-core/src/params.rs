@@ -387,10 +387,18 @@ pub(crate) use params;
 
 /// The [`Bound`] a field line's bound tokens declare.
 macro_rules! bound {
-    (> $min:expr) => { $crate::params::Bound::above($min) };
-    (>= $min:expr) => { $crate::params::Bound::at_least($min) };
-    (> $min:expr, <= $max:expr) => { $crate::params::Bound::above($min).at_most($max) };
-    (>= $min:expr, <= $max:expr) => { $crate::params::Bound::at_least($min).at_most($max) };
+    (> $min:expr) => {
+        $crate::params::Bound::above($min)
+    };
+    (>= $min:expr) => {
+        $crate::params::Bound::at_least($min)
+    };
+    (> $min:expr, <= $max:expr) => {
+        $crate::params::Bound::above($min).at_most($max)
+    };
+    (>= $min:expr, <= $max:expr) => {
+        $crate::params::Bound::at_least($min).at_most($max)
+    };
 }
 pub(crate) use bound;
 
@@ -404,9 +412,15 @@ pub(crate) use bound_of;
 
 /// The [`Nested`] of a field line.
 macro_rules! nested_of {
-    ($ty:ty; nested) => { $crate::params::Nested::Config(<$ty as $crate::params::Params>::FIELDS) };
-    ($ty:ty; nested of) => { $crate::params::Nested::Of(<$ty as $crate::params::Params>::FIELDS) };
-    ($ty:ty; $($other:tt)*) => { $crate::params::Nested::No };
+    ($ty:ty; nested) => {
+        $crate::params::Nested::Config(<$ty as $crate::params::Params>::FIELDS)
+    };
+    ($ty:ty; nested of) => {
+        $crate::params::Nested::Of(<$ty as $crate::params::Params>::FIELDS)
+    };
+    ($ty:ty; $($other:tt)*) => {
+        $crate::params::Nested::No
+    };
 }
 pub(crate) use nested_of;
 

@@ -387,10 +387,7 @@ fn dwa_motion(cfg: DwaConfig, robot: &RobotSpec) -> Result<Box<dyn LocalPlanner>
 }
 
 /// The basic APF (`apf`) as the motion planner under a LiDAR navigator.
-fn apf_motion(
-    cfg: ApfLocalConfig,
-    robot: &RobotSpec,
-) -> Result<Box<dyn LocalPlanner>, LocalError> {
+fn apf_motion(cfg: ApfLocalConfig, robot: &RobotSpec) -> Result<Box<dyn LocalPlanner>, LocalError> {
     Ok(Box::new(ApfLocal::new(true, cfg, robot, MOTION_GOAL)?))
 }
 

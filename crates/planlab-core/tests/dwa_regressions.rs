@@ -2,9 +2,9 @@
 //! papers' method: each replays the scene that showed the bug.
 
 use planlab_core::batch;
-use planlab_core::planners::PlannerChoice;
 use planlab_core::map::io::scenario::Scenario;
 use planlab_core::map::OccupancyGrid;
+use planlab_core::planners::PlannerChoice;
 use planlab_core::sim::{Episode, Outcome, Trace};
 
 fn preset(file: &str) -> (Scenario, OccupancyGrid) {

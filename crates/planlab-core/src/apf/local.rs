@@ -12,13 +12,13 @@
 //! 0 while |e| > `turn_angle` (turn first). The robot's circumscribed
 //! radius is added to every distance.
 
-use glam::DVec2;
 use super::planner::{Apf, ObstacleObs, StepKind};
 use super::{ApfConfig, ApfMode};
 use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug, Rollout};
 use crate::num::{atan2, cos, wrap_angle};
 use crate::params::Params;
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
+use glam::DVec2;
 
 /// Id given to the nearest-wall point obstacle.
 pub const WALL_ID: u32 = u32::MAX;

@@ -203,7 +203,11 @@ impl<V: ApfVector> ApfRun<V> {
                 Some(v) => point(&format!("apf.obstacles[{i}].velocity"), v)?,
                 None => V::ZERO,
             };
-            bad(&format!("obstacles[{i}].radius"), o.radius, Bound::at_least(0.0))?;
+            bad(
+                &format!("obstacles[{i}].radius"),
+                o.radius,
+                Bound::at_least(0.0),
+            )?;
             let id = o.id.unwrap_or(i as u32);
             if surface_distance(&scene.config, goal, c, o.radius) <= 0.0 && v == V::ZERO {
                 return Err(ApfError::GoalInsideObstacle {

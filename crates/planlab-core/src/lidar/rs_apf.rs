@@ -33,7 +33,6 @@
 //! `tangent-bug` ([`super::scan_motion`]); a target nearer than
 //! `lookahead` is steered to along its bearing at `lookahead`.
 
-use glam::DVec2;
 use super::planner::LocalMapConfig;
 use super::scan::LidarConfig;
 use super::scan_motion::{
@@ -46,6 +45,7 @@ use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::num::hypot;
 use crate::params::Params;
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
+use glam::DVec2;
 
 /// Most points of one virtual APF path.
 pub const MAX_PATH_POINTS: usize = 400;
@@ -369,9 +369,9 @@ impl LocalPlanner for RsApf {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lidar::tangent_bug::tests::{build_error, build_on_room, l_robot, room, run_on};
     use crate::apf::local::{ApfLocal, ApfLocalConfig};
     use crate::lidar::planner::{LidarPlanner, ScanBaselineConfig, MOTION_GOAL};
+    use crate::lidar::tangent_bug::tests::{build_error, build_on_room, l_robot, room, run_on};
     use crate::local::testkit::End;
 
     fn rs(cfg: serde_json::Value) -> Box<dyn LocalPlanner> {
@@ -432,7 +432,7 @@ mod tests {
         let apf = ApfLocal::new(true, cfg.motion, &l_robot(), MOTION_GOAL).unwrap();
         let mut plain =
             LidarPlanner::baseline("scan-apf", &cfg, Box::new(apf), &l_robot()).unwrap();
-        let r = run_on(plain.as_mut(), &map, [1.5, 5.0], [8.5, 5.0], 60.0);
+        let r = run_on(&mut plain, &map, [1.5, 5.0], [8.5, 5.0], 60.0);
         assert_ne!(r.end, End::Reached);
     }
 

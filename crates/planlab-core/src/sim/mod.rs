@@ -34,12 +34,12 @@ pub use trace::{Trace, TraceStep, CSV_HEADER};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use crate::planners::{self, PlannerChoice};
 use crate::local::{LocalError, LocalPlanner, ObservedMover, OdometrySample, PlannerDebug};
 use crate::map::io::scenario::{Scenario, ScenarioError};
 use crate::map::{MapError, OccupancyGrid};
 use crate::num::{cos, fmt_num, hypot, sin};
 use crate::params::param_problem;
+use crate::planners::{self, PlannerChoice};
 use crate::world::{
     Footprint, MoverSpec, MoverState, RobotSpec, RobotState, StaticMap, Terrain, TerrainSpec,
     WorldError,

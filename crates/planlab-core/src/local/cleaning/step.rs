@@ -1,8 +1,8 @@
 //! One control period: the sampled window (\[C\] eq 9–10), the rollouts
 //! and their cost (eq 12–13, 18), and the choice.
 
-use super::path::l1_to_segment;
 use super::odometry::mat_vec;
+use super::path::l1_to_segment;
 use super::{CleaningDwa, LoadRegion, COST_SCALE, MAX_ROLLOUT_STEPS};
 use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug, Rollout};
 use crate::map::costmap::INSCRIBED;
@@ -97,7 +97,7 @@ impl CleaningDwa {
     /// Rolls `cmd` out; returns (admissible, raw critics) and fills
     /// `points` when given.
     #[allow(clippy::too_many_arguments)]
-    fn rollout(
+    pub(super) fn rollout(
         &self,
         obs: &Observation<'_>,
         cmd: Command,

@@ -5,10 +5,10 @@ use super::path::l1_to_segment;
 use super::step::axis_samples;
 use super::*;
 use crate::local::testkit;
-use crate::local::OdometrySample;
-use crate::num::Rng;
-use crate::world::terrain::{SlipSpec, Terrain, TerrainSpec};
-use crate::world::{Footprint, RobotLimits};
+use crate::local::{GoalKind, LocalPlanner, Observation, OdometrySample};
+use crate::num::{cos, sin, Rng};
+use crate::world::terrain::{SlipSpec, Terrain, TerrainSpec, VehicleSpec, GRAVITY};
+use crate::world::{Command, Drive, Footprint, RobotLimits};
 use serde_json::json;
 
 fn robot() -> RobotSpec {
@@ -241,9 +241,7 @@ fn heads_along_the_path_whatever_the_heading() {
         );
         let d = p.debug();
         assert_eq!(d.goal_kind, GoalKind::Intermediate);
-        assert!(
-            (d.current_goal[0] - 2.5).abs() < 0.01 && (d.current_goal[1] - 3.0).abs() < 0.05
-        );
+        assert!((d.current_goal[0] - 2.5).abs() < 0.01 && (d.current_goal[1] - 3.0).abs() < 0.05);
         assert!(d.rollouts.len() > 1000, "{}", d.rollouts.len());
         let ch = &d.rollouts[d.chosen.unwrap()];
         assert_eq!(ch.cmd, c);

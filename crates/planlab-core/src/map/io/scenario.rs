@@ -20,11 +20,11 @@
 
 use crate::global::plan::{build_planner, GridPlanOptions};
 use crate::global::GridPos;
-use crate::planners::{self as registry, PlannerChoice};
 use crate::map::io::{movingai, ros};
 use crate::map::{check_dimensions, Cell, MapError, OccupancyGrid, Pose2};
 use crate::num::fmt_num;
 use crate::params::param_problem;
+use crate::planners::{self as registry, PlannerChoice};
 use crate::sim::SimConfig;
 use crate::world::{MoverSpec, RobotSpec, TerrainSpec};
 use serde::{Deserialize, Serialize};
