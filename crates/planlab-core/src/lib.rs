@@ -14,6 +14,10 @@
 //! - [`lidar`]: LiDAR heuristic navigation in unknown maps of Chang et al.
 //!   (2024): scan simulation, edges, gap and obstacle patterns, temporary
 //!   goals over a pluggable motion planner (docs/algorithms.md §lidar).
+//! - [`planners`]: the catalogue of local planners by name (`planlab
+//!   planners`), their config fields and their construction.
+//! - [`params`]: the one bound check of every config number, config
+//!   parsing, and `params!`, which declares a config one line per field.
 #![warn(missing_docs)]
 
 pub mod apf;

@@ -1,5 +1,5 @@
 //! Parameters: the one bound check every number of a config goes through,
-//! config parsing with errors that name the field, and [`params!`], the
+//! config parsing with errors that name the field, and `params!`, the
 //! declarative macro from which a config's struct, `Default`, serde
 //! defaults, bounds and field table all come, one line per field.
 //!
@@ -27,7 +27,8 @@
 //! listed under `name.` with their own docs) or `[nested of]` (the same,
 //! each doc "`field` of the `doc`"). `///` lines above a field add to its
 //! rustdoc only; the doc string is what `planlab planners` and the page's
-//! parameter panel show. The struct gets `#[serde(default,
+//! parameter panel show (brackets escaped for rustdoc, `\\[C\\]`, shown
+//! plain). The struct gets `#[serde(default,
 //! deny_unknown_fields)]`, a `Default` from the defaults and [`Params`]
 //! (the table, and `check_bounds` checking the bounds in field order);
 //! rules between fields stay in the config's own `validate`.
@@ -119,7 +120,7 @@ pub enum ParamError {
     OutOfRange {
         /// Dotted name (`dwa.v_res`, `v_max (m/s)` …).
         name: String,
-        /// Its unit when declared on a [`params!`] line (else empty); the
+        /// Its unit when declared on a `params!` line (else empty); the
         /// world's errors show it (see [`ParamError::unit_named`]).
         unit: &'static str,
         /// The value given.
@@ -188,7 +189,7 @@ pub fn join(prefix: &str, field: &str) -> String {
     }
 }
 
-/// One field of a config's table (see [`params!`]).
+/// One field of a config's table (see `params!`).
 #[derive(Debug, Clone, Copy)]
 pub struct Field {
     /// Field name.
@@ -215,7 +216,7 @@ pub enum Nested {
     Of(&'static [Field]),
 }
 
-/// A config declared with [`params!`]: its table and its bounds.
+/// A config declared with `params!`: its table and its bounds.
 pub trait Params: Serialize + DeserializeOwned + Default {
     /// One entry per field, in declaration order.
     const FIELDS: &'static [Field];
@@ -239,20 +240,26 @@ pub struct FieldInfo {
     pub doc: String,
 }
 
+/// A doc string as shown outside rustdoc: its escaped brackets (`\\[C\\]`,
+/// written so for rustdoc's sake) plain.
+fn plain_doc(doc: &str) -> String {
+    doc.replace("\\[", "[").replace("\\]", "]")
+}
+
 /// Calls `out(name, unit, doc)` for every leaf of `fields`, nested configs
 /// flattened to dotted names under `prefix`.
 fn flatten(fields: &[Field], prefix: &str, out: &mut dyn FnMut(String, &str, String)) {
     for f in fields {
         let name = join(prefix, f.name);
         match f.nested {
-            Nested::No => out(name, f.unit, f.doc.to_string()),
+            Nested::No => out(name, f.unit, plain_doc(f.doc)),
             Nested::Config(inner) => flatten(inner, &name, out),
             Nested::Of(inner) => {
                 for g in inner {
                     out(
                         join(&name, g.name),
                         g.unit,
-                        format!("{} of the {}", g.name, f.doc),
+                        format!("{} of the {}", g.name, plain_doc(f.doc)),
                     );
                 }
             }
@@ -467,7 +474,7 @@ mod tests {
         #[derive(Debug, Clone, Copy, PartialEq)]
         pub struct Inner {
             pub a: f64 = 1.0, "m" [>= 0.0] "inner a";
-            pub b: bool = true, "bool" [] "inner b";
+            pub b: bool = true, "bool" [] "inner b (\\[C\\] eq 8)";
         }
     }
 
@@ -493,6 +500,7 @@ mod tests {
         assert_eq!(f[1].default, json!(3.0));
         assert_eq!(f[2].default, json!(false));
         assert_eq!(f[1].doc, "inner a");
+        assert_eq!(f[2].doc, "inner b ([C] eq 8)");
         assert_eq!(f[3].doc, "a of the weights");
         assert_eq!(f[0].unit, "s");
     }

@@ -45,7 +45,7 @@ crate::params::params! {
             "γ: weight of the Manhattan distance to the global path";
         /// nav2 DWB's "twirling" critic.
         pub twirl: f64 = 0.1, "m·s/rad" [>= 0.0]
-            "weight of |ω| (not in [C]; keeps the holonomic body from spinning, 0 = off)";
+            "weight of |ω| (not in \\[C\\]; keeps the holonomic body from spinning, 0 = off)";
         pub v_res: f64 = 0.02, "m/s" [> 0.0] "linear velocity resolution (v_x and v_y)";
         pub w_res: f64 = 0.01, "rad/s" [> 0.0] "angular velocity resolution";
         pub sim_time: f64 = 2.0, "s" [> 0.0] "trajectory prediction time";
@@ -70,20 +70,20 @@ crate::params::params! {
             "stop at every waypoint (the local goal waits there until it is reached)";
         pub waypoint_tolerance: f64 = 0.1, "m" [> 0.0] "a waypoint is reached within this distance";
         /// \[C\] §3.2.
-        pub load_limit: bool = true, "bool" [] "vertical-load acceleration limit ([C] eq 8, 14)";
+        pub load_limit: bool = true, "bool" [] "vertical-load acceleration limit (\\[C\\] eq 8, 14)";
         pub load_fraction: f64 = 0.2, "1" [>= 0.0]
             "j: every wheel keeps more than j·m·g (0 ≤ j < 1/4)";
         pub load_region: LoadRegion = LoadRegion::Diamond, "" []
             "`diamond` (exact eq 8, |a_x|+|a_y| ≤ x₁) or `box` (eq 14 per axis)";
         pub vehicle: VehicleSpec = VehicleSpec::default(), "" [nested]
-            "vehicle of the load limit ([C] Table 1)";
+            "vehicle of the load limit (\\[C\\] Table 1)";
         /// A peak-hold filter: the next period's bumps are unknown, the
         /// recent worst is a cautious guess.
         pub accel_z_hold: usize = 5, "periods" []
             "the load limit uses the largest a_z measured over this many periods (≥ 1)";
         /// \[C\] §3.3.
         pub compensate: bool = true, "bool" []
-            "odometry error compensation: least-squares K used in rollouts ([C] eq 15–18)";
+            "odometry error compensation: least-squares K used in rollouts (\\[C\\] eq 15–18)";
         pub k_structure: KStructure = KStructure::Block, "" []
             "`block` (translation 2×2 and rotation fitted separately) or `full` (3×3, eq 17)";
         pub window: usize = 50, "samples" [] "sliding window of odometry pairs for the fit";

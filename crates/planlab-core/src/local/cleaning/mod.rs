@@ -114,7 +114,7 @@ use crate::world::terrain::IDENTITY;
 use crate::world::{RobotSpec, RobotState, StaticMap};
 use path::GlobalPath;
 
-/// Critic names, in the order of [`Rollout::raw`].
+/// Critic names, in the order of [`Rollout::raw`](crate::local::Rollout::raw).
 pub const CRITICS: [&str; 4] = [
     "obstacle_cost",
     "goal_distance_m",
@@ -163,7 +163,7 @@ pub struct CleaningDwa {
 
 impl CleaningDwa {
     /// Builds the planner registered as `name` (`cleaning-dwa` or
-    /// `traditional-dwa`, used in error messages and [`LocalPlanner::name`])
+    /// `traditional-dwa`, used in error messages and [`LocalPlanner::name`](crate::local::LocalPlanner::name))
     /// for `robot` on `map`, planning the global path from `start` through
     /// the waypoints to `goal`.
     pub fn new(
