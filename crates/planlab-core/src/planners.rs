@@ -6,9 +6,11 @@
 //! builds their planners; none of them looks it up) and below the
 //! simulator. Adding a planner: one arm in [`build`], one entry in
 //! [`list`]. Its config is declared with [`crate::params`]'s `params!`
-//! (one line per field: doc, unit, default, bounds); [`parse_config`] reads
-//! it from the scenario's JSON with errors naming the field, and
-//! [`field_infos`] lists its fields with their defaults.
+//! (one line per field: doc, unit, default, bounds);
+//! [`parse_config`](crate::params::parse_config) reads it from the
+//! scenario's JSON with errors naming the field, and
+//! [`field_infos`](crate::params::field_infos) lists its fields with their
+//! defaults.
 
 use serde::{Deserialize, Serialize};
 
@@ -24,7 +26,7 @@ use crate::local::dwa::{Dwa, DwaConfig};
 use crate::local::improved::{Fusion53Config, ImprovedConfig, ImprovedDwa};
 use crate::local::pursuit::{Pursuit, PursuitConfig};
 use crate::local::{LocalError, LocalPlanner};
-pub use crate::params::{field_infos, parse_config, FieldInfo};
+use crate::params::{field_infos, parse_config, FieldInfo, Params};
 use crate::world::{RobotSpec, RobotState, StaticMap};
 
 /// The planner a scenario without a `local_planner` section uses.
@@ -324,42 +326,10 @@ pub fn build(
             robot,
             goal,
         )?)),
-        "lidar-dwa" => {
-            let cfg: LidarPlannerConfig<DwaConfig> = parse_config(&choice.name, &choice.config)?;
-            let motion = dwa_motion(cfg.motion, robot)?;
-            Ok(Box::new(LidarPlanner::with_nav(
-                "lidar-dwa",
-                &cfg,
-                motion,
-                robot,
-            )?))
-        }
-        "lidar-apf" => {
-            let cfg: LidarPlannerConfig<ApfLocalConfig> =
-                parse_config(&choice.name, &choice.config)?;
-            let motion = apf_motion(cfg.motion, robot)?;
-            Ok(Box::new(LidarPlanner::with_nav(
-                "lidar-apf",
-                &cfg,
-                motion,
-                robot,
-            )?))
-        }
-        "scan-apf" => {
-            let cfg: ScanBaselineConfig<ApfLocalConfig> =
-                parse_config(&choice.name, &choice.config)?;
-            let motion = apf_motion(cfg.motion, robot)?;
-            Ok(Box::new(LidarPlanner::baseline(
-                "scan-apf", &cfg, motion, robot,
-            )?))
-        }
-        "scan-dwa" => {
-            let cfg: ScanBaselineConfig<DwaConfig> = parse_config(&choice.name, &choice.config)?;
-            let motion = dwa_motion(cfg.motion, robot)?;
-            Ok(Box::new(LidarPlanner::baseline(
-                "scan-dwa", &cfg, motion, robot,
-            )?))
-        }
+        "lidar-dwa" => navigator("lidar-dwa", choice, robot, dwa_motion),
+        "lidar-apf" => navigator("lidar-apf", choice, robot, apf_motion),
+        "scan-apf" => scan_baseline("scan-apf", choice, robot, apf_motion),
+        "scan-dwa" => scan_baseline("scan-dwa", choice, robot, dwa_motion),
         "tangent-bug" => Ok(Box::new(TangentBug::new(
             parse_config(&choice.name, &choice.config)?,
             robot,
@@ -381,6 +351,9 @@ pub fn is_registered(name: &str) -> bool {
     list().iter().any(|p| p.name == name)
 }
 
+/// Builds a LiDAR planner's motion planner from its config.
+type MotionBuilder<M> = fn(M, &RobotSpec) -> Result<Box<dyn LocalPlanner>, LocalError>;
+
 /// The baseline DWA as the motion planner under a LiDAR navigator.
 fn dwa_motion(cfg: DwaConfig, robot: &RobotSpec) -> Result<Box<dyn LocalPlanner>, LocalError> {
     Ok(Box::new(Dwa::new(cfg, robot, MOTION_GOAL)?))
@@ -389,6 +362,32 @@ fn dwa_motion(cfg: DwaConfig, robot: &RobotSpec) -> Result<Box<dyn LocalPlanner>
 /// The basic APF (`apf`) as the motion planner under a LiDAR navigator.
 fn apf_motion(cfg: ApfLocalConfig, robot: &RobotSpec) -> Result<Box<dyn LocalPlanner>, LocalError> {
     Ok(Box::new(ApfLocal::new(true, cfg, robot, MOTION_GOAL)?))
+}
+
+/// The navigator planner `name` (`lidar-dwa`, `lidar-apf`) of `choice`
+/// over the motion planner `motion` builds from its config.
+fn navigator<M: Params + Clone>(
+    name: &'static str,
+    choice: &PlannerChoice,
+    robot: &RobotSpec,
+    motion: MotionBuilder<M>,
+) -> Result<Box<dyn LocalPlanner>, LocalError> {
+    let cfg: LidarPlannerConfig<M> = parse_config(&choice.name, &choice.config)?;
+    let motion = motion(cfg.motion.clone(), robot)?;
+    Ok(Box::new(LidarPlanner::with_nav(name, &cfg, motion, robot)?))
+}
+
+/// The scan-only baseline `name` (`scan-dwa`, `scan-apf`) of `choice`
+/// over the motion planner `motion` builds from its config.
+fn scan_baseline<M: Params + Clone>(
+    name: &'static str,
+    choice: &PlannerChoice,
+    robot: &RobotSpec,
+    motion: MotionBuilder<M>,
+) -> Result<Box<dyn LocalPlanner>, LocalError> {
+    let cfg: ScanBaselineConfig<M> = parse_config(&choice.name, &choice.config)?;
+    let motion = motion(cfg.motion.clone(), robot)?;
+    Ok(Box::new(LidarPlanner::baseline(name, &cfg, motion, robot)?))
 }
 
 #[cfg(test)]
