@@ -27,11 +27,11 @@
 //! listed under `name.` with their own docs) or `[nested of]` (the same,
 //! each doc "`field` of the `doc`"). `///` lines above a field add to its
 //! rustdoc only; the doc string is what `planlab planners` and the page's
-//! parameter panel show (brackets escaped for rustdoc, `\\[C\\]`, shown
-//! plain). The struct gets `#[serde(default,
-//! deny_unknown_fields)]`, a `Default` from the defaults and [`Params`]
-//! (the table, and `check_bounds` checking the bounds in field order);
-//! rules between fields stay in the config's own `validate`.
+//! parameter panel show (brackets escaped for rustdoc, `\[C\]`, are shown
+//! plain). The struct gets `#[serde(default, deny_unknown_fields)]`, a
+//! `Default` from the defaults and [`Params`] (the table, and
+//! `check_bounds` checking the bounds in field order); rules between fields
+//! stay in the config's own `validate`.
 
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
@@ -240,7 +240,7 @@ pub struct FieldInfo {
     pub doc: String,
 }
 
-/// A doc string as shown outside rustdoc: its escaped brackets (`\\[C\\]`,
+/// A doc string as shown outside rustdoc: its escaped brackets (`\[C\]`,
 /// written so for rustdoc's sake) plain.
 fn plain_doc(doc: &str) -> String {
     doc.replace("\\[", "[").replace("\\]", "]")

@@ -93,6 +93,10 @@
 //!   |ω|, as nav2 DWB's TwirlingCritic, because nothing in eq 13 cares about
 //!   the heading of a holonomic robot; without it the planner drifts into
 //!   curved rollouts that end on the path but start off it, and meanders.
+//!
+//! Files: `config` (settings, field list), `path` (global path, local
+//! goal), `step` (window, rollouts, cost, choice), `load` (vertical-load
+//! limit), `odometry` (compensation), `tests`.
 
 mod config;
 mod load;
@@ -162,10 +166,11 @@ pub struct CleaningDwa {
 }
 
 impl CleaningDwa {
-    /// Builds the planner registered as `name` (`cleaning-dwa` or
-    /// `traditional-dwa`, used in error messages and [`LocalPlanner::name`](crate::local::LocalPlanner::name))
-    /// for `robot` on `map`, planning the global path from `start` through
-    /// the waypoints to `goal`.
+    /// Builds the planner catalogued as `name` (`cleaning-dwa` or
+    /// `traditional-dwa`, used in error messages and
+    /// [`LocalPlanner::name`](crate::local::LocalPlanner::name)) for `robot`
+    /// on `map`, planning the global path from `start` through the
+    /// waypoints to `goal`.
     pub fn new(
         name: &'static str,
         cfg: CleaningDwaConfig,
