@@ -91,13 +91,15 @@ crate::params::params! {
         pub margin: f64 = 0.5, "m" [>= 0.0]
             "the path keeps footprint radius + this from what the scan has shown";
         /// 3: as `tangent-bug` and `rs-apf`.
-        pub lookahead: f64 = 3.0, "m" [>= 0.0] "the DWA steers this far along the waypoint's bearing";
+        pub lookahead: f64 = 3.0, "m" [>= 0.0]
+            "the DWA steers this far along the waypoint's bearing";
         pub waypoint_tolerance: f64 = 0.5, "m" [> 0.0] "a waypoint this near is passed";
         pub deviation: f64 = 1.0, "m" [> 0.0]
             "replan when the robot is farther than this from its leg";
         pub progress_time: f64 = 5.0, "s" [> 0.0]
             "replan when the remaining length has not shrunk by progress_distance for this long";
-        pub progress_distance: f64 = 0.5, "m" [>= 0.0] "progress that resets the progress_time clock";
+        pub progress_distance: f64 = 0.5, "m" [>= 0.0]
+            "progress that resets the progress_time clock";
         pub retry_time: f64 = 1.0, "s" [>= 0.0] "wait after a failed plan before the next";
         /// [`peer_dwa`].
         pub motion: DwaConfig = peer_dwa(), "" [nested]

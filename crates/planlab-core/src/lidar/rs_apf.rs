@@ -65,7 +65,8 @@ crate::params::params! {
             "virtual steps without progress before following the obstacle";
         pub lookahead: f64 = 3.0, "m" [>= 0.0] "the DWA steers this far along the target's bearing";
         /// [`peer_dwa`].
-        pub motion: DwaConfig = peer_dwa(), "" [nested] "the baseline DWA driving toward the target";
+        pub motion: DwaConfig = peer_dwa(), "" [nested]
+            "the baseline DWA driving toward the target";
         /// `mode` is forced to `basic`, `robot_radius` to the footprint's;
         /// `apf`'s defaults.
         pub apf: ApfConfig = crate::apf::local::ApfLocalConfig::default().apf, "" [nested]

@@ -80,9 +80,11 @@ crate::params::params! {
             "half-size of safe A*'s evaluation window";
         pub switch_radius: f64 = 0.5, "m" [> 0.0] "take the next temporary goal within this";
         /// \[S\] §4.1; divided by the map's resolution for the grid path.
-        pub bottom_up_error: f64 = 1.0, "m" [>= 0.0] "Bottom-Up maximum merge error (feature nodes)";
+        pub bottom_up_error: f64 = 1.0, "m" [>= 0.0]
+            "Bottom-Up maximum merge error (feature nodes)";
         /// d of \[S\] eq 12; not at the final goal.
-        pub hold_distance: f64 = 3.0, "m" [>= 0.0] "d: hold the speed within this of a temporary goal";
+        pub hold_distance: f64 = 3.0, "m" [>= 0.0]
+            "d: hold the speed within this of a temporary goal";
         /// A Decision (module doc).
         pub hold_min_speed: f64 = 0.3, "m/s" [>= 0.0] "hold only a previous speed at least this";
         /// False: the normal window always.
@@ -113,13 +115,14 @@ impl DualConfig {
     /// Checks every number; errors name `prefix.field`.
     pub fn validate(&self, prefix: &str) -> Result<(), LocalError> {
         self.dwa.validate(&format!("{prefix}.dwa"))?;
+        self.check_bounds(prefix)?;
         if self.safe_window == 0 || self.safe_window > MAX_WINDOW_RADIUS {
             return Err(LocalError::InvalidParameter(format!(
                 "{prefix}.safe_window = {}: must be in 1..={MAX_WINDOW_RADIUS}",
                 self.safe_window
             )));
         }
-        Ok(self.check_bounds(prefix)?)
+        Ok(())
     }
 }
 

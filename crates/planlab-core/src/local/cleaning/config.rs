@@ -70,7 +70,8 @@ crate::params::params! {
             "stop at every waypoint (the local goal waits there until it is reached)";
         pub waypoint_tolerance: f64 = 0.1, "m" [> 0.0] "a waypoint is reached within this distance";
         /// \[C\] §3.2.
-        pub load_limit: bool = true, "bool" [] "vertical-load acceleration limit (\\[C\\] eq 8, 14)";
+        pub load_limit: bool = true, "bool" []
+            "vertical-load acceleration limit (\\[C\\] eq 8, 14)";
         pub load_fraction: f64 = 0.2, "1" [>= 0.0]
             "j: every wheel keeps more than j·m·g (0 ≤ j < 1/4)";
         pub load_region: LoadRegion = LoadRegion::Diamond, "" []
