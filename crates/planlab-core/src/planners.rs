@@ -267,81 +267,40 @@ pub fn build(
     goal: [f64; 2],
 ) -> Result<Box<dyn LocalPlanner>, LocalError> {
     match choice.name.as_str() {
-        "dwa" => Ok(Box::new(Dwa::new(
-            parse_config(&choice.name, &choice.config)?,
-            robot,
-            goal,
-        )?)),
-        "improved-dwa" => Ok(Box::new(ImprovedDwa::improved(
-            parse_config(&choice.name, &choice.config)?,
-            robot,
-            map,
-            start,
-            goal,
-        )?)),
-        "fusion-53" => Ok(Box::new(ImprovedDwa::fusion53(
-            parse_config(&choice.name, &choice.config)?,
-            robot,
-            map,
-            start,
-            goal,
-        )?)),
-        "safe-dual-dwa" => Ok(Box::new(SafeDualDwa::safe_dual(
-            parse_config(&choice.name, &choice.config)?,
-            robot,
-            map,
-            start,
-            goal,
-        )?)),
-        "preliminary-fusion" => Ok(Box::new(SafeDualDwa::preliminary(
-            parse_config(&choice.name, &choice.config)?,
-            robot,
-            map,
-            start,
-            goal,
-        )?)),
-        "pursuit" => Ok(Box::new(Pursuit::new(
-            parse_config(&choice.name, &choice.config)?,
-            robot,
-            goal,
-        )?)),
+        "dwa" => configured(choice, |c| Dwa::new(c, robot, goal)),
+        "improved-dwa" => configured(choice, |c| {
+            ImprovedDwa::improved(c, robot, map, start, goal)
+        }),
+        "fusion-53" => configured(choice, |c| {
+            ImprovedDwa::fusion53(c, robot, map, start, goal)
+        }),
+        "safe-dual-dwa" => configured(choice, |c| {
+            SafeDualDwa::safe_dual(c, robot, map, start, goal)
+        }),
+        "preliminary-fusion" => configured(choice, |c| {
+            SafeDualDwa::preliminary(c, robot, map, start, goal)
+        }),
+        "pursuit" => configured(choice, |c| Pursuit::new(c, robot, goal)),
         name @ ("cleaning-dwa" | "traditional-dwa") => {
             let name = if name == "cleaning-dwa" {
                 "cleaning-dwa"
             } else {
                 "traditional-dwa"
             };
-            Ok(Box::new(cleaning::CleaningDwa::new(
-                name,
-                cleaning::parse(name, &choice.config)?,
-                robot,
-                map,
-                start,
-                goal,
-            )?))
+            let cfg = cleaning::parse(name, &choice.config)?;
+            let planner = cleaning::CleaningDwa::new(name, cfg, robot, map, start, goal)?;
+            Ok(Box::new(planner))
         }
-        name @ ("apf" | "sampling-apf") => Ok(Box::new(ApfLocal::new(
-            name == "apf",
-            parse_config(&choice.name, &choice.config)?,
-            robot,
-            goal,
-        )?)),
+        name @ ("apf" | "sampling-apf") => {
+            configured(choice, |c| ApfLocal::new(name == "apf", c, robot, goal))
+        }
         "lidar-dwa" => navigator("lidar-dwa", choice, robot, dwa_motion),
         "lidar-apf" => navigator("lidar-apf", choice, robot, apf_motion),
         "scan-apf" => scan_baseline("scan-apf", choice, robot, apf_motion),
         "scan-dwa" => scan_baseline("scan-dwa", choice, robot, dwa_motion),
-        "tangent-bug" => Ok(Box::new(TangentBug::new(
-            parse_config(&choice.name, &choice.config)?,
-            robot,
-        )?)),
-        "rs-apf" => Ok(Box::new(RsApf::new(
-            parse_config(&choice.name, &choice.config)?,
-            robot,
-        )?)),
-        "rrt-shortcut" => Ok(Box::new(RrtShortcut::new(
-            parse_config(&choice.name, &choice.config)?,
-            robot,
-        )?)),
+        "tangent-bug" => configured(choice, |c| TangentBug::new(c, robot)),
+        "rs-apf" => configured(choice, |c| RsApf::new(c, robot)),
+        "rrt-shortcut" => configured(choice, |c| RrtShortcut::new(c, robot)),
         _ => Err(LocalError::UnknownPlanner(choice.name.clone())),
     }
 }
@@ -364,6 +323,15 @@ fn apf_motion(cfg: ApfLocalConfig, robot: &RobotSpec) -> Result<Box<dyn LocalPla
     Ok(Box::new(ApfLocal::new(true, cfg, robot, MOTION_GOAL)?))
 }
 
+/// `new` applied to `choice`'s config read as `C` (errors name the field),
+/// boxed.
+fn configured<C: Params, P: LocalPlanner + 'static>(
+    choice: &PlannerChoice,
+    new: impl FnOnce(C) -> Result<P, LocalError>,
+) -> Result<Box<dyn LocalPlanner>, LocalError> {
+    Ok(Box::new(new(parse_config(&choice.name, &choice.config)?)?))
+}
+
 /// The navigator planner `name` (`lidar-dwa`, `lidar-apf`) of `choice`
 /// over the motion planner `motion` builds from its config.
 fn navigator<M: Params + Clone>(
@@ -372,9 +340,10 @@ fn navigator<M: Params + Clone>(
     robot: &RobotSpec,
     motion: MotionBuilder<M>,
 ) -> Result<Box<dyn LocalPlanner>, LocalError> {
-    let cfg: LidarPlannerConfig<M> = parse_config(&choice.name, &choice.config)?;
-    let motion = motion(cfg.motion.clone(), robot)?;
-    Ok(Box::new(LidarPlanner::with_nav(name, &cfg, motion, robot)?))
+    configured(choice, |cfg: LidarPlannerConfig<M>| {
+        let motion = motion(cfg.motion.clone(), robot)?;
+        LidarPlanner::with_nav(name, &cfg, motion, robot)
+    })
 }
 
 /// The scan-only baseline `name` (`scan-dwa`, `scan-apf`) of `choice`
@@ -385,9 +354,10 @@ fn scan_baseline<M: Params + Clone>(
     robot: &RobotSpec,
     motion: MotionBuilder<M>,
 ) -> Result<Box<dyn LocalPlanner>, LocalError> {
-    let cfg: ScanBaselineConfig<M> = parse_config(&choice.name, &choice.config)?;
-    let motion = motion(cfg.motion.clone(), robot)?;
-    Ok(Box::new(LidarPlanner::baseline(name, &cfg, motion, robot)?))
+    configured(choice, |cfg: ScanBaselineConfig<M>| {
+        let motion = motion(cfg.motion.clone(), robot)?;
+        LidarPlanner::baseline(name, &cfg, motion, robot)
+    })
 }
 
 #[cfg(test)]
