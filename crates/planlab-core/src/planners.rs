@@ -6,11 +6,9 @@
 //! builds their planners; none of them looks it up) and below the
 //! simulator. Adding a planner: one arm in [`build`], one entry in
 //! [`list`]. Its config is declared with [`crate::params`]'s `params!`
-//! (one line per field: doc, unit, default, bounds);
-//! [`parse_config`](crate::params::parse_config) reads it from the
-//! scenario's JSON with errors naming the field, and
-//! [`field_infos`](crate::params::field_infos) lists its fields with their
-//! defaults.
+//! (one line per field: doc, unit, default, bounds); [`parse_config`]
+//! reads it from the scenario's JSON with errors naming the field, and
+//! [`field_infos`] lists its fields with their defaults.
 
 use serde::{Deserialize, Serialize};
 
