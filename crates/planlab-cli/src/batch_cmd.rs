@@ -6,8 +6,8 @@ use std::path::Path;
 use std::time::Instant;
 
 use planlab_core::batch::{self, metric_values, PlannerSummary};
-use planlab_core::local::registry::{self, PlannerChoice};
 use planlab_core::metrics::EpisodeMetrics;
+use planlab_core::planners::{self, PlannerChoice};
 use planlab_core::scenario::Scenario;
 use planlab_core::sim::Episode;
 use rayon::prelude::*;
@@ -81,7 +81,7 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
     let choices: Vec<PlannerChoice> = if args.planners.is_empty() {
         vec![own.clone()]
     } else {
-        let known: Vec<String> = registry::list().into_iter().map(|p| p.name).collect();
+        let known: Vec<String> = planners::list().into_iter().map(|p| p.name).collect();
         let mut out: Vec<PlannerChoice> = Vec::new();
         for name in args.planners {
             let name = name.trim();

@@ -6,9 +6,9 @@
 use std::path::Path;
 
 use planlab_core::global::GridPos;
-use planlab_core::local::registry::PlannerChoice;
 use planlab_core::map::generate::{generate, GenerateConfig};
 use planlab_core::map::io::movingai;
+use planlab_core::planners::PlannerChoice;
 use planlab_core::scenario::{Scenario, WorldPoint};
 use planlab_core::sim::{generated_sim_config, SimConfig};
 use serde::Serialize;

@@ -1,13 +1,13 @@
 //! `planlab run`, `planlab planners` and `planlab reproduce`: simulated
-//! episodes, the planner registry and the papers' experiments.
+//! episodes, the planner catalogue and the papers' experiments.
 
 use std::path::Path;
 
 use planlab_core::apf::{AnyApfRun, ApfMetrics};
 use planlab_core::arm::ArmPredictor;
-use planlab_core::local::registry;
 use planlab_core::map::OccupancyGrid;
 use planlab_core::metrics::EpisodeMetrics;
+use planlab_core::planners;
 use planlab_core::scenario::{
     set_json_path, set_planner_name, AnyRun, AnyScenario, FinishedRun, ScenarioError, ScenarioKind,
 };
@@ -333,9 +333,9 @@ fn metrics_table(m: &EpisodeMetrics) -> String {
         .collect()
 }
 
-/// `planlab planners`: the registry.
+/// `planlab planners`: the catalogue.
 pub fn planners(json: bool) -> Result<(), String> {
-    let list = registry::list();
+    let list = planners::list();
     if json {
         emit(&(serde_json::to_string(&list).map_err(|e| e.to_string())? + "\n"))?;
         return Ok(());

@@ -4,8 +4,8 @@
 //! 20 movers: the overhead every DWA step pays on top of its planner.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use planlab_core::local::registry::PlannerChoice;
 use planlab_core::map::{OccupancyGrid, Pose2};
+use planlab_core::planners::PlannerChoice;
 use planlab_core::sim::{Episode, EpisodeSetup, Outcome, SimConfig};
 use planlab_core::world::{MotionModel, MoverSpec, RobotSpec, RobotState, StaticMap};
 use std::hint::black_box;

@@ -9,7 +9,9 @@
 //! the papers; `docs/algorithms.md` gives the equations.
 //! - [`text`]: one-line error text.
 //! - [`num`]: deterministic numerics: `libm` trigonometry, the seeded RNG,
-//!   parameter checks, number formatting.
+//!   number formatting.
+//! - [`params`]: the one bound check of every config number, config
+//!   parsing, and `params!`, which declares a config one line per field.
 //! - [`geom`]: plane geometry: closest point of a segment, distance to a
 //!   polyline.
 //! - [`map`]: occupancy grids with resolution and origin, cells and the
@@ -32,6 +34,8 @@
 //!   (2024): scan simulation, edges, gap and obstacle patterns, temporary
 //!   goals over a pluggable motion planner, and its peers (§lidar).
 //! - [`arm`]: the 7-DOF arm beside a moving hand, Wu (2022) §5.3.3 (§arm).
+//! - [`planners`]: the catalogue of local planners by name (`planlab
+//!   planners`), their config fields and their construction.
 //! - [`sim`]: fixed-step, seeded episodes, their traces, recordings and
 //!   edits (§episode).
 //! - [`metrics`]: what an episode measured, from its trace (§metrics).
@@ -54,6 +58,8 @@ pub mod local;
 pub mod map;
 pub mod metrics;
 pub mod num;
+pub mod params;
+pub mod planners;
 pub mod reproduce;
 pub mod scenario;
 pub mod sim;

@@ -37,20 +37,6 @@ pub fn fmt_num(x: f64) -> String {
     }
 }
 
-/// Why `value` is not a valid parameter that must be finite, ≥ `min` (>
-/// when `strict`) and at most [`MAX_PARAM`]; `None` when it is valid. The
-/// validators of every section word their errors with it.
-pub(crate) fn param_problem(value: f64, min: f64, strict: bool) -> Option<String> {
-    let rel = if strict { ">" } else { "≥" };
-    if !(value.is_finite() && if strict { value > min } else { value >= min }) {
-        Some(format!("must be a finite number {rel} {}", fmt_num(min)))
-    } else if value > MAX_PARAM {
-        Some(format!("must be at most {}", fmt_num(MAX_PARAM)))
-    } else {
-        None
-    }
-}
-
 /// Sine (deterministic across targets).
 #[inline]
 pub fn sin(x: f64) -> f64 {

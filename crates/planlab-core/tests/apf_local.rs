@@ -1,6 +1,6 @@
 //! The 2D APF local planners (`apf`, `sampling-apf`) in the simulator.
 
-use planlab_core::local::registry::{self, PlannerChoice};
+use planlab_core::planners::{self, PlannerChoice};
 use planlab_core::reproduce::{run_spec, RunSpec};
 use planlab_core::sim::Outcome;
 use serde_json::json;
@@ -60,13 +60,13 @@ fn sampled_steps_are_recorded_as_13_rollouts() {
 
 #[test]
 fn bad_configs_are_errors_naming_the_field() {
-    assert!(registry::is_registered("apf") && registry::is_registered("sampling-apf"));
+    assert!(planners::is_registered("apf") && planners::is_registered("sampling-apf"));
     let robot = Default::default();
     let grid = planlab_core::map::OccupancyGrid::from_ascii("....\n....\n").unwrap();
     let map = planlab_core::world::StaticMap::new(grid, true).unwrap();
     let state = Default::default();
     let build = |name: &str, config| {
-        registry::build(
+        planners::build(
             &PlannerChoice {
                 name: name.into(),
                 config,

@@ -2,8 +2,8 @@
 //! papers' method: each replays the scene that showed the bug.
 
 use planlab_core::batch;
-use planlab_core::local::registry::PlannerChoice;
 use planlab_core::map::OccupancyGrid;
+use planlab_core::planners::PlannerChoice;
 use planlab_core::scenario::Scenario;
 use planlab_core::sim::{Episode, Outcome, Trace};
 

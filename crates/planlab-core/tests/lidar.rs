@@ -3,11 +3,12 @@
 //! navigator planner on a map.
 
 use planlab_core::lidar::nav::carry;
-use planlab_core::lidar::planner::{LocalMapConfig, ScanNavigation};
+use planlab_core::lidar::planner::{LocalMapConfig, ScanNavigation, MOTION_GOAL};
 use planlab_core::lidar::scan::{beam_angle, Lidar, LidarConfig};
 use planlab_core::lidar::{LidarNavConfig, NavInput, Navigator, Scan, TargetKind, Velocity};
-use planlab_core::local::registry::PlannerChoice;
+use planlab_core::local::dwa::{Dwa, DwaConfig};
 use planlab_core::map::{OccupancyGrid, Pose2};
+use planlab_core::planners::PlannerChoice;
 use planlab_core::world::{Footprint, RobotLimits, RobotSpec, StaticMap};
 
 const N: usize = 360;
@@ -237,7 +238,7 @@ fn degenerate_scans_have_defined_behaviour() {
     ];
     let mut sn = ScanNavigation::new(
         Some(Navigator::new(LidarNavConfig::default(), "nav").unwrap()),
-        &PlannerChoice::named("dwa"),
+        Box::new(Dwa::new(DwaConfig::default(), &robot(), MOTION_GOAL).unwrap()),
         &robot(),
         LocalMapConfig::default(),
     )
@@ -310,7 +311,7 @@ fn bad_configs_name_the_field() {
     )
     .unwrap_err();
     assert!(e.to_string().contains("lidar.beams"), "{e}");
-    let e = planlab_core::local::registry::build(
+    let e = planlab_core::planners::build(
         &PlannerChoice {
             name: "lidar-dwa".into(),
             config: serde_json::json!({"nav": {"t_gap": -1.0}}),

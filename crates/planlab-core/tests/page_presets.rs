@@ -4,8 +4,8 @@
 //! a planner that breaks them shows up in `cargo test`; the [S] presets the
 //! page lists run to the goal with `safe-dual-dwa` and show its feature nodes.
 
-use planlab_core::local::registry::PlannerChoice;
 use planlab_core::local::GoalKind;
+use planlab_core::planners::PlannerChoice;
 use planlab_core::scenario::Scenario;
 use planlab_core::sim::{Episode, Outcome};
 

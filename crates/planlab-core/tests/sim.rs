@@ -1,9 +1,9 @@
 //! Episodes end to end with the `pursuit` baseline: outcomes, exact
 //! collision steps, determinism, live edits and bad input.
 
-use planlab_core::local::registry::PlannerChoice;
 use planlab_core::map::{OccupancyGrid, Pose2};
 use planlab_core::metrics::EpisodeMetrics;
+use planlab_core::planners::PlannerChoice;
 use planlab_core::sim::{Episode, EpisodeSetup, Outcome, SimConfig, SimError, Trace, TraceStep};
 use planlab_core::world::{
     Footprint, MotionModel, MoverSpec, RobotSpec, RobotState, StaticMap, WorldError,

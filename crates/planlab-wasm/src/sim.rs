@@ -12,9 +12,9 @@
 
 use planlab_core::lidar::fog::SeenCells;
 use planlab_core::lidar::{LidarDebug, TargetKind};
-use planlab_core::local::registry::{self, PlannerChoice};
 use planlab_core::local::{GoalKind, ObstacleClass};
 use planlab_core::metrics::{distance_to_polyline, EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::planners::{self as registry, PlannerChoice};
 use planlab_core::scenario::Scenario;
 use planlab_core::sim::{Edit, Episode, EpisodeSetup, Outcome, Recording, SimConfig};
 use planlab_core::world::{MoverSpec, Placement, RobotSpec, RobotState, StaticMap, TerrainSpec};

@@ -12,88 +12,41 @@
 //! 0 while |e| > `turn_angle` (turn first). The robot's circumscribed
 //! radius is added to every distance.
 
-use glam::DVec2;
-use serde::{Deserialize, Serialize};
-
 use super::planner::{Apf, ObstacleObs, StepKind};
-use super::{ApfConfig, ApfMode, APF_FIELDS};
-use crate::local::registry::check_param;
+use super::{ApfConfig, ApfMode};
 use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug, Rollout};
 use crate::num::{atan2, cos, wrap_angle};
+use crate::params::Params;
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
+use glam::DVec2;
 
 /// Id given to the nearest-wall point obstacle.
 pub const WALL_ID: u32 = u32::MAX;
 
-/// Settings of the `apf` / `sampling-apf` local planners.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct ApfLocalConfig {
-    /// The potential field (`mode` is forced to `basic` by `apf`; the
-    /// robot's radius replaces `robot_radius`). Defaults scaled for a
-    /// mobile robot: step 0.25 m, p₀ 0.5 m, ρ 1 m, k_a 1, k_r 0.02.
-    pub apf: ApfConfig,
-    /// Heading gain k_w: ω = k_w · heading error, 1/s.
-    pub k_w: f64,
-    /// Above this heading error the robot turns in place, rad.
-    pub turn_angle: f64,
-    /// Stop when the goal is this close, m.
-    pub stop_distance: f64,
-    /// Share of the deceleration limit the braking profile plans with, 1.
-    pub brake_fraction: f64,
-    /// The robot also brakes to stop this far from the nearest obstacle
-    /// surface, m.
-    pub safety_margin: f64,
-}
-
-impl Default for ApfLocalConfig {
-    fn default() -> Self {
-        Self {
-            apf: ApfConfig {
-                step: 0.25,
-                p0: 0.5,
-                rho: 1.0,
-                k_a: 1.0,
-                k_r: 0.02,
-                ..ApfConfig::default()
-            },
-            k_w: 2.0,
-            turn_angle: std::f64::consts::FRAC_PI_3,
-            stop_distance: 0.05,
-            brake_fraction: 0.8,
-            safety_margin: 0.05,
-        }
+crate::params::params! {
+    /// Settings of the `apf` / `sampling-apf` local planners.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct ApfLocalConfig {
+        /// `mode` is forced to `basic` by `apf`; the robot's radius replaces
+        /// `robot_radius`. Defaults scaled for a mobile robot: step 0.25 m,
+        /// p₀ 0.5 m, ρ 1 m, k_a 1, k_r 0.02.
+        pub apf: ApfConfig = ApfConfig {
+            step: 0.25,
+            p0: 0.5,
+            rho: 1.0,
+            k_a: 1.0,
+            k_r: 0.02,
+            ..ApfConfig::default()
+        }, "" [nested] "the potential field";
+        pub k_w: f64 = 2.0, "1/s" [> 0.0] "heading gain: ω = k_w · heading error";
+        pub turn_angle: f64 = std::f64::consts::FRAC_PI_3, "rad" [> 0.0]
+            "turn in place while the heading error exceeds this";
+        pub stop_distance: f64 = 0.05, "m" [>= 0.0] "stop when the goal is this close";
+        pub brake_fraction: f64 = 0.8, "1" [> 0.0, <= 1.0]
+            "share of the deceleration limit the braking profile plans with (0–1]";
+        pub safety_margin: f64 = 0.05, "m" [>= 0.0]
+            "brake to stop this far from the nearest obstacle surface";
     }
-}
-
-/// (name, unit, doc) of every field, nested APF fields dotted.
-pub fn field_table() -> Vec<(String, String, String)> {
-    let mut v: Vec<(String, String, String)> = APF_FIELDS
-        .iter()
-        .map(|(n, u, d)| (format!("apf.{n}"), u.to_string(), d.to_string()))
-        .collect();
-    for (n, u, d) in [
-        ("k_w", "1/s", "heading gain: ω = k_w · heading error"),
-        (
-            "turn_angle",
-            "rad",
-            "turn in place while the heading error exceeds this",
-        ),
-        ("stop_distance", "m", "stop when the goal is this close"),
-        (
-            "brake_fraction",
-            "1",
-            "share of the deceleration limit the braking profile plans with (0–1]",
-        ),
-        (
-            "safety_margin",
-            "m",
-            "brake to stop this far from the nearest obstacle surface",
-        ),
-    ] {
-        v.push((n.into(), u.into(), d.into()));
-    }
-    v
 }
 
 /// The 2D APF local planner (see the module doc).
@@ -125,17 +78,7 @@ impl ApfLocal {
                 "sampling-apf.apf.mode = basic: use the planner `apf` for the basic field".into(),
             ));
         }
-        check_param(name, "k_w (1/s)", cfg.k_w, 0.0, true)?;
-        check_param(name, "turn_angle (rad)", cfg.turn_angle, 0.0, true)?;
-        check_param(name, "stop_distance (m)", cfg.stop_distance, 0.0, false)?;
-        check_param(name, "brake_fraction", cfg.brake_fraction, 0.0, true)?;
-        check_param(name, "safety_margin (m)", cfg.safety_margin, 0.0, false)?;
-        if cfg.brake_fraction > 1.0 {
-            return Err(LocalError::InvalidParameter(format!(
-                "{name}.brake_fraction = {}: must be ≤ 1",
-                cfg.brake_fraction
-            )));
-        }
+        cfg.check_bounds(name)?;
         if !(goal[0].is_finite() && goal[1].is_finite()) {
             return Err(LocalError::InvalidParameter(format!(
                 "goal ({}, {}) must be finite",

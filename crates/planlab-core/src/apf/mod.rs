@@ -44,6 +44,8 @@ pub mod vector;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+use crate::params::{check_param, Bound, ParamError, Params};
+
 pub use field::VirtualObstacle;
 pub use planner::{Apf, ApfStep, Candidate, ObstacleObs, StepKind};
 pub use predict::{ConstantVelocity, Predictor, PredictorKind, Track};
@@ -89,6 +91,12 @@ pub enum ApfError {
     BadWeights(String),
 }
 
+impl From<ParamError> for ApfError {
+    fn from(e: ParamError) -> Self {
+        ApfError::InvalidParameter(e.to_string())
+    }
+}
+
 /// Which APF variant steps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "kebab-case")]
@@ -114,166 +122,58 @@ impl ApfMode {
     }
 }
 
-/// Settings of the potential field and its step. Defaults: the thesis's
-/// values where it gives them (α, β, 15°/±90°, 0.75, 0.75·F / 0.5·F, step
-/// 0.04 m); gains and ranges (not given) chosen for its ~1 m scenes.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct ApfConfig {
-    /// Variant: `basic`, `sampling` or `sampling-prediction`.
-    pub mode: ApfMode,
-    /// Attraction gain k_a (eq 4-1), force units per m.
-    pub k_a: f64,
-    /// Radius ρ around the goal inside which attraction is quadratic, m.
-    pub rho: f64,
-    /// Repulsion gain k_r (eq 4-3), force units·m³.
-    pub k_r: f64,
-    /// Repulsion influence range p₀ beyond an obstacle's surface, m.
-    pub p0: f64,
-    /// Step length d per planning step (\[T\] §5.3.3), m.
-    pub step: f64,
-    /// Attraction weight α of the sampling cost (eq 4-5), 1.
-    pub alpha: f64,
-    /// Repulsion weight β of the sampling cost (eq 4-5), 1.
-    pub beta: f64,
-    /// Relative distance rule (§4.2.2): β = 0 while the goal is nearer than
-    /// every obstacle surface (sampling modes).
-    pub relative_distance: bool,
-    /// Spacing of the sampled directions, rad (15°).
-    pub sample_step: f64,
-    /// Largest sampled deviation from the resultant, rad (90°).
-    pub sample_half_range: f64,
-    /// 3D only: sample the whole hemisphere around the resultant instead of
-    /// its vertical plane (beyond the thesis).
-    pub hemisphere: bool,
-    /// Predictor of obstacle positions (prediction mode).
-    pub predictor: predict::PredictorKind,
-    /// Time between predicted instants t+1 and t+2 (and from now to t+1), s.
-    pub predict_dt: f64,
-    /// Range scale of the predicted obstacles: s at t+1, s² at t+2, 1.
-    pub predict_scale: f64,
-    /// Virtual repulsion at the predicted centre, as a share of the
-    /// attraction there, at t+1 (0.75) and t+2 (0.5), 1.
-    pub predict_gains: [f64; 2],
-    /// Obstacles predicted to move less than this are not given virtual
-    /// copies (still obstacles), m.
-    pub predict_min_motion: f64,
-    /// Radius of the robot (point = 0): distances are to its surface, m.
-    pub robot_radius: f64,
-    /// Basic APF does not move when the resultant is weaker than this
-    /// (the exact local minimum of \[T\] Fig 4-1), force units.
-    pub stall_force: f64,
-}
-
-impl Default for ApfConfig {
-    fn default() -> Self {
-        Self {
-            mode: ApfMode::SamplingPrediction,
-            k_a: 5.0,
-            rho: 1.0,
-            k_r: 0.002,
-            p0: 0.15,
-            step: 0.04,
-            alpha: 0.3,
-            beta: 0.7,
-            relative_distance: true,
-            sample_step: 15f64.to_radians(),
-            sample_half_range: 90f64.to_radians(),
-            hemisphere: false,
-            predictor: predict::PredictorKind::ConstantVelocity,
-            predict_dt: 0.5,
-            predict_scale: 0.75,
-            predict_gains: [0.75, 0.5],
-            predict_min_motion: 0.005,
-            robot_radius: 0.0,
-            stall_force: 1e-9,
-        }
+crate::params::params! {
+    /// Settings of the potential field and its step. Defaults: the thesis's
+    /// values where it gives them (α, β, 15°/±90°, 0.75, 0.75·F / 0.5·F, step
+    /// 0.04 m); gains and ranges (not given) chosen for its ~1 m scenes.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct ApfConfig {
+        pub mode: ApfMode = ApfMode::SamplingPrediction, "" []
+            "basic | sampling | sampling-prediction";
+        /// Force units per m.
+        pub k_a: f64 = 5.0, "1/m" [> 0.0] "attraction gain k_a (eq 4-1)";
+        pub rho: f64 = 1.0, "m" [> 0.0] "quadratic attraction within ρ of the goal, conic beyond";
+        /// Force units·m³.
+        pub k_r: f64 = 0.002, "m³" [>= 0.0] "repulsion gain k_r (eq 4-3)";
+        pub p0: f64 = 0.15, "m" [> 0.0] "repulsion range p₀ beyond an obstacle's surface";
+        /// \[T\] §5.3.3.
+        pub step: f64 = 0.04, "m" [> 0.0] "step length d per planning step";
+        /// Eq 4-5.
+        pub alpha: f64 = 0.3, "1" [>= 0.0] "attraction weight α of the sampling cost";
+        /// Eq 4-5.
+        pub beta: f64 = 0.7, "1" [>= 0.0] "repulsion weight β of the sampling cost";
+        /// Sampling modes only.
+        pub relative_distance: bool = true, "" []
+            "β = 0 while the goal is nearer than every obstacle (§4.2.2)";
+        pub sample_step: f64 = 15f64.to_radians(), "rad" [> 0.0]
+            "spacing of the sampled directions (15°)";
+        /// From the resultant; at most π.
+        pub sample_half_range: f64 = 90f64.to_radians(), "rad" [>= 0.0]
+            "largest sampled deviation (90°)";
+        /// Instead of the vertical plane of the force (beyond the thesis).
+        pub hemisphere: bool = false, "" [] "3D: sample the whole hemisphere";
+        /// Prediction mode only.
+        pub predictor: predict::PredictorKind = predict::PredictorKind::ConstantVelocity, "" []
+            "constant-velocity | rnn";
+        pub predict_dt: f64 = 0.5, "s" [> 0.0] "time to t+1 and between t+1 and t+2";
+        pub predict_scale: f64 = 0.75, "1" [> 0.0] "virtual range scale s (t+1) and s² (t+2)";
+        /// 0.75 at t+1, 0.5 at t+2.
+        pub predict_gains: [f64; 2] = [0.75, 0.5], "1" []
+            "virtual repulsion at the predicted centre / attraction (t+1, t+2)";
+        /// They stay plain obstacles.
+        pub predict_min_motion: f64 = 0.005, "m" [>= 0.0]
+            "no virtual copies for obstacles predicted to move less";
+        /// 0 = a point.
+        pub robot_radius: f64 = 0.0, "m" [>= 0.0] "robot radius; distances to its surface";
+        /// The exact local minimum of \[T\] Fig 4-1; force units.
+        pub stall_force: f64 = 1e-9, "1" [>= 0.0] "basic APF stands still below this resultant";
     }
 }
-
-/// (name, unit, doc) of every [`ApfConfig`] field, for registries and the
-/// page's parameter panel.
-pub const APF_FIELDS: &[(&str, &str, &str)] = &[
-    ("mode", "", "basic | sampling | sampling-prediction"),
-    ("k_a", "1/m", "attraction gain k_a (eq 4-1)"),
-    (
-        "rho",
-        "m",
-        "quadratic attraction within ρ of the goal, conic beyond",
-    ),
-    ("k_r", "m³", "repulsion gain k_r (eq 4-3)"),
-    ("p0", "m", "repulsion range p₀ beyond an obstacle's surface"),
-    ("step", "m", "step length d per planning step"),
-    ("alpha", "1", "attraction weight α of the sampling cost"),
-    ("beta", "1", "repulsion weight β of the sampling cost"),
-    (
-        "relative_distance",
-        "",
-        "β = 0 while the goal is nearer than every obstacle (§4.2.2)",
-    ),
-    (
-        "sample_step",
-        "rad",
-        "spacing of the sampled directions (15°)",
-    ),
-    (
-        "sample_half_range",
-        "rad",
-        "largest sampled deviation (90°)",
-    ),
-    ("hemisphere", "", "3D: sample the whole hemisphere"),
-    ("predictor", "", "constant-velocity | rnn"),
-    ("predict_dt", "s", "time to t+1 and between t+1 and t+2"),
-    (
-        "predict_scale",
-        "1",
-        "virtual range scale s (t+1) and s² (t+2)",
-    ),
-    (
-        "predict_gains",
-        "1",
-        "virtual repulsion at the predicted centre / attraction (t+1, t+2)",
-    ),
-    (
-        "predict_min_motion",
-        "m",
-        "no virtual copies for obstacles predicted to move less",
-    ),
-    (
-        "robot_radius",
-        "m",
-        "robot radius; distances to its surface",
-    ),
-    (
-        "stall_force",
-        "1",
-        "basic APF stands still below this resultant",
-    ),
-];
 
 impl ApfConfig {
     /// Checks every number; the error names the field.
     pub fn validate(&self) -> Result<(), ApfError> {
-        let check = |name: &str, v: f64, min: f64, strict: bool| {
-            let ok = v.is_finite() && if strict { v > min } else { v >= min };
-            if ok {
-                Ok(())
-            } else {
-                let rel = if strict { ">" } else { "≥" };
-                Err(ApfError::InvalidParameter(format!(
-                    "apf.{name} = {v}: must be a finite number {rel} {min}"
-                )))
-            }
-        };
-        check("k_a", self.k_a, 0.0, true)?;
-        check("rho", self.rho, 0.0, true)?;
-        check("k_r", self.k_r, 0.0, false)?;
-        check("p0", self.p0, 0.0, true)?;
-        check("step", self.step, 0.0, true)?;
-        check("alpha", self.alpha, 0.0, false)?;
-        check("beta", self.beta, 0.0, false)?;
-        check("sample_step", self.sample_step, 0.0, true)?;
-        check("sample_half_range", self.sample_half_range, 0.0, false)?;
+        self.check_bounds("apf")?;
         if self.sample_half_range > std::f64::consts::PI + 1e-12 {
             return Err(ApfError::InvalidParameter(format!(
                 "apf.sample_half_range = {}: must be ≤ π",
@@ -286,13 +186,9 @@ impl ApfConfig {
                 self.sample_step
             )));
         }
-        check("predict_dt", self.predict_dt, 0.0, true)?;
-        check("predict_scale", self.predict_scale, 0.0, true)?;
-        check("predict_gains[0]", self.predict_gains[0], 0.0, false)?;
-        check("predict_gains[1]", self.predict_gains[1], 0.0, false)?;
-        check("predict_min_motion", self.predict_min_motion, 0.0, false)?;
-        check("robot_radius", self.robot_radius, 0.0, false)?;
-        check("stall_force", self.stall_force, 0.0, false)?;
+        for (i, &g) in self.predict_gains.iter().enumerate() {
+            check_param(&format!("apf.predict_gains[{i}]"), g, Bound::at_least(0.0))?;
+        }
         Ok(())
     }
 

@@ -18,6 +18,7 @@ use super::field::surface_distance;
 use super::planner::{Apf, ApfStep, ObstacleObs};
 use super::{ApfConfig, ApfError, ApfVector};
 use crate::num::acos;
+use crate::params::{check_param, Bound};
 use crate::world::Outcome;
 
 /// A path point is a spike when the path turns there by more than this,
@@ -184,20 +185,10 @@ impl<V: ApfVector> ApfRun<V> {
     /// Checks the scene (numbers, dimensions, start / goal outside every
     /// obstacle at t = 0) and places the robot at the start.
     pub fn new(scene: &ApfScene, start: V, goal: V) -> Result<Self, ApfError> {
-        let bad = |name: &str, v: f64, strict: bool| {
-            let ok = v.is_finite() && if strict { v > 0.0 } else { v >= 0.0 };
-            if ok {
-                Ok(())
-            } else {
-                Err(ApfError::InvalidParameter(format!(
-                    "apf.{name} = {v}: must be a finite number {} 0",
-                    if strict { ">" } else { "≥" }
-                )))
-            }
-        };
-        bad("period", scene.period, true)?;
-        bad("goal_tolerance", scene.goal_tolerance, true)?;
-        bad("stuck_distance", scene.stuck_distance, false)?;
+        let bad = |name: &str, v: f64, bound: Bound| check_param(&format!("apf.{name}"), v, bound);
+        bad("period", scene.period, Bound::above(0.0))?;
+        bad("goal_tolerance", scene.goal_tolerance, Bound::above(0.0))?;
+        bad("stuck_distance", scene.stuck_distance, Bound::at_least(0.0))?;
         if scene.max_steps == 0 || scene.max_steps > 1_000_000 {
             return Err(ApfError::InvalidParameter(format!(
                 "apf.max_steps = {}: must be 1…1000000",
@@ -212,7 +203,11 @@ impl<V: ApfVector> ApfRun<V> {
                 Some(v) => point(&format!("apf.obstacles[{i}].velocity"), v)?,
                 None => V::ZERO,
             };
-            bad(&format!("obstacles[{i}].radius"), o.radius, false)?;
+            bad(
+                &format!("obstacles[{i}].radius"),
+                o.radius,
+                Bound::at_least(0.0),
+            )?;
             let id = o.id.unwrap_or(i as u32);
             if surface_distance(&scene.config, goal, c, o.radius) <= 0.0 && v == V::ZERO {
                 return Err(ApfError::GoalInsideObstacle {

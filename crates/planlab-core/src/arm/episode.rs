@@ -19,6 +19,7 @@ use super::kinematics::IkConfig;
 use super::model::{ArmModel, ArmSpec};
 use super::ArmError;
 use crate::apf::{Apf, ApfConfig, ApfMetrics, ApfMode, ApfStep, ObstacleObs, PredictorKind};
+use crate::params::{check_param, Bound};
 use crate::world::Outcome;
 
 /// Points along a planned joint move at which the whole-arm check looks for
@@ -207,13 +208,7 @@ impl std::fmt::Debug for ArmEpisode {
 }
 
 fn check_pos(what: &str, v: f64) -> Result<(), ArmError> {
-    match crate::num::param_problem(v, 0.0, true) {
-        None => Ok(()),
-        Some(p) => Err(ArmError::Invalid(format!(
-            "{what} = {}: {p}",
-            crate::num::fmt_num(v)
-        ))),
-    }
+    Ok(check_param(what, v, Bound::above(0.0))?)
 }
 
 impl ArmEpisode {

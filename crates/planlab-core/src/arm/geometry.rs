@@ -42,7 +42,7 @@ impl Obstacle3 {
         if pts.iter().flatten().any(|x| !x.is_finite()) || !r.is_finite() {
             return Err(ArmError::NotFinite(what.to_string()));
         }
-        if let Some(p) = crate::num::param_problem(r, 0.0, false) {
+        if let Some(p) = crate::params::param_problem(r, 0.0, false) {
             return Err(ArmError::Invalid(format!(
                 "{what}: radius {} m: {p}",
                 crate::num::fmt_num(r)

@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 use super::geometry::Obstacle3;
 use super::ArmError;
 use crate::num::{cos, Rng};
+use crate::params::{check_param, Bound};
 
 /// A scripted motion.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -152,16 +153,8 @@ fn min_jerk(t: f64) -> f64 {
 impl HandMotion {
     /// Validates `spec` and draws its variation from `seed`.
     pub fn new(spec: &HandSpec, seed: u64) -> Result<HandMotion, ArmError> {
-        let check = |f: &str, v: f64, strict: bool| match crate::num::param_problem(v, 0.0, strict)
-        {
-            None => Ok(()),
-            Some(p) => Err(ArmError::Invalid(format!(
-                "hand.{f} = {}: {p}",
-                crate::num::fmt_num(v)
-            ))),
-        };
-        let pos = |f: &str, v: f64| check(f, v, true);
-        let nonneg = |f: &str, v: f64| check(f, v, false);
+        let pos = |f: &str, v: f64| check_param(&format!("hand.{f}"), v, Bound::above(0.0));
+        let nonneg = |f: &str, v: f64| check_param(&format!("hand.{f}"), v, Bound::at_least(0.0));
         pos("speed", spec.speed)?;
         pos("hand_radius_m", spec.hand_radius_m)?;
         pos("forearm_radius_m", spec.forearm_radius_m)?;

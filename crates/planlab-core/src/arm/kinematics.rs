@@ -139,7 +139,7 @@ impl IkConfig {
             ("tolerance_m", self.tolerance_m),
             ("max_joint_step_rad", self.max_joint_step_rad),
         ] {
-            if crate::num::param_problem(v, 0.0, true).is_some() {
+            if crate::params::param_problem(v, 0.0, true).is_some() {
                 return Err(bad(f, v));
             }
         }

@@ -120,5 +120,11 @@ pub enum ArmError {
     Invalid(String),
 }
 
+impl From<crate::params::ParamError> for ArmError {
+    fn from(e: crate::params::ParamError) -> Self {
+        ArmError::Invalid(e.to_string())
+    }
+}
+
 #[cfg(test)]
 mod tests;

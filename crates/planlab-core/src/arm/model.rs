@@ -341,7 +341,7 @@ fn check_radius(what: &str, r: f64) -> Result<(), ArmError> {
     if !r.is_finite() {
         return Err(ArmError::NotFinite(what.to_string()));
     }
-    match crate::num::param_problem(r, 0.0, false) {
+    match crate::params::param_problem(r, 0.0, false) {
         None => Ok(()),
         Some(p) => Err(ArmError::Invalid(format!(
             "{what} = {} m: {p}",

@@ -50,20 +50,8 @@ pub enum LidarError {
     InvalidParameter(String),
 }
 
-/// Checks `value` is finite and ≥ `min` (> when `strict`); errors name
-/// `prefix.field`.
-pub(crate) fn check(
-    prefix: &str,
-    field: &str,
-    value: f64,
-    min: f64,
-    strict: bool,
-) -> Result<(), LidarError> {
-    match crate::num::param_problem(value, min, strict) {
-        None => Ok(()),
-        Some(p) => Err(LidarError::InvalidParameter(format!(
-            "{prefix}.{field} = {}: {p}",
-            crate::num::fmt_num(value)
-        ))),
+impl From<crate::params::ParamError> for LidarError {
+    fn from(e: crate::params::ParamError) -> Self {
+        LidarError::InvalidParameter(e.to_string())
     }
 }

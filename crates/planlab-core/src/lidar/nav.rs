@@ -47,56 +47,32 @@ use super::LidarError;
 pub use crate::local::scan_debug::TargetKind;
 use crate::num::{atan2, cos, hypot, sin};
 
-/// \[L\] Table 1 navigation parameters (defaults) and the switches of §3.4.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct LidarNavConfig {
-    /// T_gap, weak-edge and gap-width threshold, m.
-    pub t_gap: f64,
-    /// θ_range, how far past a rising edge Algorithm 1 looks, rad.
-    pub theta_range: f64,
-    /// d_oe, obstacle expansion distance (eq 1), m.
-    pub d_oe: f64,
-    /// d_te, temporary-goal offset beyond an OP's end, m.
-    pub d_te: f64,
-    /// T_do, eq 4: switch when the blocking OP is nearer than this, m.
-    pub t_do: f64,
-    /// T_θo, eq 4: … or wider than this, rad.
-    pub t_theta_o: f64,
-    /// T_dc, hold when the two candidates' costs differ by less, m.
-    pub t_dc: f64,
-    /// t_h, hold period, s.
-    pub t_h: f64,
-    /// Most re-selections of a blocked temporary goal (1).
-    pub max_iterations: u32,
-    /// Apply extra condition 1 (eq 4) before switching to a temporary goal.
-    pub switch_condition: bool,
-    /// Apply extra condition 2 (the hold period).
-    pub hold: bool,
-    /// The motion planner steers to a temporary goal at least this far
-    /// away along the same bearing, m (0 = to the point itself).
-    /// **Decision**: a temporary goal is a waypoint to pass, not a place to
-    /// stop; a DWA heading critic aimed at a point closer than its rollouts
-    /// reach makes the robot circle it.
-    pub lookahead: f64,
-}
-
-impl Default for LidarNavConfig {
-    fn default() -> Self {
-        Self {
-            t_gap: 1.4,
-            theta_range: std::f64::consts::FRAC_PI_2,
-            d_oe: 0.5,
-            d_te: 0.5,
-            t_do: 4.0,
-            t_theta_o: 0.6 * std::f64::consts::PI,
-            t_dc: 0.3,
-            t_h: 3.0,
-            max_iterations: 3,
-            switch_condition: true,
-            hold: true,
-            lookahead: 3.0,
-        }
+crate::params::params! {
+    /// \[L\] Table 1 navigation parameters (defaults) and the switches of §3.4.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct LidarNavConfig {
+        pub t_gap: f64 = 1.4, "m" [>= 0.0] "T_gap: weak edges and gap widths";
+        pub theta_range: f64 = std::f64::consts::FRAC_PI_2, "rad" [>= 0.0]
+            "θ_range: Algorithm 1 looks this far past a rising edge";
+        pub d_oe: f64 = 0.5, "m" [>= 0.0] "d_oe: obstacle expansion (eq 1)";
+        pub d_te: f64 = 0.5, "m" [>= 0.0] "d_te: temporary goal offset beyond an OP end";
+        pub t_do: f64 = 4.0, "m" [>= 0.0] "T_do (eq 4): switch when the blocking OP is nearer";
+        pub t_theta_o: f64 = 0.6 * std::f64::consts::PI, "rad" [>= 0.0]
+            "T_θo (eq 4): … or wider than this";
+        pub t_dc: f64 = 0.3, "m" [>= 0.0] "T_dc: hold when the candidates' costs differ by less";
+        pub t_h: f64 = 3.0, "s" [>= 0.0] "t_h: hold period";
+        pub max_iterations: u32 = 3, "1" [] "most re-selections of a blocked temporary goal";
+        /// Extra condition 1.
+        pub switch_condition: bool = true, "bool" []
+            "apply eq 4 before switching to a temporary goal";
+        /// Extra condition 2.
+        pub hold: bool = true, "bool" [] "apply the hold period";
+        /// 0 = to the point itself. **Decision**: a temporary goal is a
+        /// waypoint to pass, not a place to stop; a DWA heading critic aimed
+        /// at a point closer than its rollouts reach makes the robot circle
+        /// it.
+        pub lookahead: f64 = 3.0, "m" [>= 0.0]
+            "steer to a temporary goal at least this far along its bearing";
     }
 }
 
@@ -115,16 +91,7 @@ impl LidarNavConfig {
 
     /// Checks every number; errors name `prefix.field`.
     pub fn validate(&self, prefix: &str) -> Result<(), LidarError> {
-        use super::check;
-        check(prefix, "t_gap", self.t_gap, 0.0, false)?;
-        check(prefix, "theta_range", self.theta_range, 0.0, false)?;
-        check(prefix, "d_oe", self.d_oe, 0.0, false)?;
-        check(prefix, "d_te", self.d_te, 0.0, false)?;
-        check(prefix, "t_do", self.t_do, 0.0, false)?;
-        check(prefix, "t_theta_o", self.t_theta_o, 0.0, false)?;
-        check(prefix, "t_dc", self.t_dc, 0.0, false)?;
-        check(prefix, "t_h", self.t_h, 0.0, false)?;
-        check(prefix, "lookahead", self.lookahead, 0.0, false)?;
+        crate::params::Params::check_bounds(self, prefix)?;
         if self.max_iterations > 100 {
             return Err(LidarError::InvalidParameter(format!(
                 "{prefix}.max_iterations = {}: at most 100",

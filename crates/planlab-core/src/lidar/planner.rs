@@ -2,9 +2,9 @@
 //!
 //! [`ScanNavigation`] is the robot-side stack: it takes a [`NavInput`]
 //! (scan, velocity, goal in the robot frame) and returns a command. The
-//! navigator picks the target; the motion planner (any registered local
-//! planner, e.g. `dwa`) drives to it on a **local map built from the scan
-//! alone**: a grid in the robot frame centred on the robot whose occupied
+//! navigator picks the target; the motion planner (a local planner built
+//! by the crate's planner catalogue, e.g. `dwa`) drives to it on a **local
+//! map built from the scan alone**: a grid in the robot frame centred on the robot whose occupied
 //! cells are the scan's hit points, consecutive hits closer than the robot's
 //! diameter joined (no robot fits between them and the beams' spacing must
 //! not look like a gap). The motion planner is called with the robot at
@@ -15,38 +15,25 @@
 //! and the perceived movers) and the conversion of the goal into the robot
 //! frame; its debug output goes back to world coordinates for drawing.
 
-use serde::de::DeserializeOwned;
-use serde::{Deserialize, Serialize};
-
 use super::edges::Edge;
 use super::nav::{LidarNavConfig, NavInput, Navigator, TargetKind, Velocity};
 use super::scan::{beam_angle, polar, Disc, Lidar, LidarConfig, Scan};
 use super::LidarError;
-use crate::local::registry::{self, PlannerChoice};
 /// The debug data lives in `local` (carried by [`PlannerDebug`]).
 pub use crate::local::scan_debug::{CandidateMark, EdgeMark, LidarDebug};
 use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::map::{Cell, OccupancyGrid, Pose2};
 use crate::num::{cos, hypot, sin};
+use crate::params::Params;
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
 
-/// The local map the motion planner sees.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct LocalMapConfig {
-    /// Half the side of the square local map around the robot, m (must
-    /// exceed the motion planner's reach; its edge counts as a wall).
-    pub half_size: f64,
-    /// Cell size, m.
-    pub resolution: f64,
-}
-
-impl Default for LocalMapConfig {
-    fn default() -> Self {
-        Self {
-            half_size: 5.0,
-            resolution: 0.05,
-        }
+crate::params::params! {
+    /// The local map the motion planner sees.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct LocalMapConfig {
+        /// Must exceed the motion planner's reach; its edge counts as a wall.
+        pub half_size: f64 = 5.0, "m" [> 0.0] "half side of the scan's local map (robot frame)";
+        pub resolution: f64 = 0.05, "m" [> 0.0] "cell size of the scan's local map";
     }
 }
 
@@ -55,8 +42,7 @@ pub const MAX_LOCAL_CELLS: f64 = 2000.0;
 
 impl LocalMapConfig {
     pub(crate) fn validate(&self, prefix: &str) -> Result<(), LidarError> {
-        super::check(prefix, "half_size", self.half_size, 0.0, true)?;
-        super::check(prefix, "resolution", self.resolution, 0.0, true)?;
+        self.check_bounds(prefix)?;
         if 2.0 * self.half_size / self.resolution > MAX_LOCAL_CELLS {
             return Err(LidarError::InvalidParameter(format!(
                 "{prefix}: 2·half_size / resolution = {}: at most {MAX_LOCAL_CELLS} cells per side",
@@ -67,121 +53,35 @@ impl LocalMapConfig {
     }
 }
 
-/// Settings of a navigator planner (`lidar-dwa`, `lidar-apf`): sensor,
-/// navigator (\[L\] Table 1), local map and the motion planner's own config.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct LidarPlannerConfig<M> {
-    /// The simulated LiDAR.
-    pub lidar: LidarConfig,
-    /// The temporary-goal navigator.
-    pub nav: LidarNavConfig,
-    /// The local map built from the scan.
-    pub local: LocalMapConfig,
-    /// The motion planner's config.
-    pub motion: M,
-}
-
-impl<M: Default> Default for LidarPlannerConfig<M> {
-    fn default() -> Self {
-        Self {
-            lidar: LidarConfig::default(),
-            nav: LidarNavConfig::default(),
-            local: LocalMapConfig::default(),
-            motion: M::default(),
-        }
+crate::params::params! {
+    /// Settings of a navigator planner (`lidar-dwa`, `lidar-apf`): sensor,
+    /// navigator (\[L\] Table 1), local map and the motion planner's own config.
+    #[derive(Debug, Clone, PartialEq)]
+    pub struct LidarPlannerConfig<M> {
+        pub lidar: LidarConfig = LidarConfig::default(), "" [nested] "the simulated LiDAR";
+        pub nav: LidarNavConfig = LidarNavConfig::default(), "" [nested]
+            "the temporary-goal navigator";
+        pub local: LocalMapConfig = LocalMapConfig::default(), "" [nested]
+            "the local map built from the scan";
+        pub motion: M = M::default(), "" [nested] "the motion planner's config";
     }
 }
 
-/// Settings of a plain scan-only baseline (`scan-dwa`, `scan-apf`): the
-/// motion planner straight to the goal on the scan's local map.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct ScanBaselineConfig<M> {
-    /// The simulated LiDAR.
-    pub lidar: LidarConfig,
-    /// The local map built from the scan.
-    pub local: LocalMapConfig,
-    /// The motion planner's config.
-    pub motion: M,
-}
-
-impl<M: Default> Default for ScanBaselineConfig<M> {
-    fn default() -> Self {
-        Self {
-            lidar: LidarConfig::default(),
-            local: LocalMapConfig::default(),
-            motion: M::default(),
-        }
+crate::params::params! {
+    /// Settings of a plain scan-only baseline (`scan-dwa`, `scan-apf`): the
+    /// motion planner straight to the goal on the scan's local map.
+    #[derive(Debug, Clone, PartialEq)]
+    pub struct ScanBaselineConfig<M> {
+        pub lidar: LidarConfig = LidarConfig::default(), "" [nested] "the simulated LiDAR";
+        pub local: LocalMapConfig = LocalMapConfig::default(), "" [nested]
+            "the local map built from the scan";
+        pub motion: M = M::default(), "" [nested] "the motion planner's config";
     }
 }
 
-/// `(name, unit, doc)` of the sensor, navigator and local-map fields.
-pub fn lidar_fields(with_nav: bool) -> Vec<(String, String, String)> {
-    let mut v: Vec<(String, String, String)> = Vec::new();
-    let mut push = |n: &str, u: &str, d: &str| v.push((n.into(), u.into(), d.into()));
-    push("lidar.beams", "1", "number of beams n over 360°");
-    push("lidar.range", "m", "range limit d_lidar");
-    push("lidar.noise_std", "m", "Gaussian range noise σ (0 = exact)");
-    push("lidar.noise_seed", "1", "seed of the noise stream");
-    if with_nav {
-        push("nav.t_gap", "m", "T_gap: weak edges and gap widths");
-        push(
-            "nav.theta_range",
-            "rad",
-            "θ_range: Algorithm 1 looks this far past a rising edge",
-        );
-        push("nav.d_oe", "m", "d_oe: obstacle expansion (eq 1)");
-        push(
-            "nav.d_te",
-            "m",
-            "d_te: temporary goal offset beyond an OP end",
-        );
-        push(
-            "nav.t_do",
-            "m",
-            "T_do (eq 4): switch when the blocking OP is nearer",
-        );
-        push("nav.t_theta_o", "rad", "T_θo (eq 4): … or wider than this");
-        push(
-            "nav.t_dc",
-            "m",
-            "T_dc: hold when the candidates' costs differ by less",
-        );
-        push("nav.t_h", "s", "t_h: hold period");
-        push(
-            "nav.max_iterations",
-            "1",
-            "most re-selections of a blocked temporary goal",
-        );
-        push(
-            "nav.switch_condition",
-            "bool",
-            "apply eq 4 before switching to a temporary goal",
-        );
-        push("nav.hold", "bool", "apply the hold period");
-        push(
-            "nav.lookahead",
-            "m",
-            "steer to a temporary goal at least this far along its bearing",
-        );
-    }
-    push(
-        "local.half_size",
-        "m",
-        "half side of the scan's local map (robot frame)",
-    );
-    push("local.resolution", "m", "cell size of the scan's local map");
-    v
-}
-
-/// `fields` of a motion planner under `motion.`.
-pub fn motion_fields(fields: &[(&str, &str, &str)]) -> Vec<(String, String, String)> {
-    fields
-        .iter()
-        .map(|(n, u, d)| (format!("motion.{n}"), u.to_string(), d.to_string()))
-        .collect()
-}
+/// The goal a motion planner under the navigator is built with, robot
+/// frame; it is given the target every step.
+pub const MOTION_GOAL: [f64; 2] = [1.0, 0.0];
 
 pub(crate) fn lidar_err(e: LidarError) -> LocalError {
     LocalError::InvalidParameter(e.to_string())
@@ -213,18 +113,16 @@ impl std::fmt::Debug for ScanNavigation {
 }
 
 impl ScanNavigation {
-    /// Builds the stack: `nav` (None = plain motion planner to the goal),
-    /// the motion planner `motion` (a registry choice) for `robot`.
+    /// Builds the stack: `nav` (None = plain motion planner to the goal)
+    /// over `motion`, a motion planner built for `robot` (and
+    /// [`MOTION_GOAL`]), on the local map `local`.
     pub fn new(
         nav: Option<Navigator>,
-        motion: &PlannerChoice,
+        motion: Box<dyn LocalPlanner>,
         robot: &RobotSpec,
         local: LocalMapConfig,
     ) -> Result<ScanNavigation, LocalError> {
         local.validate("local").map_err(lidar_err)?;
-        let origin = RobotState::default();
-        let empty = empty_local_map(&local)?;
-        let motion = registry::build(motion, robot, &empty, &origin, [1.0, 0.0])?;
         Ok(ScanNavigation {
             nav,
             motion,
@@ -359,23 +257,6 @@ fn local_dims(cfg: &LocalMapConfig) -> usize {
     ((2.0 * cfg.half_size / cfg.resolution).ceil() as usize).max(1)
 }
 
-pub(crate) fn empty_local_map(cfg: &LocalMapConfig) -> Result<StaticMap, LocalError> {
-    let n = local_dims(cfg);
-    let grid = OccupancyGrid::from_cells(n, n, vec![Cell::Free; n * n])
-        .and_then(|g| {
-            g.with_frame(
-                cfg.resolution,
-                Pose2 {
-                    x: -cfg.half_size,
-                    y: -cfg.half_size,
-                    yaw: 0.0,
-                },
-            )
-        })
-        .map_err(|e| LocalError::InvalidParameter(format!("local map: {e}")))?;
-    StaticMap::new(grid, true).map_err(|e| LocalError::InvalidParameter(format!("local map: {e}")))
-}
-
 /// The local map of a scan: robot frame, robot at the centre; hit points
 /// occupied, consecutive hits closer than `join` joined by a line.
 pub fn scan_local_map(
@@ -443,14 +324,15 @@ pub struct LidarPlanner {
 }
 
 impl LidarPlanner {
-    /// The navigator `nav` (None: plain baseline) over `motion` with the
-    /// sensor `lidar`, registered as `name`.
+    /// The navigator `nav` (None: plain baseline) over the motion planner
+    /// `motion` (built for `robot` and [`MOTION_GOAL`]) with the sensor
+    /// `lidar`, registered as `name`.
     pub fn new(
         name: &'static str,
         lidar: LidarConfig,
         nav: Option<LidarNavConfig>,
         local: LocalMapConfig,
-        motion: &PlannerChoice,
+        motion: Box<dyn LocalPlanner>,
         robot: &RobotSpec,
     ) -> Result<LidarPlanner, LocalError> {
         let lidar = Lidar::new(lidar, "lidar").map_err(lidar_err)?;
@@ -469,34 +351,26 @@ impl LidarPlanner {
         })
     }
 
-    /// Builds a navigator planner from its registry config.
-    pub fn with_nav<M: Serialize + DeserializeOwned + Default>(
+    /// A navigator planner of config `cfg` over `motion` (built from
+    /// `cfg.motion` by the catalogue).
+    pub fn with_nav<M>(
         name: &'static str,
-        motion: &str,
         cfg: &LidarPlannerConfig<M>,
+        motion: Box<dyn LocalPlanner>,
         robot: &RobotSpec,
     ) -> Result<LidarPlanner, LocalError> {
-        let choice = PlannerChoice {
-            name: motion.into(),
-            config: serde_json::to_value(&cfg.motion)
-                .map_err(|e| LocalError::InvalidParameter(format!("{name}.motion: {e}")))?,
-        };
-        Self::new(name, cfg.lidar, Some(cfg.nav), cfg.local, &choice, robot)
+        Self::new(name, cfg.lidar, Some(cfg.nav), cfg.local, motion, robot)
     }
 
-    /// Builds a scan-only baseline from its registry config.
-    pub fn baseline<M: Serialize + DeserializeOwned + Default>(
+    /// A scan-only baseline of config `cfg` over `motion` (built from
+    /// `cfg.motion` by the catalogue).
+    pub fn baseline<M>(
         name: &'static str,
-        motion: &str,
         cfg: &ScanBaselineConfig<M>,
+        motion: Box<dyn LocalPlanner>,
         robot: &RobotSpec,
     ) -> Result<LidarPlanner, LocalError> {
-        let choice = PlannerChoice {
-            name: motion.into(),
-            config: serde_json::to_value(&cfg.motion)
-                .map_err(|e| LocalError::InvalidParameter(format!("{name}.motion: {e}")))?,
-        };
-        Self::new(name, cfg.lidar, None, cfg.local, &choice, robot)
+        Self::new(name, cfg.lidar, None, cfg.local, motion, robot)
     }
 
     /// The robot-side stack.

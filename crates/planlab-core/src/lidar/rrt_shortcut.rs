@@ -43,20 +43,18 @@
 //! its bearing at `lookahead`. The DWA never drives into what the scan
 //! shows.
 
-use serde::{Deserialize, Serialize};
-
 use super::planner::LocalMapConfig;
 use super::scan::{beam_angle, polar, LidarConfig, Scan};
 use super::scan_motion::{peer_dwa, regression_search, steer_point, ScanMotion};
 use crate::geom::distance_to_polyline;
 use crate::global::keypoints::segment_free;
 use crate::global::{supercover, Diagonal, GridPos, PlanGrid};
-use crate::local::dwa::{DwaConfig, DWA_FIELDS};
-use crate::local::registry::check_param;
+use crate::local::dwa::DwaConfig;
 use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::map::costmap::distance_field;
 use crate::map::{Cell, OccupancyGrid, Pose2};
 use crate::num::{hypot, Rng};
+use crate::params::Params;
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
 
 /// Most cells of the memory grid (a coarser resolution is used beyond).
@@ -68,160 +66,58 @@ pub const MAX_ITERATIONS: u32 = 1_000_000;
 /// Sub-stream of the episode seed the RRT's sampler draws from.
 const RRT_STREAM: u64 = 0x0052_5254; // "RRT"
 
-/// Settings of `rrt-shortcut`. The RRT's three numbers follow the RRT
-/// literature; the rest are planlab's choices, declared as such.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RrtShortcutConfig {
-    /// The simulated LiDAR.
-    pub lidar: LidarConfig,
-    /// The local map built from the scan for the motion planner.
-    pub local: LocalMapConfig,
-    /// The baseline DWA driving toward the waypoint ([`peer_dwa`]).
-    pub motion: DwaConfig,
-    /// Probability that a sample is the goal, 1 (0.05: OMPL's RRT default;
-    /// LaValle & Kuffner 2001 bias toward the goal by a few per cent).
-    pub goal_bias: f64,
-    /// RRT step ε, the most a new node extends toward its sample, m (1.0:
-    /// "a few robot radii", ≈ 3.3 × \[L\]'s 0.3 m robot).
-    pub step: f64,
-    /// Samples per plan before it fails, 1 (5000).
-    pub max_iterations: u32,
-    /// Cell size of the memory grid, m (0.1: the \[L\] presets' map cells).
-    pub memory_resolution: f64,
-    /// The memory grid (and the sampling domain) reaches this far beyond
-    /// the robot and the goal, m.
-    pub memory_margin: f64,
-    /// The path keeps a disc of the footprint's radius plus this clear of
-    /// what the scan has shown, m (0.5: \[L\]'s d_oe, as `tangent-bug` and
-    /// `rs-apf` use).
-    pub margin: f64,
-    /// The DWA steers to a point at least this far along the waypoint's
-    /// bearing, m (3: as `tangent-bug` and `rs-apf`).
-    pub lookahead: f64,
-    /// A waypoint this near is passed, m.
-    pub waypoint_tolerance: f64,
-    /// Replan when the robot is farther than this from its current leg, m.
-    pub deviation: f64,
-    /// Replan when the remaining path length has not shrunk by
-    /// `progress_distance` for this long, s.
-    pub progress_time: f64,
-    /// See `progress_time`, m.
-    pub progress_distance: f64,
-    /// After a failed plan, wait this long before the next, s.
-    pub retry_time: f64,
-}
-
-impl Default for RrtShortcutConfig {
-    fn default() -> Self {
-        Self {
-            lidar: LidarConfig::default(),
-            local: LocalMapConfig::default(),
-            motion: peer_dwa(),
-            goal_bias: 0.05,
-            step: 1.0,
-            max_iterations: 5000,
-            memory_resolution: 0.1,
-            memory_margin: 5.0,
-            margin: 0.5,
-            lookahead: 3.0,
-            waypoint_tolerance: 0.5,
-            deviation: 1.0,
-            progress_time: 5.0,
-            progress_distance: 0.5,
-            retry_time: 1.0,
-        }
+crate::params::params! {
+    /// Settings of `rrt-shortcut`. The RRT's three numbers follow the RRT
+    /// literature; the rest are planlab's choices, declared as such.
+    #[derive(Debug, Clone, PartialEq)]
+    pub struct RrtShortcutConfig {
+        pub lidar: LidarConfig = LidarConfig::default(), "" [nested] "the simulated LiDAR";
+        pub local: LocalMapConfig = LocalMapConfig::default(), "" [nested]
+            "the local map built from the scan for the motion planner";
+        /// 0.05: OMPL's RRT default; LaValle & Kuffner 2001 bias toward the
+        /// goal by a few per cent.
+        pub goal_bias: f64 = 0.05, "1" [>= 0.0, <= 1.0]
+            "probability a sample is the goal (OMPL's RRT default 0.05)";
+        /// 1.0: "a few robot radii", ≈ 3.3 × \[L\]'s 0.3 m robot.
+        pub step: f64 = 1.0, "m" [> 0.0]
+            "RRT step ε: most a new node extends toward its sample (a few robot radii)";
+        pub max_iterations: u32 = 5000, "1" [] "samples per plan before it fails";
+        /// 0.1: the \[L\] presets' map cells; below a millimetre the cell
+        /// bound would coarsen it anyway.
+        pub memory_resolution: f64 = 0.1, "m" [>= 1e-3] "cell size of the scan's memory grid";
+        pub memory_margin: f64 = 5.0, "m" [>= 0.0]
+            "memory grid and sampling domain reach this far beyond robot and goal";
+        /// 0.5: \[L\]'s d_oe, as `tangent-bug` and `rs-apf` use.
+        pub margin: f64 = 0.5, "m" [>= 0.0]
+            "the path keeps footprint radius + this from what the scan has shown";
+        /// 3: as `tangent-bug` and `rs-apf`.
+        pub lookahead: f64 = 3.0, "m" [>= 0.0]
+            "the DWA steers this far along the waypoint's bearing";
+        pub waypoint_tolerance: f64 = 0.5, "m" [> 0.0] "a waypoint this near is passed";
+        pub deviation: f64 = 1.0, "m" [> 0.0]
+            "replan when the robot is farther than this from its leg";
+        pub progress_time: f64 = 5.0, "s" [> 0.0]
+            "replan when the remaining length has not shrunk by progress_distance for this long";
+        pub progress_distance: f64 = 0.5, "m" [>= 0.0]
+            "progress that resets the progress_time clock";
+        pub retry_time: f64 = 1.0, "s" [>= 0.0] "wait after a failed plan before the next";
+        /// [`peer_dwa`].
+        pub motion: DwaConfig = peer_dwa(), "" [nested]
+            "the baseline DWA driving toward the waypoint";
     }
-}
-
-/// `(name, unit, doc)` of every [`RrtShortcutConfig`] field.
-pub fn rrt_shortcut_fields() -> Vec<(String, String, String)> {
-    let mut v = super::planner::lidar_fields(false);
-    let mut push = |n: &str, u: &str, d: &str| v.push((n.into(), u.into(), d.into()));
-    push(
-        "goal_bias",
-        "1",
-        "probability a sample is the goal (OMPL's RRT default 0.05)",
-    );
-    push(
-        "step",
-        "m",
-        "RRT step ε: most a new node extends toward its sample (a few robot radii)",
-    );
-    push("max_iterations", "1", "samples per plan before it fails");
-    push(
-        "memory_resolution",
-        "m",
-        "cell size of the scan's memory grid",
-    );
-    push(
-        "memory_margin",
-        "m",
-        "memory grid and sampling domain reach this far beyond robot and goal",
-    );
-    push(
-        "margin",
-        "m",
-        "the path keeps footprint radius + this from what the scan has shown",
-    );
-    push(
-        "lookahead",
-        "m",
-        "the DWA steers this far along the waypoint's bearing",
-    );
-    push("waypoint_tolerance", "m", "a waypoint this near is passed");
-    push(
-        "deviation",
-        "m",
-        "replan when the robot is farther than this from its leg",
-    );
-    push(
-        "progress_time",
-        "s",
-        "replan when the remaining length has not shrunk by progress_distance for this long",
-    );
-    push(
-        "progress_distance",
-        "m",
-        "progress that resets the progress_time clock",
-    );
-    push(
-        "retry_time",
-        "s",
-        "wait after a failed plan before the next",
-    );
-    v.extend(super::planner::motion_fields(DWA_FIELDS));
-    v
 }
 
 impl RrtShortcutConfig {
     /// Checks every number; errors name `rrt-shortcut.field`.
     pub fn validate(&self) -> Result<(), LocalError> {
-        let p = "rrt-shortcut";
-        check_param(p, "goal_bias", self.goal_bias, 0.0, false)?;
-        if self.goal_bias > 1.0 {
-            return Err(LocalError::InvalidParameter(format!(
-                "{p}.goal_bias = {}: must be a probability in [0, 1]",
-                self.goal_bias
-            )));
-        }
-        check_param(p, "step", self.step, 0.0, true)?;
+        self.check_bounds("rrt-shortcut")?;
         if self.max_iterations == 0 || self.max_iterations > MAX_ITERATIONS {
             return Err(LocalError::InvalidParameter(format!(
-                "{p}.max_iterations = {}: must be in 1 ..= {MAX_ITERATIONS}",
+                "rrt-shortcut.max_iterations = {}: must be in 1 ..= {MAX_ITERATIONS}",
                 self.max_iterations
             )));
         }
-        // Below a millimetre the cell bound would coarsen it anyway.
-        check_param(p, "memory_resolution", self.memory_resolution, 1e-3, false)?;
-        check_param(p, "memory_margin", self.memory_margin, 0.0, false)?;
-        check_param(p, "margin", self.margin, 0.0, false)?;
-        check_param(p, "lookahead", self.lookahead, 0.0, false)?;
-        check_param(p, "waypoint_tolerance", self.waypoint_tolerance, 0.0, true)?;
-        check_param(p, "deviation", self.deviation, 0.0, true)?;
-        check_param(p, "progress_time", self.progress_time, 0.0, true)?;
-        check_param(p, "progress_distance", self.progress_distance, 0.0, false)?;
-        check_param(p, "retry_time", self.retry_time, 0.0, false)
+        Ok(())
     }
 }
 
@@ -507,7 +403,7 @@ impl RrtShortcut {
     /// Builds the planner for `robot`; errors name the bad field.
     pub fn new(cfg: RrtShortcutConfig, robot: &RobotSpec) -> Result<RrtShortcut, LocalError> {
         cfg.validate()?;
-        let io = ScanMotion::with_dwa("rrt-shortcut", cfg.lidar, cfg.local, cfg.motion, robot)?;
+        let io = ScanMotion::with_dwa(cfg.lidar, cfg.local, cfg.motion, robot)?;
         Ok(RrtShortcut {
             radius: robot.footprint.circumscribed_radius(),
             cfg,
@@ -771,7 +667,7 @@ mod tests {
     use crate::local::testkit::End;
 
     fn planner(cfg: serde_json::Value) -> Box<dyn LocalPlanner> {
-        build_on_room("rrt-shortcut", cfg).unwrap()
+        build_on_room("rrt-shortcut", cfg, RrtShortcut::new).unwrap()
     }
 
     /// L-sim7's scene: 20 × 14 m, walls x 6–6.3 (y 2–10) and x 12–12.3
@@ -915,7 +811,7 @@ mod tests {
 
     #[test]
     fn bad_rrt_shortcut_settings_name_the_field() {
-        let build = |cfg| build_error("rrt-shortcut", cfg);
+        let build = |cfg| build_error("rrt-shortcut", cfg, RrtShortcut::new);
         assert!(build(serde_json::json!({"goal_bias": 1.5})).contains("rrt-shortcut.goal_bias"));
         assert!(build(serde_json::json!({"goal_bias": -0.1})).contains("rrt-shortcut.goal_bias"));
         assert!(build(serde_json::json!({"step": 0.0})).contains("rrt-shortcut.step"));

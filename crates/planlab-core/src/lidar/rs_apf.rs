@@ -33,97 +33,51 @@
 //! `tangent-bug` ([`super::scan_motion`]); a target nearer than
 //! `lookahead` is steered to along its bearing at `lookahead`.
 
-use glam::DVec2;
-use serde::{Deserialize, Serialize};
-
 use super::planner::LocalMapConfig;
 use super::scan::LidarConfig;
 use super::scan_motion::{
     free_length, peer_dwa, regression_search, steer_point, world_points, ScanMotion,
 };
 use crate::apf::field::{attraction, repulsion};
-use crate::apf::{ApfConfig, ApfMode, APF_FIELDS};
-use crate::local::dwa::{DwaConfig, DWA_FIELDS};
-use crate::local::registry::check_param;
+use crate::apf::{ApfConfig, ApfMode};
+use crate::local::dwa::DwaConfig;
 use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::num::hypot;
+use crate::params::Params;
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
+use glam::DVec2;
 
 /// Most points of one virtual APF path.
 pub const MAX_PATH_POINTS: usize = 400;
 
-/// Settings of `rs-apf`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RsApfConfig {
-    /// The simulated LiDAR.
-    pub lidar: LidarConfig,
-    /// The local map built from the scan for the motion planner.
-    pub local: LocalMapConfig,
-    /// The baseline DWA driving toward the target ([`peer_dwa`]).
-    pub motion: DwaConfig,
-    /// The basic potential field of the virtual path (`mode` is forced to
-    /// `basic`, `robot_radius` to the footprint's); `apf`'s defaults.
-    pub apf: ApfConfig,
-    /// Path segments and wall following keep a disc of the footprint's
-    /// radius plus this clear of the hit points, m.
-    pub margin: f64,
-    /// Steps without progress toward the goal before the virtual point
-    /// follows the obstacle, 1.
-    pub stall_steps: u32,
-    /// The DWA steers to a point at least this far along the target's
-    /// bearing, m.
-    pub lookahead: f64,
-}
-
-impl Default for RsApfConfig {
-    fn default() -> Self {
-        Self {
-            lidar: LidarConfig::default(),
-            local: LocalMapConfig::default(),
-            motion: peer_dwa(),
-            apf: crate::apf::local::ApfLocalConfig::default().apf,
-            margin: 0.5,
-            stall_steps: 3,
-            lookahead: 3.0,
-        }
+crate::params::params! {
+    /// Settings of `rs-apf`.
+    #[derive(Debug, Clone, PartialEq)]
+    pub struct RsApfConfig {
+        pub lidar: LidarConfig = LidarConfig::default(), "" [nested] "the simulated LiDAR";
+        pub local: LocalMapConfig = LocalMapConfig::default(), "" [nested]
+            "the local map built from the scan for the motion planner";
+        /// Path segments and wall following keep this clear of the hit points.
+        pub margin: f64 = 0.5, "m" [>= 0.0]
+            "segments and wall following keep footprint radius + this from hits";
+        /// Steps toward the goal.
+        pub stall_steps: u32 = 3, "1" []
+            "virtual steps without progress before following the obstacle";
+        pub lookahead: f64 = 3.0, "m" [>= 0.0] "the DWA steers this far along the target's bearing";
+        /// [`peer_dwa`].
+        pub motion: DwaConfig = peer_dwa(), "" [nested]
+            "the baseline DWA driving toward the target";
+        /// `mode` is forced to `basic`, `robot_radius` to the footprint's;
+        /// `apf`'s defaults.
+        pub apf: ApfConfig = crate::apf::local::ApfLocalConfig::default().apf, "" [nested]
+            "the basic potential field of the virtual path";
     }
-}
-
-/// `(name, unit, doc)` of every [`RsApfConfig`] field.
-pub fn rs_apf_fields() -> Vec<(String, String, String)> {
-    let mut v = super::planner::lidar_fields(false);
-    let mut push = |n: &str, u: &str, d: &str| v.push((n.into(), u.into(), d.into()));
-    push(
-        "margin",
-        "m",
-        "segments and wall following keep footprint radius + this from hits",
-    );
-    push(
-        "stall_steps",
-        "1",
-        "virtual steps without progress before following the obstacle",
-    );
-    push(
-        "lookahead",
-        "m",
-        "the DWA steers this far along the target's bearing",
-    );
-    v.extend(super::planner::motion_fields(DWA_FIELDS));
-    v.extend(
-        APF_FIELDS
-            .iter()
-            .map(|(n, u, d)| (format!("apf.{n}"), u.to_string(), d.to_string())),
-    );
-    v
 }
 
 impl RsApfConfig {
     /// Checks every number; errors name `rs-apf.field`.
     pub fn validate(&self) -> Result<(), LocalError> {
-        let p = "rs-apf";
-        check_param(p, "margin", self.margin, 0.0, false)?;
-        check_param(p, "lookahead", self.lookahead, 0.0, false)?;
+        self.check_bounds("rs-apf")?;
         if self.stall_steps == 0 {
             return Err(LocalError::InvalidParameter(
                 "rs-apf.stall_steps = 0: must be at least 1".into(),
@@ -332,7 +286,7 @@ impl RsApf {
     /// Builds the planner for `robot`; errors name the bad field.
     pub fn new(cfg: RsApfConfig, robot: &RobotSpec) -> Result<RsApf, LocalError> {
         cfg.validate()?;
-        let io = ScanMotion::with_dwa("rs-apf", cfg.lidar, cfg.local, cfg.motion, robot)?;
+        let io = ScanMotion::with_dwa(cfg.lidar, cfg.local, cfg.motion, robot)?;
         Ok(RsApf {
             radius: robot.footprint.circumscribed_radius(),
             cfg,
@@ -416,13 +370,13 @@ impl LocalPlanner for RsApf {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::apf::local::{ApfLocal, ApfLocalConfig};
+    use crate::lidar::planner::{LidarPlanner, ScanBaselineConfig, MOTION_GOAL};
     use crate::lidar::tangent_bug::tests::{build_error, build_on_room, l_robot, room, run_on};
-    use crate::local::registry;
-    use crate::local::registry::PlannerChoice;
     use crate::local::testkit::End;
 
     fn rs(cfg: serde_json::Value) -> Box<dyn LocalPlanner> {
-        build_on_room("rs-apf", cfg).unwrap()
+        build_on_room("rs-apf", cfg, RsApf::new).unwrap()
     }
 
     fn length(p: &[[f64; 2]]) -> f64 {
@@ -474,15 +428,12 @@ mod tests {
         assert_eq!(r.end, End::Reached, "{:?}", r.states.last());
         assert!(r.min_clearance > 0.0);
         assert!(r.modes.iter().any(|m| m.starts_with("rs-apf-follow")));
-        let mut plain = registry::build(
-            &PlannerChoice::named("scan-apf"),
-            &l_robot(),
-            &map,
-            &RobotState::default(),
-            [8.5, 5.0],
-        )
-        .unwrap();
-        let r = run_on(plain.as_mut(), &map, [1.5, 5.0], [8.5, 5.0], 60.0);
+        // `scan-apf`: the basic APF on the scan's local map.
+        let cfg = ScanBaselineConfig::<ApfLocalConfig>::default();
+        let apf = ApfLocal::new(true, cfg.motion, &l_robot(), MOTION_GOAL).unwrap();
+        let mut plain =
+            LidarPlanner::baseline("scan-apf", &cfg, Box::new(apf), &l_robot()).unwrap();
+        let r = run_on(&mut plain, &map, [1.5, 5.0], [8.5, 5.0], 60.0);
         assert_ne!(r.end, End::Reached);
     }
 
@@ -501,7 +452,7 @@ mod tests {
 
     #[test]
     fn bad_rs_apf_settings_name_the_field() {
-        let build = |cfg| build_error("rs-apf", cfg);
+        let build = |cfg| build_error("rs-apf", cfg, RsApf::new);
         assert!(build(serde_json::json!({"margin": f64::NAN.to_string()})).contains("margin"));
         assert!(build(serde_json::json!({"margin": -0.1})).contains("rs-apf.margin"));
         assert!(build(serde_json::json!({"stall_steps": 0})).contains("rs-apf.stall_steps"));

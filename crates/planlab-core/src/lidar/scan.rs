@@ -2,8 +2,6 @@
 //! exact ray casting against the occupancy grid (Amanatides–Woo DDA) and the
 //! moving discs, with optional seeded Gaussian range noise.
 
-use serde::{Deserialize, Serialize};
-
 use super::LidarError;
 use crate::num::{cos, hypot, sin, Rng};
 use crate::world::StaticMap;
@@ -85,28 +83,16 @@ pub fn beam_angle(i: usize, n: usize) -> f64 {
     }
 }
 
-/// Settings of the simulated LiDAR.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct LidarConfig {
-    /// Number of beams n over 360° (1).
-    pub beams: u32,
-    /// Range limit d_lidar, m (\[L\] Table 1: 10).
-    pub range: f64,
-    /// Standard deviation of the Gaussian range noise, m (0 = exact).
-    pub noise_std: f64,
-    /// Seed of the noise stream (1).
-    pub noise_seed: u64,
-}
-
-impl Default for LidarConfig {
-    fn default() -> Self {
-        Self {
-            beams: 360,
-            range: 10.0,
-            noise_std: 0.0,
-            noise_seed: 0,
-        }
+crate::params::params! {
+    /// Settings of the simulated LiDAR.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct LidarConfig {
+        pub beams: u32 = 360, "1" [] "number of beams n over 360°";
+        /// \[L\] Table 1: 10.
+        pub range: f64 = 10.0, "m" [> 0.0] "range limit d_lidar";
+        /// Standard deviation.
+        pub noise_std: f64 = 0.0, "m" [>= 0.0] "Gaussian range noise σ (0 = exact)";
+        pub noise_seed: u64 = 0, "1" [] "seed of the noise stream";
     }
 }
 
@@ -122,8 +108,7 @@ impl LidarConfig {
                 self.beams
             )));
         }
-        super::check(prefix, "range", self.range, 0.0, true)?;
-        super::check(prefix, "noise_std", self.noise_std, 0.0, false)
+        Ok(crate::params::Params::check_bounds(self, prefix)?)
     }
 }
 

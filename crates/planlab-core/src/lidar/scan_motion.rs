@@ -1,8 +1,7 @@
 //! The sensing and motion layer the \[L\] peers (`tangent-bug`, `rs-apf`,
-//! `rrt-shortcut`)
-//! share with `lidar-dwa`: the simulated LiDAR on the map
-//! and the perceived movers, and a motion planner (a registry choice, e.g.
-//! `dwa`) driving to a point on the **local map built from the scan alone**
+//! `rrt-shortcut`) share with `lidar-dwa`: the simulated LiDAR on the map
+//! and the perceived movers, and the baseline DWA driving to a point on the
+//! **local map built from the scan alone**
 //! ([`scan_local_map`](super::planner::scan_local_map)), robot at the
 //! origin, heading 0, no movers.
 //!
@@ -12,14 +11,13 @@
 //! only [`ScanMotion::sense`] does, through the sensor.
 
 use super::nav::Velocity;
-use super::planner::{drive_on_scan, empty_local_map, lidar_err, LocalMapConfig};
+use super::planner::{drive_on_scan, lidar_err, LocalMapConfig, MOTION_GOAL};
 use super::scan::{beam_angle, polar, Disc, Lidar, LidarConfig, Scan};
 use super::TargetKind;
-use crate::local::dwa::DwaConfig;
-use crate::local::registry::{self, PlannerChoice};
+use crate::local::dwa::{Dwa, DwaConfig};
 use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::num::{cos, hypot, sin};
-use crate::world::{Command, RobotSpec, RobotState};
+use crate::world::{Command, RobotSpec};
 
 /// The DWA the peers drive with by default: the baseline DWA with α 0.2,
 /// the weight the \[L\] presets run `lidar-dwa` with, so navigator and
@@ -52,18 +50,18 @@ impl std::fmt::Debug for ScanMotion {
 }
 
 impl ScanMotion {
-    /// The sensor `lidar`, local map `local` and motion planner `motion`
-    /// for `robot`; configs are validated (errors name `prefix.field`).
-    pub fn new(
+    /// The sensor `lidar` and the baseline DWA `motion` on the local map
+    /// `local` for `robot`, as the peers drive; configs are validated
+    /// (errors name `lidar.field`, `local.field`, `dwa.field`).
+    pub fn with_dwa(
         lidar: LidarConfig,
         local: LocalMapConfig,
-        motion: &PlannerChoice,
+        motion: DwaConfig,
         robot: &RobotSpec,
     ) -> Result<ScanMotion, LocalError> {
         let lidar = Lidar::new(lidar, "lidar").map_err(lidar_err)?;
         local.validate("local").map_err(lidar_err)?;
-        let empty = empty_local_map(&local)?;
-        let motion = registry::build(motion, robot, &empty, &RobotState::default(), [1.0, 0.0])?;
+        let motion = Box::new(Dwa::new(motion, robot, MOTION_GOAL)?);
         Ok(ScanMotion {
             lidar,
             motion,
@@ -71,23 +69,6 @@ impl ScanMotion {
             join: 2.0 * robot.footprint.circumscribed_radius(),
             time: 0.0,
         })
-    }
-
-    /// [`ScanMotion::new`] with the baseline DWA `motion` as the motion
-    /// planner, as the peers drive (errors name `planner.motion`).
-    pub fn with_dwa(
-        planner: &str,
-        lidar: LidarConfig,
-        local: LocalMapConfig,
-        motion: DwaConfig,
-        robot: &RobotSpec,
-    ) -> Result<ScanMotion, LocalError> {
-        let choice = PlannerChoice {
-            name: "dwa".into(),
-            config: serde_json::to_value(motion)
-                .map_err(|e| LocalError::InvalidParameter(format!("{planner}.motion: {e}")))?,
-        };
-        ScanMotion::new(lidar, local, &choice, robot)
     }
 
     /// The sensor's range limit, m.

@@ -42,104 +42,48 @@
 //! rollouts reach makes the robot circle it). The DWA never drives into
 //! what the scan shows.
 
-use serde::{Deserialize, Serialize};
-
 use super::planner::LocalMapConfig;
 use super::scan::LidarConfig;
 use super::scan_motion::{free_length, peer_dwa, steer_point, world_points, ScanMotion};
-use crate::local::dwa::{DwaConfig, DWA_FIELDS};
-use crate::local::registry::check_param;
+use crate::local::dwa::DwaConfig;
 use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::num::hypot;
+use crate::params::Params;
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
 
-/// Settings of `tangent-bug`. TangentBug has no numeric parameters (a
-/// point robot, exact sensing): every threshold here is planlab's choice
-/// for a disc robot with a sampled scan, declared as such.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct TangentBugConfig {
-    /// The simulated LiDAR.
-    pub lidar: LidarConfig,
-    /// The local map built from the scan for the motion planner.
-    pub local: LocalMapConfig,
-    /// The baseline DWA under the navigator ([`peer_dwa`]).
-    pub motion: DwaConfig,
-    /// Adjacent beams whose ranges differ by more than this mark an
-    /// endpoint of the local tangent graph, m.
-    pub t_jump: f64,
-    /// Endpoints and the free ray to the goal are for a disc of the
-    /// footprint's radius plus this, m (0.5: \[L\]'s d_oe, the same
-    /// safety expansion; at 0.2 the robot grazes corners and its DWA,
-    /// braking for the wall, stalls there).
-    pub margin: f64,
-    /// Boundary following starts once the heuristic distance exceeds its
-    /// best of the motion-to-goal phase by more than this, m.
-    pub h_tolerance: f64,
-    /// Clearance kept between the footprint and the followed obstacle, m.
-    pub follow_clearance: f64,
-    /// The DWA steers to a point at least this far along the target's
-    /// bearing, or this far ahead along the wall while following, m.
-    pub lookahead: f64,
-}
-
-impl Default for TangentBugConfig {
-    fn default() -> Self {
-        Self {
-            lidar: LidarConfig::default(),
-            local: LocalMapConfig::default(),
-            motion: peer_dwa(),
-            t_jump: 1.0,
-            margin: 0.5,
-            h_tolerance: 0.2,
-            follow_clearance: 0.3,
-            lookahead: 3.0,
-        }
+crate::params::params! {
+    /// Settings of `tangent-bug`. TangentBug has no numeric parameters (a
+    /// point robot, exact sensing): every threshold here is planlab's choice
+    /// for a disc robot with a sampled scan, declared as such.
+    #[derive(Debug, Clone, PartialEq)]
+    pub struct TangentBugConfig {
+        pub lidar: LidarConfig = LidarConfig::default(), "" [nested] "the simulated LiDAR";
+        pub local: LocalMapConfig = LocalMapConfig::default(), "" [nested]
+            "the local map built from the scan for the motion planner";
+        /// Adjacent beams.
+        pub t_jump: f64 = 1.0, "m" [> 0.0]
+            "adjacent ranges differing by more mark a tangent-graph endpoint";
+        /// 0.5: \[L\]'s d_oe, the same safety expansion; at 0.2 the robot
+        /// grazes corners and its DWA, braking for the wall, stalls there.
+        pub margin: f64 = 0.5, "m" [>= 0.0]
+            "endpoints and the goal ray are for a disc of footprint radius + this";
+        /// Compared with its best of the motion-to-goal phase.
+        pub h_tolerance: f64 = 0.2, "m" [>= 0.0]
+            "boundary following once d(x,O)+d(O,goal) exceeds its best by this";
+        /// Between the footprint and the followed obstacle.
+        pub follow_clearance: f64 = 0.3, "m" [>= 0.0] "clearance kept to the followed obstacle";
+        pub lookahead: f64 = 3.0, "m" [>= 0.0]
+            "the DWA steers this far along the target's bearing (along the wall when following)";
+        /// [`peer_dwa`].
+        pub motion: DwaConfig = peer_dwa(), "" [nested]
+            "the baseline DWA under the navigator";
     }
-}
-
-/// `(name, unit, doc)` of every [`TangentBugConfig`] field.
-pub fn tangent_bug_fields() -> Vec<(String, String, String)> {
-    let mut v = super::planner::lidar_fields(false);
-    let mut push = |n: &str, u: &str, d: &str| v.push((n.into(), u.into(), d.into()));
-    push(
-        "t_jump",
-        "m",
-        "adjacent ranges differing by more mark a tangent-graph endpoint",
-    );
-    push(
-        "margin",
-        "m",
-        "endpoints and the goal ray are for a disc of footprint radius + this",
-    );
-    push(
-        "h_tolerance",
-        "m",
-        "boundary following once d(x,O)+d(O,goal) exceeds its best by this",
-    );
-    push(
-        "follow_clearance",
-        "m",
-        "clearance kept to the followed obstacle",
-    );
-    push(
-        "lookahead",
-        "m",
-        "the DWA steers this far along the target's bearing (along the wall when following)",
-    );
-    v.extend(super::planner::motion_fields(DWA_FIELDS));
-    v
 }
 
 impl TangentBugConfig {
     /// Checks every number; errors name `tangent-bug.field`.
     pub fn validate(&self) -> Result<(), LocalError> {
-        let p = "tangent-bug";
-        check_param(p, "t_jump", self.t_jump, 0.0, true)?;
-        check_param(p, "margin", self.margin, 0.0, false)?;
-        check_param(p, "h_tolerance", self.h_tolerance, 0.0, false)?;
-        check_param(p, "follow_clearance", self.follow_clearance, 0.0, false)?;
-        check_param(p, "lookahead", self.lookahead, 0.0, false)
+        Ok(self.check_bounds("tangent-bug")?)
     }
 }
 
@@ -229,7 +173,7 @@ impl TangentBug {
     /// Builds the planner for `robot`; errors name the bad field.
     pub fn new(cfg: TangentBugConfig, robot: &RobotSpec) -> Result<TangentBug, LocalError> {
         cfg.validate()?;
-        let io = ScanMotion::with_dwa("tangent-bug", cfg.lidar, cfg.local, cfg.motion, robot)?;
+        let io = ScanMotion::with_dwa(cfg.lidar, cfg.local, cfg.motion, robot)?;
         Ok(TangentBug {
             radius: robot.footprint.circumscribed_radius(),
             cfg,
@@ -477,8 +421,6 @@ impl LocalPlanner for TangentBug {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::local::registry;
-    use crate::local::registry::PlannerChoice;
     use crate::local::testkit::{self, End};
     use crate::world::{Footprint, RobotLimits};
 
@@ -501,32 +443,32 @@ pub(crate) mod tests {
 
     /// A walled room `w` × `h` m (0.1 m cells) with the wall rectangles
     /// `walls` ([x0, y0, x1, y1], m) inside.
-    /// The registry's error for planner `name` with `cfg` on an empty room
-    /// ("" when it builds).
-    pub(crate) fn build_error(name: &str, cfg: serde_json::Value) -> String {
-        build_on_room(name, cfg)
+    /// The error of planner `name` (built by `new`) with `cfg`, or "" when
+    /// it builds.
+    pub(crate) fn build_error<C: Params, P: LocalPlanner + 'static>(
+        name: &str,
+        cfg: serde_json::Value,
+        new: fn(C, &RobotSpec) -> Result<P, LocalError>,
+    ) -> String {
+        build_on_room(name, cfg, new)
             .err()
             .map(|e| e.to_string())
             .unwrap_or_default()
     }
 
-    /// Planner `name` with `cfg`, built on an empty room.
-    pub(crate) fn build_on_room(
+    /// Planner `name` with `cfg` (JSON, parsed as the catalogue does),
+    /// built by `new` for \[L\]'s robot.
+    pub(crate) fn build_on_room<C: Params, P: LocalPlanner + 'static>(
         name: &str,
         cfg: serde_json::Value,
+        new: fn(C, &RobotSpec) -> Result<P, LocalError>,
     ) -> Result<Box<dyn LocalPlanner>, LocalError> {
-        registry::build(
-            &PlannerChoice {
-                name: name.into(),
-                config: cfg,
-            },
-            &l_robot(),
-            &room(4.0, 4.0, &[]),
-            &RobotState::default(),
-            [1.0, 1.0],
-        )
+        let cfg = crate::params::parse_config(name, &cfg)?;
+        Ok(Box::new(new(cfg, &l_robot())?))
     }
 
+    /// A walled room `w` × `h` m (0.1 m cells) with the wall rectangles
+    /// `walls` ([x0, y0, x1, y1], m) inside.
     pub(crate) fn room(w: f64, h: f64, walls: &[[f64; 4]]) -> StaticMap {
         let (cols, rows) = ((w * 10.0).round() as usize, (h * 10.0).round() as usize);
         let mut text = String::new();
@@ -560,7 +502,7 @@ pub(crate) mod tests {
     }
 
     fn bug(cfg: serde_json::Value) -> Box<dyn LocalPlanner> {
-        build_on_room("tangent-bug", cfg).unwrap()
+        build_on_room("tangent-bug", cfg, TangentBug::new).unwrap()
     }
 
     #[test]
@@ -629,7 +571,7 @@ pub(crate) mod tests {
 
     #[test]
     fn bad_tangent_bug_settings_name_the_field() {
-        let build = |cfg| build_error("tangent-bug", cfg);
+        let build = |cfg| build_error("tangent-bug", cfg, TangentBug::new);
         assert!(build(serde_json::json!({"margin": -1.0})).contains("tangent-bug.margin"));
         assert!(build(serde_json::json!({"t_jump": 0.0})).contains("tangent-bug.t_jump"));
         assert!(build(serde_json::json!({"lidar": {"range": 0.0}})).contains("lidar.range"));

@@ -41,17 +41,13 @@
 //! MATLAB DWA sample both papers follow; 20 rad/s would be a full turn in
 //! 0.3 s). d = 3 m (\[S\] eq 12); ε = 100 and the 5×5 window of safe A\*.
 
-use serde::{Deserialize, Serialize};
-
-use super::dwa::{
-    check, check_goal, prefixed_fields, DwaConfig, DwaCore, DwaPlanner, GoalProvider, Guidance,
-    Weights,
-};
+use super::dwa::{check_goal, DwaConfig, DwaCore, DwaPlanner, GoalProvider, Guidance, Weights};
 use super::route::{dist, plan_route, Route, Waypoints};
 use super::{GoalKind, LocalError, Observation, PlannerDebug};
 use crate::global::plan::{Algorithm, GridPlanOptions};
 use crate::global::safe_astar::{SafeAStarConfig, MAX_WINDOW_RADIUS};
 use crate::num::{acos, hypot};
+use crate::params::Params;
 use crate::world::{RobotSpec, RobotState, StaticMap};
 
 /// The engine defaults of \[S\] §5: the DWA sample with β = 0.5.
@@ -69,168 +65,64 @@ fn s_dwa() -> DwaConfig {
 /// after it (see [`DualGuide`]'s `passed`).
 pub const DETOUR_LOOKAHEAD: usize = 2;
 
-/// Settings of `safe-dual-dwa` (\[S\] §2–4).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct DualConfig {
-    /// The DWA engine (\[S\] §5: α 0.05, β 0.5, γ 0.1, Δt 0.1 s).
-    pub dwa: DwaConfig,
-    /// Safe A\* plans on the map inflated by the footprint radius plus
-    /// this, m.
-    pub inflate_margin: f64,
-    /// ε, weight of the safe A\* safety term L(n) = k/s (\[S\] eq 1), cells.
-    pub safe_epsilon: f64,
-    /// Half-size r of safe A\*'s (2r+1)² evaluation window, cells.
-    pub safe_window: u32,
-    /// Bottom-Up maximum merge error (\[S\] §4.1), m (divided by the map's
-    /// resolution for the grid path).
-    pub bottom_up_error: f64,
-    /// Take the next temporary goal within this of the current one, m.
-    pub switch_radius: f64,
-    /// d of \[S\] eq 12: hold the linear speed within this of a temporary
-    /// goal that is not the final one, m.
-    pub hold_distance: f64,
-    /// Hold only a previous speed of at least this, m/s (Decision, module
-    /// doc).
-    pub hold_min_speed: f64,
-    /// Apply the dual velocity model (false: the normal window always).
-    pub dual_velocity: bool,
-    /// Switch to the next temporary goal when θa ≥ this, rad (\[S\] §4.2;
-    /// above π: never).
-    pub detour_angle: f64,
-}
-
-impl Default for DualConfig {
-    fn default() -> Self {
-        Self {
-            dwa: s_dwa(),
-            inflate_margin: 0.1,
-            safe_epsilon: SafeAStarConfig::default().epsilon,
-            safe_window: SafeAStarConfig::default().window_radius,
-            bottom_up_error: 1.0,
-            switch_radius: 0.5,
-            hold_distance: 3.0,
-            hold_min_speed: 0.3,
-            dual_velocity: true,
-            detour_angle: std::f64::consts::FRAC_PI_2,
-        }
+crate::params::params! {
+    /// Settings of `safe-dual-dwa` (\[S\] §2–4).
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct DualConfig {
+        /// The DWA engine (\[S\] §5: α 0.05, β 0.5, γ 0.1, Δt 0.1 s).
+        pub dwa: DwaConfig = s_dwa(), "" [nested] "the DWA engine";
+        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] "safe A* inflation beyond the footprint radius";
+        /// Safe A\*'s L(n) = k/s (\[S\] eq 1).
+        pub safe_epsilon: f64 = SafeAStarConfig::default().epsilon, "cells" [>= 0.0]
+            "ε, weight of safe A*'s safety term";
+        /// r of the (2r+1)² window.
+        pub safe_window: u32 = SafeAStarConfig::default().window_radius, "cells" []
+            "half-size of safe A*'s evaluation window";
+        pub switch_radius: f64 = 0.5, "m" [> 0.0] "take the next temporary goal within this";
+        /// \[S\] §4.1; divided by the map's resolution for the grid path.
+        pub bottom_up_error: f64 = 1.0, "m" [>= 0.0]
+            "Bottom-Up maximum merge error (feature nodes)";
+        /// d of \[S\] eq 12; not at the final goal.
+        pub hold_distance: f64 = 3.0, "m" [>= 0.0]
+            "d: hold the speed within this of a temporary goal";
+        /// A Decision (module doc).
+        pub hold_min_speed: f64 = 0.3, "m/s" [>= 0.0] "hold only a previous speed at least this";
+        /// False: the normal window always.
+        pub dual_velocity: bool = true, "bool" [] "apply the dual velocity model";
+        /// \[S\] §4.2; above π: never.
+        pub detour_angle: f64 = std::f64::consts::FRAC_PI_2, "rad" [>= 0.0]
+            "θa at or above this switches to the next temporary goal";
     }
 }
 
-/// Settings of the `preliminary-fusion` baseline: safe A\* path nodes as
-/// temporary goals, the normal window.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct PreliminaryConfig {
-    /// The DWA engine (\[S\] §5 weights).
-    pub dwa: DwaConfig,
-    /// Safe A\* plans on the map inflated by the footprint radius plus
-    /// this, m.
-    pub inflate_margin: f64,
-    /// ε of safe A\*, cells.
-    pub safe_epsilon: f64,
-    /// Half-size of safe A\*'s evaluation window, cells.
-    pub safe_window: u32,
-    /// Take the next path node within this of the current one, m.
-    pub switch_radius: f64,
-}
-
-impl Default for PreliminaryConfig {
-    fn default() -> Self {
-        let d = DualConfig::default();
-        Self {
-            dwa: d.dwa,
-            inflate_margin: d.inflate_margin,
-            safe_epsilon: d.safe_epsilon,
-            safe_window: d.safe_window,
-            switch_radius: d.switch_radius,
-        }
+crate::params::params! {
+    /// Settings of the `preliminary-fusion` baseline: safe A\* path nodes as
+    /// temporary goals, the normal window.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct PreliminaryConfig {
+        /// The DWA engine (\[S\] §5 weights).
+        pub dwa: DwaConfig = s_dwa(), "" [nested] "the DWA engine";
+        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] "safe A* inflation beyond the footprint radius";
+        pub safe_epsilon: f64 = SafeAStarConfig::default().epsilon, "cells" [>= 0.0]
+            "ε, weight of safe A*'s safety term";
+        pub safe_window: u32 = SafeAStarConfig::default().window_radius, "cells" []
+            "half-size of safe A*'s evaluation window";
+        pub switch_radius: f64 = 0.5, "m" [> 0.0] "take the next temporary goal within this";
     }
-}
-
-const COMMON_FIELDS: [(&str, &str, &str); 4] = [
-    (
-        "inflate_margin",
-        "m",
-        "safe A* inflation beyond the footprint radius",
-    ),
-    (
-        "safe_epsilon",
-        "cells",
-        "ε, weight of safe A*'s safety term",
-    ),
-    (
-        "safe_window",
-        "cells",
-        "half-size of safe A*'s evaluation window",
-    ),
-    (
-        "switch_radius",
-        "m",
-        "take the next temporary goal within this",
-    ),
-];
-
-fn owned(t: &[(&str, &str, &str)]) -> Vec<(String, String, String)> {
-    t.iter()
-        .map(|(n, u, d)| (n.to_string(), u.to_string(), d.to_string()))
-        .collect()
-}
-
-/// `(name, unit, doc)` of every [`DualConfig`] field.
-pub fn dual_fields() -> Vec<(String, String, String)> {
-    let mut v = prefixed_fields("dwa");
-    v.extend(owned(&COMMON_FIELDS));
-    v.extend(owned(&[
-        (
-            "bottom_up_error",
-            "m",
-            "Bottom-Up maximum merge error (feature nodes)",
-        ),
-        (
-            "hold_distance",
-            "m",
-            "d: hold the speed within this of a temporary goal",
-        ),
-        (
-            "hold_min_speed",
-            "m/s",
-            "hold only a previous speed at least this",
-        ),
-        ("dual_velocity", "bool", "apply the dual velocity model"),
-        (
-            "detour_angle",
-            "rad",
-            "θa at or above this switches to the next temporary goal",
-        ),
-    ]));
-    v
-}
-
-/// `(name, unit, doc)` of every [`PreliminaryConfig`] field.
-pub fn preliminary_fields() -> Vec<(String, String, String)> {
-    let mut v = prefixed_fields("dwa");
-    v.extend(owned(&COMMON_FIELDS));
-    v
 }
 
 impl DualConfig {
     /// Checks every number; errors name `prefix.field`.
     pub fn validate(&self, prefix: &str) -> Result<(), LocalError> {
         self.dwa.validate(&format!("{prefix}.dwa"))?;
-        check(prefix, "inflate_margin", self.inflate_margin, 0.0, false)?;
-        check(prefix, "safe_epsilon", self.safe_epsilon, 0.0, false)?;
+        self.check_bounds(prefix)?;
         if self.safe_window == 0 || self.safe_window > MAX_WINDOW_RADIUS {
             return Err(LocalError::InvalidParameter(format!(
                 "{prefix}.safe_window = {}: must be in 1..={MAX_WINDOW_RADIUS}",
                 self.safe_window
             )));
         }
-        check(prefix, "bottom_up_error", self.bottom_up_error, 0.0, false)?;
-        check(prefix, "switch_radius", self.switch_radius, 0.0, true)?;
-        check(prefix, "hold_distance", self.hold_distance, 0.0, false)?;
-        check(prefix, "hold_min_speed", self.hold_min_speed, 0.0, false)?;
-        check(prefix, "detour_angle", self.detour_angle, 0.0, false)
+        Ok(())
     }
 }
 

@@ -56,11 +56,10 @@
 //! [`GoalProvider`]: it picks the goal, the weight set, ρ and an optional
 //! held linear speed (\[S\]'s dual-velocity model) every step.
 
-use serde::{Deserialize, Serialize};
-
 use super::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug, Rollout};
 use crate::geom::closest_along;
 use crate::num::{atan2, cos, hypot, sin, wrap_angle};
+use crate::params::Params;
 use crate::world::robot::integrate;
 use crate::world::{Command, Footprint, RobotSpec, RobotState, StaticMap};
 
@@ -78,186 +77,51 @@ pub const REST_HORIZONS: f64 = 4.0;
 /// Most integration steps in one rollout (`predict_time / sim_dt`).
 pub const MAX_ROLLOUT_STEPS: usize = 10_000;
 
-/// Critic weights of G = α·head + β·dist + γ·vel.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct Weights {
-    /// α, weight of the heading critic (1).
-    pub alpha: f64,
-    /// β, weight of the clearance critic (1).
-    pub beta: f64,
-    /// γ, weight of the velocity critic (1).
-    pub gamma: f64,
-}
-
-impl Default for Weights {
-    fn default() -> Self {
-        Self {
-            alpha: 0.05,
-            beta: 0.2,
-            gamma: 0.1,
-        }
+crate::params::params! {
+    /// Critic weights of G = α·head + β·dist + γ·vel.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct Weights {
+        pub alpha: f64 = 0.05, "1" [>= 0.0] "α, weight of the heading critic";
+        pub beta: f64 = 0.2, "1" [>= 0.0] "β, weight of the clearance critic";
+        pub gamma: f64 = 0.1, "1" [>= 0.0] "γ, weight of the velocity critic";
     }
 }
 
 impl Weights {
     /// Checks every weight is finite and ≥ 0; errors name `prefix.alpha` etc.
     pub fn validate(&self, prefix: &str) -> Result<(), LocalError> {
-        check(prefix, "alpha", self.alpha, 0.0, false)?;
-        check(prefix, "beta", self.beta, 0.0, false)?;
-        check(prefix, "gamma", self.gamma, 0.0, false)
+        Ok(self.check_bounds(prefix)?)
     }
 }
 
-/// Settings of the baseline DWA (docs/algorithms.md §dwa); `Default` is the MATLAB DWA
-/// sample both \[T\] and \[S\] build on (module doc).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct DwaConfig {
-    /// α, heading weight (1).
-    pub alpha: f64,
-    /// β, clearance weight (1).
-    pub beta: f64,
-    /// γ, velocity weight (1).
-    pub gamma: f64,
-    /// Linear-speed sampling resolution, m/s (used when `v_samples` = 0).
-    pub v_res: f64,
-    /// Turn-rate sampling resolution, rad/s (used when `w_samples` = 0).
-    pub w_res: f64,
-    /// Linear speeds per step spread evenly over the window; 0 = by `v_res`.
-    pub v_samples: u32,
-    /// Turn rates per step spread evenly over the window; 0 = by `w_res`.
-    pub w_samples: u32,
-    /// Rollout horizon, s.
-    pub predict_time: f64,
-    /// Rollout integration step, s.
-    pub sim_dt: f64,
-    /// The clearance critic saturates here, m.
-    pub dist_cap: f64,
-    /// Extra clearance kept beyond the footprint, m (rollouts closer than
-    /// this to anything collide).
-    pub safety_margin: f64,
-    /// Movers move at their observed velocity along the rollout (true) or
-    /// stay where they are now (false).
-    pub predict_movers: bool,
-    /// Apply the admissible-velocity rule V_a: able to stop before the first
-    /// contact along the sample's arc (Fox et al.'s braking distance).
-    pub admissible_window: bool,
-    /// With no admissible sample, a circular robot turns in place toward
-    /// the goal while braking.
-    pub rotate_in_place: bool,
-}
-
-impl Default for DwaConfig {
-    fn default() -> Self {
-        let w = Weights::default();
-        Self {
-            alpha: w.alpha,
-            beta: w.beta,
-            gamma: w.gamma,
-            v_res: 0.01,
-            w_res: 1f64.to_radians(),
-            v_samples: 0,
-            w_samples: 0,
-            predict_time: 3.0,
-            sim_dt: 0.1,
-            dist_cap: 1.0,
-            safety_margin: 0.0,
-            predict_movers: true,
-            admissible_window: true,
-            rotate_in_place: true,
-        }
-    }
-}
-
-/// `(name, unit, doc)` of every [`DwaConfig`] field, for the registry.
-pub const DWA_FIELDS: &[(&str, &str, &str)] = &[
-    (
-        "alpha",
-        "1",
-        "α, heading weight: π − |bearing error at the rollout end|",
-    ),
-    (
-        "beta",
-        "1",
-        "β, clearance weight: smallest clearance, capped",
-    ),
-    ("gamma", "1", "γ, velocity weight: forward speed"),
-    (
-        "v_res",
-        "m/s",
-        "linear-speed sampling resolution (when v_samples = 0)",
-    ),
-    (
-        "w_res",
-        "rad/s",
-        "turn-rate sampling resolution (when w_samples = 0)",
-    ),
-    (
-        "v_samples",
-        "1",
-        "linear speeds per step, evenly spread; 0 = by v_res",
-    ),
-    (
-        "w_samples",
-        "1",
-        "turn rates per step, evenly spread; 0 = by w_res",
-    ),
-    ("predict_time", "s", "rollout horizon"),
-    ("sim_dt", "s", "rollout integration step"),
-    ("dist_cap", "m", "clearance critic saturates here"),
-    (
-        "safety_margin",
-        "m",
-        "extra clearance kept beyond the footprint",
-    ),
-    (
-        "predict_movers",
-        "bool",
-        "movers move at their observed velocity along rollouts",
-    ),
-    (
-        "admissible_window",
-        "bool",
-        "apply V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b), dist along the arc to the first contact",
-    ),
-    (
-        "rotate_in_place",
-        "bool",
-        "with no admissible sample, a round robot turns toward the goal",
-    ),
-];
-
-/// [`DWA_FIELDS`] under `prefix.` (an engine nested in a planner's config).
-pub fn prefixed_fields(prefix: &str) -> Vec<(String, String, String)> {
-    DWA_FIELDS
-        .iter()
-        .map(|(n, u, d)| (format!("{prefix}.{n}"), u.to_string(), d.to_string()))
-        .collect()
-}
-
-/// Checks `value` is finite and ≥ `min` (> when `strict`); errors name
-/// `prefix.field`.
-pub(crate) fn check(
-    prefix: &str,
-    field: &str,
-    value: f64,
-    min: f64,
-    strict: bool,
-) -> Result<(), LocalError> {
-    match crate::num::param_problem(value, min, strict) {
-        None => Ok(()),
-        Some(p) => {
-            let name = if prefix.is_empty() {
-                field.to_string()
-            } else {
-                format!("{prefix}.{field}")
-            };
-            Err(LocalError::InvalidParameter(format!(
-                "{name} = {}: {p}",
-                crate::num::fmt_num(value)
-            )))
-        }
+crate::params::params! {
+    /// Settings of the baseline DWA (docs/algorithms.md §dwa); `Default` is the MATLAB DWA
+    /// sample both \[T\] and \[S\] build on (module doc).
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct DwaConfig {
+        pub alpha: f64 = 0.05, "1" [>= 0.0]
+            "α, heading weight: π − |bearing error at the rollout end|";
+        pub beta: f64 = 0.2, "1" [>= 0.0] "β, clearance weight: smallest clearance, capped";
+        pub gamma: f64 = 0.1, "1" [>= 0.0] "γ, velocity weight: forward speed";
+        pub v_res: f64 = 0.01, "m/s" [> 0.0]
+            "linear-speed sampling resolution (when v_samples = 0)";
+        pub w_res: f64 = 1f64.to_radians(), "rad/s" [> 0.0]
+            "turn-rate sampling resolution (when w_samples = 0)";
+        pub v_samples: u32 = 0, "1" []
+            "linear speeds per step, evenly spread; 0 = by v_res";
+        pub w_samples: u32 = 0, "1" [] "turn rates per step, evenly spread; 0 = by w_res";
+        pub predict_time: f64 = 3.0, "s" [> 0.0] "rollout horizon";
+        pub sim_dt: f64 = 0.1, "s" [> 0.0] "rollout integration step";
+        pub dist_cap: f64 = 1.0, "m" [> 0.0] "clearance critic saturates here";
+        /// Rollouts closer than this to anything collide.
+        pub safety_margin: f64 = 0.0, "m" [>= 0.0] "extra clearance kept beyond the footprint";
+        pub predict_movers: bool = true, "bool" []
+            "movers move at their observed velocity along rollouts";
+        /// Fox et al.'s braking distance.
+        pub admissible_window: bool = true, "bool" []
+            "apply V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b), dist along the arc to the first contact";
+        pub rotate_in_place: bool = true, "bool" []
+            "with no admissible sample, a round robot turns toward the goal";
     }
 }
 
@@ -273,13 +137,7 @@ impl DwaConfig {
 
     /// Checks every number; errors name `prefix.field`.
     pub fn validate(&self, prefix: &str) -> Result<(), LocalError> {
-        self.weights().validate(prefix)?;
-        check(prefix, "v_res", self.v_res, 0.0, true)?;
-        check(prefix, "w_res", self.w_res, 0.0, true)?;
-        check(prefix, "predict_time", self.predict_time, 0.0, true)?;
-        check(prefix, "sim_dt", self.sim_dt, 0.0, true)?;
-        check(prefix, "dist_cap", self.dist_cap, 0.0, true)?;
-        check(prefix, "safety_margin", self.safety_margin, 0.0, false)?;
+        self.check_bounds(prefix)?;
         for (name, n) in [("v_samples", self.v_samples), ("w_samples", self.w_samples)] {
             if n as usize > MAX_SAMPLES_PER_AXIS {
                 return Err(LocalError::InvalidParameter(format!(

@@ -57,210 +57,64 @@
 //! account of it waiting at the 0.01 m/s obstacle 4 of Table 3-2 suggests a
 //! lower one (a declared deviation; `fusion-53.v_static` sweeps it).
 
-use serde::{Deserialize, Serialize};
-
-use super::dwa::{
-    check, check_goal, prefixed_fields, DwaConfig, DwaCore, DwaPlanner, GoalProvider, Guidance,
-    Weights,
-};
+use super::dwa::{check_goal, DwaConfig, DwaCore, DwaPlanner, GoalProvider, Guidance, Weights};
 use super::route::{dist, plan_route, Route, Waypoints};
 use super::{GoalKind, LocalError, Observation, ObservedMover, ObstacleClass, PlannerDebug};
 use crate::global::plan::GridPlanOptions;
 use crate::num::{hypot, pow};
+use crate::params::Params;
 use crate::world::{RobotSpec, RobotState, StaticMap};
 
-/// Settings of the improved DWA + A\* fusion (\[T\] §3.2).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct ImprovedConfig {
-    /// The DWA engine; its α, β, γ are the weights with no mover in range.
-    pub dwa: DwaConfig,
-    /// A\* plans on the map inflated by the footprint radius plus this, m.
-    pub inflate_margin: f64,
-    /// Advance to the next key point within this, m.
-    pub switch_radius: f64,
-    /// A virtual goal counts as reached within this, m.
-    pub virtual_radius: f64,
-    /// Movers whose surface is within this of the robot's centre are
-    /// classified, m.
-    pub react_range: f64,
-    /// Movers faster than this are ordinary dynamic, m/s.
-    pub v_static: f64,
-    /// Weights of the deceleration strategy (large heading weight).
-    pub decelerate: Weights,
-    /// Weights of the detour strategy (small heading weight).
-    pub detour: Weights,
-    /// A special obstacle this close to the current goal is "near the goal"
-    /// (\[T\] Fig 3-13 c–e), m.
-    pub goal_region: f64,
-    /// Exponent n of the relative distance factor ρ (eq 3-7).
-    pub rho_n: f64,
-}
-
-impl Default for ImprovedConfig {
-    fn default() -> Self {
-        Self {
-            dwa: DwaConfig::default(),
-            inflate_margin: 0.1,
-            switch_radius: 1.0,
-            virtual_radius: 0.3,
-            react_range: 3.0,
-            v_static: 0.1,
-            decelerate: Weights {
-                alpha: 1.0,
-                beta: 0.2,
-                gamma: 0.1,
-            },
-            detour: Weights {
-                alpha: 0.05,
-                beta: 0.2,
-                gamma: 0.1,
-            },
-            goal_region: 1.5,
-            rho_n: 2.0,
-        }
+crate::params::params! {
+    /// Settings of the improved DWA + A\* fusion (\[T\] §3.2).
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct ImprovedConfig {
+        /// Its α, β, γ are the weights with no mover in range.
+        pub dwa: DwaConfig = DwaConfig::default(), "" [nested] "the DWA engine";
+        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] "A* inflation beyond the footprint radius";
+        pub switch_radius: f64 = 1.0, "m" [> 0.0] "advance to the next key point within this";
+        pub virtual_radius: f64 = 0.3, "m" [> 0.0]
+            "a virtual goal counts as reached within this";
+        /// Measured from the robot's centre.
+        pub react_range: f64 = 3.0, "m" [>= 0.0] "classify movers whose surface is this close";
+        pub v_static: f64 = 0.1, "m/s" [>= 0.0] "movers faster than this are ordinary dynamic";
+        /// A special obstacle this close to the current goal is "near the
+        /// goal" (\[T\] Fig 3-13 c–e).
+        pub goal_region: f64 = 1.5, "m" [>= 0.0]
+            "near-goal rules within this of the current goal (virtual goal beside it, drive-in)";
+        /// \[T\] eq 3-7.
+        pub rho_n: f64 = 2.0, "1" [>= 0.0] "exponent n of the relative distance factor ρ";
+        pub decelerate: Weights = Weights { alpha: 1.0, beta: 0.2, gamma: 0.1 }, "" [nested of]
+            "deceleration strategy (large heading weight)";
+        pub detour: Weights = Weights { alpha: 0.05, beta: 0.2, gamma: 0.1 }, "" [nested of]
+            "detour strategy (small heading weight)";
     }
 }
 
-/// Settings of the "\[53\]" baseline fusion: key points + DWA with the
-/// deceleration strategy only.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct Fusion53Config {
-    /// The DWA engine; its α, β, γ are the weights with no mover in range.
-    pub dwa: DwaConfig,
-    /// A\* plans on the map inflated by the footprint radius plus this, m.
-    pub inflate_margin: f64,
-    /// Advance to the next key point within this, m.
-    pub switch_radius: f64,
-    /// The deceleration strategy applies while a moving obstacle's surface
-    /// is within this of the robot's centre, m.
-    pub react_range: f64,
-    /// Obstacles observed faster than this are moving (deceleration
-    /// strategy); slower ones get the plain DWA weights, m/s.
-    pub v_static: f64,
-    /// Weights of the deceleration strategy.
-    pub decelerate: Weights,
-}
-
-impl Default for Fusion53Config {
-    fn default() -> Self {
-        let i = ImprovedConfig::default();
-        Self {
-            dwa: i.dwa,
-            inflate_margin: i.inflate_margin,
-            switch_radius: i.switch_radius,
-            react_range: i.react_range,
-            v_static: i.v_static,
-            decelerate: i.decelerate,
-        }
+crate::params::params! {
+    /// Settings of the "\[53\]" baseline fusion: key points + DWA with the
+    /// deceleration strategy only.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct Fusion53Config {
+        /// Its α, β, γ are the weights with no mover in range.
+        pub dwa: DwaConfig = DwaConfig::default(), "" [nested] "the DWA engine";
+        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] "A* inflation beyond the footprint radius";
+        pub switch_radius: f64 = 1.0, "m" [> 0.0] "advance to the next key point within this";
+        /// Measured from the robot's centre.
+        pub react_range: f64 = 3.0, "m" [>= 0.0]
+            "decelerate while a moving obstacle's surface is this close";
+        pub v_static: f64 = 0.1, "m/s" [>= 0.0]
+            "obstacles faster than this are moving (decelerate); slower get plain DWA";
+        pub decelerate: Weights = Weights { alpha: 1.0, beta: 0.2, gamma: 0.1 }, "" [nested of]
+            "deceleration strategy";
     }
-}
-
-fn weight_fields(name: &str, what: &str) -> Vec<(String, String, String)> {
-    ["alpha", "beta", "gamma"]
-        .iter()
-        .map(|w| {
-            (
-                format!("{name}.{w}"),
-                "1".to_string(),
-                format!("{w} of the {what}"),
-            )
-        })
-        .collect()
-}
-
-/// `(name, unit, doc)` of every [`ImprovedConfig`] field.
-pub fn improved_fields() -> Vec<(String, String, String)> {
-    let mut v = prefixed_fields("dwa");
-    for (n, u, d) in [
-        (
-            "inflate_margin",
-            "m",
-            "A* inflation beyond the footprint radius",
-        ),
-        (
-            "switch_radius",
-            "m",
-            "advance to the next key point within this",
-        ),
-        (
-            "virtual_radius",
-            "m",
-            "a virtual goal counts as reached within this",
-        ),
-        (
-            "react_range",
-            "m",
-            "classify movers whose surface is this close",
-        ),
-        (
-            "v_static",
-            "m/s",
-            "movers faster than this are ordinary dynamic",
-        ),
-        (
-            "goal_region",
-            "m",
-            "near-goal rules within this of the current goal (virtual goal beside it, drive-in)",
-        ),
-        ("rho_n", "1", "exponent n of the relative distance factor ρ"),
-    ] {
-        v.push((n.into(), u.into(), d.into()));
-    }
-    v.extend(weight_fields(
-        "decelerate",
-        "deceleration strategy (large heading weight)",
-    ));
-    v.extend(weight_fields(
-        "detour",
-        "detour strategy (small heading weight)",
-    ));
-    v
-}
-
-/// `(name, unit, doc)` of every [`Fusion53Config`] field.
-pub fn fusion53_fields() -> Vec<(String, String, String)> {
-    let mut v = prefixed_fields("dwa");
-    for (n, u, d) in [
-        (
-            "inflate_margin",
-            "m",
-            "A* inflation beyond the footprint radius",
-        ),
-        (
-            "switch_radius",
-            "m",
-            "advance to the next key point within this",
-        ),
-        (
-            "react_range",
-            "m",
-            "decelerate while a moving obstacle's surface is this close",
-        ),
-        (
-            "v_static",
-            "m/s",
-            "obstacles faster than this are moving (decelerate); slower get plain DWA",
-        ),
-    ] {
-        v.push((n.into(), u.into(), d.into()));
-    }
-    v.extend(weight_fields("decelerate", "deceleration strategy"));
-    v
 }
 
 impl ImprovedConfig {
     /// Checks every number; errors name `prefix.field`.
     pub fn validate(&self, prefix: &str) -> Result<(), LocalError> {
         self.dwa.validate(&format!("{prefix}.dwa"))?;
-        check(prefix, "inflate_margin", self.inflate_margin, 0.0, false)?;
-        check(prefix, "switch_radius", self.switch_radius, 0.0, true)?;
-        check(prefix, "virtual_radius", self.virtual_radius, 0.0, true)?;
-        check(prefix, "react_range", self.react_range, 0.0, false)?;
-        check(prefix, "v_static", self.v_static, 0.0, false)?;
-        check(prefix, "goal_region", self.goal_region, 0.0, false)?;
-        check(prefix, "rho_n", self.rho_n, 0.0, false)?;
+        self.check_bounds(prefix)?;
         self.decelerate.validate(&format!("{prefix}.decelerate"))?;
         self.detour.validate(&format!("{prefix}.detour"))
     }

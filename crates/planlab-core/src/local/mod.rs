@@ -11,7 +11,6 @@ pub mod dual;
 pub mod dwa;
 pub mod improved;
 pub mod pursuit;
-pub mod registry;
 pub mod route;
 pub mod scan_debug;
 #[cfg(test)]
@@ -166,4 +165,10 @@ pub enum LocalError {
     /// The global planner found no path.
     #[error("no global path: {}", crate::text::one_line(.0))]
     NoGlobalPath(String),
+}
+
+impl From<crate::params::ParamError> for LocalError {
+    fn from(e: crate::params::ParamError) -> Self {
+        LocalError::InvalidParameter(e.to_string())
+    }
 }

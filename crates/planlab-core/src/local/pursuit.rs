@@ -7,73 +7,21 @@
 //! speed follows a braking profile v = min(v_max, √(2·a_v·(d − tol)))·cos e,
 //! and is 0 while |e| > `turn_angle` (turn in place first).
 
-use serde::{Deserialize, Serialize};
-
-use super::registry::check_param;
 use super::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::num::{atan2, cos, hypot, wrap_angle};
+use crate::params::Params;
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
 
-/// Settings of the `pursuit` baseline.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct PursuitConfig {
-    /// Heading gain k_w: ω = k_w · heading error, 1/s.
-    pub k_w: f64,
-    /// Above this heading error the robot turns in place, rad.
-    pub turn_angle: f64,
-    /// Stop when the goal is this close, m.
-    pub stop_distance: f64,
-    /// Fraction of the robot's deceleration limit used for braking, 1.
-    pub brake_fraction: f64,
-}
-
-impl Default for PursuitConfig {
-    fn default() -> Self {
-        Self {
-            k_w: 1.5,
-            turn_angle: std::f64::consts::FRAC_PI_3,
-            stop_distance: 0.05,
-            brake_fraction: 0.8,
-        }
-    }
-}
-
-impl PursuitConfig {
-    /// (name, unit, doc) of every field, for the registry.
-    pub const FIELDS: &'static [(&'static str, &'static str, &'static str)] = &[
-        ("k_w", "1/s", "heading gain: ω = k_w · heading error"),
-        (
-            "turn_angle",
-            "rad",
-            "turn in place while the heading error exceeds this",
-        ),
-        ("stop_distance", "m", "stop when the goal is this close"),
-        (
-            "brake_fraction",
-            "1",
-            "share of the deceleration limit the braking profile plans with (0–1]",
-        ),
-    ];
-
-    fn validate(&self) -> Result<(), LocalError> {
-        check_param("pursuit", "k_w (1/s)", self.k_w, 0.0, true)?;
-        check_param("pursuit", "turn_angle (rad)", self.turn_angle, 0.0, true)?;
-        check_param(
-            "pursuit",
-            "stop_distance (m)",
-            self.stop_distance,
-            0.0,
-            false,
-        )?;
-        check_param("pursuit", "brake_fraction", self.brake_fraction, 0.0, true)?;
-        if self.brake_fraction > 1.0 {
-            return Err(LocalError::InvalidParameter(format!(
-                "pursuit.brake_fraction = {}: must be ≤ 1",
-                self.brake_fraction
-            )));
-        }
-        Ok(())
+crate::params::params! {
+    /// Settings of the `pursuit` baseline.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct PursuitConfig {
+        pub k_w: f64 = 1.5, "1/s" [> 0.0] "heading gain: ω = k_w · heading error";
+        pub turn_angle: f64 = std::f64::consts::FRAC_PI_3, "rad" [> 0.0]
+            "turn in place while the heading error exceeds this";
+        pub stop_distance: f64 = 0.05, "m" [>= 0.0] "stop when the goal is this close";
+        pub brake_fraction: f64 = 0.8, "1" [> 0.0, <= 1.0]
+            "share of the deceleration limit the braking profile plans with (0–1]";
     }
 }
 
@@ -89,7 +37,7 @@ pub struct Pursuit {
 impl Pursuit {
     /// Builds it for `robot`, heading for `goal`.
     pub fn new(cfg: PursuitConfig, robot: &RobotSpec, goal: [f64; 2]) -> Result<Self, LocalError> {
-        cfg.validate()?;
+        cfg.check_bounds("pursuit")?;
         Ok(Self {
             cfg,
             robot: *robot,

@@ -128,7 +128,7 @@ impl Episode {
     /// Builds the episode a scenario describes on `grid` (its map, already
     /// loaded: see [`Scenario::load_grid`]). Start and goal are the points'
     /// `world` positions when given, else their cell centres; sections left
-    /// out take their defaults (the planner: [`crate::local::registry::DEFAULT_PLANNER`]).
+    /// out take their defaults (the planner: [`crate::planners::DEFAULT_PLANNER`]).
     pub fn from_scenario(scenario: &Scenario, grid: OccupancyGrid) -> Result<Episode, SimError> {
         scenario.validate_against(&grid)?;
         let config = scenario.sim.unwrap_or_default();

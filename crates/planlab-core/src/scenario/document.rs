@@ -20,11 +20,12 @@
 
 use crate::global::plan::{build_planner, GridPlanOptions};
 use crate::global::GridPos;
-use crate::local::registry::{self, PlannerChoice};
 use crate::map::io::map_spec::{InlineMap, MapSpec};
 use crate::map::io::ScenarioError;
 use crate::map::OccupancyGrid;
-use crate::num::{fmt_num, param_problem};
+use crate::num::fmt_num;
+use crate::params::param_problem;
+use crate::planners::{self as registry, PlannerChoice};
 use crate::sim::SimConfig;
 use crate::world::{MoverSpec, RobotSpec, TerrainSpec};
 use serde::{Deserialize, Serialize};

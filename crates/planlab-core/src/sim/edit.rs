@@ -119,8 +119,8 @@ pub fn is_start_collision(e: &SimError) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::local::registry::PlannerChoice;
     use crate::map::{Cell, Pose2};
+    use crate::planners::PlannerChoice;
     use crate::sim::{EpisodeSetup, Outcome, SimConfig, GENERATED_STUCK_TIME};
     use crate::world::RobotSpec;
 

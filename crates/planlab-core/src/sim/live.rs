@@ -2,7 +2,7 @@
 //! re-tuning the local planner (the page's planner select and sliders).
 
 use super::{Episode, SimError};
-use crate::local::registry::{self, PlannerChoice};
+use crate::planners::{self, PlannerChoice};
 
 impl Episode {
     /// Replaces the local planner with `choice`, built at the robot's
@@ -11,7 +11,7 @@ impl Episode {
     /// field, no global path from here) the old planner stays in force.
     /// [`Episode::setup`] then restarts with the new choice.
     pub fn set_planner(&mut self, choice: PlannerChoice) -> Result<(), SimError> {
-        let mut planner = registry::build(&choice, &self.robot, &self.map, &self.state, self.goal)?;
+        let mut planner = planners::build(&choice, &self.robot, &self.map, &self.state, self.goal)?;
         planner.set_record_rollouts(self.config.record_rollouts);
         planner.set_seed(self.seed);
         self.planner = planner;
@@ -32,7 +32,7 @@ mod tests {
 
     #[test]
     fn set_planner_swaps_keeps_state_and_refuses_bad_configs() {
-        let name = registry::list()
+        let name = planners::list()
             .first()
             .map(|p| p.name.clone())
             .expect("a registered planner");

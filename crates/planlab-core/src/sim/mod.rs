@@ -35,11 +35,12 @@ pub use trace::{Trace, TraceStep, CSV_HEADER};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use crate::local::registry::{self, PlannerChoice};
 use crate::local::{LocalError, LocalPlanner, ObservedMover, PlannerDebug};
 use crate::map::io::ScenarioError;
 use crate::map::MapError;
-use crate::num::{cos, fmt_num, hypot, param_problem, sin};
+use crate::num::{cos, fmt_num, hypot, sin};
+use crate::params::param_problem;
+use crate::planners::{self, PlannerChoice};
 use crate::world::{
     Footprint, MoverSpec, MoverState, OdometrySample, RobotSpec, RobotState, StaticMap, Terrain,
     TerrainSpec, WorldError,
@@ -445,7 +446,7 @@ impl Episode {
         }
         check_reachable(&map, [start.x, start.y], goal)?;
         let terrain = Terrain::new(terrain_spec.clone(), seed)?;
-        let mut planner = registry::build(&choice, &robot, &map, &start, goal)?;
+        let mut planner = planners::build(&choice, &robot, &map, &start, goal)?;
         planner.set_record_rollouts(config.record_rollouts);
         planner.set_seed(seed);
         let mut ep = Episode {
@@ -727,7 +728,7 @@ impl Episode {
             // is built afresh, as from a scenario with this goal, so a saved
             // scenario replays the edited episode exactly.
             let mut planner =
-                registry::build(&self.choice, &self.robot, &self.map, &self.state, goal)?;
+                planners::build(&self.choice, &self.robot, &self.map, &self.state, goal)?;
             planner.set_record_rollouts(self.config.record_rollouts);
             planner.set_seed(self.seed);
             self.planner = planner;

@@ -11,7 +11,7 @@
 //! first k + 1 rows.
 
 use super::{Episode, EpisodeSetup, Outcome, SimError};
-use crate::local::registry::PlannerChoice;
+use crate::planners::PlannerChoice;
 use crate::world::MoverSpec;
 
 /// One live edit of a running episode.

@@ -22,6 +22,8 @@ pub use terrain::{Road, SlipSpec, Terrain, TerrainSpec, TerrainStep, VehicleSpec
 
 use thiserror::Error;
 
+use crate::params::{check_param, Bound, ParamError};
+
 /// Invalid world description: bad robot, mover or map geometry.
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
@@ -44,26 +46,20 @@ pub enum WorldError {
     },
 }
 
-/// Checks that `value` is finite, ≥ `min` (> when `strict`) and at most
-/// [`crate::num::MAX_PARAM`]; the error names `what`.
-fn check_range(what: &str, value: f64, min: f64, strict: bool) -> Result<(), WorldError> {
-    match crate::num::param_problem(value, min, strict) {
-        None => Ok(()),
-        Some(p) => Err(WorldError::InvalidParameter(format!(
-            "{what} = {}: {p}",
-            crate::num::fmt_num(value)
-        ))),
+impl From<ParamError> for WorldError {
+    fn from(e: ParamError) -> Self {
+        WorldError::InvalidParameter(e.unit_named())
     }
 }
 
 /// Checks that `value` is finite, ≥ `min` and not huge; the error names `what`.
 pub(crate) fn check_min(what: &str, value: f64, min: f64) -> Result<(), WorldError> {
-    check_range(what, value, min, false)
+    Ok(check_param(what, value, Bound::at_least(min))?)
 }
 
 /// Checks that `value` is finite, > 0 and not huge; the error names `what`.
 pub(crate) fn check_positive(what: &str, value: f64) -> Result<(), WorldError> {
-    check_range(what, value, 0.0, true)
+    Ok(check_param(what, value, Bound::above(0.0))?)
 }
 
 /// Checks that both coordinates of a point are finite.

@@ -138,34 +138,21 @@ impl SlipSpec {
     }
 }
 
-/// Vehicle parameters for the wheel loads (\[C\] Table 1 defaults).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct VehicleSpec {
-    /// Mass m, kg.
-    pub mass: f64,
-    /// Distance from the centre of gravity to the front axle l_f, m.
-    pub l_f: f64,
-    /// Distance from the centre of gravity to the rear axle l_r, m.
-    pub l_r: f64,
-    /// Front track (distance between the front wheels) b_f, m.
-    pub b_f: f64,
-    /// Rear track b_r, m.
-    pub b_r: f64,
-    /// Height of the centre of gravity h, m.
-    pub h: f64,
-}
-
-impl Default for VehicleSpec {
-    fn default() -> Self {
-        Self {
-            mass: 20.0,
-            l_f: 0.25,
-            l_r: 0.25,
-            b_f: 0.5,
-            b_r: 0.5,
-            h: 0.2,
-        }
+crate::params::params! {
+    /// Vehicle parameters for the wheel loads (\[C\] Table 1 defaults).
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct VehicleSpec {
+        pub mass: f64 = 20.0, "kg" [> 0.0] "vehicle mass m";
+        /// l_f.
+        pub l_f: f64 = 0.25, "m" [>= 0.0] "centre of gravity to front axle";
+        /// l_r.
+        pub l_r: f64 = 0.25, "m" [>= 0.0] "centre of gravity to rear axle";
+        /// b_f, the distance between the front wheels.
+        pub b_f: f64 = 0.5, "m" [> 0.0] "front track";
+        /// b_r.
+        pub b_r: f64 = 0.5, "m" [> 0.0] "rear track";
+        /// h.
+        pub h: f64 = 0.2, "m" [>= 0.0] "height of the centre of gravity";
     }
 }
 
@@ -173,13 +160,8 @@ impl VehicleSpec {
     /// Checks every number; `prefix` names the section in errors
     /// (`terrain.vehicle`, `cleaning-dwa.vehicle` …).
     pub fn validate(&self, prefix: &str) -> Result<(), WorldError> {
-        check_positive(&format!("{prefix}.mass (kg)"), self.mass)?;
-        check_min(&format!("{prefix}.l_f (m)"), self.l_f, 0.0)?;
-        check_min(&format!("{prefix}.l_r (m)"), self.l_r, 0.0)?;
-        check_positive(&format!("{prefix}.l_f + l_r (m)"), self.l_f + self.l_r)?;
-        check_positive(&format!("{prefix}.b_f (m)"), self.b_f)?;
-        check_positive(&format!("{prefix}.b_r (m)"), self.b_r)?;
-        check_min(&format!("{prefix}.h (m)"), self.h, 0.0)
+        crate::params::Params::check_bounds(self, prefix)?;
+        check_positive(&format!("{prefix}.l_f + l_r (m)"), self.l_f + self.l_r)
     }
 
     /// Static load of each wheel (front-left, front-right, rear-left,
