@@ -20,6 +20,7 @@ pub mod apf;
 pub mod arm;
 pub mod batch;
 pub mod bench;
+pub mod draw;
 pub mod global;
 pub mod lidar;
 pub mod local;

@@ -29,7 +29,7 @@ pub use edit::{
 };
 pub use export::{default_endpoints, ENDPOINT_MARGIN_M};
 pub use replay::{Edit, Recording};
-pub use trace::{Trace, TraceStep, CSV_HEADER};
+pub use trace::{Column, Trace, TraceStep};
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
