@@ -327,22 +327,17 @@ fn goals_are_start_final_and_the_goal_steered_to() {
 
 #[test]
 fn lidar_layers_are_the_scan_and_what_the_navigator_made_of_it() {
-    let lidar = [
-        Layer::LidarRays,
-        Layer::LidarEdges,
-        Layer::LidarOpsRaw,
-        Layer::LidarOps,
-        Layer::LidarCandidates,
-        Layer::LidarTarget,
-    ];
+    // The LiDAR layers are the last six.
+    let lidar = &Layer::ALL[Layer::LidarRays as usize..];
+    assert_eq!(lidar.len(), 6);
     // Nothing before the first step, nor for a planner without a LiDAR.
     let ep = episode("lidar-dwa", Footprint::default());
-    assert!(draw_of(&ep, None, &lidar).items.is_empty());
-    assert!(draw_of(&stepped("dwa", 2), None, &lidar).items.is_empty());
+    assert!(draw_of(&ep, None, lidar).items.is_empty());
+    assert!(draw_of(&stepped("dwa", 2), None, lidar).items.is_empty());
 
     let ep = stepped("lidar-dwa", 3);
     let l = ep.planner_debug().lidar.clone().unwrap();
-    let d = draw_of(&ep, None, &lidar);
+    let d = draw_of(&ep, None, lidar);
     // Rays: every beam once, from the sensor, to its range.
     let rays = items(&d, Layer::LidarRays);
     let mut beams = 0;

@@ -7,19 +7,7 @@ import type { SimHandle } from '../../pkg/planlab_wasm.js';
 import { Layer } from '../scene/draw';
 import { CLASS_NAMES, COLORS, type Scene } from '../scene/view';
 import { el } from '../shell/dom';
-
-interface Metrics {
-  outcome: string;
-  time_s: number;
-  path_length_m: number;
-  min_clearance_m: number;
-  mean_clearance_m: number;
-  total_turn_rad: number;
-  max_turn_rad: number;
-  speed_drops: number;
-  mean_tracking_error_m: number | null;
-  max_tracking_error_m: number | null;
-}
+import type { Metrics } from '../compare/table';
 
 interface MoverJson {
   id: number;

@@ -7,6 +7,7 @@
 
 import { DrawList, Frame, Layer } from './draw';
 import { Painter, lidarLayers } from './paint';
+import { knownBox as knownCells, offscreen, sizeToBox } from '../shell/cells';
 
 export interface MapInfo {
   width: number;
@@ -88,33 +89,10 @@ export function mapOf(d: DrawList): MapInfo | null {
   return { width, height, resolution, originX, originY, cells: d.cellBytes(i) };
 }
 
-function offscreen(w: number, h: number): [HTMLCanvasElement, CanvasRenderingContext2D] {
-  const c = document.createElement('canvas');
-  c.width = w;
-  c.height = h;
-  const ctx = c.getContext('2d');
-  if (!ctx) throw new Error('this browser cannot draw on a 2D canvas');
-  return [c, ctx];
-}
-
-/** Known-cell bounding box [c0, r0, c1, r1) padded by a few cells; the
- *  whole map when every cell is unknown (ROS maps are mostly unknown).
- *  The canvas view and the SVG export frame the same part of the map. */
+/** Known-cell bounding box [c0, r0, c1, r1) of the map padded by a few
+ *  cells: the canvas view and the SVG export frame the same part of it. */
 export function knownBox(m: MapInfo): [number, number, number, number] {
-  const { width: w, height: h, cells } = m;
-  let [c0, r0, c1, r1] = [w, h, -1, -1];
-  for (let r = 0; r < h; r++) {
-    for (let c = 0; c < w; c++) {
-      if (cells[r * w + c] === 2) continue;
-      if (c < c0) c0 = c;
-      if (c > c1) c1 = c;
-      if (r < r0) r0 = r;
-      if (r > r1) r1 = r;
-    }
-  }
-  if (c1 < 0) return [0, 0, w, h];
-  const pad = Math.max(2, Math.round(0.04 * Math.max(c1 - c0, r1 - r0)));
-  return [Math.max(0, c0 - pad), Math.max(0, r0 - pad), Math.min(w, c1 + 1 + pad), Math.min(h, r1 + 1 + pad)];
+  return knownCells(m.width, m.height, m.cells);
 }
 
 export class RobotView {
@@ -262,17 +240,13 @@ export class RobotView {
   }
 
   private resize(): void {
-    const rect = this.canvas.getBoundingClientRect();
-    const dpr = window.devicePixelRatio || 1;
     const [oldW, oldH] = [this.cssW, this.cssH];
-    this.cssW = rect.width;
-    this.cssH = rect.height;
-    this.canvas.width = Math.max(1, Math.round(rect.width * dpr));
-    this.canvas.height = Math.max(1, Math.round(rect.height * dpr));
+    [this.cssW, this.cssH] = sizeToBox(this.canvas);
     if (this.fitted) this.fit();
     else {
-      this.ox += (rect.width - oldW) / 2;
-      this.oy += (rect.height - oldH) / 2;
+      // Keep what is in the middle of the view in the middle.
+      this.ox += (this.cssW - oldW) / 2;
+      this.oy += (this.cssH - oldH) / 2;
       this.publishView();
     }
     this.request();
