@@ -18,6 +18,7 @@ use planlab_core::metrics::{distance_to_polyline, EpisodeMetrics, DEFAULT_LOAD_T
 use planlab_core::sim::{Column, Edit, Episode, EpisodeSetup, Outcome, Recording, SimConfig};
 use planlab_core::world::{MoverSpec, Placement, RobotSpec, RobotState, StaticMap, TerrainSpec};
 use serde::Deserialize;
+use std::cell::RefCell;
 use wasm_bindgen::prelude::*;
 
 use crate::{files_reader, MapHandle};
@@ -110,6 +111,9 @@ pub struct SimHandle {
     rec: Recording,
     /// Which run this is (shared by its replays and branches).
     run: u64,
+    /// The draw list's buffers, reused from frame to frame so a frame
+    /// allocates nothing on the wasm side.
+    drawn: RefCell<DrawList>,
 }
 
 impl SimHandle {
@@ -123,6 +127,7 @@ impl SimHandle {
             seen,
             rec,
             run: NEXT_RUN.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+            drawn: RefCell::default(),
         }
     }
 
@@ -176,12 +181,16 @@ impl SimHandle {
     /// The live end's draw list (what [`SimHandle::draw`] hands over).
     pub fn draw_list(&self, layers: u32, trail_from: u32) -> DrawList {
         let mut out = DrawList::default();
+        self.draw_into(layers, trail_from, &mut out);
+        out
+    }
+
+    fn draw_into(&self, layers: u32, trail_from: u32, out: &mut DrawList) {
         let req = Request {
             layers: Layers::from_bits(layers),
             trail_from: trail_from as usize,
         };
-        draw::episode(&self.ep, Some(&self.seen), req, &mut out);
-        out
+        draw::episode(&self.ep, Some(&self.seen), req, out);
     }
 
     /// Trace row `k`'s draw list (what [`SimHandle::draw_row`] hands
@@ -400,7 +409,10 @@ impl SimHandle {
     /// `layer, shape, start, end, tag, value`.
     #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
     pub fn draw(&self, layers: u32, trail_from: u32) -> Result<js_sys::Object, JsError> {
-        draw_arrays(&self.draw_list(layers, trail_from))
+        let mut d = self.drawn.borrow_mut();
+        d.clear();
+        self.draw_into(layers, trail_from, &mut d);
+        draw_arrays(&d)
     }
 
     /// The draw list of trace row `k` (robot, movers, goals of that time;
@@ -492,6 +504,7 @@ impl SimHandle {
             ep,
             draw_fan: self.draw_fan,
             run: self.run,
+            drawn: RefCell::default(),
         };
         self.advance_replay_of(&mut h, steps.max(0.0) as u64)?;
         h.check_against(self)?;
