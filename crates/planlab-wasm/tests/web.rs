@@ -281,7 +281,7 @@ fn episode_runs_to_reached_with_typed_arrays() {
     assert_eq!(array_of(&o, "data"), list.data);
     assert_eq!(array_of(&o, "items"), list.items_flat());
     let cells = array_of(&o, "cells");
-    assert_eq!(cells.len(), 20 * 10, "the map's cells");
+    assert_eq!(cells.len(), 2 * 20 * 10, "the map's cells and the fog's");
     let items = array_of(&o, "items");
     assert_eq!(items.len() % ITEM_STRIDE, 0);
     for it in items.chunks(ITEM_STRIDE) {
