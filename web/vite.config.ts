@@ -122,7 +122,7 @@ export default defineConfig({
     target: 'es2022',
     rollupOptions: {
       input: {
-        main: resolve(here, 'index.html'),
+        grid: resolve(here, 'index.html'),
         gallery: resolve(here, 'gallery.html'),
         robot: resolve(here, 'robot.html'),
         compare: resolve(here, 'compare.html'),

@@ -39,6 +39,8 @@
 //! - [`sim`]: fixed-step, seeded episodes, their traces, recordings and
 //!   edits (§episode).
 //! - [`metrics`]: what an episode measured, from its trace (§metrics).
+//! - [`draw`]: the draw list: what a frame of an episode shows, as layers
+//!   of typed primitives in world metres, for the page and screenshots.
 //! - [`scenario`]: the scenario files of every kind and the one way from a
 //!   file to a finished run.
 //! - [`batch`]: seeded variants of a scenario and per-planner statistics.
@@ -51,6 +53,7 @@ pub mod apf;
 pub mod arm;
 pub mod batch;
 pub mod bench;
+pub mod draw;
 pub mod geom;
 pub mod global;
 pub mod lidar;

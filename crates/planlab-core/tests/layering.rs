@@ -14,8 +14,7 @@ use std::path::{Path, PathBuf};
 
 /// The layers, bottom first: (name, its modules). A module may use the
 /// modules of every layer listed before its own; modules sharing a layer
-/// stand alone. `params` and `planners` are the homes of the low-level
-/// config helpers and of the planner catalogue (`local/registry.rs` today).
+/// stand alone.
 const LAYERS: &[(&str, &[&str])] = &[
     ("text, num", &["text", "num"]),
     ("geom, params", &["geom", "params"]),
@@ -27,7 +26,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("lidar, arm", &["lidar", "arm"]),
     ("planners", &["planners"]),
     ("sim", &["sim"]),
-    ("metrics", &["metrics"]),
+    ("metrics, draw", &["metrics", "draw"]),
     ("scenario", &["scenario"]),
     ("batch", &["batch"]),
     ("reproduce, bench", &["reproduce", "bench"]),

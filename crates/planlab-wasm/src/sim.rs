@@ -1,24 +1,24 @@
 //! The robot simulation for the page: a [`SimHandle`] wraps one core
 //! [`Episode`] and converts at the boundary (DESIGN.md conventions 4–5).
 //!
-//! - Bulk data leaves as typed arrays: movers (stride 6), the DWA fan
-//!   (points flat + offsets, scores, admissible flags), paths, the trail and
-//!   the plot series since a given row, so a frame costs a handful of
-//!   boundary calls whatever the number of rollouts.
+//! - What a frame shows leaves as one draw list (`draw`: the core's layers
+//!   of polylines, points, discs … as typed arrays), and the plot series
+//!   since a given row, so a frame costs a handful of boundary calls
+//!   whatever the number of rollouts.
 //! - Setups, movers and planner configs cross as JSON text in the core's
 //!   serde formats; errors are `JsError`s with the core's message.
 //! - The page draws; everything it draws (rollouts and their scores, goals,
 //!   obstacle classes, clearance, metrics) is computed by the core.
 
+use planlab_core::draw::{self, DrawList, Layer, Layers, Request};
 use planlab_core::lidar::fog::SeenCells;
-use planlab_core::lidar::{LidarDebug, TargetKind};
-use planlab_core::local::{GoalKind, ObstacleClass};
 use planlab_core::metrics::{distance_to_polyline, EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
 use planlab_core::planners::{self as registry, PlannerChoice};
 use planlab_core::scenario::Scenario;
-use planlab_core::sim::{Edit, Episode, EpisodeSetup, Outcome, Recording, SimConfig};
+use planlab_core::sim::{Column, Edit, Episode, EpisodeSetup, Outcome, Recording, SimConfig};
 use planlab_core::world::{MoverSpec, Placement, RobotSpec, RobotState, StaticMap, TerrainSpec};
 use serde::Deserialize;
+use std::cell::RefCell;
 use wasm_bindgen::prelude::*;
 
 use crate::{files_reader, MapHandle};
@@ -59,17 +59,42 @@ fn outcome_str(o: Outcome) -> String {
 /// Tells runs apart: replays of one run share its number.
 static NEXT_RUN: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
 
-fn goal_kind_code(k: GoalKind) -> f64 {
-    match k {
-        GoalKind::Final => 0.0,
-        GoalKind::Intermediate => 1.0,
-        GoalKind::Virtual => 2.0,
-        GoalKind::Temporary => 3.0,
-    }
-}
-
 fn json_err(what: &str, e: serde_json::Error) -> JsError {
     JsError::new(&format!("{what}: {e}"))
+}
+
+#[wasm_bindgen(typescript_custom_section)]
+const DRAW_ARRAYS: &str = r#"
+/** A draw list as typed arrays (planlab_core::draw). */
+export interface DrawArrays {
+  data: Float64Array;
+  items: Float64Array;
+  cells: Uint8Array;
+}
+"#;
+
+/// A draw list as `{data, items, cells}` typed arrays.
+fn draw_arrays(d: &DrawList) -> Result<js_sys::Object, JsError> {
+    let o = js_sys::Object::new();
+    let set = |k: &str, v: &JsValue| {
+        js_sys::Reflect::set(&o, &JsValue::from_str(k), v)
+            .map(|_| ())
+            .map_err(|_| JsError::new("cannot build the draw list object"))
+    };
+    set("data", &js_sys::Float64Array::from(&d.data[..]).into())?;
+    set(
+        "items",
+        &js_sys::Float64Array::from(&d.items_flat()[..]).into(),
+    )?;
+    set("cells", &js_sys::Uint8Array::from(&d.cells[..]).into())?;
+    Ok(o)
+}
+
+/// The draw layers' names, by code (`Layer as u8`): the page checks its
+/// own table against them.
+#[wasm_bindgen(js_name = drawLayerNames)]
+pub fn draw_layer_names() -> Vec<String> {
+    Layer::ALL.iter().map(|l| l.name().to_string()).collect()
 }
 
 /// One running episode, owned on the wasm side.
@@ -86,6 +111,9 @@ pub struct SimHandle {
     rec: Recording,
     /// Which run this is (shared by its replays and branches).
     run: u64,
+    /// The draw list's buffers, reused from frame to frame so a frame
+    /// allocates nothing on the wasm side.
+    drawn: RefCell<DrawList>,
 }
 
 impl SimHandle {
@@ -99,6 +127,7 @@ impl SimHandle {
             seen,
             rec,
             run: NEXT_RUN.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
+            drawn: RefCell::default(),
         }
     }
 
@@ -149,11 +178,36 @@ impl SimHandle {
         }
     }
 
-    fn lidar(&self) -> Option<&LidarDebug> {
-        if self.ep.steps() == 0 {
-            return None;
+    /// The live end's draw list (what [`SimHandle::draw`] hands over).
+    pub fn draw_list(&self, layers: u32, trail_from: u32) -> DrawList {
+        let mut out = DrawList::default();
+        self.draw_into(layers, trail_from, &mut out);
+        out
+    }
+
+    fn draw_into(&self, layers: u32, trail_from: u32, out: &mut DrawList) {
+        let req = Request {
+            layers: Layers::from_bits(layers),
+            trail_from: trail_from as usize,
+        };
+        draw::episode(&self.ep, Some(&self.seen), req, out);
+    }
+
+    /// Trace row `k`'s draw list (what [`SimHandle::draw_row`] hands
+    /// over): mover radii from the specs in force, then the run's earlier
+    /// ones (a mover removed since keeps its size).
+    pub fn row_draw_list(&self, k: u32, layers: u32) -> DrawList {
+        let mut specs = self.ep.movers().to_vec();
+        specs.extend_from_slice(&self.rec.origin().movers);
+        for (_, e) in self.rec.edits() {
+            if let Edit::Movers(m) = e {
+                specs.extend_from_slice(m);
+            }
         }
-        self.ep.planner_debug().lidar.as_ref()
+        let mut out = DrawList::default();
+        let layers = Layers::from_bits(layers);
+        draw::trace_frame(&self.ep, k as usize, &specs, layers, &mut out);
+        out
     }
 
     /// The wrapped episode (for Rust callers and tests).
@@ -262,11 +316,6 @@ impl SimHandle {
             .map_or_else(Vec::new, |r| vec![r.x, r.y, r.theta])
     }
 
-    /// The final goal `[x, y]`, m.
-    pub fn goal(&self) -> Vec<f64> {
-        self.ep.goal().to_vec()
-    }
-
     /// The robot (drive, footprint, limits) as JSON.
     pub fn robot(&self) -> Result<String, JsError> {
         serde_json::to_string(self.ep.robot()).map_err(|e| json_err("robot", e))
@@ -277,16 +326,6 @@ impl SimHandle {
         MapHandle {
             grid: self.ep.map().grid().clone(),
         }
-    }
-
-    /// Every mover now, stride 6: `id, radius, x, y, vx, vy`.
-    pub fn movers(&self) -> Vec<f64> {
-        let now = self.ep.movers_now();
-        let mut out = Vec::with_capacity(now.len() * 6);
-        for (id, r, s) in now {
-            out.extend_from_slice(&[f64::from(id), r, s.pos[0], s.pos[1], s.vel[0], s.vel[1]]);
-        }
-        out
     }
 
     /// The movers' specs (id, radius, motion model) as JSON.
@@ -363,120 +402,29 @@ impl SimHandle {
         self.ep.set_record_rollouts(on);
     }
 
-    /// Rollout points of the last step, `x, y` flat, rollout after rollout.
-    #[wasm_bindgen(js_name = fanPoints)]
-    pub fn fan_points(&self) -> Vec<f32> {
-        let rs = &self.ep.planner_debug().rollouts;
-        let n: usize = rs.iter().map(|r| r.points.len()).sum();
-        let mut out = Vec::with_capacity(2 * n);
-        for r in rs {
-            for p in &r.points {
-                out.push(p[0] as f32);
-                out.push(p[1] as f32);
-            }
-        }
-        out
+    /// The draw list of the live end (see `planlab_core::draw`): the
+    /// layers in the bit set `layers` (bit `1 << code` per layer code),
+    /// the trail from trace row `trail_from` on. `{data: Float64Array,
+    /// items: Float64Array, cells: Uint8Array}`, items 6 numbers each:
+    /// `layer, shape, start, end, tag, value`.
+    #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
+    pub fn draw(&self, layers: u32, trail_from: u32) -> Result<js_sys::Object, JsError> {
+        let mut d = self.drawn.borrow_mut();
+        d.clear();
+        self.draw_into(layers, trail_from, &mut d);
+        draw_arrays(&d)
     }
 
-    /// Rollout k owns points `[offsets[k], offsets[k+1])` of
-    /// [`SimHandle::fan_points`] (counted in points); length rollouts + 1.
-    #[wasm_bindgen(js_name = fanOffsets)]
-    pub fn fan_offsets(&self) -> Vec<u32> {
-        let rs = &self.ep.planner_debug().rollouts;
-        let mut out = Vec::with_capacity(rs.len() + 1);
-        let mut k = 0u32;
-        out.push(0);
-        for r in rs {
-            k += r.points.len() as u32;
-            out.push(k);
-        }
-        out
-    }
-
-    /// Total score per rollout (higher is better).
-    #[wasm_bindgen(js_name = fanScores)]
-    pub fn fan_scores(&self) -> Vec<f32> {
-        self.ep
-            .planner_debug()
-            .rollouts
-            .iter()
-            .map(|r| r.score as f32)
-            .collect()
-    }
-
-    /// 1 per admissible rollout, 0 per rejected one.
-    #[wasm_bindgen(js_name = fanAdmissible)]
-    pub fn fan_admissible(&self) -> Vec<u8> {
-        self.ep
-            .planner_debug()
-            .rollouts
-            .iter()
-            .map(|r| u8::from(r.admissible))
-            .collect()
-    }
-
-    /// Index of the chosen rollout, −1 when none.
-    #[wasm_bindgen(getter)]
-    pub fn chosen(&self) -> i32 {
-        let d = self.ep.planner_debug();
-        d.chosen
-            .filter(|&i| i < d.rollouts.len())
-            .map_or(-1, |i| i as i32)
+    /// The draw list of trace row `k` (robot, movers, goals of that time;
+    /// see `planlab_core::draw::trace_frame`), as [`SimHandle::draw`].
+    #[wasm_bindgen(js_name = drawRow, unchecked_return_type = "DrawArrays")]
+    pub fn draw_row(&self, k: u32, layers: u32) -> Result<js_sys::Object, JsError> {
+        draw_arrays(&self.row_draw_list(k, layers))
     }
 
     /// Critic names of the planner, JSON array.
     pub fn critics(&self) -> Result<String, JsError> {
         serde_json::to_string(&self.ep.planner_debug().critics).map_err(|e| json_err("critics", e))
-    }
-
-    /// The planner's global path, `x, y` flat (empty without one).
-    #[wasm_bindgen(js_name = globalPath)]
-    pub fn global_path(&self) -> Vec<f64> {
-        self.ep
-            .planner_debug()
-            .global_path
-            .iter()
-            .flatten()
-            .copied()
-            .collect()
-    }
-
-    /// Key points / feature nodes, `x, y` flat.
-    pub fn keypoints(&self) -> Vec<f64> {
-        self.ep
-            .planner_debug()
-            .keypoints
-            .iter()
-            .flatten()
-            .copied()
-            .collect()
-    }
-
-    /// The goal the last step steered to, `[x, y]` (the final goal before
-    /// the first step).
-    #[wasm_bindgen(js_name = currentGoal)]
-    pub fn current_goal(&self) -> Vec<f64> {
-        let g = match self.ep.trace().steps.last() {
-            Some(r) if self.ep.steps() > 0 => r.goal,
-            _ => self.ep.goal(),
-        };
-        g.to_vec()
-    }
-
-    /// What that goal is: `final`, `intermediate` or `virtual`.
-    #[wasm_bindgen(getter, js_name = goalKind)]
-    pub fn goal_kind(&self) -> String {
-        let k = match self.ep.trace().steps.last() {
-            Some(r) if self.ep.steps() > 0 => r.goal_kind,
-            _ => GoalKind::Final,
-        };
-        match k {
-            GoalKind::Final => "final",
-            GoalKind::Intermediate => "intermediate",
-            GoalKind::Virtual => "virtual",
-            GoalKind::Temporary => "temporary",
-        }
-        .to_string()
     }
 
     /// The planner's strategy in force ("" before the first step).
@@ -489,39 +437,10 @@ impl SimHandle {
         }
     }
 
-    /// Obstacle classes of the perceived movers, pairs `id, class` with
-    /// class 0 ordinary dynamic, 1 ordinary static, 2 special.
-    pub fn classes(&self) -> Vec<u32> {
-        let mut out = Vec::new();
-        if self.ep.steps() == 0 {
-            return out;
-        }
-        for (id, c) in &self.ep.planner_debug().classes {
-            out.push(*id);
-            out.push(match c {
-                ObstacleClass::OrdinaryDynamic => 0,
-                ObstacleClass::OrdinaryStatic => 1,
-                ObstacleClass::Special => 2,
-            });
-        }
-        out
-    }
-
     /// Rows in the trace (start row included).
     #[wasm_bindgen(getter, js_name = traceLen)]
     pub fn trace_len(&self) -> u32 {
         self.ep.trace().steps.len() as u32
-    }
-
-    /// Driven positions `x, y` flat from trace row `from` on.
-    pub fn trail(&self, from: u32) -> Vec<f64> {
-        let rows = self.ep.trace().steps.get(from as usize..).unwrap_or(&[]);
-        let mut out = Vec::with_capacity(rows.len() * 2);
-        for r in rows {
-            out.push(r.x);
-            out.push(r.y);
-        }
-        out
     }
 
     /// Plot series from trace row `from` on, stride 5:
@@ -555,138 +474,6 @@ impl SimHandle {
         self.ep.trace().to_csv()
     }
 
-    /// Whether the planner reports LiDAR data (a `lidar-*` / `scan-*`
-    /// planner after its first step).
-    #[wasm_bindgen(getter, js_name = hasLidar)]
-    pub fn has_lidar(&self) -> bool {
-        self.lidar().is_some()
-    }
-
-    /// The last scan as rays: sensor `x, y`, then each beam's end point
-    /// `x, y` (the hit, or the range limit without a return).
-    #[wasm_bindgen(js_name = lidarRays)]
-    pub fn lidar_rays(&self) -> Vec<f32> {
-        let Some(l) = self.lidar() else {
-            return Vec::new();
-        };
-        let n = l.ranges.len();
-        let mut out = Vec::with_capacity(2 * n + 2);
-        out.push(l.pose[0] as f32);
-        out.push(l.pose[1] as f32);
-        for (i, &r) in l.ranges.iter().enumerate() {
-            let a = l.pose[2] + std::f64::consts::TAU * i as f64 / n as f64;
-            out.push((l.pose[0] + r * a.cos()) as f32);
-            out.push((l.pose[1] + r * a.sin()) as f32);
-        }
-        out
-    }
-
-    /// 1 per beam that returned, 0 per beam without a return.
-    #[wasm_bindgen(js_name = lidarReturns)]
-    pub fn lidar_returns(&self) -> Vec<u8> {
-        self.lidar()
-            .map(|l| l.returns.iter().map(|&b| u8::from(b)).collect())
-            .unwrap_or_default()
-    }
-
-    /// Edges, stride 3: `x, y, type` with type 1 SR, 2 WR, 3 SF, 4 WF;
-    /// `raw` = before gap removal (Algorithm 1), else after.
-    #[wasm_bindgen(js_name = lidarEdges)]
-    pub fn lidar_edges(&self, raw: bool) -> Vec<f32> {
-        let Some(l) = self.lidar() else {
-            return Vec::new();
-        };
-        let e = if raw { &l.edges_raw } else { &l.edges };
-        e.iter()
-            .flat_map(|m| {
-                [
-                    m.point[0] as f32,
-                    m.point[1] as f32,
-                    f32::from(m.kind.code()),
-                ]
-            })
-            .collect()
-    }
-
-    /// Obstacle patterns as polylines, `x, y` flat, one after the other
-    /// (see [`SimHandle::lidar_op_offsets`]); `expanded` = after eq 1.
-    #[wasm_bindgen(js_name = lidarOps)]
-    pub fn lidar_ops(&self, expanded: bool) -> Vec<f32> {
-        let Some(l) = self.lidar() else {
-            return Vec::new();
-        };
-        let ops = if expanded { &l.ops } else { &l.ops_raw };
-        ops.iter()
-            .flatten()
-            .flat_map(|p| [p[0] as f32, p[1] as f32])
-            .collect()
-    }
-
-    /// OP k owns points `[offsets[k], offsets[k+1])` of
-    /// [`SimHandle::lidar_ops`]; length OPs + 1.
-    #[wasm_bindgen(js_name = lidarOpOffsets)]
-    pub fn lidar_op_offsets(&self, expanded: bool) -> Vec<u32> {
-        let Some(l) = self.lidar() else {
-            return Vec::new();
-        };
-        let ops = if expanded { &l.ops } else { &l.ops_raw };
-        let mut out = vec![0u32];
-        let mut k = 0u32;
-        for op in ops {
-            k += op.len() as u32;
-            out.push(k);
-        }
-        out
-    }
-
-    /// Index of the OP blocking the goal, −1 for none.
-    #[wasm_bindgen(getter, js_name = lidarBlocking)]
-    pub fn lidar_blocking(&self) -> i32 {
-        self.lidar()
-            .and_then(|l| l.blocking)
-            .map_or(-1, |b| b as i32)
-    }
-
-    /// Temporary-goal candidates, stride 4: `x, y, cost (m), iteration`.
-    #[wasm_bindgen(js_name = lidarCandidates)]
-    pub fn lidar_candidates(&self) -> Vec<f64> {
-        let Some(l) = self.lidar() else {
-            return Vec::new();
-        };
-        l.candidates
-            .iter()
-            .flat_map(|c| [c.point[0], c.point[1], c.cost, f64::from(c.iteration)])
-            .collect()
-    }
-
-    /// The navigator's target: `x, y, kind, hold left (s), hold period
-    /// (s)` with kind 0 the goal, 1 a temporary goal, 2 a held one.
-    #[wasm_bindgen(js_name = lidarTarget)]
-    pub fn lidar_target(&self) -> Vec<f64> {
-        let Some(l) = self.lidar() else {
-            return Vec::new();
-        };
-        let kind = match l.kind {
-            TargetKind::Global => 0.0,
-            TargetKind::Temporary => 1.0,
-            TargetKind::Held => 2.0,
-        };
-        vec![
-            l.target[0],
-            l.target[1],
-            kind,
-            l.hold_remaining,
-            l.hold_period,
-        ]
-    }
-
-    /// Cells the robot has seen so far (fog of war): 1 per seen cell,
-    /// row-major with row 0 at the top, like the map's cells.
-    #[wasm_bindgen(js_name = seenCells)]
-    pub fn seen_cells(&self) -> Vec<u8> {
-        self.seen.cells().to_vec()
-    }
-
     /// Number of seen cells.
     #[wasm_bindgen(getter, js_name = seenCount)]
     pub fn seen_count(&self) -> u32 {
@@ -717,6 +504,7 @@ impl SimHandle {
             ep,
             draw_fan: self.draw_fan,
             run: self.run,
+            drawn: RefCell::default(),
         };
         self.advance_replay_of(&mut h, steps.max(0.0) as u64)?;
         h.check_against(self)?;
@@ -768,69 +556,27 @@ impl SimHandle {
         self.rec.edits().iter().map(|(s, _)| *s as f64).collect()
     }
 
-    /// Trace row `i`: `t, x, y, theta, v, vy, w, cmd_v, cmd_vy, cmd_w,
-    /// clearance, goal_x, goal_y, goal_kind, accel_z, load_fl, load_fr,
-    /// load_rl, load_rr` (goal_kind 0 final, 1 intermediate, 2 virtual, 3
-    /// temporary; loads NaN without a vehicle model); empty past the end.
+    /// Trace row `i`: its numeric columns in the trace's column order (`t,
+    /// x, y, theta, v, vy, w, cmd_v, cmd_vy, cmd_w, clearance, goal_x,
+    /// goal_y, goal_kind, accel_z, load_fl, load_fr, load_rl, load_rr`;
+    /// goal_kind 0 final, 1 intermediate, 2 virtual, 3 temporary; loads NaN
+    /// without a vehicle model); empty past the end.
     #[wasm_bindgen(js_name = traceRow)]
     pub fn trace_row(&self, i: u32) -> Vec<f64> {
         let Some(r) = self.row(i) else {
             return Vec::new();
         };
-        let l = r.wheel_loads.unwrap_or([f64::NAN; 4]);
-        vec![
-            r.t,
-            r.x,
-            r.y,
-            r.theta,
-            r.v,
-            r.vy,
-            r.w,
-            r.cmd.v,
-            r.cmd.vy,
-            r.cmd.w,
-            r.clearance,
-            r.goal[0],
-            r.goal[1],
-            goal_kind_code(r.goal_kind),
-            r.accel_z,
-            l[0],
-            l[1],
-            l[2],
-            l[3],
-        ]
-    }
-
-    /// The movers of trace row `i`, stride 3: `id, x, y`.
-    #[wasm_bindgen(js_name = traceMovers)]
-    pub fn trace_movers(&self, i: u32) -> Vec<f64> {
-        self.row(i).map_or_else(Vec::new, |r| {
-            r.movers
-                .iter()
-                .flat_map(|(id, p)| [f64::from(*id), p[0], p[1]])
-                .collect()
-        })
-    }
-
-    /// The obstacle classes of trace row `i`, pairs `id, class` (as
-    /// [`SimHandle::classes`]).
-    #[wasm_bindgen(js_name = traceClasses)]
-    pub fn trace_classes(&self, i: u32) -> Vec<u32> {
-        self.row(i).map_or_else(Vec::new, |r| {
-            r.classes
-                .iter()
-                .flat_map(|(id, c)| {
-                    [
-                        *id,
-                        match c {
-                            ObstacleClass::OrdinaryDynamic => 0,
-                            ObstacleClass::OrdinaryStatic => 1,
-                            ObstacleClass::Special => 2,
-                        },
-                    ]
-                })
-                .collect()
-        })
+        let mut out = Vec::with_capacity(19);
+        for c in r.columns() {
+            match c {
+                Column::Num(_, x) => out.push(x),
+                Column::GoalKind(k) => out.push(f64::from(k as u8)),
+                Column::WheelLoads(l) => out.extend(l.unwrap_or([f64::NAN; 4])),
+                // Text and lists have getters of their own.
+                Column::Mode(_) | Column::Classes(_) | Column::Movers(_) => {}
+            }
+        }
+        out
     }
 
     /// The planner's strategy in trace row `i` ("" in the start row).

@@ -211,13 +211,51 @@ fn room_json(planner: &str, extra: &str) -> String {
     )
 }
 
+/// Bit set of draw layers.
+fn bits(layers: &[planlab_core::draw::Layer]) -> u32 {
+    layers.iter().fold(0, |b, l| b | 1 << *l as u8)
+}
+
+/// The final goal, from the Goals layer (tag 1).
+fn goal_of(sim: &planlab_wasm::SimHandle) -> Vec<f64> {
+    use planlab_core::draw::Layer;
+    let d = sim.draw_list(bits(&[Layer::Goals]), 0);
+    let g = d
+        .layer(Layer::Goals)
+        .find(|i| i.tag == 1.0)
+        .expect("a goal");
+    d.numbers(g).to_vec()
+}
+
+/// The movers now, stride 6 (`id, radius, x, y, vx, vy`), from the Movers layer.
+fn movers_of(sim: &planlab_wasm::SimHandle) -> Vec<f64> {
+    use planlab_core::draw::Layer;
+    let d = sim.draw_list(bits(&[Layer::Movers]), 0);
+    d.layer(Layer::Movers)
+        .flat_map(|i| {
+            let n = d.numbers(i);
+            [i.tag, n[2], n[0], n[1], n[3], n[4]]
+        })
+        .collect()
+}
+
+/// A typed array property of a draw object, as a Vec.
+fn array_of(o: &js_sys::Object, key: &str) -> Vec<f64> {
+    let v = js_sys::Reflect::get(o, &JsValue::from_str(key)).expect("the key");
+    if let Some(a) = v.dyn_ref::<js_sys::Float64Array>() {
+        return a.to_vec();
+    }
+    let b: js_sys::Uint8Array = v.dyn_into().expect("a typed array");
+    b.to_vec().into_iter().map(f64::from).collect()
+}
+
 #[wasm_bindgen_test]
 fn episode_runs_to_reached_with_typed_arrays() {
     use planlab_wasm::SimHandle;
     let mut sim = SimHandle::from_scenario(&room_json("pursuit", ""), None).unwrap();
     assert_eq!(sim.outcome(), "running");
     assert_eq!(sim.trace_len(), 1);
-    let goal = sim.goal();
+    let goal = goal_of(&sim);
     let mut guard = 0;
     while sim.step(7) == "running" {
         guard += 1;
@@ -231,17 +269,29 @@ fn episode_runs_to_reached_with_typed_arrays() {
     let n = sim.trace_len() as usize;
     assert_eq!(n as f64, sim.steps() + 1.0);
     assert_eq!(sim.series(0).len(), 5 * n);
-    assert_eq!(sim.trail(0).len(), 2 * n);
-    assert_eq!(sim.trail(n as u32 - 2).len(), 4);
-    assert!(sim.trail(n as u32 + 5).is_empty());
-    // The fan arrays agree with each other.
-    let offsets = sim.fan_offsets();
-    assert_eq!(offsets.len(), sim.fan_scores().len() + 1);
-    assert_eq!(sim.fan_admissible().len(), sim.fan_scores().len());
-    assert_eq!(
-        sim.fan_points().len() as u32,
-        2 * offsets[offsets.len() - 1]
-    );
+    use planlab_core::draw::{Layer, ITEM_STRIDE};
+    let trail = bits(&[Layer::Trail]);
+    assert_eq!(sim.draw_list(trail, 0).data.len(), 2 * n);
+    assert_eq!(sim.draw_list(trail, n as u32 - 2).data.len(), 4);
+    assert!(sim.draw_list(trail, n as u32 + 5).items.is_empty());
+    // The draw object's typed arrays are the core's draw list.
+    let all = u32::MAX;
+    let list = sim.draw_list(all, 0);
+    let o = sim.draw(all, 0).unwrap();
+    assert_eq!(array_of(&o, "data"), list.data);
+    assert_eq!(array_of(&o, "items"), list.items_flat());
+    let cells = array_of(&o, "cells");
+    assert_eq!(cells.len(), 2 * 20 * 10, "the map's cells and the fog's");
+    let items = array_of(&o, "items");
+    assert_eq!(items.len() % ITEM_STRIDE, 0);
+    for it in items.chunks(ITEM_STRIDE) {
+        assert!(it[2] <= it[3] && it[3] as usize <= list.data.len());
+    }
+    // A row's frame: the robot where the row says.
+    let row = sim.trace_row(3);
+    let f = sim.row_draw_list(3, bits(&[Layer::Robot]));
+    let body = f.layer(Layer::Robot).next().unwrap();
+    assert_eq!(&f.numbers(body)[..2], &row[1..3]);
     // Metrics and hash as the CLI reports them.
     let m: serde_json::Value = serde_json::from_str(&sim.metrics_json().unwrap()).unwrap();
     assert_eq!(m["outcome"], "reached");
@@ -293,18 +343,18 @@ fn live_edits_and_their_errors() {
     sim.step(5);
     // Goal: a free point is taken, a wall refused with the core's message.
     sim.set_goal(3.0, 0.6).unwrap();
-    assert_eq!(sim.goal(), vec![3.0, 0.6]);
+    assert_eq!(goal_of(&sim), vec![3.0, 0.6]);
     assert_eq!(sim.live_edits(), 1);
     let e = message(sim.set_goal(0.1, 0.1).unwrap_err());
     assert!(e.contains("wall"), "{e}");
-    assert_eq!(sim.goal(), vec![3.0, 0.6]);
+    assert_eq!(goal_of(&sim), vec![3.0, 0.6]);
     // A refused edit is not part of the run.
     assert_eq!(sim.live_edits(), 1);
     // Movers: placed now, at the drop point with the drag's velocity.
     let id = sim
         .place_mover("back-and-forth", 0.2, 2.0, 1.5, 0.3, 0.0, 1.0)
         .unwrap();
-    let m = sim.movers();
+    let m = movers_of(&sim);
     assert_eq!(m.len(), 6);
     assert_eq!(m[0], f64::from(id));
     assert!((m[2] - 2.0).abs() < 1e-9 && (m[3] - 1.5).abs() < 1e-9);
@@ -321,9 +371,9 @@ fn live_edits_and_their_errors() {
     assert!(e.contains("radius"), "{e}");
     let json = sim.movers_json().unwrap();
     sim.set_movers("[]").unwrap();
-    assert!(sim.movers().is_empty());
+    assert!(movers_of(&sim).is_empty());
     sim.set_movers(&json).unwrap();
-    assert_eq!(sim.movers().len(), 6);
+    assert_eq!(movers_of(&sim).len(), 6);
     assert!(message(sim.set_movers("[{\"radius\": 1}]").unwrap_err()).contains("movers"));
     // Planner: re-tuned live; a bad value names the field and the old one stays.
     sim.set_planner("pursuit", r#"{"k_w": 2.0}"#).unwrap();
@@ -414,12 +464,16 @@ fn timeline_replays_an_edited_run_exactly_and_reads_rows() {
     // (Without a vehicle the loads are NaN, which never compare equal.)
     let head = |r: Vec<f64>| r[..15].to_vec();
     assert_eq!(head(scratch.trace_row(5)), head(sim.trace_row(5)));
-    assert!(scratch.movers().is_empty());
+    assert!(movers_of(&scratch).is_empty());
     assert!(sim.advance_replay(&mut scratch, 12.0).unwrap());
     assert_eq!(scratch.steps(), 12.0);
     assert_eq!(head(scratch.trace_row(12)), head(sim.trace_row(12)));
-    assert_eq!(scratch.movers().len(), 6);
-    assert!(!scratch.fan_scores().is_empty(), "the frame's fan is drawn");
+    assert_eq!(movers_of(&scratch).len(), 6);
+    let fan = bits(&[planlab_core::draw::Layer::Fan]);
+    assert!(
+        !scratch.draw_list(fan, 0).items.is_empty(),
+        "the frame's fan is drawn"
+    );
     // Backwards needs a new replay.
     assert!(!sim.advance_replay(&mut scratch, 3.0).unwrap());
     // Rows: pose, goal and movers of the trace.
@@ -436,8 +490,9 @@ fn timeline_replays_an_edited_run_exactly_and_reads_rows() {
         .collect();
     assert_eq!(&r[..13], &line[..]);
     assert!(r[15].is_nan(), "no vehicle, no loads");
-    assert_eq!(sim.trace_movers(12).len(), 3);
-    assert!(sim.trace_movers(5).is_empty());
+    let movers = bits(&[planlab_core::draw::Layer::Movers]);
+    assert_eq!(sim.row_draw_list(12, movers).items.len(), 1);
+    assert!(sim.row_draw_list(5, movers).items.is_empty());
     assert!(sim.trace_row(n as u32 + 1).is_empty());
     // A branch from frame 12 continues on its own and replays exactly.
     let mut branch = sim.replay_to(12.0).unwrap();

@@ -3,9 +3,9 @@
 // JS (grown incrementally, as on the robot page) for the overlay.
 
 import type { SimHandle } from '../../pkg/planlab_wasm.js';
-import { emptyScene, type RobotShape, type Scene } from '../robot/view';
+import { emptyScene, type Scene } from '../scene/view';
 import type { Metrics } from './table';
-import { appendTrail, lidarOf, pullState } from '../robot/pull';
+import { pullLive } from '../scene/pull';
 
 /** Planner colours, in the order the planners were picked: apart from the
  *  start (green), goal (blue), path (rose) and mover colours of the view. */
@@ -21,14 +21,11 @@ export class Lane {
   /** The trace hash (decimal) once the episode is over. */
   hash: string | null = null;
 
-  constructor(name: string, colour: string, sim: SimHandle, robot: RobotShape) {
+  constructor(name: string, colour: string, sim: SimHandle) {
     this.name = name;
     this.colour = colour;
     this.sim = sim;
     this.scene = emptyScene();
-    this.scene.robot = robot;
-    const st = sim.start();
-    this.scene.start = [st[0] ?? 0, st[1] ?? 0, st[2] ?? 0];
     this.outcome = sim.outcome;
     if (!this.running) this.hash = sim.traceHash();
   }
@@ -44,14 +41,10 @@ export class Lane {
     if (!this.running) this.hash = this.sim.traceHash();
   }
 
-  /** Copies what the SimHandle reports into the scene. */
+  /** Copies what the SimHandle draws into the scene. */
   pull(): void {
-    const sim = this.sim;
-    const S = this.scene;
-    pullState(sim, S);
-    S.lidar = lidarOf(sim);
-    appendTrail(sim, S);
-    this.outcome = sim.outcome;
+    pullLive(this.sim, this.scene);
+    this.outcome = this.sim.outcome;
   }
 
   /** The `planlab run` metrics so far (a pass over the trace: call it at

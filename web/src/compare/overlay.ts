@@ -3,7 +3,9 @@
 // time), then every planner's global path, trail and robot are drawn on top
 // in the planner's colour, in screen space after the view's own paint.
 
-import { RobotView, emptyScene, type MapInfo } from '../robot/view';
+import { RobotView, emptyScene, type MapInfo } from '../scene/view';
+import { Layer, Shape, mask } from '../scene/draw';
+import { headingOf } from '../scene/paint';
 import type { Lane } from './lane';
 
 export class OverlayView {
@@ -24,9 +26,9 @@ export class OverlayView {
   private baseScene() {
     const s = emptyScene();
     // The view's own robot, fan, trail and paths are off: each planner's
-    // are drawn by drawLanes. A zero-radius robot draws nothing visible.
-    s.robot = { kind: 'circle', radius: 0 };
-    s.show = { fan: false, path: false, trail: false, lidar: false, fog: false };
+    // are drawn by drawLanes (the frame never gets a Robot layer). Movers
+    // are not coloured by one planner's classes, nor its subgoal marked.
+    s.show = { fan: false, path: false, trail: false, lidar: false, fog: false, classes: false, subgoal: false };
     return s;
   }
 
@@ -40,14 +42,7 @@ export class OverlayView {
     const S = this.view.scene;
     const lead = this.lanes.reduce<Lane | null>((a, l) => (!a || l.sim.time > a.sim.time ? l : a), null);
     if (!lead) return;
-    const L = lead.scene;
-    S.start = L.start;
-    S.goal = L.goal;
-    S.currentGoal = L.goal;
-    S.goalKind = 'final';
-    S.movers = L.movers;
-    S.state = L.state;
-    S.classes.clear();
+    for (const l of [Layer.Movers, Layer.Goals]) S.frame.put(lead.scene.frame.of(l), mask(l));
   }
 
   request(): void {
@@ -72,7 +67,10 @@ export class OverlayView {
     const k = this.view.scale;
     if (this.showPath) {
       ctx.setLineDash([6, 5]);
-      for (const l of this.lanes) this.line(ctx, l.scene.globalPath, l.scene.globalPath.length / 2, l.colour, 1.6, 0.7);
+      for (const l of this.lanes) {
+        const gp = l.scene.frame.globalPath();
+        this.line(ctx, gp, gp.length / 2, l.colour, 1.6, 0.7);
+      }
       ctx.setLineDash([]);
     }
     // Earlier planners' trails are wider, so a later one driving the same
@@ -83,40 +81,52 @@ export class OverlayView {
       this.line(ctx, l.scene.trail, l.scene.trailLen, '#ffffff', w + 2.5, 0.85);
       this.line(ctx, l.scene.trail, l.scene.trailLen, l.colour, w, 1);
     });
-    for (const l of this.lanes) {
-      const s = l.scene.state;
-      const [x, y] = this.view.toScreen(s[0], s[1]);
-      const r = l.scene.robot;
-      ctx.save();
-      ctx.translate(x, y);
-      ctx.rotate(-s[2]);
-      ctx.beginPath();
-      let nose: number;
-      if (r.kind === 'circle') {
-        const rr = Math.max(4, r.radius * k);
-        ctx.arc(0, 0, rr, 0, Math.PI * 2);
-        nose = rr;
-      } else {
-        const [len, wid] = [Math.max(6, r.length * k), Math.max(4, r.width * k)];
-        ctx.rect(-len / 2, -wid / 2, len, wid);
-        nose = len / 2;
-      }
-      ctx.globalAlpha = l.running ? 0.85 : 0.6;
-      ctx.fillStyle = l.colour;
-      ctx.fill();
-      ctx.globalAlpha = 1;
-      ctx.lineWidth = 2;
-      ctx.strokeStyle = '#fff';
-      ctx.stroke();
-      ctx.beginPath();
-      ctx.moveTo(0, 0);
-      ctx.lineTo(nose, 0);
-      ctx.lineWidth = 2.5;
-      ctx.strokeStyle = '#0f172a';
-      ctx.stroke();
-      ctx.restore();
-    }
+    for (const l of this.lanes) this.robot(ctx, l, k);
     ctx.restore();
+  }
+
+  /** A planner's robot in its colour, in screen space: the footprint the
+   *  core drew (a disc at least 4 px) and its heading. */
+  private robot(ctx: CanvasRenderingContext2D, l: Lane, k: number): void {
+    const d = l.scene.frame.of(Layer.Robot);
+    ctx.beginPath();
+    let nose: [number, number, number, number] | null = null;
+    for (let i = d.first(Layer.Robot); i < d.end(Layer.Robot); i++) {
+      const v = d.numbers(i);
+      const at = (j: number) => this.view.toScreen(v[j], v[j + 1]);
+      if (d.shape(i) === Shape.Segments) nose = [...at(0), ...at(2)];
+      else if (d.shape(i) === Shape.Discs) {
+        // Starts at the heading (screen y points down), as a rotated body's would.
+        const [x, y] = at(0);
+        const a = -headingOf(d);
+        ctx.arc(x, y, Math.max(4, v[2] * k), a, a + Math.PI * 2);
+      } else {
+        for (let j = 0; j + 1 < v.length; j += 2) {
+          const [x, y] = at(j);
+          if (j === 0) ctx.moveTo(x, y);
+          else ctx.lineTo(x, y);
+        }
+        ctx.closePath();
+      }
+    }
+    ctx.globalAlpha = l.running ? 0.85 : 0.6;
+    ctx.fillStyle = l.colour;
+    ctx.fill();
+    ctx.globalAlpha = 1;
+    ctx.lineWidth = 2;
+    ctx.strokeStyle = '#fff';
+    ctx.stroke();
+    if (!nose) return;
+    // A disc drawn larger than its size keeps its heading line to the rim.
+    const [x0, y0, x1, y1] = nose;
+    const len = Math.hypot(x1 - x0, y1 - y0);
+    const f = len > 0 && len < 4 ? 4 / len : 1;
+    ctx.beginPath();
+    ctx.moveTo(x0, y0);
+    ctx.lineTo(x0 + (x1 - x0) * f, y0 + (y1 - y0) * f);
+    ctx.lineWidth = 2.5;
+    ctx.strokeStyle = '#0f172a';
+    ctx.stroke();
   }
 
   /** A world polyline drawn in screen space. */

@@ -7,9 +7,16 @@
 // pointer gestures, draws their previews and keeps the history.
 
 import type { SimHandle } from '../../pkg/planlab_wasm.js';
-import type { RobotView } from './view';
+import type { RobotView } from '../scene/view';
+import { Layer, drawnFrame, mask, type Frame } from '../scene/draw';
 import { History, type Snapshot } from './history';
 import { el, messageOf } from '../shell/dom';
+
+/** The handle's path and goals now, as the core draws them. */
+function drawnNow(sim: SimHandle | null): Frame | null {
+  const layers = mask(Layer.GlobalPath, Layer.Goals);
+  return sim ? drawnFrame(sim.draw(layers, 0), layers) : null;
+}
 
 export type EditTool = 'wall' | 'erase' | 'rect' | 'disc' | 'start' | 'path';
 
@@ -135,9 +142,9 @@ export class Editor {
         }
       },
       gridHash: () => sim()?.gridHash() ?? null,
-      globalPath: () => Array.from(sim()?.globalPath() ?? []),
+      globalPath: () => Array.from(drawnNow(sim())?.globalPath() ?? []),
       start: () => Array.from(sim()?.start() ?? []),
-      goal: () => Array.from(sim()?.goal() ?? []),
+      goal: () => drawnNow(sim())?.goal(1) ?? [],
       movers: () => JSON.parse(sim()?.moversJson() ?? '[]'),
       mapSize: () => {
         const s = sim();

@@ -11,7 +11,7 @@ import { MapHandle, rosImageName, scenarioForMap, type SimHandle } from '../../p
 import { decodeScenarioHash, shareLink } from '../shell/share';
 import { checkSizes } from '../shell/scenario-files';
 import { sceneSvg } from './svg';
-import type { MapInfo, Scene } from './view';
+import type { MapInfo, Scene } from '../scene/view';
 import './files.css';
 import { messageOf } from '../shell/dom';
 

@@ -4,7 +4,8 @@
 // Coordinates are world metres (y up) under one flipping transform, so the
 // file measures in metres like the scenario; nothing is rasterised.
 
-import { COLORS, knownBox, type MapInfo, type Scene } from './view';
+import { COLORS, knownBox, type MapInfo, type Scene } from '../scene/view';
+import { Layer, Shape } from '../scene/draw';
 
 const rgb = (c: readonly number[]) => `rgb(${c[0]},${c[1]},${c[2]})`;
 
@@ -93,7 +94,8 @@ export function sceneSvg(m: MapInfo, S: Scene, title: string, time: number): str
   if (unknown) out.push(`<path id="unknown" fill="${rgb(COLORS.unknown)}" d="${unknown}"/>`);
   const walls = rectPath(mergeCells(m, 1));
   if (walls) out.push(`<path id="walls" fill="${rgb(COLORS.occupied)}" d="${walls}"/>`);
-  const gp = S.globalPath;
+  const f = S.frame;
+  const gp = f.globalPath();
   if (gp.length >= 4) {
     out.push(
       `<polyline id="global-path" fill="none" stroke="rgba(225,29,72,0.75)" stroke-width="${n(2.5 * px)}" points="${polyline(gp, gp.length / 2)}"/>`,
@@ -105,12 +107,12 @@ export function sceneSvg(m: MapInfo, S: Scene, title: string, time: number): str
     );
   }
   out.push('<g id="movers">');
-  const mv = S.movers;
-  for (let i = 0; i + 5 < mv.length; i += 6) {
-    const cls = S.classes.get(mv[i]);
-    const [x, y, vx, vy] = [mv[i + 2], mv[i + 3], mv[i + 4], mv[i + 5]];
+  const mv = f.of(Layer.Movers);
+  for (let i = mv.first(Layer.Movers); i < mv.end(Layer.Movers); i++) {
+    const cls = Number.isNaN(mv.value(i)) ? 3 : mv.value(i);
+    const [x, y, r, vx, vy] = mv.numbers(i);
     out.push(
-      `<g class="mover" data-id="${mv[i]}"><circle cx="${n(x)}" cy="${n(y)}" r="${n(mv[i + 1])}" fill="${COLORS.classes[cls ?? 3]}" fill-opacity="0.78" stroke="#fff" stroke-width="${n(1.5 * px)}"/>` +
+      `<g class="mover" data-id="${mv.tag(i)}"><circle cx="${n(x)}" cy="${n(y)}" r="${n(r)}" fill="${COLORS.classes[cls]}" fill-opacity="0.78" stroke="#fff" stroke-width="${n(1.5 * px)}"/>` +
         (Math.hypot(vx, vy) > 1e-9
           ? `<line x1="${n(x)}" y1="${n(y)}" x2="${n(x + vx)}" y2="${n(y + vy)}" stroke="#0f172a" stroke-width="${n(2 * px)}"/>`
           : '') +
@@ -118,23 +120,23 @@ export function sceneSvg(m: MapInfo, S: Scene, title: string, time: number): str
     );
   }
   out.push('</g>');
-  const marker = (id: string, x: number, y: number, r: number, fill: string) =>
+  const marker = (id: string, [x, y]: [number, number], r: number, fill: string) =>
     `<circle id="${id}" cx="${n(x)}" cy="${n(y)}" r="${n(r)}" fill="${fill}" stroke="#fff" stroke-width="${n(2 * px)}"/>`;
-  out.push(marker('start', S.start[0], S.start[1], 7 * px, COLORS.start));
-  out.push(marker('goal', S.goal[0], S.goal[1], 10 * px, COLORS.goal));
-  const [x, y, th] = [S.state[0], S.state[1], S.state[2]];
-  const r = S.robot;
-  const deg = (th * 180) / Math.PI;
-  const body =
-    r.kind === 'circle'
-      ? `<circle cx="0" cy="0" r="${n(r.radius)}"/>`
-      : `<rect x="${n(-r.length / 2)}" y="${n(-r.width / 2)}" width="${n(r.length)}" height="${n(r.width)}"/>`;
-  const nose = r.kind === 'circle' ? r.radius : r.length / 2;
-  out.push(
-    `<g id="robot" transform="translate(${n(x)},${n(y)}) rotate(${n(deg)})">` +
-      `<g fill="rgba(15,23,42,0.82)" stroke="#fff" stroke-width="${n(2 * px)}">${body}</g>` +
-      `<line x1="0" y1="0" x2="${n(nose)}" y2="0" stroke="#fbbf24" stroke-width="${n(2.5 * px)}"/></g>`,
-  );
+  out.push(marker('start', f.goal(0), 7 * px, COLORS.start));
+  out.push(marker('goal', f.goal(1), 10 * px, COLORS.goal));
+  // The footprint the core drew (disc or polygon) and its heading line.
+  const rb = f.of(Layer.Robot);
+  const parts: string[] = [];
+  for (let i = rb.first(Layer.Robot); i < rb.end(Layer.Robot); i++) {
+    const v = rb.numbers(i);
+    if (rb.shape(i) === Shape.Segments) {
+      parts.push(`<line x1="${n(v[0])}" y1="${n(v[1])}" x2="${n(v[2])}" y2="${n(v[3])}" stroke="#fbbf24" stroke-width="${n(2.5 * px)}"/>`);
+    } else {
+      const body = rb.shape(i) === Shape.Discs ? `<circle cx="${n(v[0])}" cy="${n(v[1])}" r="${n(v[2])}"/>` : `<polygon points="${polyline(v, v.length / 2)}"/>`;
+      parts.push(`<g fill="rgba(15,23,42,0.82)" stroke="#fff" stroke-width="${n(2 * px)}">${body}</g>`);
+    }
+  }
+  out.push(`<g id="robot">${parts.join('')}</g>`);
   out.push('</g>', '</svg>');
   return out.join('\n') + '\n';
 }

@@ -21,10 +21,11 @@
 //   one while a past frame is shown returns the view to the live end.
 
 import type { SimHandle } from '../../pkg/planlab_wasm.js';
-import type { RobotView, Fan } from './view';
+import type { RobotView } from '../scene/view';
 import type { SeriesPlots } from './plots';
 import './timeline.css';
-import { fanOf, lidarOf } from './pull';
+import { pullReplayed } from '../scene/pull';
+import { DrawList, EMPTY, LIDAR, Layer, mask } from '../scene/draw';
 
 /** What the timeline needs from the page (main.ts). */
 export interface TimelineHost {
@@ -41,7 +42,8 @@ export interface TimelineHost {
   speed(): number;
 }
 
-const GOAL_KINDS = ['final', 'intermediate', 'virtual', 'temporary'];
+/** What a trace row draws: the robot, movers and goals of that time. */
+const ROW = mask(Layer.Robot, Layer.Movers, Layer.Goals);
 
 /** Rebuilding the scratch while dragging waits this long after the last
  *  slider move, ms. */
@@ -56,10 +58,6 @@ function button(text: string, title: string, id: string): HTMLButtonElement {
   b.title = title;
   b.id = id;
   return b;
-}
-
-function emptyFan(): Fan {
-  return { points: new Float32Array(0), offsets: new Uint32Array(0), scores: new Float32Array(0), admissible: new Uint8Array(0), chosen: -1 };
 }
 
 export class Timeline {
@@ -77,8 +75,6 @@ export class Timeline {
   private lastSim: SimHandle | null = null;
   private lastRun = -1;
   private edits = 0;
-  /** Mover radii by id, as seen live (removed movers keep theirs). */
-  private radii = new Map<number, number>();
   private branchedAt: number | null = null;
   private playback: { target: number; hash: string; raf: number; last: number; accum: number } | null = null;
   /** Time of the last scratch rebuild / advance, ms (for the tests and
@@ -136,12 +132,17 @@ export class Timeline {
       frame: () => this.current,
       scrubbed: () => this.scrubbed,
       drawnPose: () => Array.from(host.view.scene.state),
-      drawnMovers: () => Array.from(host.view.scene.movers),
-      drawnGoal: () => [...host.view.scene.currentGoal, host.view.scene.goalKind],
+      drawnMovers: () => host.view.scene.frame.movers(),
+      drawnGoal: () => [...host.view.scene.frame.goal(2), host.view.scene.frame.goalKind()],
       trailLen: () => host.view.scene.trailLen,
       drawnLidar: () => {
-        const l = host.view.scene.lidar;
-        return l ? { rays: l.rays.length / 2 - 1, sensor: [l.rays[0], l.rays[1]], seen: host.view.scene.seenCount } : null;
+        const S = host.view.scene;
+        const d = S.frame.of(Layer.LidarRays);
+        if (!S.frame.hasLidar() || d.count(Layer.LidarRays) === 0) return null;
+        let rays = 0;
+        for (let i = d.first(Layer.LidarRays); i < d.end(Layer.LidarRays); i++) rays += (d.stop(i) - d.start(i)) / 4;
+        const a = d.start(d.first(Layer.LidarRays));
+        return { rays, sensor: [d.data[a], d.data[a + 1]], seen: S.seenCount };
       },
       plotCursors: () => host.plots.cursorRows(),
       plotsShown: () => host.plots.shownKeys,
@@ -257,48 +258,12 @@ export class Timeline {
     const r = src.traceRow(k);
     if (r.length < 19) return;
     S.state = Float64Array.of(r[1], r[2], r[3], r[4], r[5], r[6]);
-    S.currentGoal = [r[11], r[12]];
-    S.goalKind = GOAL_KINDS[r[13]] ?? 'final';
-    // Movers at that time; velocities from the neighbouring rows.
-    const m = src.traceMovers(k);
-    const ahead = k + 1 < src.traceLen;
-    const nb = src.traceMovers(ahead ? k + 1 : Math.max(0, k - 1));
-    const sign = ahead ? 1 : -1;
-    const dt = src.dt;
-    const movers = new Float64Array((m.length / 3) * 6);
-    for (let i = 0, j = 0; i + 2 < m.length; i += 3, j += 6) {
-      const id = m[i];
-      let vx = 0;
-      let vy = 0;
-      for (let q = 0; q + 2 < nb.length; q += 3) {
-        if (nb[q] === id) {
-          vx = (sign * (nb[q + 1] - m[i + 1])) / dt;
-          vy = (sign * (nb[q + 2] - m[i + 2])) / dt;
-          break;
-        }
-      }
-      movers.set([id, this.radii.get(id) ?? 0.2, m[i + 1], m[i + 2], vx, vy], j);
-    }
-    S.movers = movers;
-    const cls = src.traceClasses(k);
-    S.classes.clear();
-    for (let i = 0; i + 1 < cls.length; i += 2) S.classes.set(cls[i], cls[i + 1]);
+    // Robot, movers (velocities from the neighbouring rows) and the goal
+    // steered to, as the core draws that row.
+    S.frame.put(new DrawList(src.drawRow(k, ROW)), ROW);
     S.trailLen = Math.min(k + 1, S.trail.length / 2);
-    if (h) {
-      S.fan = S.show.fan ? fanOf(h) : emptyFan();
-      S.lidar = lidarOf(h);
-      if (S.lidar) {
-        S.seen = h.seenCells();
-        S.seenCount = h.seenCount;
-      }
-      S.globalPath = h.globalPath();
-      S.keypoints = h.keypoints();
-      const g = h.goal();
-      S.goal = [g[0], g[1]];
-    } else {
-      S.fan = emptyFan();
-      S.lidar = null;
-    }
+    if (h) pullReplayed(h, S);
+    else S.frame.put(EMPTY, mask(Layer.Fan, Layer.Chosen) | LIDAR);
     this.root.dataset.detail = h ? 'replayed' : 'trace';
     this.updateBar(sim, k, r, src.traceMode(k));
     this.host.plots.setFrame(k);
@@ -341,13 +306,10 @@ export class Timeline {
       this.note.textContent = this.branchedAt !== null ? `branched at frame ${this.branchedAt}` : '';
       this.root.dataset.branch = this.branchedAt !== null ? String(this.branchedAt) : '';
       this.branchedAt = null;
-      this.radii.clear();
       delete this.root.dataset.replayMatch;
       delete this.root.dataset.replayHash;
       this.replayBtn.classList.remove('ok', 'bad');
     }
-    const S = this.host.view.scene;
-    for (let i = 0; i + 5 < S.movers.length; i += 6) this.radii.set(S.movers[i], S.movers[i + 1]);
     const edits = sim.editSteps();
     if (edits.length !== this.edits) {
       this.edits = edits.length;

@@ -28,13 +28,15 @@ export interface ErrorBanner {
 }
 
 /** The page's error banner (`error`, with `body[data-error]` set while
- *  shown); also catches uncaught errors and rejections. */
-export function errorBanner(error: HTMLElement, body: HTMLElement): ErrorBanner {
+ *  shown; `onShow` runs after each message shown); also catches uncaught
+ *  errors and rejections. */
+export function errorBanner(error: HTMLElement, body: HTMLElement, onShow?: () => void): ErrorBanner {
   const showError = (text: string): void => {
     error.textContent = text;
     error.title = text;
     error.hidden = false;
     body.dataset.error = 'true';
+    onShow?.();
   };
   const clearError = (): void => {
     error.hidden = true;

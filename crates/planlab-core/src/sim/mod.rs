@@ -30,7 +30,7 @@ pub use edit::{
     generated_sim_config, is_start_collision, SetupEdit, GENERATED_MAX_TIME, GENERATED_STUCK_TIME,
 };
 pub use replay::{Edit, Recording};
-pub use trace::{Trace, TraceStep, CSV_HEADER};
+pub use trace::{Column, Trace, TraceStep};
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;

@@ -54,8 +54,71 @@ pub struct Trace {
     pub steps: Vec<TraceStep>,
 }
 
-/// The CSV header, in column order.
-pub const CSV_HEADER: &str = "t,x,y,theta,v,vy,w,cmd_v,cmd_vy,cmd_w,clearance,goal_x,goal_y,goal_kind,mode,accel_z,load_fl,load_fr,load_rl,load_rr,classes,movers";
+/// One value of a trace row, in the row's column order: what the CSV
+/// writer, the hash and the page's row export all walk, so the columns are
+/// listed once ([`TraceStep::columns`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Column<'a> {
+    /// A float column: its CSV name and value.
+    Num(&'static str, f64),
+    /// `goal_kind`.
+    GoalKind(GoalKind),
+    /// `mode`, the planner's strategy name.
+    Mode(&'a str),
+    /// `load_fl`, `load_fr`, `load_rl`, `load_rr` (N); `None` without a
+    /// vehicle model.
+    WheelLoads(Option<[f64; 4]>),
+    /// `classes`: (mover id, class) pairs.
+    Classes(&'a [(u32, ObstacleClass)]),
+    /// `movers`: (mover id, centre) pairs.
+    Movers(&'a [(u32, [f64; 2])]),
+}
+
+/// CSV names of the wheel-load columns.
+const LOAD_NAMES: [&str; 4] = ["load_fl", "load_fr", "load_rl", "load_rr"];
+
+impl Column<'_> {
+    /// The CSV column names this value fills (four for the wheel loads).
+    pub fn csv_names(&self) -> &[&'static str] {
+        match self {
+            Column::Num(name, _) => std::slice::from_ref(name),
+            Column::GoalKind(_) => &["goal_kind"],
+            Column::Mode(_) => &["mode"],
+            Column::WheelLoads(_) => &LOAD_NAMES,
+            Column::Classes(_) => &["classes"],
+            Column::Movers(_) => &["movers"],
+        }
+    }
+}
+
+impl TraceStep {
+    /// The row's values in column order (the CSV's, the hash's and the
+    /// page's `traceRow`).
+    pub fn columns(&self) -> [Column<'_>; 19] {
+        use Column::Num;
+        [
+            Num("t", self.t),
+            Num("x", self.x),
+            Num("y", self.y),
+            Num("theta", self.theta),
+            Num("v", self.v),
+            Num("vy", self.vy),
+            Num("w", self.w),
+            Num("cmd_v", self.cmd.v),
+            Num("cmd_vy", self.cmd.vy),
+            Num("cmd_w", self.cmd.w),
+            Num("clearance", self.clearance),
+            Num("goal_x", self.goal[0]),
+            Num("goal_y", self.goal[1]),
+            Column::GoalKind(self.goal_kind),
+            Column::Mode(&self.mode),
+            Num("accel_z", self.accel_z),
+            Column::WheelLoads(self.wheel_loads),
+            Column::Classes(&self.classes),
+            Column::Movers(&self.movers),
+        ]
+    }
+}
 
 fn goal_kind_str(k: GoalKind) -> &'static str {
     match k {
@@ -90,57 +153,98 @@ impl Fnv {
     fn u(&mut self, x: u64) {
         self.bytes(&x.to_le_bytes());
     }
+
+    /// One column: float bits, enum tags, option tags, list lengths and
+    /// the mode's bytes.
+    fn column(&mut self, c: &Column<'_>) {
+        match *c {
+            Column::Num(_, x) => self.f(x),
+            Column::GoalKind(k) => self.u(k as u64),
+            Column::Mode(m) => {
+                self.u(m.len() as u64);
+                self.bytes(m.as_bytes());
+            }
+            Column::WheelLoads(Some(l)) => {
+                self.u(1);
+                for x in l {
+                    self.f(x);
+                }
+            }
+            Column::WheelLoads(None) => self.u(0),
+            Column::Classes(cs) => {
+                self.u(cs.len() as u64);
+                for (id, c) in cs {
+                    self.u(u64::from(*id));
+                    self.u(*c as u64);
+                }
+            }
+            Column::Movers(ms) => {
+                self.u(ms.len() as u64);
+                for (id, p) in ms {
+                    self.u(u64::from(*id));
+                    self.f(p[0]);
+                    self.f(p[1]);
+                }
+            }
+        }
+    }
+}
+
+/// Writes one column's CSV cells (without the separator after them).
+fn write_csv(s: &mut String, c: &Column<'_>) {
+    match *c {
+        Column::Num(_, x) => {
+            let _ = write!(s, "{x:?}");
+        }
+        Column::GoalKind(k) => s.push_str(goal_kind_str(k)),
+        Column::Mode(m) => s.push_str(&csv_field(m)),
+        Column::WheelLoads(Some(l)) => {
+            let _ = write!(s, "{:?},{:?},{:?},{:?}", l[0], l[1], l[2], l[3]);
+        }
+        Column::WheelLoads(None) => s.push_str(",,,"),
+        Column::Classes(cs) => {
+            for (i, (id, c)) in cs.iter().enumerate() {
+                let sep = if i > 0 { ";" } else { "" };
+                let _ = write!(s, "{sep}{id}:{}", class_str(*c));
+            }
+        }
+        Column::Movers(ms) => {
+            for (i, (id, p)) in ms.iter().enumerate() {
+                let sep = if i > 0 { ";" } else { "" };
+                let _ = write!(s, "{sep}{id}:{:?}:{:?}", p[0], p[1]);
+            }
+        }
+    }
 }
 
 impl Trace {
-    /// The trace as CSV: [`CSV_HEADER`], then one line per row. Floats are
-    /// written in Rust's shortest round-trip form (`{:?}`), so parsing them
-    /// gives the same bits. `classes` is `id:class` joined by `;`, `movers`
-    /// `id:x:y` joined by `;`; wheel loads are empty without a vehicle model.
+    /// The CSV header: every column's name in order.
+    pub fn csv_header() -> String {
+        let row = TraceStep::default();
+        let names: Vec<&str> = row
+            .columns()
+            .iter()
+            .flat_map(|c| c.csv_names().iter().copied())
+            .collect();
+        names.join(",")
+    }
+
+    /// The trace as CSV: [`Trace::csv_header`], then one line per row.
+    /// Floats are written in Rust's shortest round-trip form (`{:?}`), so
+    /// parsing them gives the same bits. `classes` is `id:class` joined by
+    /// `;`, `movers` `id:x:y` joined by `;`; wheel loads are empty without
+    /// a vehicle model.
     pub fn to_csv(&self) -> String {
         let mut s = String::with_capacity(64 + self.steps.len() * 200);
-        s.push_str(CSV_HEADER);
+        s.push_str(&Trace::csv_header());
         s.push('\n');
         for r in &self.steps {
-            let _ = write!(
-                s,
-                "{:?},{:?},{:?},{:?},{:?},{:?},{:?},{:?},{:?},{:?},{:?},{:?},{:?},{},{},{:?},",
-                r.t,
-                r.x,
-                r.y,
-                r.theta,
-                r.v,
-                r.vy,
-                r.w,
-                r.cmd.v,
-                r.cmd.vy,
-                r.cmd.w,
-                r.clearance,
-                r.goal[0],
-                r.goal[1],
-                goal_kind_str(r.goal_kind),
-                csv_field(&r.mode),
-                r.accel_z,
-            );
-            match r.wheel_loads {
-                Some(l) => {
-                    let _ = write!(s, "{:?},{:?},{:?},{:?},", l[0], l[1], l[2], l[3]);
+            for (i, c) in r.columns().iter().enumerate() {
+                if i > 0 {
+                    s.push(',');
                 }
-                None => s.push_str(",,,,"),
+                write_csv(&mut s, c);
             }
-            let classes: Vec<String> = r
-                .classes
-                .iter()
-                .map(|(id, c)| format!("{id}:{}", class_str(*c)))
-                .collect();
-            s.push_str(&classes.join(";"));
-            s.push(',');
-            let movers: Vec<String> = r
-                .movers
-                .iter()
-                .map(|(id, p)| format!("{id}:{:?}:{:?}", p[0], p[1]))
-                .collect();
-            s.push_str(&movers.join(";"));
             s.push('\n');
         }
         s
@@ -154,46 +258,8 @@ impl Trace {
         let mut h = Fnv(0xCBF2_9CE4_8422_2325);
         h.u(self.steps.len() as u64);
         for r in &self.steps {
-            for x in [
-                r.t,
-                r.x,
-                r.y,
-                r.theta,
-                r.v,
-                r.vy,
-                r.w,
-                r.cmd.v,
-                r.cmd.vy,
-                r.cmd.w,
-                r.clearance,
-                r.goal[0],
-                r.goal[1],
-            ] {
-                h.f(x);
-            }
-            h.u(r.goal_kind as u64);
-            h.u(r.mode.len() as u64);
-            h.bytes(r.mode.as_bytes());
-            h.f(r.accel_z);
-            match r.wheel_loads {
-                Some(l) => {
-                    h.u(1);
-                    for x in l {
-                        h.f(x);
-                    }
-                }
-                None => h.u(0),
-            }
-            h.u(r.classes.len() as u64);
-            for (id, c) in &r.classes {
-                h.u(u64::from(*id));
-                h.u(*c as u64);
-            }
-            h.u(r.movers.len() as u64);
-            for (id, p) in &r.movers {
-                h.u(u64::from(*id));
-                h.f(p[0]);
-                h.f(p[1]);
+            for c in &r.columns() {
+                h.column(c);
             }
         }
         h.0
@@ -237,8 +303,11 @@ mod tests {
         };
         let csv = tr.to_csv();
         let lines: Vec<&str> = csv.lines().collect();
-        assert_eq!(lines[0], CSV_HEADER);
-        let n = CSV_HEADER.split(',').count();
+        assert_eq!(
+            lines[0],
+            "t,x,y,theta,v,vy,w,cmd_v,cmd_vy,cmd_w,clearance,goal_x,goal_y,goal_kind,mode,accel_z,load_fl,load_fr,load_rl,load_rr,classes,movers"
+        );
+        let n = lines[0].split(',').count();
         for l in &lines[1..] {
             assert_eq!(l.split(',').count(), n, "{l}");
         }

@@ -3,6 +3,8 @@
 // one per plan; each frame only scales those two images and strokes the
 // path on top, so 512×512 maps pan and zoom smoothly. Nothing here plans.
 
+import { knownBox, offscreen, sizeToBox } from '../shell/cells';
+
 export type Cell = [number, number];
 
 export interface Layers {
@@ -34,37 +36,6 @@ interface View {
   /** CSS-pixel position of the map's top-left corner in the canvas. */
   ox: number;
   oy: number;
-}
-
-function offscreen(w: number, h: number): [HTMLCanvasElement, CanvasRenderingContext2D] {
-  const c = document.createElement('canvas');
-  c.width = w;
-  c.height = h;
-  const ctx = c.getContext('2d');
-  if (!ctx) throw new Error('this browser cannot draw on a 2D canvas');
-  return [c, ctx];
-}
-
-/** Known-cell bounding box padded by a few cells; the whole map if none. */
-function knownBox(w: number, h: number, cells: Uint8Array): [number, number, number, number] {
-  let c0 = w;
-  let r0 = h;
-  let c1 = -1;
-  let r1 = -1;
-  for (let r = 0; r < h; r++) {
-    const row = r * w;
-    for (let c = 0; c < w; c++) {
-      if (cells[row + c] !== 2) {
-        if (c < c0) c0 = c;
-        if (c > c1) c1 = c;
-        if (r < r0) r0 = r;
-        if (r > r1) r1 = r;
-      }
-    }
-  }
-  if (c1 < 0) return [0, 0, w, h];
-  const pad = Math.max(2, Math.round(0.04 * Math.max(c1 - c0, r1 - r0)));
-  return [Math.max(0, c0 - pad), Math.max(0, r0 - pad), Math.min(w, c1 + 1 + pad), Math.min(h, r1 + 1 + pad)];
 }
 
 export class MapView {
@@ -201,21 +172,16 @@ export class MapView {
   }
 
   private resize(): void {
-    const rect = this.canvas.getBoundingClientRect();
-    const dpr = window.devicePixelRatio || 1;
     const [oldW, oldH] = [this.cssW, this.cssH];
-    this.cssW = rect.width;
-    this.cssH = rect.height;
-    this.canvas.width = Math.max(1, Math.round(rect.width * dpr));
-    this.canvas.height = Math.max(1, Math.round(rect.height * dpr));
+    [this.cssW, this.cssH] = sizeToBox(this.canvas);
     if (this.fitted) {
       this.fit();
     } else {
       // Keep what is in the middle of the view in the middle.
       this.view = {
         ...this.view,
-        ox: this.view.ox + (rect.width - oldW) / 2,
-        oy: this.view.oy + (rect.height - oldH) / 2,
+        ox: this.view.ox + (this.cssW - oldW) / 2,
+        oy: this.view.oy + (this.cssH - oldH) / 2,
       };
       this.publishView();
     }

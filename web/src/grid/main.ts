@@ -1,0 +1,368 @@
+// Playground wiring: loads maps through the wasm readers, turns clicks and
+// drags into map edits and endpoint moves, and re-plans through the wasm
+// `plan` after every edit. No planning happens in this file: it converts
+// control values into the core's GridPlanOptions and paints what comes back.
+
+import init, { MapHandle, plan, ScenarioHandle, defaultPlanOptions, inflationMask } from '../../pkg/planlab_wasm.js';
+import { MapView, type Cell } from './render';
+import { installShell } from '../shell/help';
+import { gridHelp } from '../shell/help-content';
+import { gridUrl } from './grid-url';
+import { loadPresetFiles } from '../shell/scenario-files';
+import { el, errorBanner, messageOf } from '../shell/dom';
+import { panZoom } from '../shell/canvas-input';
+import { applyOptions, getDefaults, onOptionInput, readOptions, setDefaults, showExpanded, syncControls } from './options';
+import { installScenario, loadFiles, loadPreset, type MapHost } from './maps';
+
+type Tool = 'start' | 'goal' | 'wall' | 'erase';
+
+const CELL_NAMES = ['free', 'occupied', 'unknown'];
+
+// ---------------------------------------------------------------- elements
+const ui = {
+  body: document.body,
+  hint: el('hint'),
+  preset: el<HTMLSelectElement>('preset'),
+  file: el<HTMLInputElement>('file-input'),
+  mapName: el('map-name'),
+  mapSize: el('map-size'),
+  mapRes: el('map-resolution'),
+  reset: el<HTMLButtonElement>('reset-map'),
+  fitView: el<HTMLButtonElement>('fit-view'),
+  tools: Array.from(document.querySelectorAll<HTMLButtonElement>('#tools [data-tool]')),
+  error: el('error'),
+  canvas: el<HTMLCanvasElement>('map-canvas'),
+  hover: el('hover'),
+  status: el('status'),
+  metric: {
+    cost: el('metric-cost'),
+    length: el('metric-length'),
+    expanded: el('metric-expanded'),
+    nodes: el('metric-nodes'),
+    keypoints: el('metric-keypoints'),
+    time: el('metric-time'),
+  },
+};
+
+// ------------------------------------------------------------------ errors
+// A shown error also sets body[data-state=error] (the tests wait on it).
+const { showError, clearError, guard } = errorBanner(ui.error, ui.body, () => (ui.body.dataset.state = 'error'));
+
+// ------------------------------------------------------------------- state
+const view = new MapView(ui.canvas);
+let map: MapHandle | null = null;
+/** The map as loaded, for "Reset edits". */
+let loaded: MapHandle | null = null;
+let start: Cell | null = null;
+let goal: Cell | null = null;
+let tool: Tool = 'start';
+let mapVersion = 0;
+let inflationKey = '';
+let inflation: Uint8Array | null = null;
+let planSeq = 0;
+let cellsDirty = false;
+let replanQueued = false;
+
+// ----------------------------------------------------------------- metrics
+function setMetric(e: HTMLElement, text: string, value: number | null): void {
+  e.textContent = text;
+  if (value === null) delete e.dataset.value;
+  else e.dataset.value = String(value);
+}
+
+function clearMetrics(): void {
+  for (const e of Object.values(ui.metric)) setMetric(e, '—', null);
+}
+
+function hintForTool(): string {
+  switch (tool) {
+    case 'start':
+      return 'Click a free cell to place the start.';
+    case 'goal':
+      return 'Click a free cell to place the goal.';
+    case 'wall':
+      return 'Drag on the map to paint walls.';
+    case 'erase':
+      return 'Drag on the map to erase walls.';
+  }
+}
+
+function setTool(t: Tool): void {
+  tool = t;
+  for (const b of ui.tools) b.setAttribute('aria-checked', String(b.dataset.tool === t));
+  ui.hint.textContent = hintForTool();
+}
+
+// ---------------------------------------------------------------- planning
+function scheduleReplan(): void {
+  if (replanQueued) return;
+  replanQueued = true;
+  requestAnimationFrame(() => {
+    replanQueued = false;
+    try {
+      if (cellsDirty && map) {
+        cellsDirty = false;
+        view.updateCells(map.cells());
+      }
+      replan();
+    } catch (e) {
+      showError(messageOf(e));
+    }
+  });
+}
+
+function updateInflation(opts: Record<string, unknown>): void {
+  if (!map) return;
+  const r = opts.inflate_m as number;
+  const key = `${mapVersion}|${r}|${opts.allow_unknown}`;
+  if (key === inflationKey) return;
+  inflationKey = key;
+  inflation = null;
+  if (Number.isFinite(r) && r > 0) {
+    try {
+      inflation = inflationMask(map, opts);
+    } catch {
+      // plan() reports the same problem with the core's message.
+      inflation = null;
+    }
+  }
+}
+
+function replan(): void {
+  if (!map) return;
+  const opts = readOptions();
+  updateInflation(opts);
+  view.setEndpoints(start, goal);
+  const empty = { path: null, expanded: null, keyPoints: null, featureNodes: null, inflation };
+  ui.canvas.dataset.start = start ? start.join(',') : '';
+  ui.canvas.dataset.goal = goal ? goal.join(',') : '';
+  planSeq += 1;
+  ui.body.dataset.planSeq = String(planSeq);
+  if (!start || !goal) {
+    view.setLayers(empty);
+    clearMetrics();
+    clearError();
+    ui.body.dataset.state = 'idle';
+    ui.canvas.dataset.pathLen = '0';
+    ui.status.textContent = !start ? 'Place the start: click a free cell.' : 'Place the goal: click a free cell.';
+    return;
+  }
+  const t0 = performance.now();
+  let res;
+  try {
+    res = plan(map, start[0], start[1], goal[0], goal[1], opts, showExpanded());
+  } catch (e) {
+    view.setLayers(empty);
+    clearMetrics();
+    ui.canvas.dataset.pathLen = '0';
+    ui.status.textContent = 'No path.';
+    showError(messageOf(e));
+    return;
+  }
+  const ms = performance.now() - t0;
+  try {
+    const path = res.path();
+    const keyPoints = res.keyPoints();
+    const featureNodes = res.featureNodes();
+    const safety = res.safety();
+    view.setLayers({ path, expanded: res.expanded(), keyPoints, featureNodes, inflation });
+    clearError();
+    ui.body.dataset.state = 'ok';
+    setMetric(ui.metric.cost, res.cost.toFixed(4), res.cost);
+    setMetric(ui.metric.length, `${res.lengthM.toFixed(2)} m`, res.lengthM);
+    setMetric(ui.metric.expanded, res.expandedCount.toLocaleString('en-US'), res.expandedCount);
+    setMetric(ui.metric.nodes, String(res.pathLen), res.pathLen);
+    const kp = keyPoints.length / 2;
+    const fn = featureNodes.length / 2;
+    const parts = [];
+    if (opts.keypoints) parts.push(String(kp));
+    if (opts.bottom_up_eps !== null) parts.push(`${fn} BU`);
+    setMetric(ui.metric.keypoints, parts.length ? parts.join(' · ') : '—', opts.keypoints ? kp : null);
+    setMetric(ui.metric.time, `${ms.toFixed(2)} ms`, ms);
+    ui.canvas.dataset.pathLen = String(res.pathLen);
+    ui.canvas.dataset.path = Array.from(path).join(',');
+    let status = `Path found: ${res.pathLen} cells, ${res.lengthM.toFixed(2)} m`;
+    if (safety.length) status += ` · min safety index ${safety.reduce((a, b) => Math.min(a, b), Infinity).toFixed(2)}/10`;
+    ui.status.textContent = status;
+  } finally {
+    res.free();
+  }
+}
+
+// -------------------------------------------------------------- map loading
+function installMap(m: MapHandle, name: string, s: Cell | null, g: Cell | null): void {
+  map?.free();
+  loaded?.free();
+  map = m;
+  loaded = m.clone();
+  mapVersion += 1;
+  inflationKey = '';
+  start = s;
+  goal = g;
+  ui.mapName.textContent = name;
+  ui.mapName.title = name;
+  ui.mapSize.textContent = `${m.width} × ${m.height}`;
+  ui.mapRes.textContent = `${m.resolution} m / cell`;
+  ui.body.dataset.mapWidth = String(m.width);
+  ui.body.dataset.mapHeight = String(m.height);
+  view.setMap(m.width, m.height, m.cells());
+  setTool(s && g ? tool : 'start');
+  replan();
+}
+
+const maps: MapHost = { install: installMap, applyOptions, defaults: getDefaults };
+
+// ------------------------------------------------------------------- input
+function canvasPoint(ev: MouseEvent): [number, number] {
+  const r = ui.canvas.getBoundingClientRect();
+  return [ev.clientX - r.left, ev.clientY - r.top];
+}
+
+let painting: { kind: number; last: Cell | null } | null = null;
+// Before the tools' handlers: a pan gesture goes no further.
+panZoom(ui.canvas, () => [view]);
+
+function paintTo(cell: Cell | null): void {
+  if (!map || !painting) return;
+  if (!cell) {
+    painting.last = null;
+    return;
+  }
+  const from = painting.last ?? cell;
+  const changed = map.paintSegment(from[0], from[1], cell[0], cell[1], painting.kind);
+  painting.last = cell;
+  if (changed > 0) {
+    mapVersion += 1;
+    cellsDirty = true;
+    scheduleReplan();
+  }
+}
+
+function describeCell(cell: Cell | null): string {
+  if (!cell || !map) return '—';
+  const kind = CELL_NAMES[view.cellKind(cell[0], cell[1]) ?? 0];
+  const [x, y] = map.cellToWorld(cell[0], cell[1]);
+  return `cell (${cell[0]}, ${cell[1]}) · ${kind} · world (${x.toFixed(2)}, ${y.toFixed(2)}) m`;
+}
+
+ui.canvas.addEventListener(
+  'pointerdown',
+  guard((ev: PointerEvent) => {
+    if (!map || ev.button !== 0) return;
+    const [x, y] = canvasPoint(ev);
+    const cell = view.cellAt(x, y);
+    if (!cell) return;
+    if (ev.shiftKey || tool === 'goal') {
+      goal = cell;
+      scheduleReplan();
+    } else if (tool === 'start') {
+      start = cell;
+      scheduleReplan();
+    } else {
+      painting = { kind: tool === 'wall' ? 1 : 0, last: null };
+      ui.canvas.setPointerCapture(ev.pointerId);
+      paintTo(cell);
+    }
+  }),
+);
+
+ui.canvas.addEventListener(
+  'pointermove',
+  guard((ev: PointerEvent) => {
+    const [x, y] = canvasPoint(ev);
+    const cell = view.cellAt(x, y);
+    ui.hover.textContent = describeCell(cell);
+    if (painting) paintTo(cell);
+  }),
+);
+
+const endStroke = guard((ev: PointerEvent) => {
+  painting = null;
+  if (ui.canvas.hasPointerCapture(ev.pointerId)) ui.canvas.releasePointerCapture(ev.pointerId);
+});
+ui.canvas.addEventListener('pointerup', endStroke);
+ui.canvas.addEventListener('pointercancel', endStroke);
+ui.canvas.addEventListener('pointerleave', () => (ui.hover.textContent = '—'));
+
+for (const b of ui.tools) b.addEventListener('click', () => setTool(b.dataset.tool as Tool));
+
+window.addEventListener('keydown', (ev) => {
+  const t = ev.target as HTMLElement | null;
+  if (t && (t.tagName === 'INPUT' || t.tagName === 'SELECT' || t.tagName === 'TEXTAREA')) return;
+  if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
+  const keys: Record<string, Tool> = { s: 'start', g: 'goal', w: 'wall', e: 'erase' };
+  const k = ev.key.toLowerCase();
+  if (keys[k]) setTool(keys[k]);
+  else if (k === 'f') view.fit();
+});
+
+onOptionInput(scheduleReplan);
+
+ui.preset.addEventListener(
+  'change',
+  guard(async () => {
+    if (ui.preset.value) await loadPreset(maps, ui.preset.value);
+  }),
+);
+ui.file.addEventListener(
+  'change',
+  guard(async () => {
+    try {
+      if (await loadFiles(maps, ui.file.files)) ui.preset.value = '';
+    } finally {
+      // Lets the same file be picked again after fixing it.
+      ui.file.value = '';
+    }
+  }),
+);
+ui.reset.addEventListener(
+  'click',
+  guard(() => {
+    if (!loaded) return;
+    map?.free();
+    map = loaded.clone();
+    mapVersion += 1;
+    cellsDirty = true;
+    scheduleReplan();
+  }),
+);
+ui.fitView.addEventListener('click', () => view.fit());
+
+// -------------------------------------------------------------------- boot
+async function boot(): Promise<void> {
+  setTool('start');
+  syncControls();
+  clearMetrics();
+  await init();
+  setDefaults(defaultPlanOptions() as Record<string, unknown>);
+  applyOptions(getDefaults());
+  syncControls();
+  ui.hint.textContent = hintForTool();
+  // `?scenario=FILE` (+ planner options): a site scenario as a global plan.
+  const url = gridUrl();
+  if (url.scenario) {
+    try {
+      const { text, files } = await loadPresetFiles(url.scenario);
+      installScenario(maps, ScenarioHandle.fromJson(text), url.scenario, files, url.options);
+      const linked = ui.preset.querySelector<HTMLOptionElement>('option[value=""]');
+      if (linked) linked.textContent = `${url.scenario} (linked)`;
+      ui.preset.value = '';
+    } catch (e) {
+      url.problems.unshift(`${url.scenario}: ${messageOf(e)}`);
+      await loadPreset(maps, ui.preset.value || 'arena');
+    }
+  } else {
+    await loadPreset(maps, ui.preset.value || 'arena');
+    if (Object.keys(url.options).length) {
+      applyOptions({ ...readOptions(), ...url.options });
+      replan();
+    }
+  }
+  if (url.problems.length) showError(url.problems.join(' · '));
+}
+
+installShell(gridHelp());
+
+boot().catch((e) => {
+  showError(`Could not start the playground: ${messageOf(e)}`);
+});
