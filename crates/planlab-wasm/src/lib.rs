@@ -36,9 +36,11 @@
 pub mod apf;
 pub mod batch;
 pub mod files;
+pub mod session;
 pub mod sim;
 
 pub use apf::ApfHandle;
+pub use session::{PlanSession, RecordedPlan};
 /// The arm page's handle, from its own crate (the arm page loads that
 /// crate's smaller wasm module; the playground pages build this crate
 /// without the feature).

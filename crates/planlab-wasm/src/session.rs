@@ -1,0 +1,391 @@
+//! A planning session for the grid page: the planner and its passability
+//! grid are built once from the map and the options and kept between calls,
+//! and edits update the grid cell by cell, so a replan while the user drags
+//! an endpoint or paints a wall costs about the search alone (a fresh
+//! [`crate::plan`] rebuilds the `PlanGrid` and its bit-packed lines every
+//! call: 2–3 ms on a 512 × 512 map).
+//!
+//! [`PlanSession::plan_recorded`] also returns the search as events for the
+//! page's player ([`RecordedPlan`]).
+
+use crate::{cell_of, options_from_js, MapHandle, PlanResult};
+use planlab_core::global::bottom_up::bottom_up;
+use planlab_core::global::keypoints::key_points;
+use planlab_core::global::plan::{
+    build_planner, plan_grid_for, Algorithm, GridPlan, GridPlanError, GridPlanOptions,
+};
+use planlab_core::global::safe_astar::safety_index;
+use planlab_core::global::{supercover, GridPlanner, GridPos, Path, PlanError, PlanGrid};
+use planlab_core::map::{Cell, OccupancyGrid};
+use wasm_bindgen::prelude::*;
+
+/// Events kept at most per recording (each is ~40 bytes across the
+/// boundary): a 512 × 512 Dijkstra records about 1.3 M.
+pub const EVENT_LIMIT: usize = 4_000_000;
+
+/// A map, options, planner and passability grid kept between plans.
+#[wasm_bindgen]
+pub struct PlanSession {
+    map: OccupancyGrid,
+    options: GridPlanOptions,
+    /// The planner the options ask for, or why they cannot build one (shown
+    /// at the next plan, as a fresh `plan` would).
+    planner: Result<Box<dyn GridPlanner>, PlanError>,
+    /// The passability grid; `None` until the next plan rebuilds it (first
+    /// use, new options, or an edit under inflation, which can change cells
+    /// up to the radius away).
+    grid: Option<PlanGrid>,
+    /// Grid rebuilds so far (the tests check that edits do not rebuild).
+    rebuilds: u32,
+}
+
+impl PlanSession {
+    /// A session over `map` (Rust callers and tests).
+    pub fn with_options(map: OccupancyGrid, options: GridPlanOptions) -> Self {
+        Self {
+            planner: build_planner(&options),
+            map,
+            options,
+            grid: None,
+            rebuilds: 0,
+        }
+    }
+
+    /// The passability grid, rebuilt if an edit or new options invalidated it.
+    fn grid(&mut self) -> Result<&PlanGrid, GridPlanError> {
+        if self.grid.is_none() {
+            self.grid = Some(plan_grid_for(&self.map, &self.options)?);
+            self.rebuilds += 1;
+        }
+        Ok(self.grid.as_ref().expect("built above"))
+    }
+
+    /// Keeps the grid in step with one edited map cell.
+    fn sync_cell(&mut self, col: usize, row: usize) {
+        if self.options.inflate_m > 0.0 {
+            self.grid = None;
+        } else if let (Some(grid), Some(cell)) = (self.grid.as_mut(), self.map.get(col, row)) {
+            grid.set_free(col, row, cell.passable(self.options.allow_unknown));
+        }
+    }
+
+    /// Plans on the kept grid; `expanded` receives the expanded cells when
+    /// given. Checks and post-processing as `plan_on_map` does.
+    pub fn plan_with(
+        &mut self,
+        start: GridPos,
+        goal: GridPos,
+        expanded: Option<&mut Vec<GridPos>>,
+    ) -> Result<GridPlan, GridPlanError> {
+        let options = self.options;
+        if let Some(eps) = options.bottom_up_eps {
+            if !(eps.is_finite() && eps >= 0.0) {
+                return Err(PlanError::InvalidConfig(format!(
+                    "Bottom-Up maximum error {eps} must be a finite number ≥ 0 (cells)"
+                ))
+                .into());
+            }
+        }
+        if let Err(e) = &self.planner {
+            return Err(e.clone().into());
+        }
+        self.grid()?;
+        let (map, grid) = (&self.map, self.grid.as_ref().expect("built above"));
+        check_endpoints(map, grid, &options, start, goal)?;
+        let planner = self.planner.as_ref().expect("checked above");
+        let mut cells = Vec::new();
+        let record = expanded.is_some();
+        let path = planner.plan_recording(grid, start, goal, record.then_some(&mut cells))?;
+        if let Some(out) = expanded {
+            *out = cells;
+        }
+        Ok(finish(map, grid, &options, path))
+    }
+}
+
+/// Start and goal on the map and free; "blocked after inflation" when the
+/// raw map has the endpoint free (as `plan_on_map` says it).
+fn check_endpoints(
+    map: &OccupancyGrid,
+    grid: &PlanGrid,
+    options: &GridPlanOptions,
+    start: GridPos,
+    goal: GridPos,
+) -> Result<(), GridPlanError> {
+    match grid.check_endpoints(start, goal) {
+        Err(PlanError::Blocked { which, col, row })
+            if options.inflate_m > 0.0
+                && map
+                    .get(col as usize, row as usize)
+                    .is_some_and(|c| c.passable(options.allow_unknown)) =>
+        {
+            Err(GridPlanError::BlockedByInflation {
+                which,
+                col,
+                row,
+                inflate_m: options.inflate_m,
+            })
+        }
+        r => Ok(r?),
+    }
+}
+
+/// Key points, Bottom-Up nodes and safety indices of a found path.
+fn finish(map: &OccupancyGrid, grid: &PlanGrid, options: &GridPlanOptions, path: Path) -> GridPlan {
+    let keypoints = if options.keypoints {
+        key_points(grid, &path.cells, options.diagonal)
+    } else {
+        Vec::new()
+    };
+    let feature_nodes = options
+        .bottom_up_eps
+        .and_then(|eps| bottom_up(grid, &path.cells, eps, options.diagonal).ok())
+        .unwrap_or_default();
+    let safety = if options.algorithm == Algorithm::SafeAStar {
+        safety_index(grid, &path.cells, options.safe.window_radius)
+    } else {
+        Vec::new()
+    };
+    GridPlan {
+        length_m: path.cost * map.resolution(),
+        path,
+        keypoints,
+        feature_nodes,
+        expanded_cells: Vec::new(),
+        safety,
+    }
+}
+
+#[wasm_bindgen]
+impl PlanSession {
+    /// A session over a copy of `map` with `options` (a `GridPlanOptions`
+    /// object; `undefined` = defaults). Bad options are reported by the
+    /// first plan, as `plan` would.
+    #[wasm_bindgen(constructor)]
+    pub fn new(map: &MapHandle, options: JsValue) -> Result<PlanSession, JsError> {
+        Ok(Self::with_options(map.grid().clone(), options_from_js(options)?))
+    }
+
+    /// New options: the planner is rebuilt, the grid only when the
+    /// passability changes (inflation, unknown cells).
+    #[wasm_bindgen(js_name = setOptions)]
+    pub fn set_options(&mut self, options: JsValue) -> Result<(), JsError> {
+        let options = options_from_js(options)?;
+        let same_grid = options.inflate_m.to_bits() == self.options.inflate_m.to_bits()
+            && options.allow_unknown == self.options.allow_unknown;
+        if !same_grid {
+            self.grid = None;
+        }
+        self.planner = build_planner(&options);
+        self.options = options;
+        Ok(())
+    }
+
+    /// Replaces the map (e.g. "reset edits"); the grid is rebuilt.
+    #[wasm_bindgen(js_name = setMap)]
+    pub fn set_map(&mut self, map: &MapHandle) {
+        self.map = map.grid().clone();
+        self.grid = None;
+    }
+
+    /// Sets one cell (0 free, 1 occupied, 2 unknown).
+    #[wasm_bindgen(js_name = setCell)]
+    pub fn set_cell(&mut self, col: u32, row: u32, kind: u8) -> Result<(), JsError> {
+        let cell = cell_of(kind)?;
+        self.map.set(col as usize, row as usize, cell)?;
+        self.sync_cell(col as usize, row as usize);
+        Ok(())
+    }
+
+    /// Paints the cells the segment between two cell centres crosses, as
+    /// `MapHandle.paintSegment`; returns how many changed.
+    #[wasm_bindgen(js_name = paintSegment)]
+    pub fn paint_segment(
+        &mut self,
+        col0: u32,
+        row0: u32,
+        col1: u32,
+        row1: u32,
+        kind: u8,
+    ) -> Result<u32, JsError> {
+        let cell = cell_of(kind)?;
+        let changed = self.map.paint_segment(
+            (col0 as usize, row0 as usize),
+            (col1 as usize, row1 as usize),
+            cell,
+        )?;
+        if changed > 0 {
+            let mut touched = Vec::new();
+            supercover(GridPos::new(col0, row0), GridPos::new(col1, row1), |c, r, _| {
+                touched.push((c as usize, r as usize))
+            });
+            for (c, r) in touched {
+                self.sync_cell(c, r);
+            }
+        }
+        Ok(changed as u32)
+    }
+
+    /// How many times the passability grid was built (edits without
+    /// inflation do not rebuild it).
+    #[wasm_bindgen(getter)]
+    pub fn rebuilds(&self) -> u32 {
+        self.rebuilds
+    }
+
+    /// Plans as the free function `plan` does, on the kept grid.
+    pub fn plan(
+        &mut self,
+        start_col: u32,
+        start_row: u32,
+        goal_col: u32,
+        goal_row: u32,
+        record_expanded: bool,
+    ) -> Result<PlanResult, JsError> {
+        let mut expanded = Vec::new();
+        let mut plan = self.plan_with(
+            GridPos::new(start_col, start_row),
+            GridPos::new(goal_col, goal_row),
+            record_expanded.then_some(&mut expanded),
+        )?;
+        plan.expanded_cells = expanded;
+        Ok(PlanResult { plan })
+    }
+
+    /// Plans and returns the search as events for the player.
+    #[wasm_bindgen(js_name = planRecorded)]
+    pub fn plan_recorded(
+        &mut self,
+        start_col: u32,
+        start_row: u32,
+        goal_col: u32,
+        goal_row: u32,
+    ) -> Result<RecordedPlan, JsError> {
+        let mut expanded = Vec::new();
+        let plan = self.plan_with(
+            GridPos::new(start_col, start_row),
+            GridPos::new(goal_col, goal_row),
+            Some(&mut expanded),
+        )?;
+        let mut events = EventColumns::default();
+        for &cell in expanded.iter().take(EVENT_LIMIT) {
+            events.close(cell);
+        }
+        events.truncated = expanded.len() > EVENT_LIMIT;
+        Ok(RecordedPlan {
+            result: PlanResult { plan },
+            events,
+        })
+    }
+}
+
+/// Event kinds as they cross (`kinds` bytes).
+pub mod kind {
+    /// A cell entered the open set or its g improved.
+    pub const OPEN: u8 = 0;
+    /// A cell was expanded (closed).
+    pub const CLOSE: u8 = 1;
+    /// A straight-line check that passed.
+    pub const LINE_CLEAR: u8 = 2;
+    /// A straight-line check that failed.
+    pub const LINE_BLOCKED: u8 = 3;
+}
+
+/// "No cell" in the `others` column (an open event without a parent).
+pub const NO_CELL: u32 = u32::MAX;
+
+/// Search events as columns, one entry per event.
+#[derive(Clone, Debug, Default)]
+pub struct EventColumns {
+    kinds: Vec<u8>,
+    /// The event's cell (open, close) or the line's start, `col, row`.
+    cells: Vec<u32>,
+    /// The parent (open) or the line's end, `col, row`; [`NO_CELL`] twice
+    /// when there is none.
+    others: Vec<u32>,
+    g: Vec<f64>,
+    h: Vec<f64>,
+    truncated: bool,
+}
+
+impl EventColumns {
+    fn push(&mut self, k: u8, cell: GridPos, other: Option<GridPos>, g: f64, h: f64) {
+        self.kinds.push(k);
+        self.cells.extend([cell.col, cell.row]);
+        let o = other.map_or([NO_CELL, NO_CELL], |p| [p.col, p.row]);
+        self.others.extend(o);
+        self.g.push(g);
+        self.h.push(h);
+    }
+
+    /// A close event.
+    pub fn close(&mut self, cell: GridPos) {
+        self.push(kind::CLOSE, cell, None, f64::NAN, f64::NAN);
+    }
+
+    /// Number of events.
+    pub fn len(&self) -> usize {
+        self.kinds.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.kinds.is_empty()
+    }
+}
+
+/// A plan with its search as events: `kinds[i]` (see [`kind`]),
+/// `cells`/`others` as `col, row` pairs, `g`/`h` (NaN where they do not
+/// apply).
+#[wasm_bindgen]
+pub struct RecordedPlan {
+    result: PlanResult,
+    events: EventColumns,
+}
+
+#[wasm_bindgen]
+impl RecordedPlan {
+    /// The plan (path, cost, expanded count …); an independent copy.
+    #[wasm_bindgen(getter)]
+    pub fn plan(&self) -> PlanResult {
+        self.result.clone()
+    }
+
+    /// Number of events.
+    #[wasm_bindgen(getter)]
+    pub fn length(&self) -> u32 {
+        self.events.len() as u32
+    }
+
+    /// Whether the recording stopped at [`EVENT_LIMIT`] events.
+    #[wasm_bindgen(getter)]
+    pub fn truncated(&self) -> bool {
+        self.events.truncated
+    }
+
+    /// Event kinds.
+    pub fn kinds(&self) -> Vec<u8> {
+        self.events.kinds.clone()
+    }
+
+    /// Each event's cell as `col, row`.
+    pub fn cells(&self) -> Vec<u32> {
+        self.events.cells.clone()
+    }
+
+    /// Each event's parent / line end as `col, row`.
+    pub fn others(&self) -> Vec<u32> {
+        self.events.others.clone()
+    }
+
+    /// g per event.
+    pub fn g(&self) -> Vec<f64> {
+        self.events.g.clone()
+    }
+
+    /// h per event.
+    pub fn h(&self) -> Vec<f64> {
+        self.events.h.clone()
+    }
+}
+

@@ -1,0 +1,220 @@
+// End-to-end tests of watching the search on the grid page and of the race
+// page: the A* animation passes through open and closed states (page state
+// and canvas pixels at several steps) and ends with the CLI's expanded
+// count, dragging the S and G markers replans, D* Lite repairs a painted
+// wall with fewer expansions than a fresh A*, and the race plays 2+
+// planners to a results table. The 512 × 512 animation's frame work is
+// printed (measured, not asserted: timings are benchmarks, not tests).
+
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import {
+  REPO,
+  DATA,
+  startSession,
+  openPage,
+  screenshot,
+  setEndpoints,
+  chooseTool,
+  afterReplan,
+  cellPoint,
+  dragCells,
+  metric,
+  pathCells,
+  pixelAt,
+  errorText,
+  readScen,
+} from './harness.mjs';
+
+const ARENA = path.join(DATA, 'movingai/dao/arena.map');
+const ROW = readScen(`${ARENA}.scen`).find((r) => r.optimal > 55);
+const RANDOM512 = path.join(DATA, 'movingai/random/random512-10-0.map');
+
+let session;
+before(async () => {
+  session = await startSession();
+});
+after(async () => {
+  await session?.close();
+});
+
+/** The planlab CLI: PLANLAB_BIN, or a release/debug build under the repo's
+ *  target/ or $CARGO_TARGET_DIR. */
+function cli() {
+  const dirs = [path.join(REPO, 'target'), process.env.CARGO_TARGET_DIR].filter(Boolean);
+  const candidates = [process.env.PLANLAB_BIN, ...dirs.flatMap((d) => ['release', 'debug'].map((p) => path.join(d, p, 'planlab')))];
+  for (const bin of candidates.filter(Boolean)) {
+    if (fs.existsSync(bin) && spawnSync(bin, ['plan', '--help']).status === 0) return bin;
+  }
+  throw new Error('build planlab (cargo build -p planlab-cli) or set PLANLAB_BIN for the CLI comparison');
+}
+
+const grid = (page, fn, ...args) => page.evaluate(([f, a]) => window.planlabGrid[f](...a), [fn, args]);
+
+/** Canvas colour channels of a cell vs the player's colours (blended over the free cell). */
+function looksOpen([r, g, b]) {
+  return g > r + 25 && g > b;
+}
+function looksClosed([r, g, b]) {
+  return b > r + 40 && b > g;
+}
+
+test('the A* search plays through open and closed states and ends with the CLI’s expanded count', async () => {
+  const { page, problems } = await openPage(session);
+  await setEndpoints(page, ROW.start, ROW.goal);
+  assert.equal(await errorText(page), null);
+  const expanded = await metric(page, 'expanded');
+  const events = Number(await page.getAttribute('body', 'data-search-events'));
+  assert.ok(events > expanded, `events ${events} > expanded ${expanded}`);
+  // Played out after a replan: the counter equals the plan's.
+  assert.equal(Number(await page.getAttribute('#count-expanded', 'data-value')), expanded);
+
+  // The CLI plans the same query natively: same expanded count and cost.
+  const r = spawnSync(cli(), ['plan', ARENA, '--start', ROW.start.join(','), '--goal', ROW.goal.join(','), '--algo', 'astar', '--json'], { encoding: 'utf8' });
+  assert.equal(r.status, 0, r.stderr);
+  const native = JSON.parse(r.stdout);
+  assert.equal(native.expanded, expanded, 'page and CLI expand the same number of cells');
+  assert.ok(Math.abs(native.cost - (await metric(page, 'cost'))) < 1e-9);
+
+  // Step through: at a quarter, half and three quarters the counters grow,
+  // cells expanded by then are closed, cells first opened after are unseen.
+  let lastExpanded = 0;
+  for (const q of [0.25, 0.5, 0.75]) {
+    const k = Math.floor(events * q);
+    await grid(page, 'seek', k);
+    const c = await grid(page, 'counters');
+    assert.equal(c.step, k);
+    assert.ok(c.expanded > lastExpanded && c.expanded < expanded, `expanded ${c.expanded} at step ${k}`);
+    assert.ok(c.open > 0, `open set non-empty at step ${k}`);
+    lastExpanded = c.expanded;
+    assert.equal(Number(await page.getAttribute('body', 'data-search-step')), k);
+  }
+  // A cell's state follows the steps: the 60th expanded cell is unseen
+  // before it was opened, open (green) while waiting, closed (blue) after.
+  const cell = await page.evaluate(() => {
+    const g = window.planlabGrid;
+    const n = g.counters().events;
+    for (let k = 1; k <= n; k++) {
+      g.seek(k);
+      if (g.counters().expanded === 60) return { k };
+    }
+    return null;
+  });
+  assert.ok(cell, 'the search expands at least 60 cells');
+  const [cc, cr] = await grid(page, 'current');
+  const info = await grid(page, 'info', cc, cr);
+  assert.equal(info.state, 'closed');
+  assert.equal(info.closedAt, cell.k);
+  assert.ok(info.openedAt < info.closedAt, 'opened before it was expanded');
+  assert.ok(Number.isFinite(info.g) && Number.isFinite(info.h), `g ${info.g}, h ${info.h}`);
+  assert.ok(Math.abs(info.f - info.g - info.h) < 1e-9);
+  await grid(page, 'seek', info.openedAt - 1);
+  assert.equal(await grid(page, 'cellState', cc, cr), 'unseen');
+  await grid(page, 'seek', info.openedAt);
+  assert.equal(await grid(page, 'cellState', cc, cr), 'open');
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const openPx = await pixelAt(page, cc, cr);
+  assert.ok(looksOpen(openPx), `open cell pixel ${openPx}`);
+  await grid(page, 'seek', events);
+  const closedPx = await pixelAt(page, cc, cr);
+  assert.ok(looksClosed(closedPx), `closed cell pixel ${closedPx}`);
+
+  // Hover shows g, h, f, parent and the steps.
+  const { x, y } = await cellPoint(page, cc, cr);
+  await page.mouse.move(x, y);
+  const hover = await page.textContent('#hover');
+  assert.match(hover, /expanded · g [\d.]+ h [\d.]+ f [\d.]+ · parent \(\d+, \d+\) · opened at step \d+ · expanded at step \d+/);
+
+  // Play from the start: mid-animation the path is not drawn yet, the end
+  // draws it and stops with the plan's expanded count.
+  await page.selectOption('#speed', '16');
+  await page.click('#play');
+  await page.waitForFunction(() => Number(document.body.dataset.searchStep) > 200);
+  const mid = await grid(page, 'counters');
+  assert.ok(mid.step < events, 'still playing');
+  await screenshot(page, 'search-mid.png');
+  await page.waitForFunction(() => document.body.dataset.playing === 'false', null, { timeout: 30_000 });
+  assert.equal(Number(await page.getAttribute('#count-expanded', 'data-value')), expanded);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('dragging the start and goal markers replans', async () => {
+  const { page, problems } = await openPage(session);
+  await setEndpoints(page, ROW.start, ROW.goal);
+  await chooseTool(page, 'wall'); // dragging a marker works with any tool
+  const before = { path: await pathCells(page), expanded: await metric(page, 'expanded'), cost: await metric(page, 'cost') };
+  const seq0 = Number(await page.getAttribute('body', 'data-plan-seq'));
+  const dest = [ROW.start[0] + 6, ROW.start[1] - 8];
+  await dragCells(page, ROW.start, dest, 12);
+  assert.equal(await page.getAttribute('#map-canvas', 'data-start'), dest.join(','));
+  const seq1 = Number(await page.getAttribute('body', 'data-plan-seq'));
+  assert.ok(seq1 - seq0 >= 3, `replanned while dragging (${seq1 - seq0} plans)`);
+  const mid = { path: await pathCells(page), expanded: await metric(page, 'expanded'), cost: await metric(page, 'cost') };
+  assert.deepEqual(mid.path[0], dest);
+  assert.notEqual(mid.expanded, before.expanded);
+  assert.notEqual(mid.cost, before.cost);
+  // No wall was painted by the drag.
+  assert.ok((await pixelAt(page, ROW.start[0] + 3, ROW.start[1] - 4))[0] > 150);
+
+  const goalDest = [ROW.goal[0] - 5, ROW.goal[1] + 6];
+  await dragCells(page, ROW.goal, goalDest, 12);
+  assert.equal(await page.getAttribute('#map-canvas', 'data-goal'), goalDest.join(','));
+  const end = { path: await pathCells(page), expanded: await metric(page, 'expanded') };
+  assert.deepEqual(end.path.at(-1), goalDest);
+  assert.notEqual(end.expanded, mid.expanded);
+  // The session kept its grid: no rebuild for drags.
+  assert.equal(await grid(page, 'rebuilds'), 1);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('the race plays 2+ planners to a table with winners', async () => {
+  const page = await session.context.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  page.on('console', (m) => m.type() === 'error' && problems.push(m.text()));
+  await page.goto(session.base + 'race.html');
+  await page.waitForFunction(() => document.body.dataset.raceState === 'ready', null, { timeout: 30_000 });
+  const lanes = await page.$$eval('.lane', (ls) => ls.map((l) => l.dataset.algorithm));
+  assert.ok(lanes.length >= 2, `lanes ${lanes}`);
+  await page.click('#race-go');
+  await page.waitForFunction(() => document.body.dataset.raceState === 'racing');
+  // Mid-race every lane has played the same number of events (or finished).
+  await page.waitForTimeout(150);
+  await screenshot(page, 'race-mid.png');
+  await page.waitForFunction(() => document.body.dataset.raceState === 'finished', null, { timeout: 60_000 });
+  const rows = await page.$$eval('#race-table tbody tr', (trs) => trs.map((tr) => Array.from(tr.cells, (td) => td.textContent)));
+  assert.equal(rows.length, lanes.length);
+  const byName = Object.fromEntries(rows.map((r) => [r[0], r]));
+  // A* and Dijkstra: the same optimal cost, Dijkstra expands more.
+  assert.equal(byName['A*'][4], byName['Dijkstra'][4]);
+  assert.ok(Number(byName['Dijkstra'][1]) > Number(byName['A*'][1]));
+  const winner = await page.getAttribute('#race-winner', 'data-expanded');
+  assert.ok(winner && winner !== 'dijkstra', `fewest expanded: ${winner}`);
+  assert.match(await page.textContent('#race-winner'), /Fewest expanded: .+ · Lowest cost: /);
+  // A lane that needs fewer events finishes at an earlier frame.
+  const frames = rows.map((r) => [Number(r[3]), Number(r[6])]).sort((a, b) => a[0] - b[0]);
+  assert.ok(frames[0][1] <= frames.at(-1)[1]);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('a 512 × 512 search animates (frame work printed)', async () => {
+  const { page, problems } = await openPage(session);
+  const row = readScen(`${RANDOM512}.scen`).at(-1);
+  await afterReplan(page, () => page.setInputFiles('#file-input', RANDOM512));
+  await setEndpoints(page, row.start, row.goal);
+  assert.equal(await errorText(page), null);
+  await page.selectOption('#speed', '256');
+  await page.click('#play');
+  await page.waitForFunction(() => document.body.dataset.playing === 'false', null, { timeout: 120_000 });
+  const s = await grid(page, 'frameStats');
+  assert.ok(s.frames > 20, `${s.frames} frames`);
+  process.stderr.write(`random512 animation (256 events/frame): ${s.frames} frames, work median ${s.work.median.toFixed(2)} ms, p95 ${s.work.p95.toFixed(2)} ms, max ${s.work.max.toFixed(2)} ms; paint p95 ${s.paint.p95.toFixed(2)} ms\n`);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
