@@ -177,7 +177,7 @@ function installMap(m: MapHandle, name: string, s: Cell | null, g: Cell | null):
   loaded?.free();
   map = m;
   loaded = m.clone();
-  session.attach(m, readOptions());
+  session.attach(m);
   mapVersion += 1;
   inflationKey = '';
   start = s;

@@ -20,10 +20,11 @@ export class GridSession {
   private w = 0;
   private h = 0;
 
-  /** A new map: a new session over a copy of it. */
-  attach(map: MapHandle, opts: Record<string, unknown>): void {
+  /** A new map: a new session over a copy of it (the options arrive with
+   *  each plan, so a bad one is reported by the plan). */
+  attach(map: MapHandle): void {
     this.s?.free();
-    this.s = new PlanSession(map, opts);
+    this.s = new PlanSession(map, undefined);
     this.w = map.width;
     this.h = map.height;
   }

@@ -86,7 +86,7 @@ function buildLanes(): void {
     const view = new MapView(root.querySelector('canvas')!);
     view.setMap(map.width, map.height, map.cells());
     const session = new GridSession();
-    session.attach(map, options(algorithm));
+    session.attach(map);
     lanes.push({ algorithm, root, view, session, playback: null, cost: NaN, pathLen: 0, error: null, doneAt: null });
   }
   ui.lanes.dataset.count = String(lanes.length);
@@ -152,6 +152,7 @@ function tick(): void {
     if (p.done) l.doneAt = frame;
     else running++;
   }
+  showTable();
   if (running === 0) {
     racing = false;
     ui.body.dataset.raceState = 'finished';
@@ -208,7 +209,7 @@ function showTable(): void {
       [end ? String(end.expanded) : '—', finished && expandedEnd === fewest],
       [end ? String(end.open) : '—', false],
       [p ? String(p.n) : '—', false],
-      [l.error ? l.error : Number.isFinite(l.cost) ? l.cost.toFixed(4) : '—', finished && Math.abs(l.cost - cheapest) < 1e-9],
+      [l.error ? 'error (see the lane)' : Number.isFinite(l.cost) ? l.cost.toFixed(4) : '—', finished && Math.abs(l.cost - cheapest) < 1e-9],
       [l.error ? '—' : String(l.pathLen), false],
       [l.doneAt === null ? '—' : String(l.doneAt), false],
     ];
