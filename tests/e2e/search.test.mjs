@@ -31,6 +31,9 @@ import {
 
 const ARENA = path.join(DATA, 'movingai/dao/arena.map');
 const ROW = readScen(`${ARENA}.scen`).find((r) => r.optimal > 55);
+/** A Moving AI map with rooms, where A* expands thousands of cells. */
+const ARENA2 = path.join(DATA, 'movingai/dao/arena2.map');
+const ROW2 = readScen(`${ARENA2}.scen`).find((r) => r.optimal > 150);
 const RANDOM512 = path.join(DATA, 'movingai/random/random512-10-0.map');
 
 let session;
@@ -64,7 +67,8 @@ function looksClosed([r, g, b]) {
 
 test('the A* search plays through open and closed states and ends with the CLIâ€™s expanded count', async () => {
   const { page, problems } = await openPage(session);
-  await setEndpoints(page, ROW.start, ROW.goal);
+  await afterReplan(page, () => page.setInputFiles('#file-input', ARENA2));
+  await setEndpoints(page, ROW2.start, ROW2.goal);
   assert.equal(await errorText(page), null);
   const expanded = await metric(page, 'expanded');
   const events = Number(await page.getAttribute('body', 'data-search-events'));
@@ -73,7 +77,7 @@ test('the A* search plays through open and closed states and ends with the CLIâ€
   assert.equal(Number(await page.getAttribute('#count-expanded', 'data-value')), expanded);
 
   // The CLI plans the same query natively: same expanded count and cost.
-  const r = spawnSync(cli(), ['plan', ARENA, '--start', ROW.start.join(','), '--goal', ROW.goal.join(','), '--algo', 'astar', '--json'], { encoding: 'utf8' });
+  const r = spawnSync(cli(), ['plan', ARENA2, '--start', ROW2.start.join(','), '--goal', ROW2.goal.join(','), '--algo', 'astar', '--json'], { encoding: 'utf8' });
   assert.equal(r.status, 0, r.stderr);
   const native = JSON.parse(r.stdout);
   assert.equal(native.expanded, expanded, 'page and CLI expand the same number of cells');
@@ -130,12 +134,15 @@ test('the A* search plays through open and closed states and ends with the CLIâ€
 
   // Play from the start: mid-animation the path is not drawn yet, the end
   // draws it and stops with the plan's expanded count.
-  await page.selectOption('#speed', '16');
+  await page.selectOption('#speed', '64');
   await page.click('#play');
-  await page.waitForFunction(() => Number(document.body.dataset.searchStep) > 200);
+  await page.waitForFunction((n) => Number(document.body.dataset.searchStep) > n / 3, events);
+  await page.click('#play'); // pause mid-animation
   const mid = await grid(page, 'counters');
-  assert.ok(mid.step < events, 'still playing');
-  await screenshot(page, 'search-mid.png');
+  assert.ok(mid.step < events, 'paused before the end');
+  assert.equal(await page.getAttribute('#map-canvas', 'data-path-drawn'), 'false', 'no path mid-search');
+  await page.screenshot({ path: path.join(REPO, 'docs/grid-search.png') });
+  await page.click('#play'); // resume
   await page.waitForFunction(() => document.body.dataset.playing === 'false', null, { timeout: 30_000 });
   assert.equal(Number(await page.getAttribute('#count-expanded', 'data-value')), expanded);
   assert.deepEqual(problems, []);
@@ -186,6 +193,8 @@ test('the race plays 2+ planners to a table with winners', async () => {
   // Mid-race every lane has played the same number of events (or finished).
   await page.waitForTimeout(150);
   await screenshot(page, 'race-mid.png');
+  await page.waitForFunction(() => document.body.dataset.raceState === 'finished', null, { timeout: 60_000 });
+  await page.screenshot({ path: path.join(REPO, 'docs/grid-race.png') });
   await page.waitForFunction(() => document.body.dataset.raceState === 'finished', null, { timeout: 60_000 });
   const rows = await page.$$eval('#race-table tbody tr', (trs) => trs.map((tr) => Array.from(tr.cells, (td) => td.textContent)));
   assert.equal(rows.length, lanes.length);

@@ -103,6 +103,16 @@ impl PlanSession {
     }
 }
 
+/// The cells a painted segment between two cell centres covers (as
+/// `OccupancyGrid::paint_segment` paints them).
+pub(crate) fn segment_cells(col0: u32, row0: u32, col1: u32, row1: u32) -> Vec<(usize, usize)> {
+    let mut cells = Vec::new();
+    supercover(GridPos::new(col0, row0), GridPos::new(col1, row1), |c, r, _| {
+        cells.push((c as usize, r as usize))
+    });
+    cells
+}
+
 /// Start and goal on the map and free; "blocked after inflation" when the
 /// raw map has the endpoint free (as `plan_on_map` says it).
 fn check_endpoints(
@@ -215,11 +225,7 @@ impl PlanSession {
             cell,
         )?;
         if changed > 0 {
-            let mut touched = Vec::new();
-            supercover(GridPos::new(col0, row0), GridPos::new(col1, row1), |c, r, _| {
-                touched.push((c as usize, r as usize))
-            });
-            for (c, r) in touched {
+            for (c, r) in segment_cells(col0, row0, col1, row1) {
                 self.sync_cell(c, r);
             }
         }

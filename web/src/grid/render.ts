@@ -302,6 +302,8 @@ export class MapView {
     if (L.keyPoints && L.keyPoints.length >= 4) this.polyline(L.keyPoints, COLORS.keypoint, thin, [4, 4]);
     const playing = this.search !== null && !this.search.done;
     if (playing) this.searchOverlay(this.search!);
+    const pathDrawn = String(L.path !== null && !playing);
+    if (this.canvas.dataset.pathDrawn !== pathDrawn) this.canvas.dataset.pathDrawn = pathDrawn;
     if (L.path && !playing) {
       // White casing keeps the path readable over dark walls and tints.
       this.polyline(L.path, 'rgba(255,255,255,0.85)', lw + 2.5);
