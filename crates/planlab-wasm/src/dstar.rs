@@ -5,7 +5,7 @@
 //! the repair's expansions beside a fresh A*'s on the same edited map.
 
 use crate::session::{segment_cells, EventColumns, RecordedPlan, EVENT_LIMIT};
-use crate::{cell_of, options_from_js, MapHandle, PlanResult};
+use crate::{cell_of, options_from_js, paint_grid, MapHandle, PlanResult};
 use planlab_core::global::dstar_lite::DStarLite;
 use planlab_core::global::plan::{plan_grid_for, GridPlan, GridPlanOptions};
 use planlab_core::global::{GridPos, PlanGrid};
@@ -124,16 +124,11 @@ impl DStarSession {
         row1: u32,
         kind: u8,
     ) -> Result<u32, JsError> {
-        let cell = cell_of(kind)?;
-        let changed = self.map.paint_segment(
-            (col0 as usize, row0 as usize),
-            (col1 as usize, row1 as usize),
-            cell,
-        )?;
+        let changed = paint_grid(&mut self.map, [col0, row0, col1, row1], kind)?;
         if changed > 0 {
             self.sync(&segment_cells(col0, row0, col1, row1))?;
         }
-        Ok(changed as u32)
+        Ok(changed)
     }
 
     /// The robot moved: the search now starts at `(col, row)`.

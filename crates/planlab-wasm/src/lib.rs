@@ -82,6 +82,14 @@ fn cell_of(kind: u8) -> Result<Cell, JsError> {
     }
 }
 
+/// Paints the segment `[col0, row0, col1, row1]` with cell kind `kind` (a
+/// brush stroke between two pointer samples); returns how many cells changed.
+pub(crate) fn paint_grid(grid: &mut OccupancyGrid, seg: [u32; 4], kind: u8) -> Result<u32, JsError> {
+    let cell = cell_of(kind)?;
+    let [c0, r0, c1, r1] = seg.map(|v| v as usize);
+    Ok(grid.paint_segment((c0, r0), (c1, r1), cell)? as u32)
+}
+
 /// Flattens cells into `col, row` pairs for a `Uint32Array`.
 fn flat(cells: &[GridPos]) -> Vec<u32> {
     let mut out = Vec::with_capacity(cells.len() * 2);
@@ -221,13 +229,7 @@ impl MapHandle {
         row1: u32,
         kind: u8,
     ) -> Result<u32, JsError> {
-        let cell = cell_of(kind)?;
-        let changed = self.grid.paint_segment(
-            (col0 as usize, row0 as usize),
-            (col1 as usize, row1 as usize),
-            cell,
-        )?;
-        Ok(changed as u32)
+        paint_grid(&mut self.grid, [col0, row0, col1, row1], kind)
     }
 
     /// The map as a Moving AI `.map` (unknown written as blocked).

@@ -8,7 +8,7 @@
 //! [`PlanSession::plan_recorded`] also returns the search as events for the
 //! page's player ([`RecordedPlan`]).
 
-use crate::{cell_of, options_from_js, MapHandle, PlanResult};
+use crate::{cell_of, options_from_js, paint_grid, MapHandle, PlanResult};
 use planlab_core::global::bottom_up::bottom_up;
 use planlab_core::global::keypoints::key_points;
 use planlab_core::global::plan::{
@@ -218,18 +218,13 @@ impl PlanSession {
         row1: u32,
         kind: u8,
     ) -> Result<u32, JsError> {
-        let cell = cell_of(kind)?;
-        let changed = self.map.paint_segment(
-            (col0 as usize, row0 as usize),
-            (col1 as usize, row1 as usize),
-            cell,
-        )?;
+        let changed = paint_grid(&mut self.map, [col0, row0, col1, row1], kind)?;
         if changed > 0 {
             for (c, r) in segment_cells(col0, row0, col1, row1) {
                 self.sync_cell(c, r);
             }
         }
-        Ok(changed as u32)
+        Ok(changed)
     }
 
     /// How many times the passability grid was built (edits without
