@@ -3,11 +3,14 @@
 //! and scenarios all go through [`plan_on_map`], so they agree exactly.
 
 use super::astar::{AStar, AStarConfig};
-use super::bottom_up::bottom_up;
+use super::bottom_up::bottom_up_observed;
+use super::events::ClosedCells;
 use super::jps::{Jps, JpsConfig};
-use super::keypoints::key_points;
+use super::keypoints::key_points_observed;
 use super::safe_astar::{safety_index, SafeAStar, SafeAStarConfig};
-use super::{Diagonal, Endpoint, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
+use super::{
+    Diagonal, Endpoint, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchObserver,
+};
 use crate::map::costmap::inflate;
 use crate::map::{MapError, OccupancyGrid};
 use serde::{Deserialize, Serialize};
@@ -203,6 +206,26 @@ pub fn plan_on_map(
     options: &GridPlanOptions,
     record_expanded: bool,
 ) -> Result<GridPlan, GridPlanError> {
+    if !record_expanded {
+        return plan_on_map_observed(grid, start, goal, options, &mut ());
+    }
+    let mut expanded = Vec::new();
+    let mut plan =
+        plan_on_map_observed(grid, start, goal, options, &mut ClosedCells(&mut expanded))?;
+    plan.expanded_cells = expanded;
+    Ok(plan)
+}
+
+/// As [`plan_on_map`], reporting every search event to `obs`: the
+/// planner's opens, closes and line tests, then the segment checks of key
+/// points and Bottom-Up. `expanded_cells` stays empty (the events hold them).
+pub fn plan_on_map_observed(
+    grid: &OccupancyGrid,
+    start: GridPos,
+    goal: GridPos,
+    options: &GridPlanOptions,
+    obs: &mut impl SearchObserver,
+) -> Result<GridPlan, GridPlanError> {
     let planner = build_planner(options)?;
     if let Some(eps) = options.bottom_up_eps {
         if !(eps.is_finite() && eps >= 0.0) {
@@ -231,20 +254,19 @@ pub fn plan_on_map(
         }
         return Err(e.into());
     }
-    let mut expanded = Vec::new();
-    let path = planner.plan_recording(
-        &plan_grid,
-        start,
-        goal,
-        record_expanded.then_some(&mut expanded),
-    )?;
+    // The plain search when nobody listens: full speed, no virtual calls.
+    let path = if obs.enabled() {
+        planner.plan_observed(&plan_grid, start, goal, obs)?
+    } else {
+        planner.plan(&plan_grid, start, goal)?
+    };
     let keypoints = if options.keypoints {
-        key_points(&plan_grid, &path.cells, options.diagonal)
+        key_points_observed(&plan_grid, &path.cells, options.diagonal, obs)
     } else {
         Vec::new()
     };
     let feature_nodes = match options.bottom_up_eps {
-        Some(eps) => bottom_up(&plan_grid, &path.cells, eps, options.diagonal)?,
+        Some(eps) => bottom_up_observed(&plan_grid, &path.cells, eps, options.diagonal, obs)?,
         None => Vec::new(),
     };
     let safety = if options.algorithm == Algorithm::SafeAStar {
@@ -257,7 +279,7 @@ pub fn plan_on_map(
         path,
         keypoints,
         feature_nodes,
-        expanded_cells: expanded,
+        expanded_cells: Vec::new(),
         safety,
     })
 }
