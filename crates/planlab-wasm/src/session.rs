@@ -9,18 +9,20 @@
 //! page's player ([`RecordedPlan`]).
 
 use crate::{cell_of, options_from_js, paint_grid, MapHandle, PlanResult};
-use planlab_core::global::bottom_up::bottom_up;
-use planlab_core::global::keypoints::key_points;
+use planlab_core::global::bottom_up::bottom_up_observed;
+use planlab_core::global::keypoints::key_points_observed;
 use planlab_core::global::plan::{
     build_planner, plan_grid_for, Algorithm, GridPlan, GridPlanError, GridPlanOptions,
 };
 use planlab_core::global::safe_astar::safety_index;
-use planlab_core::global::{supercover, GridPlanner, GridPos, Path, PlanError, PlanGrid};
-use planlab_core::map::{Cell, OccupancyGrid};
+use planlab_core::global::{
+    supercover, GridPlanner, GridPos, Path, PlanError, PlanGrid, SearchEvent, SearchObserver,
+};
+use planlab_core::map::OccupancyGrid;
 use wasm_bindgen::prelude::*;
 
 /// Events kept at most per recording (each is ~40 bytes across the
-/// boundary): a 512 × 512 Dijkstra records about 1.3 M.
+/// boundary): a 512 × 512 Dijkstra records a few million.
 pub const EVENT_LIMIT: usize = 4_000_000;
 
 /// A map, options, planner and passability grid kept between plans.
@@ -69,13 +71,14 @@ impl PlanSession {
         }
     }
 
-    /// Plans on the kept grid; `expanded` receives the expanded cells when
-    /// given. Checks and post-processing as `plan_on_map` does.
-    pub fn plan_with(
+    /// Plans on the kept grid, reporting the search's events (and key
+    /// points' / Bottom-Up's segment checks) to `obs`. Checks and
+    /// post-processing as `plan_on_map_observed`.
+    pub fn plan_observed(
         &mut self,
         start: GridPos,
         goal: GridPos,
-        expanded: Option<&mut Vec<GridPos>>,
+        obs: &mut dyn SearchObserver,
     ) -> Result<GridPlan, GridPlanError> {
         let options = self.options;
         if let Some(eps) = options.bottom_up_eps {
@@ -93,13 +96,24 @@ impl PlanSession {
         let (map, grid) = (&self.map, self.grid.as_ref().expect("built above"));
         check_endpoints(map, grid, &options, start, goal)?;
         let planner = self.planner.as_ref().expect("checked above");
-        let mut cells = Vec::new();
-        let record = expanded.is_some();
-        let path = planner.plan_recording(grid, start, goal, record.then_some(&mut cells))?;
-        if let Some(out) = expanded {
-            *out = cells;
+        // The plain search when nobody listens: full speed.
+        let path = if obs.enabled() {
+            planner.plan_observed(grid, start, goal, obs)?
+        } else {
+            planner.plan(grid, start, goal)?
+        };
+        finish(map, grid, &options, path, obs)
+    }
+}
+
+/// The expanded cells in order (the close events).
+struct Closed(Vec<GridPos>);
+
+impl SearchObserver for Closed {
+    fn event(&mut self, e: SearchEvent) {
+        if let SearchEvent::Close { cell } = e {
+            self.0.push(cell);
         }
-        Ok(finish(map, grid, &options, path))
     }
 }
 
@@ -141,29 +155,35 @@ fn check_endpoints(
 }
 
 /// Key points, Bottom-Up nodes and safety indices of a found path.
-fn finish(map: &OccupancyGrid, grid: &PlanGrid, options: &GridPlanOptions, path: Path) -> GridPlan {
+fn finish(
+    map: &OccupancyGrid,
+    grid: &PlanGrid,
+    options: &GridPlanOptions,
+    path: Path,
+    obs: &mut dyn SearchObserver,
+) -> Result<GridPlan, GridPlanError> {
     let keypoints = if options.keypoints {
-        key_points(grid, &path.cells, options.diagonal)
+        key_points_observed(grid, &path.cells, options.diagonal, obs)
     } else {
         Vec::new()
     };
-    let feature_nodes = options
-        .bottom_up_eps
-        .and_then(|eps| bottom_up(grid, &path.cells, eps, options.diagonal).ok())
-        .unwrap_or_default();
+    let feature_nodes = match options.bottom_up_eps {
+        Some(eps) => bottom_up_observed(grid, &path.cells, eps, options.diagonal, obs)?,
+        None => Vec::new(),
+    };
     let safety = if options.algorithm == Algorithm::SafeAStar {
         safety_index(grid, &path.cells, options.safe.window_radius)
     } else {
         Vec::new()
     };
-    GridPlan {
+    Ok(GridPlan {
         length_m: path.cost * map.resolution(),
         path,
         keypoints,
         feature_nodes,
         expanded_cells: Vec::new(),
         safety,
-    }
+    })
 }
 
 #[wasm_bindgen]
@@ -243,13 +263,15 @@ impl PlanSession {
         goal_row: u32,
         record_expanded: bool,
     ) -> Result<PlanResult, JsError> {
-        let mut expanded = Vec::new();
-        let mut plan = self.plan_with(
-            GridPos::new(start_col, start_row),
-            GridPos::new(goal_col, goal_row),
-            record_expanded.then_some(&mut expanded),
-        )?;
-        plan.expanded_cells = expanded;
+        let (start, goal) = (GridPos::new(start_col, start_row), GridPos::new(goal_col, goal_row));
+        let plan = if record_expanded {
+            let mut closed = Closed(Vec::new());
+            let mut plan = self.plan_observed(start, goal, &mut closed)?;
+            plan.expanded_cells = closed.0;
+            plan
+        } else {
+            self.plan_observed(start, goal, &mut ())?
+        };
         Ok(PlanResult { plan })
     }
 
@@ -262,21 +284,13 @@ impl PlanSession {
         goal_col: u32,
         goal_row: u32,
     ) -> Result<RecordedPlan, JsError> {
-        let mut expanded = Vec::new();
-        let plan = self.plan_with(
+        let mut events = EventColumns::with_limit(EVENT_LIMIT);
+        let plan = self.plan_observed(
             GridPos::new(start_col, start_row),
             GridPos::new(goal_col, goal_row),
-            Some(&mut expanded),
+            &mut events,
         )?;
-        let mut events = EventColumns::default();
-        for &cell in expanded.iter().take(EVENT_LIMIT) {
-            events.close(cell);
-        }
-        events.truncated = expanded.len() > EVENT_LIMIT;
-        Ok(RecordedPlan {
-            result: PlanResult { plan },
-            events,
-        })
+        Ok(RecordedPlan::new(PlanResult { plan }, events))
     }
 }
 
@@ -295,9 +309,11 @@ pub mod kind {
 /// "No cell" in the `others` column (an open event without a parent).
 pub const NO_CELL: u32 = u32::MAX;
 
-/// Search events as columns, one entry per event.
+/// Search events as columns, one entry per event (bounded like the core's
+/// `SearchLog`: at most `limit`, then `truncated`).
 #[derive(Clone, Debug, Default)]
 pub struct EventColumns {
+    limit: usize,
     kinds: Vec<u8>,
     /// The event's cell (open, close) or the line's start, `col, row`.
     cells: Vec<u32>,
@@ -319,9 +335,12 @@ impl EventColumns {
         self.h.push(h);
     }
 
-    /// A close event.
-    pub fn close(&mut self, cell: GridPos) {
-        self.push(kind::CLOSE, cell, None, f64::NAN, f64::NAN);
+    /// Columns keeping at most `limit` events.
+    pub fn with_limit(limit: usize) -> Self {
+        Self {
+            limit,
+            ..Self::default()
+        }
     }
 
     /// Number of events.
@@ -335,6 +354,28 @@ impl EventColumns {
     }
 }
 
+impl SearchObserver for EventColumns {
+    fn event(&mut self, e: SearchEvent) {
+        if self.len() >= self.limit {
+            self.truncated = true;
+            return;
+        }
+        match e {
+            SearchEvent::Open { cell, parent, g, h } => self.push(kind::OPEN, cell, parent, g, h),
+            SearchEvent::Close { cell } => self.push(kind::CLOSE, cell, None, f64::NAN, f64::NAN),
+            SearchEvent::Line { from, to, clear } => {
+                let k = if clear { kind::LINE_CLEAR } else { kind::LINE_BLOCKED };
+                self.push(k, from, Some(to), f64::NAN, f64::NAN);
+            }
+        }
+    }
+
+    /// Off once full: the planner stops building events nobody keeps.
+    fn enabled(&self) -> bool {
+        !self.truncated
+    }
+}
+
 /// A plan with its search as events: `kinds[i]` (see [`kind`]),
 /// `cells`/`others` as `col, row` pairs, `g`/`h` (NaN where they do not
 /// apply).
@@ -342,6 +383,13 @@ impl EventColumns {
 pub struct RecordedPlan {
     result: PlanResult,
     events: EventColumns,
+}
+
+impl RecordedPlan {
+    /// A plan and the events of its search.
+    pub fn new(result: PlanResult, events: EventColumns) -> Self {
+        Self { result, events }
+    }
 }
 
 #[wasm_bindgen]

@@ -708,11 +708,11 @@ fn session_edits_plan_as_a_fresh_plan_on_the_edited_map() {
     // still agrees with a fresh plan.
     let inflated = || options(r#"{"algorithm":"astar","inflate_m":1.0}"#);
     let mut session = PlanSession::new(&map, inflated()).unwrap();
-    session.plan(1, 11, 42, 46, false).unwrap();
+    session.plan(5, 15, 40, 40, false).unwrap();
     session.paint_segment(20, 20, 28, 20, 1).unwrap();
     map.paint_segment(20, 20, 28, 20, 1).unwrap();
-    let a = session.plan(1, 11, 42, 46, false).unwrap();
-    let b = plan(&map, 1, 11, 42, 46, inflated(), false).unwrap();
+    let a = session.plan(5, 15, 40, 40, false).unwrap();
+    let b = plan(&map, 5, 15, 40, 40, inflated(), false).unwrap();
     assert_eq!(a.path(), b.path());
     assert_eq!(session.rebuilds(), 2);
 }
@@ -740,6 +740,14 @@ fn recorded_plan_events_are_typed_columns() {
         .collect();
     let fresh = plan_fn(&map);
     assert_eq!(closes, fresh.expanded());
+    // Every expanded cell was opened first, with its g and h.
+    let (g, h, cells) = (rec.g(), rec.h(), rec.cells());
+    for close in closes.chunks(2) {
+        let opened = (0..n).find(|&i| kinds[i] == 0 && cells[2 * i..2 * i + 2] == *close);
+        let i = opened.expect("a closed cell was opened before");
+        assert!(g[i].is_finite() && h[i].is_finite() && g[i] >= 0.0);
+    }
+    assert_eq!((cells[0], cells[1], kinds[0]), (0, 0, 0), "the start is opened first");
     assert_eq!(plan.expanded_count() as usize, closes.len() / 2);
     assert!(!rec.truncated());
 }
