@@ -359,7 +359,7 @@ export class MapView {
     const cur = p.expanding();
     if (cur) {
       const [x, y] = this.centre(cur[0], cur[1]);
-      const s = Math.max(4, this.view.scale);
+      const s = Math.max(7, this.view.scale);
       ctx.fillStyle = SEARCH_CSS.current;
       ctx.fillRect(x - s / 2, y - s / 2, s, s);
     }
