@@ -40,7 +40,6 @@ pub mod session;
 pub mod sim;
 
 pub use apf::ApfHandle;
-pub use session::{PlanSession, RecordedPlan};
 /// The arm page's handle, from its own crate (the arm page loads that
 /// crate's smaller wasm module; the playground pages build this crate
 /// without the feature).
@@ -53,6 +52,7 @@ pub use planlab_wasm_arm::{arm_choices, ArmHandle};
 /// this crate without the feature).
 #[cfg(feature = "reproduce")]
 pub use planlab_wasm_reproduce::{reproduce_variant, reproduce_variant_info};
+pub use session::{PlanSession, RecordedPlan};
 pub use sim::{generated_grid_hash, planners, SimHandle};
 
 use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};
@@ -84,7 +84,11 @@ fn cell_of(kind: u8) -> Result<Cell, JsError> {
 
 /// Paints the segment `[col0, row0, col1, row1]` with cell kind `kind` (a
 /// brush stroke between two pointer samples); returns how many cells changed.
-pub(crate) fn paint_grid(grid: &mut OccupancyGrid, seg: [u32; 4], kind: u8) -> Result<u32, JsError> {
+pub(crate) fn paint_grid(
+    grid: &mut OccupancyGrid,
+    seg: [u32; 4],
+    kind: u8,
+) -> Result<u32, JsError> {
     let cell = cell_of(kind)?;
     let [c0, r0, c1, r1] = seg.map(|v| v as usize);
     Ok(grid.paint_segment((c0, r0), (c1, r1), cell)? as u32)

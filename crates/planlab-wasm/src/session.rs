@@ -121,9 +121,11 @@ impl SearchObserver for Closed {
 /// `OccupancyGrid::paint_segment` paints them).
 pub(crate) fn segment_cells(col0: u32, row0: u32, col1: u32, row1: u32) -> Vec<(usize, usize)> {
     let mut cells = Vec::new();
-    supercover(GridPos::new(col0, row0), GridPos::new(col1, row1), |c, r, _| {
-        cells.push((c as usize, r as usize))
-    });
+    supercover(
+        GridPos::new(col0, row0),
+        GridPos::new(col1, row1),
+        |c, r, _| cells.push((c as usize, r as usize)),
+    );
     cells
 }
 
@@ -193,7 +195,10 @@ impl PlanSession {
     /// first plan, as `plan` would.
     #[wasm_bindgen(constructor)]
     pub fn new(map: &MapHandle, options: JsValue) -> Result<PlanSession, JsError> {
-        Ok(Self::with_options(map.grid().clone(), options_from_js(options)?))
+        Ok(Self::with_options(
+            map.grid().clone(),
+            options_from_js(options)?,
+        ))
     }
 
     /// New options: the planner is rebuilt, the grid only when the
@@ -263,7 +268,10 @@ impl PlanSession {
         goal_row: u32,
         record_expanded: bool,
     ) -> Result<PlanResult, JsError> {
-        let (start, goal) = (GridPos::new(start_col, start_row), GridPos::new(goal_col, goal_row));
+        let (start, goal) = (
+            GridPos::new(start_col, start_row),
+            GridPos::new(goal_col, goal_row),
+        );
         let plan = if record_expanded {
             let mut closed = Closed(Vec::new());
             let mut plan = self.plan_observed(start, goal, &mut closed)?;
@@ -364,7 +372,11 @@ impl SearchObserver for EventColumns {
             SearchEvent::Open { cell, parent, g, h } => self.push(kind::OPEN, cell, parent, g, h),
             SearchEvent::Close { cell } => self.push(kind::CLOSE, cell, None, f64::NAN, f64::NAN),
             SearchEvent::Line { from, to, clear } => {
-                let k = if clear { kind::LINE_CLEAR } else { kind::LINE_BLOCKED };
+                let k = if clear {
+                    kind::LINE_CLEAR
+                } else {
+                    kind::LINE_BLOCKED
+                };
                 self.push(k, from, Some(to), f64::NAN, f64::NAN);
             }
         }
@@ -437,4 +449,3 @@ impl RecordedPlan {
         self.events.h.clone()
     }
 }
-

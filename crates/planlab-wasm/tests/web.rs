@@ -701,7 +701,10 @@ fn session_edits_plan_as_a_fresh_plan_on_the_edited_map() {
         assert_eq!(after.cost(), fresh.cost());
         assert_eq!(after.expanded_count(), fresh.expanded_count());
         assert_eq!(after.expanded(), fresh.expanded());
-        assert!(after.cost() > before.cost(), "{algo}: the wall lengthens the path");
+        assert!(
+            after.cost() > before.cost(),
+            "{algo}: the wall lengthens the path"
+        );
         assert_eq!(session.rebuilds(), 1, "{algo}: edits update the kept grid");
     }
     // Inflation: an edit rebuilds (cells up to the radius away change) and
@@ -747,7 +750,11 @@ fn recorded_plan_events_are_typed_columns() {
         let i = opened.expect("a closed cell was opened before");
         assert!(g[i].is_finite() && h[i].is_finite() && g[i] >= 0.0);
     }
-    assert_eq!((cells[0], cells[1], kinds[0]), (0, 0, 0), "the start is opened first");
+    assert_eq!(
+        (cells[0], cells[1], kinds[0]),
+        (0, 0, 0),
+        "the start is opened first"
+    );
     assert_eq!(plan.expanded_count() as usize, closes.len() / 2);
     assert!(!rec.truncated());
 }
