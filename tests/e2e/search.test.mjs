@@ -123,12 +123,38 @@ test('the A* search plays through open and closed states and ends with the CLIâ€
   assert.equal(await grid(page, 'cellState', cc, cr), 'unseen');
   await grid(page, 'seek', info.openedAt);
   assert.equal(await grid(page, 'cellState', cc, cr), 'open');
-  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
-  const openPx = await pixelAt(page, cc, cr);
-  assert.ok(looksOpen(openPx), `open cell pixel ${openPx}`);
-  await grid(page, 'seek', events);
-  const closedPx = await pixelAt(page, cc, cr);
-  assert.ok(looksClosed(closedPx), `closed cell pixel ${closedPx}`);
+  // On the canvas, mid-search: an open cell is green, a closed one blue
+  // (cells away from the orange marker of the cell being expanded); at the
+  // end the frontier left open is still green.
+  for (const step of [Math.floor(events / 2), events]) {
+    await grid(page, 'seek', step);
+    for (const state of ['open', 'closed']) {
+      const at = await page.evaluate(
+        ([want]) => {
+          const g = window.planlabGrid;
+          const cur = g.current();
+          const cv = document.getElementById('map-canvas');
+          const path = (cv.dataset.path ?? '').split(',').map(Number);
+          const onPath = (c, r) => path.some((v, i) => i % 2 === 0 && Math.abs(v - c) <= 2 && Math.abs(path[i + 1] - r) <= 2);
+          for (let r = 0; r < Number(document.body.dataset.mapHeight); r++) {
+            for (let c = 0; c < Number(document.body.dataset.mapWidth); c++) {
+              if (g.cellState(c, r) !== want) continue;
+              if (cur && Math.max(Math.abs(cur[0] - c), Math.abs(cur[1] - r)) <= 3) continue;
+              if (onPath(c, r)) continue;
+              return [c, r];
+            }
+          }
+          return null;
+        },
+        [state],
+      );
+      if (state === 'closed' || step < events) assert.ok(at, `an ${state} cell at step ${step}`);
+      if (!at) continue;
+      await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+      const px = await pixelAt(page, at[0], at[1]);
+      assert.ok(state === 'open' ? looksOpen(px) : looksClosed(px), `${state} cell (${at}) at step ${step}: pixel ${px}`);
+    }
+  }
 
   // Hover shows g, h, f, parent and the steps.
   const { x, y } = await cellPoint(page, cc, cr);
