@@ -467,7 +467,7 @@ fn invalid_weights_and_rules_are_refused() {
     })
     .is_ok());
     let err = Jps::new(JpsConfig {
-        diagonal: Diagonal::Never,
+        diagonal: Diagonal::Always,
         ..JpsConfig::default()
     })
     .unwrap_err();

@@ -6,9 +6,11 @@
 //! This is *online* JPS: no preprocessing. Straight jumps scan 64 cells per
 //! step over the bit-packed rows (horizontal) and columns (vertical) that
 //! [`PlanGrid`] keeps beside its bitmap; diagonal jumps step cell by cell and
-//! run the two straight scans at each step. Only the Moving AI move rule
-//! ([`Diagonal::NoCornerCutting`]) is implemented; other rules are refused
-//! with [`PlanError::InvalidConfig`] (use A* for them).
+//! run the two straight scans at each step. Two move rules are implemented:
+//! the Moving AI rule ([`Diagonal::NoCornerCutting`]), and 4-connected moves
+//! ([`Diagonal::Never`], the cell-by-cell jumps of
+//! [`super::classic`]); the corner-cutting rules are refused with
+//! [`PlanError::InvalidConfig`] (use A* for them).
 //!
 //! [`Path::cells`] lists every cell: each jump is expanded into its
 //! intermediate cells, so consecutive cells are one legal move apart.
@@ -29,6 +31,7 @@
 //! assert!((path.cost - 7.0).abs() < 1e-9);
 //! ```
 
+use super::classic::jps4;
 use super::events::emit;
 use super::search::{
     cells, check_size, dir_index, finish, improves, trivial_path, with_space, xy, Estimate,
@@ -44,8 +47,8 @@ use serde::{Deserialize, Serialize};
 pub struct JpsConfig {
     /// Distance estimate to the goal (cells); octile by default.
     pub heuristic: Heuristic,
-    /// Diagonal rule; only [`Diagonal::NoCornerCutting`] (the default) is
-    /// supported.
+    /// Diagonal rule: [`Diagonal::NoCornerCutting`] (the default) or
+    /// [`Diagonal::Never`].
     pub diagonal: Diagonal,
 }
 
@@ -65,12 +68,14 @@ pub struct Jps {
 }
 
 impl Jps {
-    /// A JPS planner; refuses diagonal rules other than no corner cutting.
+    /// A JPS planner for 8-connected moves without corner cutting or for
+    /// 4-connected moves ([`Diagonal::Never`]); refuses the corner-cutting
+    /// rules, whose forced-neighbour conditions differ.
     pub fn new(config: JpsConfig) -> Result<Self, PlanError> {
-        if config.diagonal != Diagonal::NoCornerCutting {
+        if matches!(config.diagonal, Diagonal::OneSideFree | Diagonal::Always) {
             return Err(PlanError::InvalidConfig(format!(
-                "jump point search supports only the no_corner_cutting diagonal rule, \
-                 not {:?}; use A* for other move rules",
+                "jump point search supports the no_corner_cutting and never diagonal rules, \
+                 not {:?}; use A* for moves that cut corners",
                 config.diagonal
             )));
         }
@@ -96,6 +101,9 @@ impl Jps {
         goal: GridPos,
         obs: &mut O,
     ) -> Result<Path, PlanError> {
+        if self.config.diagonal == Diagonal::Never {
+            return jps4(grid, start, goal, self.config.heuristic, obs);
+        }
         grid.check_endpoints(start, goal)?;
         check_size(grid)?;
         if start == goal {
@@ -589,7 +597,7 @@ mod tests {
 
     #[test]
     fn refuses_other_move_rules() {
-        for diagonal in [Diagonal::Never, Diagonal::OneSideFree, Diagonal::Always] {
+        for diagonal in [Diagonal::OneSideFree, Diagonal::Always] {
             let err = Jps::new(JpsConfig {
                 diagonal,
                 ..JpsConfig::default()

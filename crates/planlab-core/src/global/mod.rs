@@ -7,6 +7,8 @@
 
 pub mod astar;
 pub mod bottom_up;
+pub mod classic;
+pub mod dstar_lite;
 pub mod events;
 pub mod jps;
 pub mod keypoints;
@@ -144,6 +146,18 @@ pub enum PlanError {
     /// A configuration value is out of range.
     #[error("invalid planner configuration: {}", crate::text::one_line(.0))]
     InvalidConfig(String),
+    /// The search stopped at its bound on work (IDA*), before finding a
+    /// path or proving there is none.
+    #[error(
+        "search limit reached: {expanded} expansions (limit {limit}) without a path; \
+         A* finds it with one expansion per cell"
+    )]
+    SearchLimit {
+        /// Nodes expanded when it stopped.
+        expanded: usize,
+        /// The bound.
+        limit: usize,
+    },
 }
 
 /// A planned grid path.
