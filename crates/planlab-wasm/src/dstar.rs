@@ -7,7 +7,7 @@
 use crate::session::{segment_cells, EventColumns, RecordedPlan, EVENT_LIMIT};
 use crate::{cell_of, options_from_js, paint_grid, MapHandle, PlanResult};
 use planlab_core::global::dstar_lite::DStarLite;
-use planlab_core::global::plan::{plan_grid_for, GridPlan, GridPlanOptions};
+use planlab_core::global::plan::{plan_grid_for, Algorithm, GridPlan, GridPlanOptions};
 use planlab_core::global::{GridPos, PlanGrid};
 use planlab_core::map::OccupancyGrid;
 use wasm_bindgen::prelude::*;
@@ -45,7 +45,7 @@ impl DStarSession {
     /// or under inflation every cell whose inflated passability changed
     /// (a wall grows by the radius).
     fn sync(&mut self, touched: &[(usize, usize)]) -> Result<(), JsError> {
-        let mut set = |dstar: &mut DStarLite, known: &mut PlanGrid, c: usize, r: usize, free: bool| {
+        let set = |dstar: &mut DStarLite, known: &mut PlanGrid, c: usize, r: usize, free: bool| {
             if known.is_free(c as i64, r as i64) != free {
                 known.set_free(c, r, free);
                 dstar.set_blocked(GridPos::new(c as u32, r as u32), !free);
@@ -136,4 +136,30 @@ impl DStarSession {
     pub fn move_start(&mut self, col: u32, row: u32) -> Result<(), JsError> {
         Ok(self.dstar.move_start(GridPos::new(col, row))?)
     }
+}
+
+/// One grid planner as the help shows it.
+#[derive(serde::Serialize)]
+struct AlgorithmInfo {
+    name: &'static str,
+    optimal: bool,
+    reference: &'static str,
+    summary: &'static str,
+}
+
+/// The core's grid planners (`Algorithm::ALL`): JSON name, whether it is
+/// optimal, its reference and plain-language summary, for the page's menu
+/// and help.
+#[wasm_bindgen(js_name = gridAlgorithms)]
+pub fn grid_algorithms() -> Result<JsValue, JsError> {
+    let all: Vec<AlgorithmInfo> = Algorithm::ALL
+        .iter()
+        .map(|&(a, name)| AlgorithmInfo {
+            name,
+            optimal: a.optimal(),
+            reference: a.reference(),
+            summary: a.summary(),
+        })
+        .collect();
+    serde_wasm_bindgen::to_value(&all).map_err(|e| JsError::new(&e.to_string()))
 }

@@ -17,6 +17,11 @@
 //!   `planlab bench scen` for the wasm-vs-native comparison
 //!   (`scripts/bench-browser.mjs`).
 //!
+//! - [`PlanSession`] keeps a map's planner and passability grid between
+//!   plans for the grid page (edits update it cell by cell) and returns the
+//!   search as events ([`RecordedPlan`]); [`DStarSession`] keeps a D* Lite
+//!   search, repaired after edits and moved starts; see [`session`].
+//!
 //! - [`SimHandle`] runs one robot episode (core `sim::Episode`) for the
 //!   robot page: steps, live edits (goal, movers, planner and its
 //!   parameters) and everything drawn or plotted as typed arrays; see
@@ -35,11 +40,13 @@
 
 pub mod apf;
 pub mod batch;
+pub mod dstar;
 pub mod files;
 pub mod session;
 pub mod sim;
 
 pub use apf::ApfHandle;
+pub use dstar::{grid_algorithms, DStarSession};
 /// The arm page's handle, from its own crate (the arm page loads that
 /// crate's smaller wasm module; the playground pages build this crate
 /// without the feature).

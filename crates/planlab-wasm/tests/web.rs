@@ -762,3 +762,53 @@ fn recorded_plan_events_are_typed_columns() {
 fn plan_fn(map: &MapHandle) -> planlab_wasm::PlanResult {
     plan(map, 0, 0, 0, 4, options(r#"{"algorithm":"astar"}"#), true).unwrap()
 }
+
+/// D* Lite through its session: a painted wall is repaired to the cost of
+/// a fresh plan on the edited map with fewer expansions than a fresh A*;
+/// a moved start replans from there; each call's events are its own.
+#[wasm_bindgen_test]
+fn dstar_session_repairs_edits_and_moved_starts() {
+    use planlab_wasm::{DStarSession, PlanSession};
+    let arena = include_str!("../../../assets/maps/arena.map");
+    let mut map = MapHandle::from_movingai(arena).unwrap();
+    let opts = || options(r#"{"algorithm":"dstar-lite"}"#);
+    let astar = || options(r#"{"algorithm":"astar"}"#);
+    let mut dstar = DStarSession::new(&map, opts(), 1, 11, 42, 46).unwrap();
+    let first = dstar.plan().unwrap();
+    let fresh = plan(&map, 1, 11, 42, 46, astar(), false).unwrap();
+    assert!((first.plan().cost() - fresh.cost()).abs() < 1e-9);
+    assert!(first.length() > 0);
+    // A wall across the path near the start.
+    let path = first.plan().path();
+    let k = (path.len() / 2 / 4) * 2;
+    let (c, r) = (path[k], path[k + 1]);
+    let (top, bottom) = (r.saturating_sub(4).max(1), (r + 4).min(47));
+    dstar.paint_segment(c, top, c, bottom, 1).unwrap();
+    map.paint_segment(c, top, c, bottom, 1).unwrap();
+    let repaired = dstar.plan().unwrap();
+    let fresh = plan(&map, 1, 11, 42, 46, astar(), false).unwrap();
+    assert!((repaired.plan().cost() - fresh.cost()).abs() < 1e-9, "repaired to the optimum");
+    assert!(repaired.plan().cost() > first.plan().cost());
+    let closes = repaired.kinds().iter().filter(|&&k| k == 1).count() as u32;
+    assert_eq!(closes, repaired.plan().expanded_count(), "the events are this call's");
+    assert!(
+        repaired.plan().expanded_count() < fresh.expanded_count(),
+        "repair {} vs fresh A* {}",
+        repaired.plan().expanded_count(),
+        fresh.expanded_count()
+    );
+    // The robot moved along the path: plan from there.
+    let (sc, sr) = (path[2], path[3]);
+    dstar.move_start(sc, sr).unwrap();
+    let moved = dstar.plan().unwrap();
+    let fresh = plan(&map, sc, sr, 42, 46, astar(), false).unwrap();
+    assert!((moved.plan().cost() - fresh.cost()).abs() < 1e-9);
+    assert_eq!(&moved.plan().path()[..2], &[sc, sr]);
+    // Errors are typed, not panics.
+    assert!(dstar.set_cell(99, 99, 1).is_err());
+    assert!(DStarSession::new(&map, opts(), 0, 0, 42, 46).is_err());
+    // The plain session plans D* Lite too, to the same cost.
+    let mut session = PlanSession::new(&map, opts()).unwrap();
+    let once = session.plan(1, 11, 42, 46, false).unwrap();
+    assert!((once.cost() - repaired.plan().cost()).abs() < 1e-9);
+}

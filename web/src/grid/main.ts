@@ -5,12 +5,12 @@
 // planning happens in this file: it converts control values into the core's
 // GridPlanOptions and paints what comes back.
 
-import init, { MapHandle, ScenarioHandle, defaultPlanOptions, inflationMask } from '../../pkg/planlab_wasm.js';
+import init, { MapHandle, ScenarioHandle, defaultPlanOptions, gridAlgorithms, inflationMask } from '../../pkg/planlab_wasm.js';
 import { MapView, type Cell } from './render';
 import { GridSession } from './planning';
 import { SearchPlayer } from './player-ui';
 import { installShell } from '../shell/help';
-import { gridHelp } from '../shell/help-content';
+import { gridHelp, type CorePlanner } from '../shell/help-content';
 import { gridUrl } from './grid-url';
 import { loadPresetFiles } from '../shell/scenario-files';
 import { el, errorBanner, messageOf } from '../shell/dom';
@@ -140,7 +140,7 @@ function replan(): void {
   }
   let planned;
   try {
-    planned = session.plan(start, goal, opts, showExpanded());
+    planned = session.plan(start, goal, opts, showExpanded(), map);
   } catch (e) {
     view.setLayers(empty);
     player.load(null);
@@ -150,7 +150,7 @@ function replan(): void {
     showError(messageOf(e));
     return;
   }
-  const { result: res, playback, ms } = planned;
+  const { result: res, playback, ms, repair, truncated } = planned;
   try {
     const path = res.path();
     const keyPoints = res.keyPoints();
@@ -165,6 +165,9 @@ function replan(): void {
     ui.canvas.dataset.path = Array.from(path).join(',');
     let status = `Path found: ${res.pathLen} cells, ${res.lengthM.toFixed(2)} m`;
     if (safety.length) status += ` · min safety index ${safety.reduce((a, b) => Math.min(a, b), Infinity).toFixed(2)}/10`;
+    if (repair) status += ` · D* Lite repair: ${repair.expanded.toLocaleString('en-US')} cells expanded (a fresh A*: ${repair.freshAStar.toLocaleString('en-US')})`;
+    if (truncated) status += ` · the search recording stopped at ${playback?.n.toLocaleString('en-US')} events`;
+    ui.body.dataset.repair = repair ? `${repair.expanded},${repair.freshAStar}` : '';
     ui.status.textContent = status;
   } finally {
     res.free();
@@ -343,6 +346,7 @@ async function boot(): Promise<void> {
   syncControls();
   clearMetrics();
   await init();
+  corePlanners = gridAlgorithms() as CorePlanner[];
   setDefaults(defaultPlanOptions() as Record<string, unknown>);
   applyOptions(getDefaults());
   syncControls();
@@ -370,7 +374,9 @@ async function boot(): Promise<void> {
   if (url.problems.length) showError(url.problems.join(' · '));
 }
 
-installShell(gridHelp());
+/** The core's planners with their references (for the help), after init. */
+let corePlanners: CorePlanner[] = [];
+installShell(() => gridHelp(corePlanners));
 
 // For the e2e tests and the README's figures: the player and its meter.
 (window as unknown as Record<string, unknown>).planlabGrid = {

@@ -5,7 +5,7 @@
 // The table compares the counters; the winners are the fewest expanded
 // cells and the lowest path cost. Nothing here plans.
 
-import init, { MapHandle, defaultPlanOptions } from '../../pkg/planlab_wasm.js';
+import init, { MapHandle, defaultPlanOptions, gridAlgorithms } from '../../pkg/planlab_wasm.js';
 import { MapView, type Cell } from '../grid/render';
 import { GridSession } from '../grid/planning';
 import { loadPreset, type MapHost } from '../grid/maps';
@@ -15,6 +15,7 @@ import { el, errorBanner, messageOf } from '../shell/dom';
 import { panZoom } from '../shell/canvas-input';
 import { installShell } from '../shell/help';
 import { raceHelp } from './help';
+import type { CorePlanner } from '../shell/help-content';
 
 const ui = {
   body: document.body,
@@ -266,10 +267,12 @@ for (const p of pickers) p.addEventListener('change', guard(buildLanes));
 ui.diagonal.addEventListener('change', guard(replan));
 ui.preset.addEventListener('change', guard(() => loadPreset(host, ui.preset.value)));
 
-installShell(raceHelp());
+let corePlanners: CorePlanner[] = [];
+installShell(() => raceHelp(corePlanners));
 
 async function boot(): Promise<void> {
   await init();
+  corePlanners = gridAlgorithms() as CorePlanner[];
   defaults = defaultPlanOptions() as Record<string, unknown>;
   ui.hint.textContent = 'Pick 2–4 planners and press Race.';
   await loadPreset(host, ui.preset.value || 'arena');
