@@ -220,7 +220,8 @@ test('D* Lite repairs a painted wall with fewer expansions than a fresh A*', asy
   // so only the part of its search behind the wall is repaired.
   const [mc, mr] = before[Math.floor(before.length * 0.25)];
   await chooseTool(page, 'wall');
-  await dragCells(page, [mc, Math.max(1, mr - 4)], [mc, Math.min(47, mr + 4)]);
+  // One stroke, one replan: the wall is painted as one segment.
+  await dragCells(page, [mc, Math.max(1, mr - 4)], [mc, Math.min(47, mr + 4)], 1);
   assert.equal(await errorText(page), null);
   const repair = (await page.getAttribute('body', 'data-repair')).split(',').map(Number);
   assert.equal(repair.length, 2, 'a repair was reported');

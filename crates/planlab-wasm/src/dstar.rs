@@ -55,13 +55,25 @@ impl DStarSession {
             let now = plan_grid_for(&self.map, &self.options)?;
             for r in 0..now.height() {
                 for c in 0..now.width() {
-                    set(&mut self.dstar, &mut self.known, c, r, now.is_free(c as i64, r as i64));
+                    set(
+                        &mut self.dstar,
+                        &mut self.known,
+                        c,
+                        r,
+                        now.is_free(c as i64, r as i64),
+                    );
                 }
             }
         } else {
             for &(c, r) in touched {
                 if let Some(cell) = self.map.get(c, r) {
-                    set(&mut self.dstar, &mut self.known, c, r, cell.passable(self.options.allow_unknown));
+                    set(
+                        &mut self.dstar,
+                        &mut self.known,
+                        c,
+                        r,
+                        cell.passable(self.options.allow_unknown),
+                    );
                 }
             }
         }

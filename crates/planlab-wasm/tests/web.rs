@@ -787,10 +787,17 @@ fn dstar_session_repairs_edits_and_moved_starts() {
     map.paint_segment(c, top, c, bottom, 1).unwrap();
     let repaired = dstar.plan().unwrap();
     let fresh = plan(&map, 1, 11, 42, 46, astar(), false).unwrap();
-    assert!((repaired.plan().cost() - fresh.cost()).abs() < 1e-9, "repaired to the optimum");
+    assert!(
+        (repaired.plan().cost() - fresh.cost()).abs() < 1e-9,
+        "repaired to the optimum"
+    );
     assert!(repaired.plan().cost() > first.plan().cost());
     let closes = repaired.kinds().iter().filter(|&&k| k == 1).count() as u32;
-    assert_eq!(closes, repaired.plan().expanded_count(), "the events are this call's");
+    assert_eq!(
+        closes,
+        repaired.plan().expanded_count(),
+        "the events are this call's"
+    );
     assert!(
         repaired.plan().expanded_count() < fresh.expanded_count(),
         "repair {} vs fresh A* {}",

@@ -97,17 +97,26 @@ export class GridSession {
     const t0 = performance.now();
     let rec: RecordedPlan;
     let repaired = false;
+    const fresh = (): RecordedPlan => {
+      this.dropDStar();
+      const n = new DStarSession(map, opts, start[0], start[1], goal[0], goal[1]);
+      this.d = { s: n, start, goal, key };
+      return n.plan();
+    };
     try {
       if (d && d.key === key && same(d.goal, goal)) {
-        if (!same(d.start, start)) d.s.moveStart(start[0], start[1]);
-        d.start = start;
-        rec = d.s.plan();
-        repaired = true;
+        try {
+          if (!same(d.start, start)) d.s.moveStart(start[0], start[1]);
+          d.start = start;
+          rec = d.s.plan();
+          repaired = true;
+        } catch {
+          // A failed repair is checked by a fresh search, which gives the
+          // answer (and its error, if any) the page shows.
+          rec = fresh();
+        }
       } else {
-        this.dropDStar();
-        const fresh = new DStarSession(map, opts, start[0], start[1], goal[0], goal[1]);
-        this.d = { s: fresh, start, goal, key };
-        rec = fresh.plan();
+        rec = fresh();
       }
     } catch (e) {
       this.dropDStar();
