@@ -31,23 +31,35 @@ struct Cli {
     command: Command,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
-enum AlgoArg {
-    Astar,
-    Dijkstra,
-    Jps,
-    #[value(name = "safe-astar")]
-    SafeAstar,
+/// A grid planner on the command line: every [`Algorithm`] by its name,
+/// with its one-line description in `--help`.
+#[derive(Clone, Copy)]
+struct AlgoArg(Algorithm);
+
+/// Every planner, in [`Algorithm::ALL`] order (clap wants a static slice).
+const ALGO_ARGS: [AlgoArg; Algorithm::ALL.len()] = {
+    let mut out = [AlgoArg(Algorithm::AStar); Algorithm::ALL.len()];
+    let mut i = 0;
+    while i < out.len() {
+        out[i] = AlgoArg(Algorithm::ALL[i].0);
+        i += 1;
+    }
+    out
+};
+
+impl ValueEnum for AlgoArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        &ALGO_ARGS
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        Some(clap::builder::PossibleValue::new(self.0.name()).help(self.0.description()))
+    }
 }
 
 impl From<AlgoArg> for Algorithm {
     fn from(a: AlgoArg) -> Self {
-        match a {
-            AlgoArg::Astar => Algorithm::AStar,
-            AlgoArg::Dijkstra => Algorithm::Dijkstra,
-            AlgoArg::Jps => Algorithm::Jps,
-            AlgoArg::SafeAstar => Algorithm::SafeAStar,
-        }
+        a.0
     }
 }
 
@@ -115,7 +127,8 @@ impl From<GenKindArg> for planlab_core::map::generate::GeneratorKind {
 #[derive(Subcommand)]
 enum BenchKind {
     /// Our A* and JPS against the `pathfinding` crate's astar on a Moving AI
-    /// scenario; prints one JSON line with ms per query and the ratios.
+    /// scenario, then every other `--algo` planner as a row (ms per query,
+    /// ratio to A*, expansions, cost / optimum); prints one JSON line.
     Grid {
         /// Moving AI .map file.
         map: PathBuf,

@@ -80,16 +80,20 @@ fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-3 * b.max(1.0)
 }
 
-/// Every row (`step` 1) or every `step`-th row of every map: `check` says
-/// what is wrong with a planner's answer.
+/// Every `steps[m]`-th row of map `m` (arena, arena2, random512, maze512;
+/// 1 = every row, 0 = none): `check` says what is wrong with a planner's
+/// answer.
 fn every_row(
-    step: usize,
+    steps: [usize; 4],
     planner: &dyn GridPlanner,
     mut check: impl FnMut(&PlanGrid, &ScenRow, Result<Path, PlanError>) -> Option<String>,
 ) {
     let mut failures = Vec::new();
     let mut solved = 0;
-    for (name, map, rows) in benchmarks() {
+    for ((name, map, rows), step) in benchmarks().into_iter().zip(steps) {
+        if step == 0 {
+            continue;
+        }
         let grid = PlanGrid::new(&map, false);
         for (k, row) in rows.iter().enumerate().step_by(step) {
             let result = planner.plan(&grid, row.start, row.goal);
@@ -121,14 +125,12 @@ fn optimum(grid: &PlanGrid, row: &ScenRow, result: Result<Path, PlanError>) -> O
 
 #[test]
 fn bidirectional_astar_is_optimal_on_every_row() {
-    every_row(1, &BidirectionalAStar::default(), optimum);
+    every_row([1, 1, 1, 1], &BidirectionalAStar::default(), optimum);
 }
 
 #[test]
 fn dstar_lite_is_optimal_on_every_row() {
-    // Every row of the three smaller maps' and every 4th of maze512's
-    // 12 121 (each query builds a fresh D* Lite: ~10 MB of state).
-    every_row(1, &DStarLitePlanner::default(), optimum);
+    every_row([1, 1, 1, 1], &DStarLitePlanner::default(), optimum);
 }
 
 #[test]
@@ -145,7 +147,7 @@ fn jps_4_connected_equals_4_connected_astar_on_every_row() {
     .unwrap();
     let mut fewer = 0usize;
     let mut rows = 0usize;
-    every_row(1, &jps, |grid, row, result| {
+    every_row([1, 1, 1, 1], &jps, |grid, row, result| {
         let best = four.plan(grid, row.start, row.goal).unwrap();
         rows += 1;
         match result {
@@ -169,8 +171,9 @@ fn jps_4_connected_equals_4_connected_astar_on_every_row() {
 #[test]
 fn ida_star_is_optimal_or_stops_at_its_limit() {
     let (mut solved, mut limited, mut rows) = (0, 0, 0);
-    // Every 4th row: IDA* re-searches, a limited query costs 2 M expansions.
-    every_row(4, &IdaStar::default(), |grid, row, result| {
+    // Every row of arena (49×49): on the 512 maps most queries end at the
+    // limit, 2 M expansions each (see the next test).
+    every_row([1, 0, 0, 0], &IdaStar::default(), |grid, row, result| {
         rows += 1;
         match result {
             Err(PlanError::SearchLimit { expanded, limit }) => {
@@ -184,9 +187,11 @@ fn ida_star_is_optimal_or_stops_at_its_limit() {
             }
         }
     });
-    // Short queries finish; the long ones on the 512 maps hit the limit.
-    assert!(solved * 3 > rows, "IDA* solved {solved} of {rows}");
-    assert!(limited > 0, "IDA* never hit its limit");
+    // Short queries finish; some long ones hit the limit.
+    assert!(
+        solved * 2 > rows,
+        "IDA* solved {solved} of {rows} ({limited} limited)"
+    );
 }
 
 #[test]
@@ -213,7 +218,7 @@ fn ida_star_gives_a_typed_limit_error_on_a_long_512_query() {
 #[test]
 fn bfs_finds_fewest_moves_within_sqrt2_of_the_optimum() {
     let astar = AStar::default();
-    every_row(1, &Bfs::default(), |grid, row, result| {
+    every_row([1, 1, 1, 1], &Bfs::default(), |grid, row, result| {
         let best = astar.plan(grid, row.start, row.goal).unwrap();
         match result {
             // Fewest moves: never more moves than A*'s path; each move is
@@ -243,7 +248,7 @@ fn bfs_is_optimal_on_4_connected_grids() {
     let bfs = Bfs {
         diagonal: Diagonal::Never,
     };
-    every_row(3, &bfs, |grid, row, result| {
+    every_row([1, 1, 1, 4], &bfs, |grid, row, result| {
         let best = four.plan(grid, row.start, row.goal).unwrap();
         match result {
             Ok(p) if p.cost != best.cost => Some(format!("cost {} ≠ {}", p.cost, best.cost)),
@@ -256,16 +261,20 @@ fn bfs_is_optimal_on_4_connected_grids() {
 #[test]
 fn greedy_finds_a_legal_path_whenever_astar_does() {
     let mut longer = 0;
-    every_row(1, &Greedy::default(), |grid, row, result| match result {
-        Ok(p) => {
-            longer += usize::from(p.cost > row.optimal + 1e-6);
-            if p.cost < row.optimal - 1e-6 {
-                return Some(format!("cost {} below the optimum {}", p.cost, row.optimal));
+    every_row(
+        [1, 1, 1, 1],
+        &Greedy::default(),
+        |grid, row, result| match result {
+            Ok(p) => {
+                longer += usize::from(p.cost > row.optimal + 1e-6);
+                if p.cost < row.optimal - 1e-6 {
+                    return Some(format!("cost {} below the optimum {}", p.cost, row.optimal));
+                }
+                illegal(grid, &p, row.start, row.goal, NCC)
             }
-            illegal(grid, &p, row.start, row.goal, NCC)
-        }
-        Err(e) => Some(e.to_string()),
-    });
+            Err(e) => Some(e.to_string()),
+        },
+    );
     // Not optimal, and the rows show it.
     assert!(longer > 0);
 }
@@ -273,23 +282,27 @@ fn greedy_finds_a_legal_path_whenever_astar_does() {
 #[test]
 fn theta_star_is_no_longer_than_the_8_connected_optimum() {
     let mut shorter = 0;
-    every_row(1, &ThetaStar::default(), |grid, row, result| match result {
-        Ok(p) => {
-            let straight = Path::polyline_length(&[row.start, row.goal]);
-            shorter += usize::from(p.cost < row.optimal - 1e-6);
-            if p.cost > row.optimal + 1e-6 {
-                Some(format!(
-                    "cost {} > 8-connected optimum {}",
-                    p.cost, row.optimal
-                ))
-            } else if p.cost < straight - 1e-9 {
-                Some(format!("cost {} < straight line {straight}", p.cost))
-            } else {
-                illegal(grid, &p, row.start, row.goal, NCC)
+    every_row(
+        [1, 1, 1, 1],
+        &ThetaStar::default(),
+        |grid, row, result| match result {
+            Ok(p) => {
+                let straight = Path::polyline_length(&[row.start, row.goal]);
+                shorter += usize::from(p.cost < row.optimal - 1e-6);
+                if p.cost > row.optimal + 1e-6 {
+                    Some(format!(
+                        "cost {} > 8-connected optimum {}",
+                        p.cost, row.optimal
+                    ))
+                } else if p.cost < straight - 1e-9 {
+                    Some(format!("cost {} < straight line {straight}", p.cost))
+                } else {
+                    illegal(grid, &p, row.start, row.goal, NCC)
+                }
             }
-        }
-        Err(e) => Some(e.to_string()),
-    });
+            Err(e) => Some(e.to_string()),
+        },
+    );
     // Any-angle: strictly shorter on most rows.
     assert!(shorter > 1000, "shorter on {shorter} rows");
 }

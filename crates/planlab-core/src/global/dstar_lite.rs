@@ -44,8 +44,22 @@ use std::collections::BinaryHeap;
 /// A queue key `[k1; k2]`, compared lexicographically.
 type Key = (f64, f64);
 
+/// `a < b` lexicographically, with values within rounding of each other
+/// equal: `g + h` summed along different routes differs in the last bits,
+/// and a changed cell whose key rounded just above the start's would
+/// otherwise never be expanded.
 fn key_less(a: Key, b: Key) -> bool {
-    a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
+    let eq = |x: f64, y: f64| {
+        x == y
+            || (x.is_finite()
+                && y.is_finite()
+                && (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0))
+    };
+    if eq(a.0, b.0) {
+        a.1 < b.1 && !eq(a.1, b.1)
+    } else {
+        a.0 < b.0
+    }
 }
 
 /// Queue entry; stale when its key is no longer the cell's queued key.
@@ -94,6 +108,8 @@ pub struct DStarLite {
     /// The key a cell is queued with, if it is queued.
     queued: Vec<Option<Key>>,
     queue: BinaryHeap<Queued>,
+    /// Whether the goal's Open event was sent.
+    announced: bool,
 }
 
 impl DStarLite {
@@ -124,6 +140,7 @@ impl DStarLite {
             rhs: vec![f64::INFINITY; n],
             queued: vec![None; n],
             queue: BinaryHeap::new(),
+            announced: false,
         };
         let t = d.at(goal);
         d.rhs[t] = 0.0;
@@ -207,8 +224,21 @@ impl DStarLite {
         let w = self.grid.width();
         let s = self.at(self.start);
         let mut expanded = 0usize;
+        if !self.announced {
+            // The goal was queued by `new`, before anyone listened.
+            self.announced = true;
+            let (goal, h) = (self.goal, self.h(self.start, self.goal));
+            emit(obs, || SearchEvent::Open {
+                cell: goal,
+                parent: None,
+                g: 0.0,
+                h,
+            });
+        }
         while let Some(top) = self.top() {
-            if !(key_less(top.key, self.key(s)) || self.rhs[s] > self.g[s]) {
+            // Until the start itself is consistent (Fig. 3's rule; stopping while
+            // it is only overconsistent leaves g(start) unset for the next repair).
+            if !(key_less(top.key, self.key(s)) || self.rhs[s] != self.g[s]) {
                 break;
             }
             let u = top.idx;
