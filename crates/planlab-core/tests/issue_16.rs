@@ -1,4 +1,4 @@
-//! Issue 16 §2.1: a generated map can be driven. Every generator kind, on
+//! Issue 16 §2 (fix what breaks in class). §2.1: a generated map can be driven. Every generator kind, on
 //! several seeds, built as the page and `planlab generate` build it (the
 //! generated start and goal, heading 0, the generated-map sim settings),
 //! is driven to the goal by the DWA family.
@@ -122,4 +122,36 @@ fn item1_cli_maze_seed_7_example() {
         drive(GeneratorKind::Maze, 7, "improved-dwa").0,
         Outcome::Reached
     );
+}
+
+#[test]
+fn item8_nan_in_scenario_json_is_named() {
+    let text = r#"{ "version": 1, "name": "n", "map": { "width": 3, "height": 1, "resolution": 1.0, "cells": ["..."] },
+  "start": { "col": 0, "row": 0 }, "goal": { "col": 2, "row": 0 },
+  "sim": { "dt": NaN } }"#;
+    let e = planlab_core::scenario::Scenario::from_json(text)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("NaN is not a number JSON allows"), "{e}");
+    assert!(e.contains("line 3"), "{e}");
+    let any = planlab_core::scenario::AnyScenario::from_json(&text.replace("NaN", "-Infinity"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        any.contains("-Infinity is not a number JSON allows"),
+        "{any}"
+    );
+}
+
+#[test]
+fn item8_garbage_map_is_not_echoed() {
+    use planlab_core::map::io::movingai::parse_map;
+    let e = parse_map("\u{1}PNG\u{1a}\u{0}\u{0}garbage\nmore")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("not a Moving AI map: the first line should be `type octile`"),
+        "{e}"
+    );
+    assert!(!e.contains("\\u{") && !e.contains("PNG"), "{e}");
 }
