@@ -679,7 +679,8 @@ fn scenario_err(text: &str) -> ScenarioError {
 #[test]
 fn scenario_errors_are_specific() {
     let inline = r#"{"width": 3, "height": 2, "cells": ["...", "..."]}"#;
-    let cases: Vec<(String, &str)> = vec![
+    let cases: Vec<(String, &str)> =
+        vec![
         (
             minimal(inline).replace("\"version\": 1", "\"version\": 2"),
             "version 2 is not supported",
