@@ -155,3 +155,66 @@ fn item8_garbage_map_is_not_echoed() {
     );
     assert!(!e.contains("\\u{") && !e.contains("PNG"), "{e}");
 }
+
+#[test]
+fn s3_every_planner_has_plain_words_beside_its_paper() {
+    for p in planlab_core::planners::list() {
+        assert!(!p.paper.is_empty(), "{}", p.name);
+        // A paragraph: what it does, when it fails, what to watch.
+        assert!(p.plain.len() > 150, "{}: {:?}", p.name, p.plain);
+        assert!(
+            p.plain.contains("Watch")
+                || p.plain.contains("watch")
+                || p.plain.contains("Use it")
+                || p.plain.contains("Compare")
+                || p.plain.contains("Run it")
+                || p.plain.contains("Turn on"),
+            "{}: nothing to look at",
+            p.name
+        );
+    }
+}
+
+/// A 6 × 4 m room split by a wall at x = 3 m with a gap `gap_cells` tall.
+fn split_room(gap_cells: usize) -> Episode {
+    use planlab_core::map::{Cell, OccupancyGrid, Pose2};
+    use planlab_core::sim::EpisodeSetup;
+    use planlab_core::world::{RobotSpec, RobotState, StaticMap};
+    let (w, h) = (60, 40);
+    let mut cells = vec![Cell::Free; w * h];
+    for row in 0..h {
+        if !(20..20 + gap_cells).contains(&row) {
+            cells[row * w + 30] = Cell::Occupied;
+        }
+    }
+    let grid = OccupancyGrid::from_cells(w, h, cells)
+        .unwrap()
+        .with_frame(0.1, Pose2::default())
+        .unwrap();
+    Episode::new(EpisodeSetup {
+        map: StaticMap::new(grid, true).unwrap(),
+        robot: RobotSpec::default(),
+        start: RobotState {
+            x: 1.0,
+            y: 2.0,
+            ..Default::default()
+        },
+        goal: [5.0, 2.0],
+        movers: Vec::new(),
+        planner: PlannerChoice::named("dwa"),
+        config: SimConfig::default(),
+        terrain: Default::default(),
+        seed: 0,
+    })
+    .unwrap()
+}
+
+#[test]
+fn item2_a_path_only_without_inflation_is_said() {
+    // Gap of 0.2 m for a robot 0.4 m across: only the bare map has a path.
+    let note = split_room(2).route_note().expect("a note");
+    assert!(note.contains("only without inflation"), "{note}");
+    assert!(note.contains("radius 0.20 m"), "{note}");
+    // A 1.5 m gap: the robot fits, nothing to say.
+    assert_eq!(split_room(15).route_note(), None);
+}
