@@ -4,7 +4,7 @@
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { startSession, screenshot, errorText, openRobotPage } from './harness.mjs';
+import { startSession, screenshot, errorText, openRobotPage, watchedPage } from './harness.mjs';
 
 let session;
 before(async () => {
@@ -26,12 +26,7 @@ async function playToEnd(page) {
 }
 
 async function openAt(url) {
-  const page = await session.context.newPage();
-  const problems = [];
-  page.on('console', (m) => {
-    if (m.type() === 'error') problems.push(`console.error: ${m.text()}`);
-  });
-  page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
+  const { page, problems } = await watchedPage(session);
   await page.goto(session.base + url);
   await page.waitForFunction(() => ['ready', 'error', 'done'].includes(document.body.dataset.state), null, { timeout: 30_000 });
   return { page, problems };
@@ -169,7 +164,7 @@ test('item7: digits enough to check the relations; the gallery run ends with the
   await arm.page.close();
 });
 
-test('item8: gallery runs at 4× with ⏭ To end; the note is whole; Run above the fold; shared link; NaN; garbage .map', async () => {
+test('item8: gallery runs at 4× with » To end; the note is whole; Run above the fold; shared link; NaN; garbage .map', async () => {
   // A gallery link opens at 4× and has a To end button.
   const g = await openAt('robot.html?scenario=S-tab1.json&planner=preliminary-fusion&run=1&exp=S-tab1&as=preliminary');
   await g.page.waitForSelector('#gallery-note');

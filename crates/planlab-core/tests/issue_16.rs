@@ -4,11 +4,10 @@
 //! is driven to the goal by the DWA family.
 
 use planlab_core::map::generate::{generate, GenerateConfig, GeneratorKind};
-use planlab_core::map::GridPos;
 use planlab_core::metrics::EpisodeMetrics;
 use planlab_core::planners::PlannerChoice;
-use planlab_core::scenario::{Scenario, WorldPoint};
-use planlab_core::sim::{generated_sim_config, Episode, Outcome, SimConfig};
+use planlab_core::scenario::Scenario;
+use planlab_core::sim::{Episode, Outcome, SimConfig};
 
 fn drive(kind: GeneratorKind, seed: u64, planner: &str) -> (Outcome, f64) {
     let c = GenerateConfig {
@@ -17,18 +16,7 @@ fn drive(kind: GeneratorKind, seed: u64, planner: &str) -> (Outcome, f64) {
         ..Default::default()
     };
     let g = generate(&c).unwrap();
-    let cell = |(col, row): (usize, usize)| GridPos::new(col as u32, row as u32);
-    let mut s = Scenario::new("gen", g.grid.clone(), cell(g.start_cell), cell(g.goal_cell));
-    s.start.world = Some(WorldPoint {
-        x: g.start[0],
-        y: g.start[1],
-    });
-    s.goal.world = Some(WorldPoint {
-        x: g.goal[0],
-        y: g.goal[1],
-    });
-    s.local_planner = Some(PlannerChoice::named(planner));
-    s.sim = Some(generated_sim_config(SimConfig::default()));
+    let s = Scenario::for_generated("gen", &g, planner);
     let mut ep = Episode::from_scenario(&s, g.grid).unwrap();
     let outcome = ep.run();
     (outcome, EpisodeMetrics::of_episode(&ep).path_length_m)

@@ -371,7 +371,7 @@ const opener: OpenHost = {
   preset: ui.preset,
   play: () => {
     // A gallery run opens at 4×: a paper's run is one to three simulated
-    // minutes (S-tab1's preliminary fusion over two at 1×); ⏭ To end skips.
+    // minutes (S-tab1's preliminary fusion over two at 1×); » To end skips.
     if (new URLSearchParams(location.search).has('exp')) setSpeed(4);
     ui.play.click();
   },
