@@ -139,3 +139,24 @@ fn t_fig3_11_short_horizon_fusion53_is_not_hit() {
         assert!(*min_c > 0.0, "{name}: touched something ({min_c} m)");
     }
 }
+
+/// T-fig3-11 at the default 3 s horizon: improved-dwa reached the goal in
+/// 2 of 30 variants. Past the mover it orbited the still disc at full
+/// speed and turn rate, a new virtual goal set each lap. The virtual goal
+/// was kept until its obstacle was behind the robot *as seen toward the
+/// current goal*; the detour itself moves the robot off the line, which
+/// turns that direction, so a disc passed by 0.5–1.4 m still counted as
+/// ahead and the robot kept turning back toward a virtual goal behind it
+/// (variant 0: crossed the disc's perpendicular at 17.3 s, dropped at
+/// 18.05 s, ω at its maximum throughout). "Behind" is now measured along
+/// the robot→goal direction the virtual goal was placed from (\[T\]
+/// §3.2.2: on the perpendicular to it through the obstacle).
+#[test]
+fn t_fig3_11_improved_dwa_does_not_orbit_the_still_disc() {
+    for k in [0, 1] {
+        let runs = family_runs("T-fig3-11", k, &[]);
+        let (_, outcome, min_c) = runs.iter().find(|(n, ..)| n == "improved").unwrap();
+        assert_eq!(*outcome, Outcome::Reached, "variant {k}");
+        assert!(*min_c > 0.0, "variant {k}: touched something ({min_c} m)");
+    }
+}
