@@ -488,7 +488,7 @@ impl DwaCore {
         let l = &self.robot.limits;
         let h = self.cfg.sim_dt;
         let t_end = self.last_dt + v.abs() / l.acc_v;
-        let travel = v.abs() * self.last_dt + 0.5 * v * v / l.acc_v + s.v.abs() * self.last_dt;
+        let travel = v.abs() * self.last_dt + 0.5 * v * v / l.acc_v;
         let reach0 = self.r_eff + self.last_limit.abs() + travel;
         let near = self.all_movers.iter().any(|&(p, mv, r)| {
             hypot(p[0] - s.x, p[1] - s.y) - r - hypot(mv[0], mv[1]) * t_end <= reach0
