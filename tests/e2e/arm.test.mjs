@@ -53,7 +53,7 @@ test('T-tab5-3 preset plays to the goal and shows the minimum distance', async (
   const withPred = await metric(page, 'min');
   const core = await page.evaluate(() => window.planlabArm.metrics());
   assert.equal(withPred, core.min_obstacle_distance_m);
-  assert.match(shown, new RegExp(`^${core.min_obstacle_distance_m.toFixed(3)} m$`));
+  assert.match(shown, new RegExp(`^${core.min_obstacle_distance_m.toFixed(4)} m$`));
   assert.ok(withPred > 0, `min distance ${withPred}`);
   assert.ok(core.path_points > 5 && core.path_length_m > 0.3, JSON.stringify(core));
   // The canvas drew something: not a single flat colour.

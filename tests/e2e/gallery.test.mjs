@@ -401,7 +401,13 @@ test('robot page metric cards: every label and value whole (no "…") at 1366×7
     for (const run of runs) {
       await page.goto(`${session.base}robot.html?scenario=${run}&run=1`);
       await ready(page);
-      await page.selectOption('#speed', '8');
+      // Presentation mode folds the side panel (issue 16 §2.3): set the
+      // speed through its select without unfolding it.
+      await page.evaluate(() => {
+        const sp = document.getElementById('speed');
+        sp.value = '8';
+        sp.dispatchEvent(new Event('input'));
+      });
       const seen = new Set();
       for (;;) {
         for (const c of await cut()) seen.add(c);

@@ -132,17 +132,24 @@ export async function startSession() {
   };
 }
 
-/**
- * Opens the playground and records console errors and page errors; the
- * returned `problems` array must stay empty.
- */
-export async function openPage(session, query = '') {
+/** A new page whose console errors and page errors collect in `problems`
+ *  (which must stay empty). */
+export async function watchedPage(session) {
   const page = await session.context.newPage();
   const problems = [];
   page.on('console', (m) => {
     if (m.type() === 'error') problems.push(`console.error: ${m.text()}`);
   });
   page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
+  return { page, problems };
+}
+
+/**
+ * Opens the playground and records console errors and page errors; the
+ * returned `problems` array must stay empty.
+ */
+export async function openPage(session, query = '') {
+  const { page, problems } = await watchedPage(session);
   await page.goto(session.base + query);
   await page.waitForFunction(() => Number(document.body.dataset.planSeq) > 0, null, { timeout: 30_000 });
   return { page, problems };
@@ -152,12 +159,7 @@ export async function openPage(session, query = '') {
  *  episode is built, and checks it shows no error; `problems` collects
  *  console errors and page errors. */
 export async function openRobotPage(session, url) {
-  const page = await session.context.newPage();
-  const problems = [];
-  page.on('console', (m) => {
-    if (m.type() === 'error') problems.push(`console.error: ${m.text()}`);
-  });
-  page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
+  const { page, problems } = await watchedPage(session);
   await page.goto(session.base + url);
   await page.waitForFunction(() => ['ready', 'error'].includes(document.body.dataset.state), null, { timeout: 30_000 });
   assert.equal(await errorText(page), null, 'no error after loading');

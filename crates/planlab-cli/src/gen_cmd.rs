@@ -5,12 +5,9 @@
 
 use std::path::Path;
 
-use planlab_core::global::GridPos;
 use planlab_core::map::generate::{generate, GenerateConfig};
 use planlab_core::map::io::movingai;
-use planlab_core::planners::PlannerChoice;
-use planlab_core::scenario::{Scenario, WorldPoint};
-use planlab_core::sim::{generated_sim_config, SimConfig};
+use planlab_core::scenario::Scenario;
 use serde::Serialize;
 
 /// What `planlab generate --json` prints.
@@ -68,30 +65,18 @@ pub fn run(c: &GenerateConfig, out: &Path, json: bool) -> Result<(), String> {
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    let cell = |(col, row): (usize, usize)| GridPos::new(col as u32, row as u32);
     let text = match ext.as_deref() {
         Some("json") => {
-            let mut s = Scenario::new(
-                format!("{} seed {}", c.kind.as_str(), c.seed),
-                g.grid.clone(),
-                cell(g.start_cell),
-                cell(g.goal_cell),
+            let mut s = Scenario::for_generated(
+                &format!("{} seed {}", c.kind.as_str(), c.seed),
+                &g,
+                "improved-dwa",
             );
             s.description = format!(
                 "Generated map: {}. Start and goal are joined for a robot of radius {} m.",
                 command_line(c),
                 c.robot_radius
             );
-            s.start.world = Some(WorldPoint {
-                x: g.start[0],
-                y: g.start[1],
-            });
-            s.goal.world = Some(WorldPoint {
-                x: g.goal[0],
-                y: g.goal[1],
-            });
-            s.local_planner = Some(PlannerChoice::named("improved-dwa"));
-            s.sim = Some(generated_sim_config(SimConfig::default()));
             s.to_json_pretty().map_err(|e| e.to_string())?
         }
         Some("map") => movingai::write_map(&g.grid),

@@ -575,6 +575,12 @@ fn run(cli: Cli) -> Result<(), String> {
                 (None, Some(p)) => Ok(p),
                 (None, None) => Err(format!("--{name} COLUMN,ROW is required for this map")),
             };
+            // Said on stderr: stdout stays the plan (or its JSON).
+            if let Some(note) =
+                planlab_core::map::costmap::inflation_note(options.inflate_m, grid.resolution())
+            {
+                eprintln!("planlab: note: {note}");
+            }
             let args = grid_cmds::PlanArgs {
                 start: endpoint(start, "start", scenario.as_ref().map(|s| s.start.pos()))?,
                 goal: endpoint(goal, "goal", scenario.as_ref().map(|s| s.goal.pos()))?,

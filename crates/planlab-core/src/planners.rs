@@ -72,14 +72,53 @@ pub struct PlannerInfo {
     pub paper: String,
     /// One-line summary.
     pub summary: String,
+    /// The same for a beginner, in plain words: what it does, when it
+    /// fails, what to look at on the canvas ([`plain_words`]).
+    #[serde(default)]
+    pub plain: String,
     /// Config fields.
     pub fields: Vec<FieldInfo>,
 }
 
 /// Every registered planner, in a fixed order.
 pub fn list() -> Vec<PlannerInfo> {
+    let mut all = entries();
+    for p in &mut all {
+        p.plain = plain_words(&p.name).to_string();
+    }
+    all
+}
+
+/// A plain-language paragraph for a beginner on the planner `name` (empty
+/// for an unknown name): what it does, when it fails, and what to look at
+/// on the canvas. The paper reference stays in [`PlannerInfo::paper`].
+pub fn plain_words(name: &str) -> &'static str {
+    match name {
+        "dwa" => "Every step the robot imagines driving each speed and turn it could reach in the next moment for a second or two (the fan), throws away the ones that would hit something, and picks the one that points most at the goal, stays far from walls and is fast. It only looks a few metres ahead and has no map of the way round, so a wall pocket or C-shape between it and the goal traps it: it drives in and stops or circles. Watch the fan: orange rollouts score high, the green one is driven; when every rollout in front is grey the robot brakes and turns.",
+        "improved-dwa" => "DWA with a guide: before it moves, A* finds a route on the map (the red line) and keeps only its corners (key points, the purple marks). The DWA steers to one key point after another instead of straight at the goal, so it goes round traps, and it sorts moving obstacles into kinds (the coloured discs) to keep more room from people. It can still fail when a moving obstacle blocks a narrow passage, or when a door's key point is passed and the next one is behind the wall beside it. Watch the temporary goal jump from corner to corner and the fan bend round obstacles.",
+        "fusion-53" => "The earlier fusion the thesis compares against: A* key points as intermediate goals and a plain DWA between them, without the improved obstacle handling. It goes round traps like the improved DWA but reacts later to moving obstacles. Compare its trail with improved-dwa's on the same scene.",
+        "safe-dual-dwa" => "A* that prefers to stay away from walls (safe A*) draws the route; only its few bends (feature nodes) become temporary goals. Near a temporary goal the robot keeps its speed instead of braking (the dual velocity model) and skips a node it has already passed. It is fast on open maps; it can circle when the next node lies behind a wall corner. Watch the speed plot stay flat where the preliminary fusion dips, and the star of the temporary goal move on.",
+        "preliminary-fusion" => "The baseline of the safe-dual paper: every cell of the safe A* route is a temporary goal, and the DWA slows down for each one. It gets there, but slowly, with many speed drops; on some scenes it ends circling near a node without getting closer (shown as \"no progress toward the goal, still moving\"). Watch the speed plot saw up and down.",
+        "pursuit" => "Not a real planner: it drives straight at the goal and brakes as it arrives, ignoring every obstacle. Use it to see what happens without obstacle avoidance: the run ends in a collision as soon as something is in the way.",
+        "cleaning-dwa" => "A DWA for an omnidirectional cleaning robot (it can slide sideways): it follows an A* path through a costmap that grows walls by the robot's size, keeps its wheels loaded on bumps and corrects its odometry drift. It fails when the costmap closes a gap the robot could just pass. Watch the trail hug the path and the wheel-load plot.",
+        "traditional-dwa" => "The cleaning DWA without its two additions (wheel-load limit and odometry correction), as the paper's comparison. Run it next to cleaning-dwa on a bumpy scene and compare the wheel-load plot and the tracking error.",
+        "apf" => "Artificial potential field: the goal pulls the robot, every obstacle pushes it away, and the robot steps along the sum. Simple and smooth, but where pull and push cancel (an obstacle right in front of the goal, a narrow gap) it stops or shakes in place: a local minimum. Watch the path end short of the goal.",
+        "sampling-apf" => "The potential field with a way out: when the robot stops making progress it samples points around itself and jumps to the best one, escaping most local minima. It can still wander in a dead end. Watch for the sudden sideways steps where plain APF would have stopped.",
+        "lidar-dwa" => "Navigation with only a laser scanner, no map: the robot sorts the scan into edges and obstacles, puts a temporary goal beside the obstacle that blocks the way to the goal, and drives there with a DWA. It can be fooled by long walls that hide the way round. Turn on LiDAR to see the scan, the coloured edges and the temporary goal star.",
+        "lidar-apf" => "The same LiDAR temporary goals, driven with a potential field instead of a DWA. Smoother near gaps, more prone to stopping between two close obstacles. Compare its trail with lidar-dwa's.",
+        "scan-apf" => "A potential field computed from the laser hits only (no map): each hit pushes, the goal pulls. Like APF it can stop where forces cancel. Turn on LiDAR to see which hits push.",
+        "scan-dwa" => "A DWA that sees the world only through the laser scan (no map): rollouts are checked against the hit points. It avoids what it sees but, like plain DWA, has no plan for getting round long walls. Turn on LiDAR and watch the fan: rollouts end where the scan shows a hit.",
+        "tangent-bug" => "A classic bug algorithm: drive straight at the goal; when the scan shows an obstacle in the way, head for the edge of it that promises the shortest way round, and follow the wall until the goal is in reach again. Complete on simple maps but long-winded. Watch it switch between going to the goal and wall-following.",
+        "rs-apf" => "Plans a short virtual path with a potential field on the points the laser has seen, shortens it, and drives along it with a DWA; if the virtual path stalls it follows the obstacle. Watch the purple virtual path redraw as more of the map is seen.",
+        "rrt-shortcut" => "Grows a random tree (RRT) over the map the laser has revealed so far, shortcuts the path it finds, and follows it; replans when new walls appear. Random but seeded: the same seed gives the same run. Watch the path change as the fog clears.",
+        _ => "",
+    }
+}
+
+fn entries() -> Vec<PlannerInfo> {
     vec![
         PlannerInfo {
+            plain: String::new(),
             name: "dwa".into(),
             paper: "[T] Wu 2022 §3.1, eq 3-1…3-5 (Fox, Burgard & Thrun 1997); \
                     docs/algorithms.md §dwa"
@@ -91,6 +130,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<DwaConfig>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "improved-dwa".into(),
             paper: "[T] Wu 2022 §3.2 (Table 3-1, eq 3-7/3-8); \
                     docs/algorithms.md §improved-dwa"
@@ -102,6 +142,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<ImprovedConfig>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "fusion-53".into(),
             paper: "[T] Wu 2022 §3.2–3.3, its reference [53]; docs/algorithms.md §fusion-53".into(),
             summary: "Baseline fusion: A* key points + DWA with the deceleration weights \
@@ -111,6 +152,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<Fusion53Config>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "safe-dual-dwa".into(),
             paper: "[S] Ge & Li 2022 §2–4 (eq 9–12, §4.2, §5); \
                     docs/algorithms.md §safe-dual-dwa"
@@ -122,6 +164,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<DualConfig>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "preliminary-fusion".into(),
             paper: "[S] Ge & Li 2022 §2.4 baseline; docs/algorithms.md §preliminary-fusion".into(),
             summary: "Baseline fusion: every safe A* path node a temporary goal, the normal \
@@ -130,6 +173,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<PreliminaryConfig>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "pursuit".into(),
             paper: "none (test baseline)".into(),
             summary: "Naive baseline: steers straight at the goal with a braking profile; \
@@ -138,6 +182,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<PursuitConfig>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "cleaning-dwa".into(),
             paper: "[C] Zhang et al. 2020 §2–3; docs/algorithms.md §cleaning-dwa".into(),
             summary: "Cleaning-robot DWA (omnidirectional v_x, v_y, ω) along an A* path: \
@@ -147,6 +192,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: cleaning::field_list(false),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "traditional-dwa".into(),
             paper: "[C] Zhang et al. 2020 baseline; docs/algorithms.md §cleaning-dwa".into(),
             summary: "[C]'s traditional DWA: the cleaning DWA's cost without the load \
@@ -155,6 +201,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: cleaning::field_list(true),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "apf".into(),
             paper: "[T] Wu 2022 §4.1, eq 4-1…4-4; docs/algorithms.md §apf".into(),
             summary: "Basic artificial potential field: one fixed step along the resultant of \
@@ -164,6 +211,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<ApfLocalConfig>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "sampling-apf".into(),
             paper: "[T] Wu 2022 §4.2, eq 4-5…4-14; docs/algorithms.md §apf".into(),
             summary: "Sampling-based improved APF: 13 directions ±90° around the resultant, \
@@ -173,6 +221,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<ApfLocalConfig>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "lidar-dwa".into(),
             paper: "[L] Chang et al. 2024 §2–4 (Alg. 1–2, eq 1–4, Table 1); \
                     docs/algorithms.md §lidar"
@@ -184,6 +233,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<LidarPlannerConfig<DwaConfig>>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "lidar-apf".into(),
             paper: "[L] Chang et al. 2024 §2–4, sims 8–9 (APF [9] underneath); \
                     docs/algorithms.md §lidar"
@@ -194,6 +244,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<LidarPlannerConfig<ApfLocalConfig>>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "scan-apf".into(),
             paper: "[L] Chang et al. 2024 §4.2 baseline (sim 8); \
                     docs/algorithms.md §scan-baselines"
@@ -204,6 +255,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<ScanBaselineConfig<ApfLocalConfig>>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "scan-dwa".into(),
             paper: "[L] Chang et al. 2024 §4.2 baseline; docs/algorithms.md §scan-baselines".into(),
             summary: "Plain DWA straight to the goal on an unknown map: only the scan's \
@@ -212,6 +264,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<ScanBaselineConfig<DwaConfig>>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "tangent-bug".into(),
             paper: "TangentBug (Kamon, Rivlin & Rimon 1998) standing in for \
                     Critical-PointBug, [L] Chang et al. 2024 ref [21], sim 6; \
@@ -225,6 +278,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<TangentBugConfig>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "rs-apf".into(),
             paper: "RS-APF (Li, Tamura, Yamashita & Asama 2013), [L] Chang et al. 2024 \
                     ref [11], sim 8 — scan-only receding-horizon variant of an offline \
@@ -238,6 +292,7 @@ pub fn list() -> Vec<PlannerInfo> {
             fields: field_infos::<RsApfConfig>(),
         },
         PlannerInfo {
+            plain: String::new(),
             name: "rrt-shortcut".into(),
             paper: "RRT (LaValle 1998) with shortcutting standing in for RL-RRT, \
                     [L] Chang et al. 2024 ref [2], sim 7 — no learned component; \

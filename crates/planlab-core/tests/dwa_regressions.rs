@@ -104,3 +104,59 @@ fn t_fig3_11_short_horizon_improved_dwa_does_not_drive_into_the_wall() {
         assert!(*min_c > 0.0, "variant {k}: touched something");
     }
 }
+
+/// S-fig12 variant 11: `preliminary-fusion` stood at rest 5 cm beside the
+/// lane of a back-and-forth mover and started off toward its temporary
+/// goal as the mover, predicted (constant velocity) to keep moving away,
+/// reached its turnaround; the mover came back and hit the robot, which
+/// was moving at 0.08 m/s and braking. A robot at rest now starts off only
+/// when no perceived mover, free to turn at once at its observed speed,
+/// could reach it before it would be at rest again (passive safety).
+#[test]
+fn s_fig12_preliminary_does_not_start_off_beside_a_turning_mover() {
+    let runs = family_runs("S-fig12", 11, &[]);
+    for name in ["preliminary", "dual"] {
+        let (_, outcome, min_c) = runs.iter().find(|(n, ..)| n == name).unwrap();
+        assert_ne!(*outcome, Outcome::Collision, "{name}");
+        assert!(*min_c > 0.0, "{name}: touched something ({min_c} m)");
+    }
+}
+
+/// T-fig3-11 at a 1 s horizon, variant 16: `fusion-53` (\[53\]) collided
+/// — the one collision left in the horizon sweep after the braking fixes
+/// above: it reached a state with no admissible sample (`no-admissible-evade`)
+/// from which no collision-free way out remained. With the start-from-rest
+/// check of passive safety (previous test) it does not get there.
+#[test]
+fn t_fig3_11_short_horizon_fusion53_is_not_hit() {
+    let runs = family_runs(
+        "T-fig3-11",
+        16,
+        &[("local_planner.config.dwa.predict_time", "1")],
+    );
+    for (name, outcome, min_c) in &runs {
+        assert_ne!(*outcome, Outcome::Collision, "{name}");
+        assert!(*min_c > 0.0, "{name}: touched something ({min_c} m)");
+    }
+}
+
+/// T-fig3-11 at the default 3 s horizon: improved-dwa reached the goal in
+/// 2 of 30 variants. Past the mover it orbited the still disc at full
+/// speed and turn rate, a new virtual goal set each lap. The virtual goal
+/// was kept until its obstacle was behind the robot *as seen toward the
+/// current goal*; the detour itself moves the robot off the line, which
+/// turns that direction, so a disc passed by 0.5–1.4 m still counted as
+/// ahead and the robot kept turning back toward a virtual goal behind it
+/// (variant 0: crossed the disc's perpendicular at 17.3 s, dropped at
+/// 18.05 s, ω at its maximum throughout). "Behind" is now measured along
+/// the robot→goal direction the virtual goal was placed from (\[T\]
+/// §3.2.2: on the perpendicular to it through the obstacle).
+#[test]
+fn t_fig3_11_improved_dwa_does_not_orbit_the_still_disc() {
+    for k in [0, 1] {
+        let runs = family_runs("T-fig3-11", k, &[]);
+        let (_, outcome, min_c) = runs.iter().find(|(n, ..)| n == "improved").unwrap();
+        assert_eq!(*outcome, Outcome::Reached, "variant {k}");
+        assert!(*min_c > 0.0, "variant {k}: touched something ({min_c} m)");
+    }
+}

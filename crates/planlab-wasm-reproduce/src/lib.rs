@@ -152,3 +152,27 @@ mod tests {
         assert!(variant_json("T-fig3-2", "improved", u32::MAX, 0).is_err());
     }
 }
+
+/// Native form of [`reproduce_check`]: `planlab reproduce ID --json`'s line
+/// for experiment `id` on its presets (every run, every clause and whether
+/// it holds), for robot-page and potential-field experiments.
+pub fn check_json(id: &str) -> Result<String, String> {
+    let text = if let Some(exp) = reproduce::find(id) {
+        serde_json::to_string(&reproduce::run(&exp).map_err(|e| e.to_string())?)
+    } else if let Some(exp) = reproduce::find_path(id) {
+        serde_json::to_string(&reproduce::run_path(&exp).map_err(|e| e.to_string())?)
+    } else {
+        return Err(format!(
+            "{id}: no robot or potential-field experiment of this id"
+        ));
+    };
+    text.map_err(|e| e.to_string())
+}
+
+/// Runs experiment `id` on its presets as `planlab reproduce ID --json`
+/// does and returns that JSON line (`holds`, `clauses`, `runs`): what a
+/// gallery run shows as the ✓/✗ of the paper's relation when it ends.
+#[wasm_bindgen(js_name = reproduceCheck)]
+pub fn reproduce_check(id: &str) -> Result<String, JsError> {
+    check_json(id).map_err(js)
+}

@@ -427,6 +427,13 @@ impl SimHandle {
         serde_json::to_string(&self.ep.planner_debug().critics).map_err(|e| json_err("critics", e))
     }
 
+    /// [`planlab_core::sim::Episode::route_note`]: one line when every way
+    /// to the goal passes a gap narrower than the robot, else `undefined`.
+    #[wasm_bindgen(js_name = routeNote)]
+    pub fn route_note(&self) -> Option<String> {
+        self.ep.route_note()
+    }
+
     /// The planner's strategy in force ("" before the first step).
     #[wasm_bindgen(getter)]
     pub fn mode(&self) -> String {

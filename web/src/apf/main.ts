@@ -9,6 +9,7 @@ import init, { ApfHandle } from '../../pkg/planlab_wasm.js';
 import { applyRun, runParams, variantParams } from '../shell/runlink';
 import { loadVariant } from '../shell/variant';
 import { installShell } from '../shell/help';
+import { installLegend } from '../shell/legend';
 import { apfHelp } from '../shell/help-content';
 import { showGalleryNote } from '../shell/gallery-note';
 import { el, messageOf } from '../shell/dom';
@@ -195,7 +196,7 @@ function draw(): void {
   setMetric('metric-length', `${m.path_length_m.toFixed(3)} m`, m.path_length_m);
   setMetric('metric-points', String(m.path_points), m.path_points);
   setMetric('metric-spikes', String(m.spikes), m.spikes);
-  setMetric('metric-min', `${m.min_obstacle_distance_m.toFixed(3)} m`, m.min_obstacle_distance_m);
+  setMetric('metric-min', `${m.min_obstacle_distance_m.toFixed(4)} m`, m.min_obstacle_distance_m);
   setMetric('metric-time', `${m.time_s.toFixed(1)} s`, m.time_s);
   el('metric-kind').textContent = h.stepKind();
   document.body.dataset.outcome = m.outcome;
@@ -316,6 +317,7 @@ async function main(): Promise<void> {
 }
 
 installShell(apfHelp());
+installLegend('apf', document.querySelector('.stage'));
 showGalleryNote();
 
 main().catch((e) => {

@@ -16,7 +16,7 @@ export class DistancePlot {
   private plot: uPlot;
 
   constructor(private el: HTMLElement) {
-    const fmt = (_u: uPlot, v: number | null) => (v == null ? '—' : `${v.toFixed(3)} m`);
+    const fmt = (_u: uPlot, v: number | null) => (v == null ? '—' : `${v.toFixed(4)} m`);
     this.plot = new uPlot(
       {
         title: 'Distance to the hand(t), m',

@@ -8,6 +8,7 @@
 import { applyRun, runParams, variantParams } from '../shell/runlink';
 import { loadVariant } from '../shell/variant';
 import { installShell } from '../shell/help';
+import { installLegend } from '../shell/legend';
 import { armHelp } from '../shell/help-content';
 import { showGalleryNote } from '../shell/gallery-note';
 import init, { ArmHandle, armChoices } from '../../pkg-arm/planlab_wasm_arm.js';
@@ -163,8 +164,8 @@ function refresh(): void {
   ui.m.length.textContent = `${m.path_length_m.toFixed(3)} m`;
   ui.m.points.textContent = String(m.path_points);
   ui.m.spikes.textContent = String(m.spikes);
-  ui.m.min.textContent = `${m.min_obstacle_distance_m.toFixed(3)} m`;
-  ui.m.now.textContent = `${h.distanceNow.toFixed(3)} m`;
+  ui.m.min.textContent = `${m.min_obstacle_distance_m.toFixed(4)} m`;
+  ui.m.now.textContent = `${h.distanceNow.toFixed(4)} m`;
   ui.m.min.dataset.value = String(m.min_obstacle_distance_m);
   ui.m.now.dataset.value = String(h.distanceNow);
   ui.m.length.dataset.value = String(m.path_length_m);
@@ -359,6 +360,7 @@ async function main(): Promise<void> {
 }
 
 installShell(armHelp());
+installLegend('arm', document.querySelector('.stage'));
 showGalleryNote();
 
 main().catch((e) => {

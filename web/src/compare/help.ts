@@ -14,6 +14,7 @@ export function compareHelp(planners: PlannerInfo[], current: string | undefined
       name: p.name,
       paper: p.paper,
       summary: p.summary,
+      plain: p.plain,
       params: p.fields.map((f) => ({ name: f.name, unit: f.unit, default: f.default, doc: f.doc })),
     })),
     current,

@@ -9,7 +9,7 @@
 // run --set`)&view=side|overlay&speed=X&autorun=1|instant
 
 import init, { drawLayerNames, planners as plannerListJson } from '../../pkg/planlab_wasm.js';
-import { fillPresetSelect } from '../shell/preset-select';
+import { fillPresetSelect, showOpened } from '../shell/preset-select';
 import { mapOf, type RobotView } from '../scene/view';
 import { DrawList, Layer, checkLayers, mask } from '../scene/draw';
 import type { PlannerInfo } from '../robot/params';
@@ -17,6 +17,7 @@ import { Race } from './race';
 import { OverlayView } from './overlay';
 import { compareHelp } from './help';
 import { installShell } from '../shell/help';
+import { installLegend } from '../shell/legend';
 import { loadPresetFiles, readPicked } from '../shell/scenario-files';
 import { ComparedScenario } from './scenario';
 import { openFromUrl } from './open';
@@ -279,7 +280,7 @@ ui.file.addEventListener(
     } catch (e) {
       throw new Error(`${got.name}: ${messageOf(e)}`);
     }
-    ui.preset.value = '';
+    showOpened(ui.preset, got.name);
   }),
 );
 ui.play.addEventListener('click', guard(() => setPlaying(!clock.playing)));
@@ -393,6 +394,7 @@ async function boot(): Promise<void> {
 }
 
 installShell(() => compareHelp(picks.infos, picks.chosen[0]));
+installLegend('compare', document.querySelector('.stage'));
 
 boot().catch((e) => {
   ui.body.dataset.state = 'error';

@@ -6,6 +6,7 @@
 import { RobotView, type MapInfo } from '../scene/view';
 import { LANE_COLOURS, type Lane } from './lane';
 import { ROWS, cellText, tableCsv, winners } from './table';
+import { describeOutcome, shortOutcome } from '../shell/outcome';
 
 /** The trace hash (decimal u64) as 16 hex digits, as `planlab run` prints it. */
 export function hexHash(dec: string | null): string {
@@ -17,8 +18,9 @@ export function hexHash(dec: string | null): string {
   }
 }
 
-export function describe(o: string): string {
-  return o === 'reached' ? 'reached the goal' : o === 'stuck' ? 'stuck (no progress)' : o === 'timeout' ? 'time out' : o;
+/** The outcome in words (`speed`: the robot's at the end, m/s). */
+export function describe(o: string, speed = 0): string {
+  return o === 'reached' ? 'reached the goal' : describeOutcome(o, speed);
 }
 
 /** A swatch of a lane's colour. */
@@ -73,8 +75,9 @@ export function renderHeads(root: HTMLElement, legend: HTMLElement, lanes: Lane[
   lanes.forEach((l, i) => {
     const head = root.children[i]?.querySelector('.lane-state');
     if (head) {
-      head.textContent = l.running ? `t = ${l.sim.time.toFixed(1)} s` : `${l.outcome} · ${l.sim.time.toFixed(1)} s`;
-      (head as HTMLElement).title = l.running ? 'running' : describe(l.outcome);
+      const v = l.running ? 0 : l.sim.state()[3];
+      head.textContent = l.running ? `t = ${l.sim.time.toFixed(1)} s` : `${shortOutcome(l.outcome, v)} · ${l.sim.time.toFixed(1)} s`;
+      (head as HTMLElement).title = l.running ? 'running' : describe(l.outcome, v);
       (head as HTMLElement).dataset.outcome = l.outcome;
     }
   });
@@ -82,7 +85,7 @@ export function renderHeads(root: HTMLElement, legend: HTMLElement, lanes: Lane[
     const li = document.createElement('li');
     li.dataset.planner = l.name;
     const t = document.createElement('span');
-    t.textContent = `${l.name}${l.running ? '' : ` · ${l.outcome}`}`;
+    t.textContent = `${l.name}${l.running ? '' : ` · ${shortOutcome(l.outcome, l.sim.state()[3])}`}`;
     li.append(swatch(l.colour, ''), t);
     return li;
   });

@@ -9,6 +9,7 @@
 import entries from 'virtual:gallery';
 import { runUrl, type GalleryEntry, type GalleryRun } from '../shell/runlink';
 import { installShell } from '../shell/help';
+import { installLegend } from '../shell/legend';
 import presets from 'virtual:robot-presets';
 import { compareGroups, compareUrl } from './compare-links';
 import { el } from '../shell/dom';
@@ -198,6 +199,7 @@ function main(): void {
     b.addEventListener('click', () => applyFilter(b.dataset.tag ?? ''));
   }
   applyFilter('');
+  installLegend('gallery', ui.cards.parentElement, ui.cards);
   installShell({
     page: 'gallery',
     intro:

@@ -10,6 +10,7 @@
 import { MapHandle, rosImageName, scenarioForMap, type SimHandle } from '../../pkg/planlab_wasm.js';
 import { decodeScenarioHash, shareLink } from '../shell/share';
 import { checkSizes } from '../shell/scenario-files';
+import { showOpened } from '../shell/preset-select';
 import { sceneSvg } from './svg';
 import type { MapInfo, Scene } from '../scene/view';
 import './files.css';
@@ -188,8 +189,7 @@ export class FilesMenu {
       throw new Error(`${label}: ${messageOf(e)}`);
     }
     this.noteLoaded(text, label);
-    const preset = document.getElementById('preset') as HTMLSelectElement | null;
-    if (preset) preset.value = '';
+    showOpened(document.getElementById('preset') as HTMLSelectElement | null, label);
     document.body.dataset.opened = label;
   }
 
@@ -316,8 +316,7 @@ export class FilesMenu {
     if (text === null) return false;
     this.host.load(text, 'shared link');
     this.noteLoaded(text, 'shared link');
-    const preset = document.getElementById('preset') as HTMLSelectElement | null;
-    if (preset) preset.value = '';
+    showOpened(document.getElementById('preset') as HTMLSelectElement | null, 'a shared link');
     document.body.dataset.opened = 'shared link';
     return true;
   }

@@ -14,8 +14,9 @@ import { SeriesPlots } from './plots';
 import type { PlannerInfo } from './params';
 import { PlannerPicker } from './planner';
 import { installShell } from '../shell/help';
+import { installLegend } from '../shell/legend';
 import { robotHelp } from '../shell/help-content';
-import { showGalleryNote } from '../shell/gallery-note';
+import { galleryRunEnded, showGalleryNote } from '../shell/gallery-note';
 import { Timeline } from './timeline';
 import { Editor } from './edit';
 import { FilesMenu } from './files';
@@ -46,6 +47,7 @@ const ui = {
   play: el<HTMLButtonElement>('play'),
   step: el<HTMLButtonElement>('step'),
   reset: el<HTMLButtonElement>('reset'),
+  toEnd: el<HTMLButtonElement>('to-end'),
   speed: el<HTMLSelectElement>('speed'),
   speedOut: el<HTMLOutputElement>('speed-out'),
   showFan: el<HTMLInputElement>('show-fan'),
@@ -206,7 +208,34 @@ function finish(): void {
   refreshSlow();
   if (sim) ui.body.dataset.traceHash = sim.traceHash();
   ui.body.dataset.state = 'done';
-  ui.hint.textContent = `Episode over: ${describeOutcome(outcome)}. Reset to run it again.`;
+  ui.hint.textContent = `Episode over: ${describeOutcome(outcome, sim?.state()[3] ?? 0)}. Reset to run it again.`;
+  galleryRunEnded(outcome);
+}
+
+/** Steps run per slice of "to end" (a slice per animation frame keeps the
+ *  page responsive; the clock's frame budget would take minutes). */
+const TO_END_SLICE_MS = 60;
+
+/** Runs the episode to its end as fast as the machine steps it, a slice
+ *  per animation frame, then shows the last frame. */
+function runToEnd(): void {
+  if (!sim) return;
+  setPlaying(false);
+  if (timeline.scrubbed) timeline.branchHere();
+  if (outcome !== 'running') return;
+  ui.body.dataset.toEnd = 'running';
+  const slice = guard(() => {
+    if (!sim || outcome !== 'running' || ui.body.dataset.toEnd !== 'running') {
+      delete ui.body.dataset.toEnd;
+      return;
+    }
+    advance(1_000_000, TO_END_SLICE_MS);
+    refreshSlow();
+    view.request();
+    if (outcome === 'running') requestAnimationFrame(slice);
+    else delete ui.body.dataset.toEnd;
+  });
+  requestAnimationFrame(slice);
 }
 
 /** Shows `next` as the run: its map, robot, planner and a fresh scene. */
@@ -229,6 +258,8 @@ function install(next: SimHandle, keepView = false): void {
   planner.showChoiceOf(sim);
   plots.clear(omni, sim.hasVehicle);
   status.clear();
+  status.note = sim.routeNote() ?? '';
+  ui.body.dataset.routeNote = status.note;
   FilesMenu.forgetNote();
   delete ui.body.dataset.traceHash;
   outcome = sim.outcome;
@@ -291,10 +322,15 @@ ui.step.addEventListener(
   }),
 );
 ui.reset.addEventListener('click', guard(() => resetEpisode()));
+ui.toEnd.addEventListener('click', guard(() => runToEnd()));
 ui.speed.addEventListener('input', () => {
   clock.speed = Number(ui.speed.value) || 1;
   ui.speedOut.textContent = `${clock.speed}×`;
 });
+function setSpeed(x: number): void {
+  ui.speed.value = String(x);
+  ui.speed.dispatchEvent(new Event('input'));
+}
 for (const [box, key] of [
   [ui.showFan, 'fan'],
   [ui.showPath, 'path'],
@@ -333,7 +369,12 @@ const opener: OpenHost = {
   load: (text, label, files) => loadScenario(text, label, files),
   loadFromHash: () => filesMenu.loadFromHash(),
   preset: ui.preset,
-  play: () => ui.play.click(),
+  play: () => {
+    // A gallery run opens at 4×: a paper's run is one to three simulated
+    // minutes (S-tab1's preliminary fusion over two at 1×); » To end skips.
+    if (new URLSearchParams(location.search).has('exp')) setSpeed(4);
+    ui.play.click();
+  },
   showError,
 };
 
@@ -383,6 +424,7 @@ async function boot(): Promise<void> {
 
 // Help overlay (planners and parameters from the wasm registry) and presentation mode.
 installShell(() => robotHelp([...planner.infos.values()], planner.value));
+installLegend('robot', document.querySelector('.stage'));
 showGalleryNote();
 
 boot().catch((e) => {

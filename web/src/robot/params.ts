@@ -17,6 +17,8 @@ export interface PlannerInfo {
   name: string;
   paper: string;
   summary: string;
+  /** Plain words for a beginner (core `planners::plain_words`). */
+  plain?: string;
   fields: FieldInfo[];
 }
 

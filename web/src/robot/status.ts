@@ -7,6 +7,7 @@ import type { SimHandle } from '../../pkg/planlab_wasm.js';
 import { Layer } from '../scene/draw';
 import { CLASS_NAMES, COLORS, type Scene } from '../scene/view';
 import { el } from '../shell/dom';
+import { describeOutcome } from '../shell/outcome';
 import type { Metrics } from '../compare/table';
 
 interface MoverJson {
@@ -15,20 +16,7 @@ interface MoverJson {
   motion: { model: string };
 }
 
-export function describeOutcome(o: string): string {
-  switch (o) {
-    case 'reached':
-      return 'goal reached';
-    case 'collision':
-      return 'collision';
-    case 'timeout':
-      return 'time out';
-    case 'stuck':
-      return 'stuck (no progress)';
-    default:
-      return o;
-  }
-}
+export { describeOutcome } from '../shell/outcome';
 
 /** A one-line description of the robot JSON and whether it drives
  *  omnidirectionally. */
@@ -67,6 +55,10 @@ export class StatusPanel {
    *  rebuild under the pointer would swallow a click on ×). */
   private moverListKey = '';
 
+  /** What the status line adds after the run state (the episode's route
+   *  note: a path exists only without inflation). */
+  note = '';
+
   /** `remove(id)`: the × of a mover's row. */
   constructor(private readonly remove: (id: number) => void) {}
 
@@ -90,7 +82,7 @@ export class StatusPanel {
     setMetric(M.drops, String(m.speed_drops), m.speed_drops);
     if (m.mean_tracking_error_m === null || m.max_tracking_error_m === null) setMetric(M.tracking, 'n/a', null);
     else {
-      setMetric(M.tracking, `${m.mean_tracking_error_m.toFixed(2)} / ${m.max_tracking_error_m.toFixed(2)}`, m.mean_tracking_error_m);
+      setMetric(M.tracking, `${m.mean_tracking_error_m.toFixed(3)} / ${m.max_tracking_error_m.toFixed(3)}`, m.mean_tracking_error_m);
       M.tracking.dataset.max = String(m.max_tracking_error_m);
     }
     const mode = sim.mode;
@@ -99,10 +91,13 @@ export class StatusPanel {
     const s = S.state;
     const movers = S.frame.of(Layer.Movers).count(Layer.Movers);
     const rollouts = S.frame.of(Layer.Fan).count(Layer.Fan);
+    // The route note first: the line is cut with "…" at its end.
     this.status.textContent =
+      (this.note ? `⚠ ${this.note} · ` : '') +
       `t = ${sim.time.toFixed(1)} s · v = ${s[3].toFixed(2)} m/s · ω = ${s[5].toFixed(2)} rad/s · ` +
       `${movers} movers · ${rollouts} rollouts` +
-      (outcome === 'running' ? (playing ? ' · playing' : ' · paused') : ` · ${describeOutcome(outcome)}`);
+      (outcome === 'running' ? (playing ? ' · playing' : ' · paused') : ` · ${describeOutcome(outcome, s[3])}`);
+    this.status.title = this.status.textContent;
     this.renderMovers(sim, S);
   }
 

@@ -12,6 +12,8 @@ export interface RegistryPlanner {
   name: string;
   paper: string;
   summary: string;
+  /** Plain words for a beginner (core `planners::plain_words`). */
+  plain?: string;
   fields: { name: string; unit: string; default: unknown; doc: string }[];
 }
 
@@ -26,6 +28,7 @@ export function robotHelp(planners: RegistryPlanner[], current: string): HelpCon
         name: p.name,
         paper: p.paper,
         summary: p.summary,
+        plain: p.plain,
         params: p.fields.map((f) => ({ name: f.name, unit: f.unit, default: f.default, doc: f.doc })),
       }),
     ),
@@ -130,9 +133,9 @@ export function gridHelp(core: CorePlanner[] = []): HelpContent {
 }
 
 const APF_VARIANTS: HelpPlanner[] = [
-  { name: 'basic APF', paper: '[T] Wu 2022 §4.1, eq 4-1…4-4', summary: 'Steps a fixed length along the resultant of the attraction (quadratic within ρ of the goal, conic beyond) and the repulsion k_r(1/p − 1/p₀)/p² of every obstacle within p₀. Gets stuck in local minima and short of goals near obstacles.' },
-  { name: 'sampling APF', paper: '[T] Wu 2022 §4.2.1–4.2.2, eq 4-5…4-11', summary: 'Samples 13 directions from −90° to +90° of the resultant in 15° steps and takes the candidate with the least cost α‖F_attr‖ + β‖F_rep‖ (α 0.3, β 0.7); the relative distance rule sets β = 0 when the goal is nearer than the obstacle.' },
-  { name: 'sampling + prediction', paper: '[T] Wu 2022 §4.2.3, eq 4-13/4-14', summary: "Adds virtual repulsion at each mover's predicted positions at t+1 and t+2, with ranges scaled 0.75 and 0.75²: the robot turns away from where the mover will be." },
+  { name: 'basic APF', paper: '[T] Wu 2022 §4.1, eq 4-1…4-4', summary: 'Steps a fixed length along the resultant of the attraction (quadratic within ρ of the goal, conic beyond) and the repulsion k_r(1/p − 1/p₀)/p² of every obstacle within p₀. Gets stuck in local minima and short of goals near obstacles.', plain: 'The goal pulls the robot, each grey obstacle pushes it away once it is close enough, and the robot takes one step along the sum of the forces. Where the pull and the pushes cancel (an obstacle straight in front of the goal, a gap between two) it stops or shakes in place: a local minimum. Watch the path end short of the goal or zig-zag.' },
+  { name: 'sampling APF', paper: '[T] Wu 2022 §4.2.1–4.2.2, eq 4-5…4-11', summary: 'Samples 13 directions from −90° to +90° of the resultant in 15° steps and takes the candidate with the least cost α‖F_attr‖ + β‖F_rep‖ (α 0.3, β 0.7); the relative distance rule sets β = 0 when the goal is nearer than the obstacle.', plain: 'Instead of following the sum of the forces blindly, the robot tries 13 directions around it and takes the one that best trades getting closer against being pushed, so it slides round an obstacle where basic APF stops. It can still be caught by a moving obstacle that steps into its path. Watch the path bend earlier than basic APF\'s.' },
+  { name: 'sampling + prediction', paper: '[T] Wu 2022 §4.2.3, eq 4-13/4-14', summary: "Adds virtual repulsion at each mover's predicted positions at t+1 and t+2, with ranges scaled 0.75 and 0.75²: the robot turns away from where the mover will be.", plain: 'As sampling APF, but the robot also avoids where each moving obstacle is about to be (its next two predicted positions), so it turns away before the mover arrives. A wrong forecast (a mover that turns suddenly) can make it swerve for nothing. Watch the minimum distance: larger than without prediction.' },
   { name: 'constant velocity (predictor)', paper: '[T] Wu 2022 §4.2.3', summary: "Predicts a mover's next positions from its last velocity." },
   { name: 'SimpleRNN (predictor)', paper: '[T] Wu 2022 §5.2', summary: '6 inputs (position, velocity), 15 tanh units, 3 outputs: the position 0.5 s ahead from 5 past samples; trained on synthetic hand-reaching trajectories, runs in wasm.' },
 ];
@@ -159,9 +162,9 @@ export function armHelp(): HelpContent {
     intro:
       "The arm page runs [T] ch. 5's experiment: a TIAGo-like 7-DOF arm whose end effector is planned by the sampling APF in 0.04 m steps and followed by damped least-squares IK, beside a person's hand that reaches across its path. Links are capsules; the minimum distance to the hand is the metric of [T] Table 5-3.",
     planners: [
-      { name: 'none', paper: '[T] Wu 2022 §4.2.1', summary: 'Sampling APF on the hand where it is now.' },
-      { name: 'constant-velocity', paper: '[T] Wu 2022 §4.2.3, §5.3.3', summary: "Adds virtual repulsion at the hand's positions predicted at t+1 and t+2 from its last velocity: the arm keeps further away (paper: 0.171 m vs 0.077 m)." },
-      { name: 'rnn', paper: '[T] Wu 2022 §5.2', summary: 'The SimpleRNN predictor (15 tanh units, 0.5 s ahead) in place of constant velocity.' },
+      { name: 'none', paper: '[T] Wu 2022 §4.2.1', summary: 'Sampling APF on the hand where it is now.', plain: 'The arm is pushed away from the hand where the hand is now. It reacts late to a hand coming toward it. Watch the min distance: the smallest of the three predictors here.' },
+      { name: 'constant-velocity', paper: '[T] Wu 2022 §4.2.3, §5.3.3', summary: "Adds virtual repulsion at the hand's positions predicted at t+1 and t+2 from its last velocity: the arm keeps further away (paper: 0.171 m vs 0.077 m).", plain: 'The arm is also pushed away from where the hand will be in the next two steps, guessed from how it moved just now, so it moves aside early. Watch the min distance grow compared with none (the claim is a few millimetres at least; the value is shown to 0.1 mm).' },
+      { name: 'rnn', paper: '[T] Wu 2022 §5.2', summary: 'The SimpleRNN predictor (15 tanh units, 0.5 s ahead) in place of constant velocity.', plain: 'A small neural network, trained on reaching motions, guesses where the hand will be half a second ahead. It helps when the hand moves as in its training and not otherwise. Compare the min distance with constant-velocity (shown to 0.1 mm: the two can differ by less than a millimetre).' },
     ],
     params: [
       { name: 'Speed', unit: '×', default: '1×', doc: 'Simulated seconds per real second.' },

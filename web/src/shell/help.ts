@@ -14,6 +14,9 @@ export interface HelpPlanner {
   /** Paper and section, e.g. `[T] Wu 2022 §3.2`. */
   paper: string;
   summary: string;
+  /** The same in plain words for a beginner (what it does, when it fails,
+   *  what to look at on the canvas); shown first. */
+  plain?: string;
   /** Its parameters; shown in a table under the planner. */
   params?: HelpParam[];
 }
@@ -52,7 +55,7 @@ const PRESENT_KEY = 'planlab.present';
 const SHELL_SHORTCUTS: HelpShortcut[] = [
   { keys: '? or F1', action: 'open this help' },
   { keys: 'Esc', action: 'close this help' },
-  { keys: 'P', action: 'presentation mode on / off (larger text and lines, for a projector)' },
+  { keys: 'P', action: 'presentation mode on / off (larger text, the map takes the side panel\'s and plots\' room; Panels shows them)' },
 ];
 
 function h<K extends keyof HTMLElementTagNameMap>(tag: K, cls = '', text?: string): HTMLElementTagNameMap[K] {
@@ -144,7 +147,17 @@ export function installShell(content: HelpContent | (() => HelpContent)): void {
   help.id = 'help-button';
   help.title = 'Help: planners, parameters, keyboard shortcuts (? or F1)';
   help.setAttribute('aria-label', 'Help');
-  tools.append(present, help);
+  const panels = h('button', 'shell-button panels-button', 'Panels');
+  panels.type = 'button';
+  panels.id = 'panels-button';
+  panels.title = 'Presentation mode: show or hide the side panel and plots (Space plays, R resets)';
+  panels.setAttribute('aria-pressed', 'false');
+  panels.addEventListener('click', () => {
+    const on = document.documentElement.classList.toggle('present-panels');
+    panels.setAttribute('aria-pressed', String(on));
+    window.dispatchEvent(new Event('resize'));
+  });
+  tools.append(panels, present, help);
   bar?.append(tools);
 
   const backdrop = h('div', 'help-backdrop');
@@ -236,7 +249,9 @@ function build(dialog: HTMLElement, c: HelpContent): void {
       if (p.name === c.current || (!c.current && c.planners.length === 1)) d.open = true;
       const s = h('summary');
       s.append(h('b', '', p.name), h('span', 'help-paper', p.paper));
-      d.append(s, rich('p', p.summary));
+      d.append(s);
+      if (p.plain) d.append(rich('p', p.plain, 'help-plain'));
+      d.append(rich('p', p.summary, p.plain ? 'help-technical' : ''));
       if (p.params?.length) d.append(paramTable(p.params));
       sec.append(d);
     }

@@ -19,3 +19,12 @@ export function fillPresetSelect(select: HTMLSelectElement): void {
   opened.textContent = 'Opened from disk';
   select.append(opened);
 }
+
+/** Selects the hidden entry, saying what is in force: `Opened: a shared
+ *  link` or `Opened: NAME` for a file. */
+export function showOpened(select: HTMLSelectElement | null, what: string): void {
+  if (!select) return;
+  const opened = select.querySelector<HTMLOptionElement>('option[value=""]');
+  if (opened) opened.textContent = `Opened: ${what}`;
+  select.value = '';
+}

@@ -33,6 +33,9 @@
 //!    picks the command (ρ = 1 for the baseline; \[T\] eq 3-8 sets it).
 //!
 //! A braking rollout is followed past the horizon until the robot stands.
+//! A robot at rest starts off only on a sample it could brake out of before
+//! any perceived mover, free to turn round at once, could reach it
+//! (passive safety; docs/algorithms.md §dwa).
 //!
 //! With no admissible sample the robot brakes at its largest deceleration
 //! and, for a circular footprint, turns in place toward the goal (mode
@@ -462,6 +465,79 @@ impl DwaCore {
             let (q, _) = closest_along([x, y], p, [dx, dy]);
             hypot(q[0] - x, q[1] - y) - r - self.r_eff <= self.last_limit
         })
+    }
+
+    /// Whether driving (v, ω) for one control period and then braking at
+    /// the largest deceleration could be caught, while still moving, by a
+    /// perceived mover that changes course the moment after it was seen.
+    ///
+    /// Passive safety (Fraichard's "if a collision occurs, the robot is at
+    /// rest"): a mover may turn round or toward the robot at any time —
+    /// constant-velocity prediction cannot foresee a turnaround — so from
+    /// its observed position it reaches |v_m|·t in time t (on top of its
+    /// one-period allowance). A sample is refused when the robot, braking
+    /// after this period, is still moving where such a mover could already
+    /// be. A robot at rest is not checked: standing still is always allowed
+    /// (the braking fallback). Without it the robot started off behind a
+    /// mover 5 cm away that was about to turn round, and was hit at
+    /// 0.08 m/s while braking (S-fig12, preliminary-fusion, variant 11).
+    fn passive_unsafe(&self, s: &RobotState, v: f64, w: f64) -> bool {
+        if self.all_movers.is_empty() || v == 0.0 || s.v != 0.0 {
+            return false;
+        }
+        let l = &self.robot.limits;
+        let h = self.cfg.sim_dt;
+        let t_end = self.last_dt + v.abs() / l.acc_v;
+        let travel = v.abs() * self.last_dt + 0.5 * v * v / l.acc_v;
+        let reach0 = self.r_eff + self.last_limit.abs() + travel;
+        let near = self.all_movers.iter().any(|&(p, mv, r)| {
+            hypot(p[0] - s.x, p[1] - s.y) - r - hypot(mv[0], mv[1]) * t_end <= reach0
+        });
+        if !near {
+            return false;
+        }
+        let toward_zero = |x: f64, d: f64| {
+            if x > 0.0 {
+                (x - d).max(0.0)
+            } else {
+                (x + d).min(0.0)
+            }
+        };
+        let cmd_steps = self.extra_rows;
+        let (mut st, mut vk, mut wk) = (*s, v, w);
+        let mut k = 0usize;
+        while k < cmd_steps || vk != 0.0 {
+            if k >= cmd_steps {
+                vk = toward_zero(vk, l.acc_v * h);
+                wk = toward_zero(wk, l.acc_w * h);
+            }
+            st = integrate(
+                &st,
+                Command {
+                    v: vk,
+                    vy: 0.0,
+                    w: wk,
+                },
+                h,
+            );
+            k += 1;
+            if k > MAX_ROLLOUT_STEPS {
+                return true;
+            }
+            // At rest at the end of the period: nothing more to check.
+            if vk == 0.0 && k >= cmd_steps {
+                break;
+            }
+            let t = k as f64 * h;
+            let caught = self.all_movers.iter().any(|&(p, mv, r)| {
+                hypot(p[0] - st.x, p[1] - st.y) - r - self.r_eff - hypot(mv[0], mv[1]) * t
+                    <= self.last_limit
+            });
+            if caught {
+                return true;
+            }
+        }
+        false
     }
 
     /// Whether braking at the largest deceleration (turn rate to 0 as well)
@@ -1064,7 +1140,7 @@ impl DwaCore {
                 k += 1;
             }
         }
-        let admissible = !collided && !stranded && va_ok;
+        let admissible = !collided && !stranded && va_ok && !self.passive_unsafe(s, v, w);
         Cand {
             v,
             w,

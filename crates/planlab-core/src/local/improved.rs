@@ -31,8 +31,14 @@
 //!   x_rg ≤ x_ro else 1, with x_rg the distance to the current goal and x_ro
 //!   the distance from the robot's centre to the nearest obstacle surface
 //!   (map or mover); G = α·head + ρ·β·dist + γ·vel.
-//! - A virtual goal stays until the robot is within `switch_radius` of it,
-//!   the obstacle is behind the robot, or it is no longer perceived.
+//! - A virtual goal stays until the robot is within `virtual_radius` of it,
+//!   has passed its obstacle, or the obstacle is no longer perceived.
+//!   *Passed* is measured along the robot→goal direction from which the
+//!   virtual goal was placed (it lies on the perpendicular to that through
+//!   the obstacle), not toward the current goal: the detour moves the robot
+//!   off the line and turns that direction, so a disc already passed still
+//!   counted as ahead and the robot turned back toward a virtual goal behind
+//!   it, round and round the disc (T-fig3-11, `dwa_regressions`).
 //!
 //! \[T\] gives the two weight sets of Table 3-1 only in words ("a large
 //! heading weight decelerates, a small one detours"); the defaults here are
@@ -134,6 +140,9 @@ pub enum FusionVariant {
 struct VirtualGoal {
     point: [f64; 2],
     obstacle: u32,
+    /// Unit robot→goal direction when it was set: the virtual goal lies on
+    /// the perpendicular to it through the obstacle.
+    dir: [f64; 2],
 }
 
 /// Goal provider of `improved-dwa` and `fusion-53`.
@@ -415,14 +424,13 @@ impl GoalProvider for FusionGuide {
         // the robot is closer to the goal, ρ takes it there directly").
         let drive_in = x_rg_wp <= self.cfg.goal_region && x_rg_wp <= x_ro;
         // Keep or drop the active virtual goal: reached, its obstacle behind
-        // the robot (seen toward the waypoint) or gone, or driving in.
+        // the robot (along the direction it was placed from) or gone, or
+        // driving in.
         if let Some(v) = self.virt {
             let obstacle = obs.movers.iter().find(|m| m.id == v.obstacle);
             let reached = dist(robot, v.point) < self.cfg.virtual_radius;
             let passed = obstacle.map_or(true, |m| {
-                (m.pos[0] - robot[0]) * (wp[0] - robot[0])
-                    + (m.pos[1] - robot[1]) * (wp[1] - robot[1])
-                    < 0.0
+                (m.pos[0] - robot[0]) * v.dir[0] + (m.pos[1] - robot[1]) * v.dir[1] < 0.0
             });
             if reached || passed || drive_in {
                 self.virt = None;
@@ -452,9 +460,11 @@ impl GoalProvider for FusionGuide {
                     if let Some(p) =
                         self.place_virtual(obs.map, obs.movers, robot, wp, base_pt, offset, m.id)
                     {
+                        let len = x_rg_wp.max(1e-9);
                         self.virt = Some(VirtualGoal {
                             point: p,
                             obstacle: m.id,
+                            dir: [(wp[0] - robot[0]) / len, (wp[1] - robot[1]) / len],
                         });
                     }
                 }

@@ -137,6 +137,28 @@ pub fn distance_field(grid: &OccupancyGrid) -> Vec<f64> {
     d
 }
 
+/// A one-line note when inflating by `radius_m` changes nothing on a grid
+/// of `resolution` m cells: inflation marks cells whose *centre* lies within
+/// the radius of an occupied cell's centre, and the nearest centres are one
+/// cell apart, so 0 < radius < 1 cell is silently a no-op otherwise.
+///
+/// ```
+/// use planlab_core::map::costmap::inflation_note;
+/// assert_eq!(inflation_note(0.8, 1.0).unwrap(), "0.8 m inflation < 1 cell (1 m): no effect");
+/// assert_eq!(inflation_note(0.0, 1.0), None);
+/// assert_eq!(inflation_note(1.0, 1.0), None);
+/// ```
+pub fn inflation_note(radius_m: f64, resolution: f64) -> Option<String> {
+    let r = radius_m / resolution;
+    (radius_m > 0.0 && r * r * (1.0 + RADIUS_TOLERANCE) < 1.0).then(|| {
+        format!(
+            "{} m inflation < 1 cell ({} m): no effect",
+            crate::num::fmt_num(radius_m),
+            crate::num::fmt_num(resolution)
+        )
+    })
+}
+
 /// Checks that a radius is finite and ≥ 0.
 fn check_radius(what: &str, r: f64) -> Result<(), MapError> {
     if r.is_finite() && r >= 0.0 {

@@ -7,8 +7,9 @@
 //! and a goal that a disc robot of `robot_radius` can drive between: both
 //! are cells of the largest connected region of cells whose centre keeps
 //! `robot_radius + resolution` from every wall and the map edge, the start
-//! the one nearest the bottom-left corner, the goal the one nearest the
-//! top-right corner.
+//! near the bottom-left corner, the goal near the top-right corner, each
+//! moved from the corner cell up the clearance field to the middle of its
+//! corridor or room (where the robot can turn and drive off).
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -441,23 +442,28 @@ fn random_fill(
 /// Start and goal cells for a disc robot of `radius`: in the largest
 /// 4-connected region of cells whose centres keep `radius + res` from
 /// every occupied cell's centre and from the map edge (so the robot fits
-/// anywhere in it with a cell of margin), nearest the bottom-left and the
-/// top-right corner. `None` when that region has fewer than two cells.
+/// anywhere in it with a cell of margin): from the region's cells nearest
+/// the bottom-left and the top-right corner, each climbed (8-neighbour
+/// steps to a larger clearance, same region) to a local top of the clearance field.
+/// `None` when that region has fewer than two cells.
 pub fn endpoints(grid: &OccupancyGrid, radius: f64) -> Option<((usize, usize), (usize, usize))> {
     let (w, h, res) = (grid.width(), grid.height(), grid.resolution());
     let need = radius + res;
     let dist = distance_field(grid);
-    let ok: Vec<bool> = (0..w * h)
+    // Clearance of each cell's centre from walls and from the map edge.
+    let clear: Vec<f64> = (0..w * h)
         .map(|i| {
             let (col, row) = (i % w, i / w);
-            let up = h - 1 - row;
-            let edge = [col, w - 1 - col, up, h - 1 - up]
+            let edge = [col, w - 1 - col, row, h - 1 - row]
                 .into_iter()
                 .min()
                 .unwrap_or(0) as f64
                 + 0.5;
-            grid.cells()[i] == Cell::Free && dist[i] >= need && edge * res >= need
+            dist[i].min(edge * res)
         })
+        .collect();
+    let ok: Vec<bool> = (0..w * h)
+        .map(|i| grid.cells()[i] == Cell::Free && clear[i] >= need)
         .collect();
     let mut label = vec![usize::MAX; w * h];
     let mut best: Option<(usize, usize)> = None; // (label, size)
@@ -516,11 +522,44 @@ pub fn endpoints(grid: &OccupancyGrid, radius: f64) -> Option<((usize, usize), (
             goal = (d_goal, i);
         }
     }
+    // The corner cells only just keep the margin (a robot there starts
+    // wedged against two walls, and the DWA family sees no admissible
+    // rollout): climb the clearance field to its local top, the middle of
+    // the corridor or room.
+    let climb = |mut i: usize| loop {
+        let (col, row) = (i % w, i / w);
+        let mut next = i;
+        // 8 neighbours: off a corner only a diagonal step gains clearance.
+        for (dc, dr) in [
+            (-1i64, 0i64),
+            (1, 0),
+            (0, -1),
+            (0, 1),
+            (-1, -1),
+            (1, -1),
+            (-1, 1),
+            (1, 1),
+        ] {
+            let (c, r) = (col as i64 + dc, row as i64 + dr);
+            if c < 0 || r < 0 || c >= w as i64 || r >= h as i64 {
+                continue;
+            }
+            let j = r as usize * w + c as usize;
+            if label[j] == id && clear[j] > clear[next] {
+                next = j;
+            }
+        }
+        if next == i {
+            return i;
+        }
+        i = next;
+    };
+    let (s, g) = (climb(start.1), climb(goal.1));
     let cell = |i: usize| (i % w, i / w);
-    if start.1 == goal.1 {
+    if s == g {
         return None;
     }
-    Some((cell(start.1), cell(goal.1)))
+    Some((cell(s), cell(g)))
 }
 
 #[cfg(test)]

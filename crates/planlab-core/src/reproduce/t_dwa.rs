@@ -113,6 +113,36 @@ fn planner_deviations() -> Vec<Deviation> {
             ours: "3.0 s",
             paper: "not given",
         },
+        Deviation {
+            what: "radius within which a virtual goal counts as reached",
+            path: Some("local_planner.config.virtual_radius"),
+            ours: "0.3 m",
+            paper: "not given (the thesis gives no reach rule for virtual goals)",
+        },
+        Deviation {
+            what: "radius within which the next key point is taken",
+            path: Some("local_planner.config.switch_radius"),
+            ours: "1.0 m",
+            paper: "not given",
+        },
+        Deviation {
+            what: "distance from the current goal within which the near-goal rules apply",
+            path: Some("local_planner.config.goal_region"),
+            ours: "1.5 m",
+            paper: "not given (Fig 3-13 c–e draws the cases)",
+        },
+        Deviation {
+            what: "A* inflation beyond the footprint for the key-point path",
+            path: Some("local_planner.config.inflate_margin"),
+            ours: "0.1 m",
+            paper: "not given",
+        },
+        Deviation {
+            what: "still obstacle near the goal, robot closer to the goal than to it (drive-in)",
+            path: None,
+            ours: "no virtual goal; deceleration weights with ρ",
+            paper: "detour for any obstacle that is not ordinary dynamic (§3.2)",
+        },
     ]
 }
 

@@ -32,8 +32,8 @@ pub struct ArmScenario {
 impl ArmScenario {
     /// Parses an arm scenario.
     pub fn from_json(text: &str) -> Result<ArmScenario, ArmError> {
-        let v: serde_json::Value =
-            serde_json::from_str(text).map_err(|e| ArmError::Json(e.to_string()))?;
+        let v: serde_json::Value = serde_json::from_str(text)
+            .map_err(|e| ArmError::Json(crate::map::io::json_syntax_error(text, e).to_string()))?;
         ArmScenario::from_value(&v)
     }
 

@@ -14,6 +14,8 @@
 
 use super::document::{Scenario, ScenarioPoint, WorldPoint};
 use crate::apf::AnyApfRun;
+use crate::global::GridPos;
+use crate::map::generate::GeneratedMap;
 use crate::map::io::ScenarioError;
 use crate::map::OccupancyGrid;
 use crate::sim::{Episode, EpisodeSetup, SimConfig, SimError};
@@ -96,6 +98,21 @@ impl Scenario {
         scenario.seed = Some(setup.seed);
         scenario.validate()?;
         Ok(scenario)
+    }
+
+    /// The scenario of a generated map, as `planlab generate` writes it and
+    /// the robot page's Generate builds it: the generated start and goal
+    /// (exact world points, heading 0), the planner `planner`, and the
+    /// generated-map simulation settings ([`crate::sim::generated_sim_config`]).
+    pub fn for_generated(name: &str, g: &GeneratedMap, planner: &str) -> Scenario {
+        let cell = |(col, row): (usize, usize)| GridPos::new(col as u32, row as u32);
+        let mut s = Scenario::new(name, g.grid.clone(), cell(g.start_cell), cell(g.goal_cell));
+        let world = |p: [f64; 2]| Some(WorldPoint { x: p[0], y: p[1] });
+        s.start.world = world(g.start);
+        s.goal.world = world(g.goal);
+        s.local_planner = Some(crate::planners::PlannerChoice::named(planner));
+        s.sim = Some(crate::sim::generated_sim_config(SimConfig::default()));
+        s
     }
 
     /// A scenario for a bare map (a ROS map_server map or a Moving AI map

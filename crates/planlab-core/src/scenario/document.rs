@@ -432,7 +432,8 @@ impl Scenario {
         // Untyped first: syntax errors, the top-level shape and the version
         // come before field errors (a newer file gets a version message, not
         // "unknown field").
-        let value: serde_json::Value = serde_json::from_str(text)?;
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| crate::map::io::json_syntax_error(text, e))?;
         let Some(object) = value.as_object() else {
             return Err(ScenarioError::Json {
                 line: 1,

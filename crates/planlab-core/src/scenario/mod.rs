@@ -117,7 +117,8 @@ pub enum AnyScenario {
 impl AnyScenario {
     /// Parses a scenario file of any kind. Errors point at lines of `text`.
     pub fn from_json(text: &str) -> Result<AnyScenario, AnyScenarioError> {
-        let tree: Value = serde_json::from_str(text).map_err(ScenarioError::from)?;
+        let tree: Value =
+            serde_json::from_str(text).map_err(|e| crate::map::io::json_syntax_error(text, e))?;
         match ScenarioKind::of(&tree) {
             ScenarioKind::Arm => Ok(AnyScenario::Arm(ArmScenario::from_value(&tree)?)),
             _ => Ok(AnyScenario::of_document(Scenario::from_json(text)?)),

@@ -6,6 +6,8 @@
 //! [`WorldError::StartInCollision`] and the old episode stays as it was.
 
 use super::{Episode, SimConfig, SimError};
+use crate::global::plan::{plan_on_map, GridPlanError, GridPlanOptions};
+use crate::global::GridPos;
 use crate::map::edit::MapEdit;
 use crate::map::generate::GeneratedMap;
 use crate::map::OccupancyGrid;
@@ -90,6 +92,40 @@ impl Episode {
     /// The start pose the episode began from.
     pub fn start_pose(&self) -> &RobotState {
         &self.start
+    }
+}
+
+impl Episode {
+    /// One line when the goal can be reached on the bare map but not on
+    /// the map inflated by the robot's inscribed radius: every way there
+    /// passes a gap narrower than the robot, so a planner whose global path
+    /// ignores the robot's size (or plain DWA) will end stuck in it. `None`
+    /// when a path fits the robot, when there is no path at all (the
+    /// planner says so itself), or when the start or goal lies in the
+    /// inflation (a robot parked by a wall).
+    pub fn route_note(&self) -> Option<String> {
+        let grid = self.map.grid();
+        let radius = self.robot.footprint.inscribed_radius();
+        let cell = |p: [f64; 2]| {
+            grid.world_to_cell(p[0], p[1])
+                .map(|(c, r)| GridPos::new(c as u32, r as u32))
+        };
+        let (s, g) = (cell([self.start.x, self.start.y])?, cell(self.goal)?);
+        let inflated = GridPlanOptions {
+            inflate_m: radius,
+            ..Default::default()
+        };
+        match plan_on_map(grid, s, g, &inflated, false) {
+            Err(GridPlanError::Plan(_)) => {}
+            _ => return None,
+        }
+        plan_on_map(grid, s, g, &GridPlanOptions::default(), false)
+            .is_ok()
+            .then(|| {
+                format!(
+                    "no way to the goal for a robot of radius {radius:.2} m: the only paths pass gaps narrower than the robot (a path exists only without inflation)"
+                )
+            })
     }
 }
 

@@ -48,6 +48,38 @@ pub enum ScenarioError {
     Map(#[from] MapError),
 }
 
+/// The non-number a JSON writer (Python's `json.dump`, JavaScript's
+/// `String(x)`) leaves where a number was NaN or infinite, when one starts
+/// at 1-based `line`, `column` of `text` (where serde_json stopped).
+pub fn non_json_number_at(text: &str, line: usize, column: usize) -> Option<&'static str> {
+    let row = text.lines().nth(line.checked_sub(1)?)?;
+    // serde_json points at the token or just after its first character.
+    let from = row
+        .char_indices()
+        .nth(column.saturating_sub(2))
+        .map_or(row.len(), |(i, _)| i);
+    let rest = row[from..].trim_start_matches(|c: char| c == ':' || c.is_whitespace());
+    ["-Infinity", "Infinity", "NaN"]
+        .into_iter()
+        .find(|t| rest.starts_with(t) || rest.get(1..).is_some_and(|r| r.starts_with(t)))
+}
+
+/// [`ScenarioError::Json`] for a syntax error in `text`, naming a NaN or
+/// an infinity (serde_json only says "expected value" there).
+pub fn json_syntax_error(text: &str, e: serde_json::Error) -> ScenarioError {
+    let (line, column) = (e.line(), e.column());
+    match non_json_number_at(text, line, column) {
+        Some(t) => ScenarioError::Json {
+            line,
+            column,
+            message: format!(
+                "{t} is not a number JSON allows (JSON has no NaN or infinity): write a finite number, or leave the field out for its default"
+            ),
+        },
+        None => e.into(),
+    }
+}
+
 impl From<serde_json::Error> for ScenarioError {
     fn from(e: serde_json::Error) -> Self {
         // serde_json appends " at line L column C"; we show it up front.

@@ -86,6 +86,7 @@ pub fn parse_map(text: &str) -> Result<OccupancyGrid, MapError> {
     let mut height: Option<u64> = None;
     let mut width: Option<u64> = None;
     let mut last_line = 0;
+    let mut any_header = false;
     // Header: key/value lines until `map`.
     loop {
         let Some((n, line)) = lines.next() else {
@@ -109,6 +110,8 @@ pub fn parse_map(text: &str) -> Result<OccupancyGrid, MapError> {
             Some((k, v)) => (k, v),
             None => (line, ""),
         };
+        let first = !any_header;
+        any_header = true;
         match key {
             "type" => {
                 if value.trim().is_empty() {
@@ -122,6 +125,23 @@ pub fn parse_map(text: &str) -> Result<OccupancyGrid, MapError> {
             "height" => height = Some(header_number(value, "height", n)?),
             "width" => width = Some(header_number(value, "width", n)?),
             "map" if value.trim().is_empty() => break,
+            // Nothing of the header read yet: some other file. Its bytes
+            // are not echoed (a binary file would fill the banner with
+            // escapes).
+            _ if first => {
+                return Err(MapError::parse(
+                    MAP_FORMAT,
+                    n,
+                    "not a Moving AI map: the first line should be `type octile`, then `height H`, `width W` and `map`",
+                ))
+            }
+            _ if line.chars().any(char::is_control) => {
+                return Err(MapError::parse(
+                    MAP_FORMAT,
+                    n,
+                    "a header line holds control characters (not a text map?); expected `type`, `height`, `width` or `map`",
+                ))
+            }
             _ => {
                 return Err(MapError::parse(
                     MAP_FORMAT,

@@ -1,0 +1,250 @@
+// Issue 16 §2 ("fix what breaks in class") and §3 ("a beginner's layer")
+// in headless Chromium at 1440×900 (and 1366×768 for the compare page):
+// each test is named after its item and checks what failed before.
+
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { startSession, screenshot, errorText, openRobotPage, watchedPage } from './harness.mjs';
+
+let session;
+before(async () => {
+  session = await startSession();
+});
+after(async () => {
+  await session?.close();
+});
+
+const ended = (page, timeout = 150_000) =>
+  page.waitForFunction(() => document.body.dataset.outcome && document.body.dataset.outcome !== 'running', null, { timeout });
+
+/** Plays at 8× until the episode ends; returns the metrics. */
+async function playToEnd(page) {
+  await page.selectOption('#speed', '8');
+  await page.click('#play');
+  await ended(page);
+  return page.evaluate(() => window.planlabRobot.metrics());
+}
+
+async function openAt(url) {
+  const { page, problems } = await watchedPage(session);
+  await page.goto(session.base + url);
+  await page.waitForFunction(() => ['ready', 'error', 'done'].includes(document.body.dataset.state), null, { timeout: 30_000 });
+  return { page, problems };
+}
+
+async function openFile(page, name, text) {
+  const n = await page.evaluate(() => Number(document.body.dataset.loadSeq ?? 0));
+  await page.setInputFiles('#file-input', { name, mimeType: 'application/octet-stream', buffer: Buffer.from(text) });
+  await page.waitForFunction((k) => Number(document.body.dataset.loadSeq) > k || !document.getElementById('error').hidden, n, { timeout: 30_000 });
+}
+
+/** A 6 × 4 m room split by a wall at x = 3 m with a gap `gap` cells tall. */
+function splitRoom(gap) {
+  const rows = [];
+  for (let r = 0; r < 40; r++) rows.push('.'.repeat(30) + (r >= 20 && r < 20 + gap ? '.' : '#') + '.'.repeat(29));
+  return JSON.stringify({
+    version: 1,
+    name: `split room, ${gap}-cell gap`,
+    map: { width: 60, height: 40, resolution: 0.1, cells: rows },
+    start: { col: 10, row: 19, world: { x: 1.05, y: 2.05 } },
+    goal: { col: 50, row: 19, world: { x: 5.05, y: 2.05 } },
+    local_planner: { name: 'dwa' },
+  });
+}
+
+test('item1: a generated maze (defaults, seed 7) is driven to the goal by improved-dwa and safe-dual-dwa', async () => {
+  const { page, problems } = await openRobotPage(session, 'robot.html');
+  await page.click('#generate');
+  await page.waitForFunction(() => document.body.dataset.generatedHash, null, { timeout: 10_000 });
+  for (const planner of ['improved-dwa', 'safe-dual-dwa']) {
+    await page.selectOption('#planner', planner);
+    await page.waitForTimeout(200);
+    const m = await playToEnd(page);
+    assert.equal(m.outcome, 'reached', `${planner}: ${m.outcome} after ${m.path_length_m} m`);
+    await page.click('#reset');
+  }
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('item2: a path that exists only without inflation is said in the status line', async () => {
+  const { page, problems } = await openRobotPage(session, 'robot.html');
+  await openFile(page, 'narrow.json', splitRoom(2));
+  assert.equal(await errorText(page), null);
+  const status = await page.textContent('#status');
+  assert.match(status, /only without inflation/, status);
+  assert.match(status, /radius 0\.20 m/, status);
+  // A gap the robot fits through: nothing said.
+  await openFile(page, 'wide.json', splitRoom(15));
+  assert.doesNotMatch(await page.textContent('#status'), /inflation/);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('item3: presentation mode (P) makes the map larger at 1440×900, panels on demand', async () => {
+  const { page, problems } = await openRobotPage(session, 'robot.html');
+  const box = () => page.locator('#sim-canvas').boundingBox();
+  const normal = await box();
+  await page.keyboard.press('p');
+  await page.waitForTimeout(300);
+  const large = await box();
+  assert.ok(large.width > normal.width && large.height > normal.height, `normal ${JSON.stringify(normal)} large ${JSON.stringify(large)}`);
+  assert.equal(await page.isVisible('.layout > .panel'), false, 'side panel folded');
+  assert.equal(await page.isVisible('#plots'), false, 'plots folded');
+  await screenshot(page, 'class-present.png');
+  // On demand: the Panels button brings them back; P again leaves.
+  await page.click('#panels-button');
+  assert.equal(await page.isVisible('.layout > .panel'), true);
+  await page.click('#panels-button');
+  await page.keyboard.press('p');
+  await page.waitForTimeout(300);
+  const back = await box();
+  assert.ok(Math.abs(back.width - normal.width) < 2, 'normal mode again');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('item4: after Replay the note does not squeeze the timeline (one line, slider ≥ 300 px)', async () => {
+  const { page, problems } = await openRobotPage(session, 'robot.html?scenario=T-fig3-2.json&planner=improved-dwa');
+  await playToEnd(page);
+  await page.click('#tl-replay');
+  await page.waitForFunction(() => document.getElementById('timeline').dataset.replayMatch !== undefined, null, { timeout: 120_000 });
+  const m = await page.evaluate(() => {
+    const tops = Array.from(document.querySelectorAll('#timeline button')).map((b) => Math.round(b.getBoundingClientRect().top));
+    const heights = Array.from(document.querySelectorAll('#timeline button')).map((b) => Math.round(b.getBoundingClientRect().height));
+    return {
+      tops,
+      heights,
+      slider: document.getElementById('tl-slider').getBoundingClientRect().width,
+      note: document.getElementById('tl-note').textContent,
+    };
+  });
+  assert.match(m.note, /replay identical/);
+  assert.equal(new Set(m.tops).size, 1, `buttons on one line: ${m.tops}`);
+  assert.ok(Math.max(...m.heights) < 30, `no button wraps: ${m.heights}`);
+  assert.ok(m.slider >= 300, `slider ${m.slider} px`);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('item6: preliminary-fusion on T-fig3-2 ending stuck while driving is named circling, not "stuck (no progress)"', async () => {
+  const { page, problems } = await openRobotPage(session, 'robot.html?scenario=T-fig3-2.json&planner=preliminary-fusion');
+  const m = await playToEnd(page);
+  const v = (await page.evaluate(() => window.planlabRobot.state()))[3];
+  const status = await page.textContent('#status');
+  assert.equal(m.outcome, 'stuck', 'the outcome value is unchanged');
+  assert.doesNotMatch(status, /stuck \(no progress\)/);
+  if (Math.abs(v) >= 0.05) assert.match(status, /no progress toward the goal \(still moving at \d\.\d\d m\/s: circling\)/, status);
+  else assert.match(status, /stopped: no progress toward the goal/, status);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('item7: digits enough to check the relations; the gallery run ends with the relation ✓/✗', async () => {
+  // Tracking error: three decimals (0.012 vs 0.031, not 0.01 vs 0.03).
+  const { page, problems } = await openRobotPage(session, 'robot.html?scenario=T-fig3-2.json&planner=improved-dwa&run=1&exp=T-fig3-2&as=improved');
+  await page.waitForSelector('#gallery-note');
+  await page.click('#to-end');
+  await ended(page);
+  assert.match(await page.textContent('#metric-tracking'), /^\d\.\d{3} \/ \d\.\d{3}$/);
+  await page.waitForFunction(() => document.body.dataset.relation, null, { timeout: 120_000 });
+  assert.equal(await page.evaluate(() => document.body.dataset.relation), 'holds');
+  const check = await page.textContent('.gallery-note-check');
+  assert.match(check, /^✓ relation holds on the presets \(planlab reproduce T-fig3-2\)/, check);
+  assert.match(check, /✓ improved reaches/);
+  assert.match(check, /improved: reached · \d+\.\d\d s · \d+\.\d{3} m · tracking \d\.\d{4} m/, check);
+  await screenshot(page, 'class-gallery-end.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+  // The arm's minimum distance to the hand: 0.1 mm (RNN vs constant velocity).
+  const arm = await openAt('arm.html?scenario=T-tab5-3.json');
+  await arm.page.waitForFunction(() => /\d\.\d{4} m/.test(document.getElementById('metric-min')?.textContent ?? ''), null, { timeout: 30_000 }).catch(() => {});
+  const min = await arm.page.evaluate(() => Array.from(document.querySelectorAll('.metric b, .metrics b')).map((b) => b.textContent).join(' | '));
+  assert.match(min, /\d\.\d{4} m/, min);
+  await arm.page.close();
+});
+
+test('item8: gallery runs at 4× with » To end; the note is whole; Run above the fold; shared link; NaN; garbage .map', async () => {
+  // A gallery link opens at 4× and has a To end button.
+  const g = await openAt('robot.html?scenario=S-tab1.json&planner=preliminary-fusion&run=1&exp=S-tab1&as=preliminary');
+  await g.page.waitForSelector('#gallery-note');
+  assert.equal(await g.page.inputValue('#speed'), '4');
+  const t0 = Date.now();
+  await g.page.click('#to-end');
+  await ended(g.page, 60_000);
+  assert.ok(Date.now() - t0 < 60_000);
+  // The note shows its whole text (no "…" cut) at 1440 px.
+  const cut = await g.page.evaluate(() => {
+    const t = document.querySelector('.gallery-note-text');
+    const s = getComputedStyle(t);
+    return { over: t.scrollWidth > t.clientWidth + 1, ellipsis: s.textOverflow === 'ellipsis' && s.whiteSpace === 'nowrap' };
+  });
+  assert.deepEqual(cut, { over: false, ellipsis: false });
+  await g.page.close();
+
+  // Compare: Run is above the fold at 1366×768 and 1440×900.
+  for (const [width, height] of [[1366, 768], [1440, 900]]) {
+    const c = await session.context.newPage();
+    await c.setViewportSize({ width, height });
+    await c.goto(`${session.base}compare.html?scenario=T-fig3-2.json&planners=dwa,improved-dwa`);
+    await c.waitForFunction(() => Number(document.body.dataset.buildSeq) > 0, null, { timeout: 30_000 });
+    const b = await c.locator('#play').boundingBox();
+    assert.ok(b && b.y + b.height <= height, `${width}×${height}: Run at y ${b?.y}`);
+    await c.close();
+  }
+
+  // A shared link is not "Opened from disk".
+  const { page, problems } = await openRobotPage(session, 'robot.html?scenario=T-fig3-2.json');
+  await page.click('#share-link');
+  await page.waitForFunction(() => document.getElementById('share-url').value.includes('#s='));
+  const link = await page.inputValue('#share-url');
+  const s = await openRobotPage(session, link.slice(session.base.length));
+  const label = await s.page.evaluate(() => document.getElementById('preset').selectedOptions[0]?.textContent);
+  assert.equal(label, 'Opened: a shared link');
+  await s.page.close();
+
+  // NaN in scenario JSON: the message names NaN.
+  await openFile(page, 'nan.json', splitRoom(15).replace('"resolution":0.1', '"resolution":NaN'));
+  const nan = await errorText(page);
+  assert.match(nan ?? '', /NaN is not a number JSON allows/, nan);
+  // A garbage .map: says what was expected, echoes no bytes.
+  await openFile(page, 'garbage.map', '\u0089PNG\r\n\u001a\n\u0000\u0000garbage');
+  const bad = await errorText(page);
+  assert.match(bad ?? '', /not a Moving AI map: the first line should be `type octile`/, bad);
+  assert.doesNotMatch(bad ?? '', /\\u\{|\\x|PNG/);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('s3: plain-language planner help beside the paper; "What am I looking at?" on robot, compare, gallery, apf and arm', async () => {
+  const { page, problems } = await openRobotPage(session, 'robot.html?scenario=T-fig3-2.json&planner=improved-dwa');
+  await page.click('#help-button');
+  const help = await page.evaluate(() => {
+    const d = document.querySelector('.help-planner[open]');
+    return { name: d?.dataset.planner, paper: d?.querySelector('.help-paper')?.textContent, plain: d?.querySelector('.help-plain')?.textContent };
+  });
+  assert.equal(help.name, 'improved-dwa');
+  assert.match(help.paper, /\[T\] Wu 2022/);
+  assert.match(help.plain, /A\* finds a route/);
+  assert.match(help.plain, /Watch/);
+  await page.keyboard.press('Escape');
+  await page.click('#explain summary');
+  const legend = await page.textContent('#explain');
+  for (const w of ['DWA fan', 'Chosen rollout', 'Ordinary dynamic obstacle', 'Special obstacle', 'Goal', 'collision', 'circling']) assert.ok(legend.includes(w), w);
+  await screenshot(page, 'class-legend.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+  for (const url of ['compare.html?scenario=T-fig3-2.json', 'gallery.html', 'apf.html?scenario=T-fig4-6.json', 'arm.html?scenario=T-tab5-3.json']) {
+    const p = await openAt(url);
+    await p.page.waitForSelector('#explain summary', { timeout: 10_000 });
+    await p.page.click('#explain summary');
+    assert.ok((await p.page.textContent('#explain')).length > 150, url);
+    assert.deepEqual(p.problems, [], url);
+    await p.page.close();
+  }
+  // The compare page's help has the plain words too.
+  const c = await openAt('compare.html?scenario=T-fig3-2.json&planners=dwa,improved-dwa');
+  await c.page.click('#help-button');
+  assert.match((await c.page.textContent('.help-planner[open] .help-plain')) ?? '', /imagines driving/);
+  await c.page.close();
+});
