@@ -242,6 +242,42 @@ test('D* Lite repairs a painted wall with fewer expansions than a fresh A*', asy
   await page.close();
 });
 
+test('Drive: the robot follows the D* Lite path, a wall painted ahead of it is repaired with fewer expansions than a fresh A*, and it reaches the goal', async () => {
+  const { page, problems } = await openPage(session);
+  await afterReplan(page, () => page.setInputFiles('#file-input', ARENA2));
+  await afterReplan(page, () => page.selectOption('#algorithm', 'dstar-lite'));
+  await setEndpoints(page, ROW2.start, ROW2.goal);
+  const first = await pathCells(page);
+  await page.$eval('#drive', (b) => (b.dataset.period = '15'));
+  await page.click('#drive');
+  // It drives: the start moves along the path, cell by cell.
+  await page.waitForFunction((s) => document.querySelector('#map-canvas').dataset.start !== s, first[0].join(','));
+  await page.waitForFunction(() => Number(document.body.dataset.planSeq) > 20);
+  await page.click('#drive');
+  assert.equal(await page.getAttribute('body', 'data-driving'), 'false');
+  const at = (await page.getAttribute('#map-canvas', 'data-start')).split(',').map(Number);
+  assert.ok(first.some(([c, r]) => c === at[0] && r === at[1]), `the robot ${at} is on the first path`);
+  // A wall across the path a few cells ahead of the robot.
+  const ahead = await pathCells(page);
+  const [mc, mr] = ahead[8];
+  const [nc, nr] = ahead[9];
+  const [pc, pr] = nc !== mc && nr === mr ? [0, 1] : [1, 0];
+  await chooseTool(page, 'wall');
+  await dragCells(page, [mc - 3 * pc, mr - 3 * pr], [mc + 3 * pc, mr + 3 * pr], 1);
+  assert.equal(await errorText(page), null);
+  const [repaired, freshAStar] = (await page.getAttribute('body', 'data-repair')).split(',').map(Number);
+  assert.ok(repaired > 0 && repaired < freshAStar, `repair expanded ${repaired}, a fresh A* ${freshAStar}`);
+  const around = await pathCells(page);
+  assert.ok(!around.some(([c, r]) => c === mc && r === mr), 'the repaired path avoids the wall');
+  // Drives on round the wall to the goal.
+  await page.click('#drive');
+  await page.waitForFunction(() => document.body.dataset.driving === 'false', null, { timeout: 60_000 });
+  assert.equal(await page.getAttribute('#map-canvas', 'data-start'), ROW2.goal.join(','));
+  assert.equal(await errorText(page), null);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 test('the race plays 2+ planners to a table with winners', async () => {
   const page = await session.context.newPage();
   const problems = [];

@@ -2,7 +2,7 @@
 // query of a .scen) with performance.now(), so the boundary is crossed once
 // per repetition and the figure is the planner's own speed in wasm.
 
-import init, { DwaBench, MapHandle, PlanSession, ScenBatch, plan } from '../pkg/planlab_wasm.js';
+import init, { DwaBench, MapHandle, PlanSession, ScenBatch, plan } from '../pkg-grid/planlab_wasm.js';
 
 export interface BenchResult {
   rows: number;

@@ -540,3 +540,77 @@ fn bad_input_gets_the_typed_errors() {
         assert!(err.to_string().contains("use A*"), "{err}");
     }
 }
+
+/// Many random edit sequences on arena2: cells blocked and freed (singly
+/// and as strokes), the start moved along the current path, and after each
+/// change D* Lite's repaired answer equals a fresh A*'s on the edited map
+/// (cost, or both unreachable). Guards against the page's "unreachable"
+/// where a path existed.
+#[test]
+fn dstar_lite_repairs_equal_a_fresh_astar_after_random_edits() {
+    let (_, map, rows) = benchmarks().swap_remove(1); // arena2
+    let base = PlanGrid::new(&map, false);
+    let mut rng = Rng(0x5eed_d57a);
+    let options = GridPlanOptions::default();
+    let mut compared = 0;
+    for _ in 0..12 {
+        let mut grid = base.clone();
+        let row = &rows[rng.below(rows.len())];
+        let (mut s, t) = (row.start, row.goal);
+        let mut d = DStarLite::new(&grid, s, t, &options).unwrap();
+        let mut path = d.plan(&mut ()).unwrap().cells;
+        for _ in 0..15 {
+            match rng.below(4) {
+                // The robot advances a few cells along its path.
+                0 if path.len() > 4 => {
+                    s = path[1 + rng.below(3)];
+                    d.move_start(s).unwrap();
+                }
+                // A stroke of walls across a random cell of the path.
+                1 | 2 => {
+                    let at = path[rng.below(path.len())];
+                    let horizontal = rng.below(2) == 0;
+                    for o in -3i64..=3 {
+                        let (c, r) = if horizontal {
+                            (at.col as i64 + o, at.row as i64)
+                        } else {
+                            (at.col as i64, at.row as i64 + o)
+                        };
+                        let q = GridPos::new(c.max(0) as u32, r.max(0) as u32);
+                        if grid.is_free(c, r) && q != s && q != t {
+                            grid.set_free(q.col as usize, q.row as usize, false);
+                            d.set_blocked(q, true);
+                        }
+                    }
+                }
+                // Some walls painted earlier are erased again.
+                _ => {
+                    for _ in 0..20 {
+                        let (c, r) = (rng.below(grid.width()), rng.below(grid.height()));
+                        if !grid.is_free(c as i64, r as i64) && base.is_free(c as i64, r as i64) {
+                            grid.set_free(c, r, true);
+                            d.set_blocked(GridPos::new(c as u32, r as u32), false);
+                        }
+                    }
+                }
+            }
+            let fresh = AStar::default().plan(&grid, s, t);
+            match (fresh, d.plan(&mut ())) {
+                (Ok(f), Ok(r)) => {
+                    assert!(
+                        (f.cost - r.cost).abs() < 1e-9 * f.cost.max(1.0),
+                        "D* Lite {} vs fresh A* {} from {s:?}",
+                        r.cost,
+                        f.cost
+                    );
+                    assert!(illegal(&grid, &r, s, t, NCC).is_none());
+                    path = r.cells;
+                    compared += 1;
+                }
+                (Err(PlanError::Unreachable { .. }), Err(PlanError::Unreachable { .. })) => {}
+                (f, r) => panic!("fresh A* {f:?}, D* Lite {r:?} from {s:?}"),
+            }
+        }
+    }
+    assert!(compared > 100, "only {compared} comparisons");
+}

@@ -20,7 +20,8 @@
 //! - [`PlanSession`] keeps a map's planner and passability grid between
 //!   plans for the grid page (edits update it cell by cell) and returns the
 //!   search as events ([`RecordedPlan`]); [`DStarSession`] keeps a D* Lite
-//!   search, repaired after edits and moved starts; see [`session`].
+//!   search, repaired after edits and moved starts; see [`session`]. Both
+//!   come with the `grid-search` feature (the grid page's module only).
 //!
 //! - [`SimHandle`] runs one robot episode (core `sim::Episode`) for the
 //!   robot page: steps, live edits (goal, movers, planner and its
@@ -40,12 +41,15 @@
 
 pub mod apf;
 pub mod batch;
+#[cfg(feature = "grid-search")]
 pub mod dstar;
 pub mod files;
+#[cfg(feature = "grid-search")]
 pub mod session;
 pub mod sim;
 
 pub use apf::ApfHandle;
+#[cfg(feature = "grid-search")]
 pub use dstar::{grid_algorithms, DStarSession};
 /// The arm page's handle, from its own crate (the arm page loads that
 /// crate's smaller wasm module; the playground pages build this crate
@@ -59,6 +63,7 @@ pub use planlab_wasm_arm::{arm_choices, ArmHandle};
 /// this crate without the feature).
 #[cfg(feature = "reproduce")]
 pub use planlab_wasm_reproduce::{reproduce_variant, reproduce_variant_info};
+#[cfg(feature = "grid-search")]
 pub use session::{PlanSession, RecordedPlan};
 pub use sim::{generated_grid_hash, planners, SimHandle};
 
@@ -467,6 +472,14 @@ pub fn inflation_mask(map: &MapHandle, options: JsValue) -> Result<Vec<u8>, JsEr
         *m = u8::from(raw.is_free(c, r) && !planned.is_free(c, r));
     }
     Ok(mask)
+}
+
+/// The core's word when `radius_m` of inflation cannot change a map of
+/// `resolution` m cells (less than one cell), else `undefined`: the grid
+/// page shows it beside the plan, as `planlab plan --inflate` prints it.
+#[wasm_bindgen(js_name = inflationNote)]
+pub fn inflation_note(radius_m: f64, resolution: f64) -> Option<String> {
+    planlab_core::map::costmap::inflation_note(radius_m, resolution)
 }
 
 /// Every query of a Moving AI `.scen` on one map, ready to be solved in a

@@ -9,14 +9,11 @@
 //! page's player ([`RecordedPlan`]).
 
 use crate::{cell_of, options_from_js, paint_grid, MapHandle, PlanResult};
-use planlab_core::global::bottom_up::bottom_up_observed;
-use planlab_core::global::keypoints::key_points_observed;
 use planlab_core::global::plan::{
-    build_planner, plan_grid_for, Algorithm, GridPlan, GridPlanError, GridPlanOptions,
+    build_planner, plan_grid_for, plan_on_grid_observed, GridPlan, GridPlanError, GridPlanOptions,
 };
-use planlab_core::global::safe_astar::safety_index;
 use planlab_core::global::{
-    supercover, GridPlanner, GridPos, Path, PlanError, PlanGrid, SearchEvent, SearchObserver,
+    supercover, GridPlanner, GridPos, PlanError, PlanGrid, SearchEvent, SearchObserver,
 };
 use planlab_core::map::OccupancyGrid;
 use wasm_bindgen::prelude::*;
@@ -72,37 +69,21 @@ impl PlanSession {
     }
 
     /// Plans on the kept grid, reporting the search's events (and key
-    /// points' / Bottom-Up's segment checks) to `obs`. Checks and
-    /// post-processing as `plan_on_map_observed`.
+    /// points' / Bottom-Up's segment checks) to `obs`: the core's
+    /// `plan_on_grid_observed` on the kept grid and planner.
     pub fn plan_observed(
         &mut self,
         start: GridPos,
         goal: GridPos,
         obs: &mut dyn SearchObserver,
     ) -> Result<GridPlan, GridPlanError> {
-        let options = self.options;
-        if let Some(eps) = options.bottom_up_eps {
-            if !(eps.is_finite() && eps >= 0.0) {
-                return Err(PlanError::InvalidConfig(format!(
-                    "Bottom-Up maximum error {eps} must be a finite number ≥ 0 (cells)"
-                ))
-                .into());
-            }
-        }
         if let Err(e) = &self.planner {
             return Err(e.clone().into());
         }
         self.grid()?;
         let (map, grid) = (&self.map, self.grid.as_ref().expect("built above"));
-        check_endpoints(map, grid, &options, start, goal)?;
         let planner = self.planner.as_ref().expect("checked above");
-        // The plain search when nobody listens: full speed.
-        let path = if obs.enabled() {
-            planner.plan_observed(grid, start, goal, obs)?
-        } else {
-            planner.plan(grid, start, goal)?
-        };
-        finish(map, grid, &options, path, obs)
+        plan_on_grid_observed(map, grid, planner.as_ref(), start, goal, &self.options, obs)
     }
 }
 
@@ -127,65 +108,6 @@ pub(crate) fn segment_cells(col0: u32, row0: u32, col1: u32, row1: u32) -> Vec<(
         |c, r, _| cells.push((c as usize, r as usize)),
     );
     cells
-}
-
-/// Start and goal on the map and free; "blocked after inflation" when the
-/// raw map has the endpoint free (as `plan_on_map` says it).
-fn check_endpoints(
-    map: &OccupancyGrid,
-    grid: &PlanGrid,
-    options: &GridPlanOptions,
-    start: GridPos,
-    goal: GridPos,
-) -> Result<(), GridPlanError> {
-    match grid.check_endpoints(start, goal) {
-        Err(PlanError::Blocked { which, col, row })
-            if options.inflate_m > 0.0
-                && map
-                    .get(col as usize, row as usize)
-                    .is_some_and(|c| c.passable(options.allow_unknown)) =>
-        {
-            Err(GridPlanError::BlockedByInflation {
-                which,
-                col,
-                row,
-                inflate_m: options.inflate_m,
-            })
-        }
-        r => Ok(r?),
-    }
-}
-
-/// Key points, Bottom-Up nodes and safety indices of a found path.
-fn finish(
-    map: &OccupancyGrid,
-    grid: &PlanGrid,
-    options: &GridPlanOptions,
-    path: Path,
-    obs: &mut dyn SearchObserver,
-) -> Result<GridPlan, GridPlanError> {
-    let keypoints = if options.keypoints {
-        key_points_observed(grid, &path.cells, options.diagonal, obs)
-    } else {
-        Vec::new()
-    };
-    let feature_nodes = match options.bottom_up_eps {
-        Some(eps) => bottom_up_observed(grid, &path.cells, eps, options.diagonal, obs)?,
-        None => Vec::new(),
-    };
-    let safety = if options.algorithm == Algorithm::SafeAStar {
-        safety_index(grid, &path.cells, options.safe.window_radius)
-    } else {
-        Vec::new()
-    };
-    Ok(GridPlan {
-        length_m: path.cost * map.resolution(),
-        path,
-        keypoints,
-        feature_nodes,
-        expanded_cells: Vec::new(),
-        safety,
-    })
 }
 
 #[wasm_bindgen]

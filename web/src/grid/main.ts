@@ -5,10 +5,10 @@
 // planning happens in this file: it converts control values into the core's
 // GridPlanOptions and paints what comes back.
 
-import init, { MapHandle, ScenarioHandle, defaultPlanOptions, gridAlgorithms, inflationMask } from '../../pkg/planlab_wasm.js';
+import init, { MapHandle, ScenarioHandle, defaultPlanOptions, gridAlgorithms, inflationMask, inflationNote, rosImageName } from '../../pkg-grid/planlab_wasm.js';
 import { MapView, type Cell } from './render';
 import { GridSession } from './planning';
-import { SearchPlayer } from './player-ui';
+import { SearchPlayer, exposeForTests } from './player-ui';
 import { installShell } from '../shell/help';
 import { gridHelp, type CorePlanner } from '../shell/help-content';
 import { gridUrl } from './grid-url';
@@ -19,6 +19,7 @@ import { applyOptions, getDefaults, onOptionInput, readOptions, setDefaults, sho
 import { installScenario, loadFiles, loadPreset, type MapHost } from './maps';
 import { describeSearch } from './inspect';
 import { clearMetrics, showMetrics } from './metrics';
+import { Driver } from './drive';
 
 type Tool = 'start' | 'goal' | 'wall' | 'erase';
 
@@ -63,6 +64,8 @@ let inflation: Uint8Array | null = null;
 let planSeq = 0;
 let cellsDirty = false;
 let replanQueued = false;
+/** The plan's cells, for the driving robot. */
+let currentPath: Cell[] | null = null;
 
 function hintForTool(): string {
   switch (tool) {
@@ -128,6 +131,7 @@ function replan(): void {
   ui.canvas.dataset.goal = goal ? goal.join(',') : '';
   planSeq += 1;
   ui.body.dataset.planSeq = String(planSeq);
+  currentPath = null;
   if (!start || !goal) {
     view.setLayers(empty);
     player.load(null);
@@ -163,10 +167,13 @@ function replan(): void {
     showMetrics(res, opts, ms, keyPoints, featureNodes);
     ui.canvas.dataset.pathLen = String(res.pathLen);
     ui.canvas.dataset.path = Array.from(path).join(',');
+    currentPath = Array.from({ length: path.length / 2 }, (_, i): Cell => [path[2 * i], path[2 * i + 1]]);
     let status = `Path found: ${res.pathLen} cells, ${res.lengthM.toFixed(2)} m`;
     if (safety.length) status += ` · min safety index ${safety.reduce((a, b) => Math.min(a, b), Infinity).toFixed(2)}/10`;
     if (repair) status += ` · D* Lite repair: ${repair.expanded.toLocaleString('en-US')} cells expanded (a fresh A*: ${repair.freshAStar.toLocaleString('en-US')})`;
     if (truncated) status += ` · the search recording stopped at ${playback?.n.toLocaleString('en-US')} events`;
+    const note = inflationNote(Number(opts.inflate_m), map.resolution);
+    if (note) status += ` · note: ${note}`;
     ui.body.dataset.repair = repair ? `${repair.expanded},${repair.freshAStar}` : '';
     ui.status.textContent = status;
   } finally {
@@ -197,6 +204,13 @@ function installMap(m: MapHandle, name: string, s: Cell | null, g: Cell | null):
 }
 
 const maps: MapHost = { install: installMap, applyOptions, defaults: getDefaults };
+const driver = new Driver(el<HTMLButtonElement>('drive'), {
+  path: () => currentPath,
+  moveStart: guard((c: Cell) => {
+    start = c;
+    replan();
+  }),
+});
 
 // ------------------------------------------------------------------- input
 function canvasPoint(ev: MouseEvent): [number, number] {
@@ -305,6 +319,7 @@ window.addEventListener('keydown', (ev) => {
     player.toggle();
   } else if (k === ',' || k === '.') player.stepBy(k === '.' ? 1 : -1);
   else if (k === 'f') view.fit();
+  else if (k === 'd') driver.toggle();
 });
 
 onOptionInput(scheduleReplan);
@@ -355,7 +370,7 @@ async function boot(): Promise<void> {
   const url = gridUrl();
   if (url.scenario) {
     try {
-      const { text, files } = await loadPresetFiles(url.scenario);
+      const { text, files } = await loadPresetFiles(url.scenario, rosImageName);
       installScenario(maps, ScenarioHandle.fromJson(text), url.scenario, files, url.options);
       const linked = ui.preset.querySelector<HTMLOptionElement>('option[value=""]');
       if (linked) linked.textContent = `${url.scenario} (linked)`;
@@ -378,17 +393,7 @@ async function boot(): Promise<void> {
 let corePlanners: CorePlanner[] = [];
 installShell(() => gridHelp(corePlanners));
 
-// For the e2e tests and the README's figures: the player and its meter.
-(window as unknown as Record<string, unknown>).planlabGrid = {
-  seek: (k: number) => player.seek(k),
-  play: () => player.play(),
-  cellState: (c: number, r: number) => player.playback?.info(c, r)?.state ?? null,
-  info: (c: number, r: number) => player.playback?.info(c, r) ?? null,
-  current: () => player.playback?.expanding() ?? null,
-  counters: () => player.playback?.counters() ?? null,
-  frameStats: () => player.meter.stats(),
-  rebuilds: () => session.rebuilds,
-};
+exposeForTests(player, () => session.rebuilds);
 
 boot().catch((e) => {
   showError(`Could not start the playground: ${messageOf(e)}`);

@@ -1,7 +1,7 @@
 // The grid page's plan metrics (cost, length, expanded, path cells, key
 // points, time): text for people, `data-value` for the tests.
 
-import type { PlanResult } from '../../pkg/planlab_wasm.js';
+import type { PlanResult } from '../../pkg-grid/planlab_wasm.js';
 import { el } from '../shell/dom';
 
 const metric = {

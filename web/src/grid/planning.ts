@@ -9,7 +9,7 @@
 // and the repair's expansions are reported beside a fresh A*'s on the same
 // edited map (through the PlanSession, which has the same edits).
 
-import { DStarSession, PlanSession, type MapHandle, type PlanResult, type RecordedPlan } from '../../pkg/planlab_wasm.js';
+import { DStarSession, PlanSession, type MapHandle, type PlanResult, type RecordedPlan } from '../../pkg-grid/planlab_wasm.js';
 import { SearchPlayback } from '../scene/search-player';
 import type { Cell } from './render';
 

@@ -150,3 +150,18 @@ export class SearchPlayer {
     d.searchEvents = String(c.events);
   }
 }
+
+/** `window.planlabGrid`: the player's state and its frame meter, for the
+ *  e2e tests and the README's figures. */
+export function exposeForTests(player: SearchPlayer, rebuilds: () => number): void {
+  (window as unknown as Record<string, unknown>).planlabGrid = {
+    seek: (k: number) => player.seek(k),
+    play: () => player.play(),
+    cellState: (c: number, r: number) => player.playback?.info(c, r)?.state ?? null,
+    info: (c: number, r: number) => player.playback?.info(c, r) ?? null,
+    current: () => player.playback?.expanding() ?? null,
+    counters: () => player.playback?.counters() ?? null,
+    frameStats: () => player.meter.stats(),
+    rebuilds,
+  };
+}

@@ -5,7 +5,7 @@
 // The table compares the counters; the winners are the fewest expanded
 // cells and the lowest path cost. Nothing here plans.
 
-import init, { MapHandle, defaultPlanOptions, gridAlgorithms } from '../../pkg/planlab_wasm.js';
+import init, { MapHandle, defaultPlanOptions, gridAlgorithms } from '../../pkg-grid/planlab_wasm.js';
 import { MapView, type Cell } from '../grid/render';
 import { GridSession } from '../grid/planning';
 import { loadPreset, type MapHost } from '../grid/maps';

@@ -351,20 +351,38 @@ pub fn plan_on_map_observed(
     obs: &mut impl SearchObserver,
 ) -> Result<GridPlan, GridPlanError> {
     let planner = build_planner(options)?;
-    if let Some(eps) = options.bottom_up_eps {
-        if !(eps.is_finite() && eps >= 0.0) {
-            return Err(PlanError::InvalidConfig(format!(
-                "Bottom-Up maximum error {eps} must be a finite number ≥ 0 (cells)"
-            ))
-            .into());
-        }
-    }
+    check_bottom_up(options)?;
     let plan_grid = plan_grid_for(grid, options)?;
+    plan_on_grid_observed(
+        grid,
+        &plan_grid,
+        planner.as_ref(),
+        start,
+        goal,
+        options,
+        obs,
+    )
+}
+
+/// As [`plan_on_map_observed`] with the planning grid (`plan_grid_for(map,
+/// options)`) and the planner (`build_planner(options)`) already built:
+/// for callers that keep both between plans and edit the grid cell by cell
+/// (the grid page's session), so a replan costs about the search alone.
+pub fn plan_on_grid_observed<O: SearchObserver + ?Sized>(
+    map: &OccupancyGrid,
+    plan_grid: &PlanGrid,
+    planner: &dyn GridPlanner,
+    start: GridPos,
+    goal: GridPos,
+    options: &GridPlanOptions,
+    obs: &mut O,
+) -> Result<GridPlan, GridPlanError> {
+    check_bottom_up(options)?;
     if let Err(e) = plan_grid.check_endpoints(start, goal) {
         // Say "blocked after inflation" rather than a bare "inside an
         // obstacle" when the raw map has the endpoint free.
         if let PlanError::Blocked { which, col, row } = e {
-            let raw_free = grid
+            let raw_free = map
                 .get(col as usize, row as usize)
                 .is_some_and(|c| c.passable(options.allow_unknown));
             if raw_free && options.inflate_m > 0.0 {
@@ -380,30 +398,41 @@ pub fn plan_on_map_observed(
     }
     // The plain search when nobody listens: full speed, no virtual calls.
     let path = if obs.enabled() {
-        planner.plan_observed(&plan_grid, start, goal, obs)?
+        planner.plan_observed(plan_grid, start, goal, &mut &mut *obs)?
     } else {
-        planner.plan(&plan_grid, start, goal)?
+        planner.plan(plan_grid, start, goal)?
     };
     let keypoints = if options.keypoints {
-        key_points_observed(&plan_grid, &path.cells, options.diagonal, obs)
+        key_points_observed(plan_grid, &path.cells, options.diagonal, obs)
     } else {
         Vec::new()
     };
     let feature_nodes = match options.bottom_up_eps {
-        Some(eps) => bottom_up_observed(&plan_grid, &path.cells, eps, options.diagonal, obs)?,
+        Some(eps) => bottom_up_observed(plan_grid, &path.cells, eps, options.diagonal, obs)?,
         None => Vec::new(),
     };
     let safety = if options.algorithm == Algorithm::SafeAStar {
-        safety_index(&plan_grid, &path.cells, options.safe.window_radius)
+        safety_index(plan_grid, &path.cells, options.safe.window_radius)
     } else {
         Vec::new()
     };
     Ok(GridPlan {
-        length_m: path.cost * grid.resolution(),
+        length_m: path.cost * map.resolution(),
         path,
         keypoints,
         feature_nodes,
         expanded_cells: Vec::new(),
         safety,
     })
+}
+
+/// Bottom-Up's maximum error must be a finite number ≥ 0.
+fn check_bottom_up(options: &GridPlanOptions) -> Result<(), GridPlanError> {
+    match options.bottom_up_eps {
+        Some(eps) if !(eps.is_finite() && eps >= 0.0) => Err(PlanError::InvalidConfig(format!(
+            "Bottom-Up maximum error {eps} must be a finite number ≥ 0 (cells)"
+        ))
+        .into()),
+        _ => Ok(()),
+    }
 }
