@@ -1,7 +1,18 @@
 //! `planlab`: command-line front end of planlab-core.
 //!
 //! Every failure prints one line `planlab: error: …` on stderr and exits
-//! non-zero; usage errors exit 2 (clap's convention).
+//! non-zero; usage errors exit 2 (clap's convention). Output goes through
+//! [`outln!`]/[`out!`]: a reader that closes the pipe early (`planlab plan
+//! --json | head -1`) ends the program quietly, where `println!` panics.
+
+/// `print!` that ends the program quietly when stdout's reader went away.
+macro_rules! out {
+    ($($t:tt)*) => { $crate::write_out(&format!($($t)*)) };
+}
+/// `println!` that ends the program quietly when stdout's reader went away.
+macro_rules! outln {
+    ($($t:tt)*) => { $crate::write_out(&format!("{}\n", format_args!($($t)*))) };
+}
 
 mod arm_cmds;
 mod batch_cmd;
@@ -597,7 +608,7 @@ fn run(cli: Cli) -> Result<(), String> {
             planlab_core::map::io::movingai::check_scen_against_map(&rows, &grid)
                 .map_err(|e| format!("{} does not fit {}: {e}", scen.display(), map.display()))?;
             let report = bench::bench_grid(&grid, &rows, reps.max(1))?;
-            println!(
+            outln!(
                 "{}",
                 serde_json::to_string(&report).map_err(|e| e.to_string())?
             );
@@ -607,7 +618,7 @@ fn run(cli: Cli) -> Result<(), String> {
             kind: BenchKind::Step { steps, blocks },
         } => {
             let report = bench::bench_step(steps, blocks)?;
-            println!(
+            outln!(
                 "{}",
                 serde_json::to_string(&report).map_err(|e| e.to_string())?
             );
@@ -625,7 +636,7 @@ fn run(cli: Cli) -> Result<(), String> {
             let grid = load::load_movingai(&map)?;
             let text = load::read_text(&scen)?;
             let report = bench::bench_scen(&grid, &text, reps, inner)?;
-            println!(
+            outln!(
                 "{}",
                 serde_json::to_string(&report).map_err(|e| e.to_string())?
             );
@@ -644,6 +655,15 @@ fn usage_error_line(e: &clap::Error) -> String {
     let mut line = body.split_whitespace().collect::<Vec<_>>().join(" ");
     line = line.replace(" tip:", "; tip:");
     format!("{line} (see --help)")
+}
+
+/// Writes to stdout (see `sim_cmds::emit`: a closed pipe exits 0); any
+/// other write error is the usual one-line error, exit 1.
+fn write_out(text: &str) {
+    if let Err(e) = sim_cmds::emit(text) {
+        eprintln!("planlab: error: {e}");
+        std::process::exit(1);
+    }
 }
 
 fn main() -> ExitCode {

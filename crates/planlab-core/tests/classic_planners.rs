@@ -77,7 +77,13 @@ fn illegal(
 }
 
 fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-3 * b.max(1.0)
+    (a - b).abs() <= slack(b)
+}
+
+/// How far a cost may be from a `.scen` optimum that is printed rounded
+/// (`1.41421` for √2): the tolerance of [`close`].
+fn slack(optimum: f64) -> f64 {
+    1e-3 * optimum.max(1.0)
 }
 
 /// Every `steps[m]`-th row of map `m` (arena, arena2, random512, maze512;
@@ -266,8 +272,8 @@ fn greedy_finds_a_legal_path_whenever_astar_does() {
         &Greedy::default(),
         |grid, row, result| match result {
             Ok(p) => {
-                longer += usize::from(p.cost > row.optimal + 1e-6);
-                if p.cost < row.optimal - 1e-6 {
+                longer += usize::from(p.cost > row.optimal + slack(row.optimal));
+                if p.cost < row.optimal - slack(row.optimal) {
                     return Some(format!("cost {} below the optimum {}", p.cost, row.optimal));
                 }
                 illegal(grid, &p, row.start, row.goal, NCC)
@@ -288,8 +294,8 @@ fn theta_star_is_no_longer_than_the_8_connected_optimum() {
         |grid, row, result| match result {
             Ok(p) => {
                 let straight = Path::polyline_length(&[row.start, row.goal]);
-                shorter += usize::from(p.cost < row.optimal - 1e-6);
-                if p.cost > row.optimal + 1e-6 {
+                shorter += usize::from(p.cost < row.optimal - slack(row.optimal));
+                if p.cost > row.optimal + slack(row.optimal) {
                     Some(format!(
                         "cost {} > 8-connected optimum {}",
                         p.cost, row.optimal
