@@ -2,7 +2,7 @@
 // query of a .scen) with performance.now(), so the boundary is crossed once
 // per repetition and the figure is the planner's own speed in wasm.
 
-import init, { DwaBench, MapHandle, PlanSession, ScenBatch, plan } from '../pkg-grid/planlab_wasm.js';
+import init, { MapHandle, PlanSession, ScenBatch, plan } from '../pkg-grid/planlab_wasm.js';
 
 export interface BenchResult {
   rows: number;
@@ -54,9 +54,13 @@ export interface DwaBenchResult {
 }
 
 /** Times the reference DWA step (the scene of `planlab bench step`) in
- *  `blocks` blocks of `steps` steps, one wasm call per block. */
-function planlabDwaBench(steps: number, blocks: number, warmMs = 0): DwaBenchResult {
-  const bench = new DwaBench();
+ *  `blocks` blocks of `steps` steps, one wasm call per block. The DWA lives
+ *  in the robot pages' module (web/pkg), loaded on first use so the page's
+ *  first load stays the grid module's. */
+async function planlabDwaBench(steps: number, blocks: number, warmMs = 0): Promise<DwaBenchResult> {
+  const robot = await import('../pkg/planlab_wasm.js');
+  await robot.default();
+  const bench = new robot.DwaBench();
   try {
     // Untimed blocks (at least one, as the native side; then until warmMs)
     // let V8 tier the hot functions up from its baseline compiler.

@@ -83,7 +83,11 @@ pub fn scen(
             };
             outln!(
                 "row {i}: ({},{}) -> ({},{}) optimal {:.5}, got {got}",
-                row.start.col, row.start.row, row.goal.col, row.goal.row, row.optimal
+                row.start.col,
+                row.start.row,
+                row.goal.col,
+                row.goal.row,
+                row.optimal
             );
         }
     }
@@ -125,8 +129,8 @@ pub struct PlanArgs {
 /// Plans once on any supported map file and prints the result.
 pub fn plan(map_path: &Path, grid: &OccupancyGrid, args: &PlanArgs) -> Result<(), String> {
     let t = Instant::now();
-    let result = plan_on_map(grid, args.start, args.goal, &args.options, false)
-        .map_err(|e| e.to_string())?;
+    let result =
+        plan_on_map(grid, args.start, args.goal, &args.options).map_err(|e| e.to_string())?;
     let micros = t.elapsed().as_secs_f64() * 1e6;
     let cells = |v: &[GridPos]| v.iter().map(|p| [p.col, p.row]).collect::<Vec<_>>();
     if args.json {

@@ -423,13 +423,16 @@ pub fn train_predictor(
         outln!("{:<34}{}", "epochs", r.epochs);
         outln!(
             "{:<34}{} / {}",
-            "windows train / held-out", r.train_samples, r.heldout_samples
+            "windows train / held-out",
+            r.train_samples,
+            r.heldout_samples
         );
         outln!("{:<34}{:.3e} m²", "train MSE", r.train_mse);
         outln!("{:<34}{:.3e} m²", "held-out MSE, RNN", r.heldout_mse);
         outln!(
             "{:<34}{:.3e} m²",
-            "held-out MSE, constant velocity", r.heldout_mse_constant_velocity
+            "held-out MSE, constant velocity",
+            r.heldout_mse_constant_velocity
         );
         outln!("weights written to {}", out.display());
     }

@@ -10,7 +10,7 @@ use planlab_core::global::classic::{
 use planlab_core::global::dstar_lite::{DStarLite, DStarLitePlanner};
 use planlab_core::global::jps::{Jps, JpsConfig};
 use planlab_core::global::plan::{
-    build_planner, plan_on_map, Algorithm, GridPlanError, GridPlanOptions,
+    build_observed_planner, build_planner, plan_on_map, Algorithm, GridPlanError, GridPlanOptions,
 };
 use planlab_core::global::{
     Diagonal, GridPlanner, GridPos, Path, PlanError, PlanGrid, SearchEvent, SearchLog,
@@ -465,7 +465,7 @@ fn new_planners_report_events_that_match_their_answer() {
             algorithm,
             ..GridPlanOptions::default()
         };
-        let planner = build_planner(&options).unwrap();
+        let planner = build_observed_planner(&options).unwrap();
         for row in rows.iter().step_by(16) {
             let plain = planner.plan(&grid, row.start, row.goal).unwrap();
             let mut log = SearchLog::with_limit(usize::MAX);
@@ -508,7 +508,7 @@ fn bad_input_gets_the_typed_errors() {
             },
             ..GridPlanOptions::default()
         };
-        let plan = |s, t, o: &GridPlanOptions| plan_on_map(&map, s, t, o, false);
+        let plan = |s, t, o: &GridPlanOptions| plan_on_map(&map, s, t, o);
         assert!(matches!(
             plan(wall, free, &options),
             Err(GridPlanError::Plan(PlanError::Blocked { .. }))
@@ -528,7 +528,7 @@ fn bad_input_gets_the_typed_errors() {
         let walled = OccupancyGrid::from_ascii(".#.\n##.\n...\n").unwrap();
         assert!(
             matches!(
-                plan_on_map(&walled, free, GridPos::new(2, 2), &options, false),
+                plan_on_map(&walled, free, GridPos::new(2, 2), &options),
                 Err(GridPlanError::Plan(PlanError::Unreachable { .. }))
             ),
             "{algorithm:?}"

@@ -3,10 +3,12 @@
 
 use planlab_core::global::astar::AStar;
 use planlab_core::global::jps::Jps;
-use planlab_core::global::plan::{plan_on_map, plan_on_map_observed, Algorithm, GridPlanOptions};
+use planlab_core::global::plan::{
+    plan_on_map, plan_on_map_observed, plan_on_map_recording, Algorithm, GridPlanOptions,
+};
 use planlab_core::global::safe_astar::{SafeAStar, SafeAStarConfig};
 use planlab_core::global::{
-    Diagonal, GridPlanner, GridPos, PlanGrid, SearchEvent, SearchLog, SearchObserver,
+    Diagonal, GridPos, ObservedGridPlanner, PlanGrid, SearchEvent, SearchLog, SearchObserver,
 };
 use planlab_core::map::io::movingai::{parse_map, parse_scen};
 use planlab_core::map::OccupancyGrid;
@@ -109,7 +111,7 @@ fn astar_events_replay_to_a_consistent_search() {
 fn recording_changes_no_planner_answer() {
     let (map, queries) = arena();
     let grid = PlanGrid::new(&map, false);
-    let planners: [(&str, &dyn GridPlanner); 4] = [
+    let planners: [(&str, &dyn ObservedGridPlanner); 4] = [
         ("astar", &AStar::default()),
         ("dijkstra", &AStar::dijkstra(Diagonal::NoCornerCutting)),
         ("jps", &Jps::default()),
@@ -169,7 +171,7 @@ fn plan_on_map_reports_keypoint_and_bottom_up_checks() {
         bottom_up_eps: Some(1.5),
         ..GridPlanOptions::default()
     };
-    let plain = plan_on_map(&map, s, t, &options, true).unwrap();
+    let plain = plan_on_map_recording(&map, s, t, &options).unwrap();
     let mut log = SearchLog::with_limit(usize::MAX);
     let seen = plan_on_map_observed(&map, s, t, &options, &mut log).unwrap();
     assert_eq!(plain.path, seen.path);
@@ -214,7 +216,7 @@ fn a_full_log_stops_recording_but_not_the_search() {
         algorithm: Algorithm::AStar,
         ..GridPlanOptions::default()
     };
-    let full = plan_on_map(&map, s, t, &options, false).unwrap();
+    let full = plan_on_map(&map, s, t, &options).unwrap();
     let mut log = SearchLog::with_limit(10);
     let cut = plan_on_map_observed(&map, s, t, &options, &mut log).unwrap();
     assert_eq!(full.path, cut.path);

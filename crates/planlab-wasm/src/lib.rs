@@ -39,15 +39,19 @@
 //! Cell kinds cross as bytes: 0 free, 1 occupied, 2 unknown
 //! ([`Cell`]'s `repr(u8)`).
 
+#[cfg(feature = "robot")]
 pub mod apf;
 pub mod batch;
 #[cfg(feature = "grid-search")]
 pub mod dstar;
+#[cfg(feature = "robot")]
 pub mod files;
 #[cfg(feature = "grid-search")]
 pub mod session;
+#[cfg(feature = "robot")]
 pub mod sim;
 
+#[cfg(feature = "robot")]
 pub use apf::ApfHandle;
 #[cfg(feature = "grid-search")]
 pub use dstar::{grid_algorithms, DStarSession};
@@ -65,9 +69,12 @@ pub use planlab_wasm_arm::{arm_choices, ArmHandle};
 pub use planlab_wasm_reproduce::{reproduce_variant, reproduce_variant_info};
 #[cfg(feature = "grid-search")]
 pub use session::{PlanSession, RecordedPlan};
+#[cfg(feature = "robot")]
 pub use sim::{generated_grid_hash, planners, SimHandle};
 
-use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};
+use planlab_core::global::plan::{plan_grid_for, GridPlan, GridPlanOptions};
+#[cfg(feature = "grid-search")]
+use planlab_core::global::plan::{plan_on_map, plan_on_map_recording};
 use planlab_core::global::{GridPos, PlanGrid};
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::{Cell, OccupancyGrid};
@@ -435,7 +442,10 @@ impl PlanResult {
 ///
 /// `options` is a [`GridPlanOptions`] as a JS object (missing fields take
 /// their defaults), e.g. `{algorithm: "jps", diagonal: "no_corner_cutting"}`.
-/// With `record_expanded` the result also lists the expanded cells.
+/// With `record_expanded` the result also lists the expanded cells. In the
+/// grid pages' module only (feature `grid-search`): recording links every
+/// planner's observed search, which the robot pages do not need.
+#[cfg(feature = "grid-search")]
 #[wasm_bindgen]
 pub fn plan(
     map: &MapHandle,
@@ -447,13 +457,15 @@ pub fn plan(
     record_expanded: bool,
 ) -> Result<PlanResult, JsError> {
     let options = options_from_js(options)?;
-    let plan = plan_on_map(
-        &map.grid,
+    let (start, goal) = (
         GridPos::new(start_col, start_row),
         GridPos::new(goal_col, goal_row),
-        &options,
-        record_expanded,
-    )?;
+    );
+    let plan = if record_expanded {
+        plan_on_map_recording(&map.grid, start, goal, &options)?
+    } else {
+        plan_on_map(&map.grid, start, goal, &options)?
+    };
     Ok(PlanResult { plan })
 }
 
@@ -523,11 +535,13 @@ impl ScenBatch {
 /// The DWA step of the reference benchmark scene
 /// ([`planlab_core::bench::DwaStepBench`]), for timing from JS: the same
 /// work `planlab bench step` times natively.
+#[cfg(feature = "robot")]
 #[wasm_bindgen]
 pub struct DwaBench {
     inner: planlab_core::bench::DwaStepBench,
 }
 
+#[cfg(feature = "robot")]
 #[wasm_bindgen]
 impl DwaBench {
     /// Builds the reference scene (200 × 200 map, 20 movers, 20 × 40 samples, 3 s).

@@ -10,10 +10,11 @@
 
 use crate::{cell_of, options_from_js, paint_grid, MapHandle, PlanResult};
 use planlab_core::global::plan::{
-    build_planner, plan_grid_for, plan_on_grid_observed, GridPlan, GridPlanError, GridPlanOptions,
+    build_observed_planner, plan_grid_for, plan_on_grid_observed, GridPlan, GridPlanError,
+    GridPlanOptions,
 };
 use planlab_core::global::{
-    supercover, GridPlanner, GridPos, PlanError, PlanGrid, SearchEvent, SearchObserver,
+    supercover, GridPos, ObservedGridPlanner, PlanError, PlanGrid, SearchEvent, SearchObserver,
 };
 use planlab_core::map::OccupancyGrid;
 use wasm_bindgen::prelude::*;
@@ -29,7 +30,7 @@ pub struct PlanSession {
     options: GridPlanOptions,
     /// The planner the options ask for, or why they cannot build one (shown
     /// at the next plan, as a fresh `plan` would).
-    planner: Result<Box<dyn GridPlanner>, PlanError>,
+    planner: Result<Box<dyn ObservedGridPlanner>, PlanError>,
     /// The passability grid; `None` until the next plan rebuilds it (first
     /// use, new options, or an edit under inflation, which can change cells
     /// up to the radius away).
@@ -42,7 +43,7 @@ impl PlanSession {
     /// A session over `map` (Rust callers and tests).
     pub fn with_options(map: OccupancyGrid, options: GridPlanOptions) -> Self {
         Self {
-            planner: build_planner(&options),
+            planner: build_observed_planner(&options),
             map,
             options,
             grid: None,
@@ -133,7 +134,7 @@ impl PlanSession {
         if !same_grid {
             self.grid = None;
         }
-        self.planner = build_planner(&options);
+        self.planner = build_observed_planner(&options);
         self.options = options;
         Ok(())
     }

@@ -191,7 +191,12 @@ impl Path {
 pub trait GridPlanner {
     /// A path from `start` to `goal`, or why there is none.
     fn plan(&self, grid: &PlanGrid, start: GridPos, goal: GridPos) -> Result<Path, PlanError>;
+}
 
+/// A grid planner whose search can be watched. A trait of its own so that
+/// a `dyn GridPlanner` (what the robot pages and the batch runs plan with)
+/// does not pull the observed copy of every search into a wasm module.
+pub trait ObservedGridPlanner: GridPlanner {
     /// As [`GridPlanner::plan`], reporting every search event to `obs`
     /// (same path, cost and expansions as the plain search).
     fn plan_observed(
@@ -218,7 +223,8 @@ pub trait GridPlanner {
     }
 }
 
-/// Implements [`GridPlanner`] for a planner with an inherent
+/// Implements [`GridPlanner`] and [`ObservedGridPlanner`] for a planner
+/// with an inherent
 /// `fn search<O: SearchObserver + ?Sized>(&self, grid, start, goal, obs: &mut O)`:
 /// the plain search monomorphised for `()` (no events, full speed), the
 /// observed one for `dyn SearchObserver`.
@@ -233,7 +239,9 @@ macro_rules! grid_planner_via_search {
             ) -> Result<$crate::global::Path, $crate::global::PlanError> {
                 self.search(grid, start, goal, &mut ())
             }
+        }
 
+        impl $crate::global::ObservedGridPlanner for $t {
             fn plan_observed(
                 &self,
                 grid: &$crate::global::PlanGrid,

@@ -11,8 +11,8 @@ use super::jps::{Jps, JpsConfig};
 use super::keypoints::key_points_observed;
 use super::safe_astar::{safety_index, SafeAStar, SafeAStarConfig};
 use super::{
-    check_weight, Diagonal, Endpoint, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid,
-    SearchObserver,
+    check_weight, Diagonal, Endpoint, GridPlanner, GridPos, Heuristic, ObservedGridPlanner, Path,
+    PlanError, PlanGrid, SearchObserver,
 };
 use crate::map::costmap::inflate;
 use crate::map::{MapError, OccupancyGrid};
@@ -252,44 +252,61 @@ pub enum GridPlanError {
     },
 }
 
+/// The planner `options` ask for, boxed as the return type of the function
+/// it is used in (`dyn GridPlanner` or `dyn ObservedGridPlanner`).
+macro_rules! boxed_planner {
+    ($options:expr) => {{
+        let options = $options;
+        // Only A* reads the weight, but a NaN is a mistake whichever planner runs.
+        check_weight(options.weight)?;
+        Ok(match options.algorithm {
+            Algorithm::AStar => Box::new(AStar::new(AStarConfig {
+                heuristic: options.heuristic,
+                weight: options.weight,
+                diagonal: options.diagonal,
+            })?),
+            Algorithm::Dijkstra => Box::new(AStar::dijkstra(options.diagonal)),
+            Algorithm::Jps => Box::new(Jps::new(JpsConfig {
+                heuristic: options.heuristic,
+                diagonal: options.diagonal,
+            })?),
+            Algorithm::SafeAStar => Box::new(SafeAStar::new(options.safe)?),
+            Algorithm::Bfs => Box::new(Bfs {
+                diagonal: options.diagonal,
+            }),
+            Algorithm::Greedy => Box::new(Greedy {
+                diagonal: options.diagonal,
+                heuristic: options.heuristic,
+            }),
+            Algorithm::BidirectionalAStar => Box::new(BidirectionalAStar {
+                diagonal: options.diagonal,
+                heuristic: options.heuristic,
+            }),
+            Algorithm::IdaStar => Box::new(IdaStar {
+                diagonal: options.diagonal,
+                heuristic: options.heuristic,
+            }),
+            Algorithm::ThetaStar => Box::new(ThetaStar {
+                diagonal: options.diagonal,
+            }),
+            Algorithm::DStarLite => Box::new(DStarLitePlanner {
+                diagonal: options.diagonal,
+            }),
+        })
+    }};
+}
+
 /// Builds the boxed planner `options` ask for.
 pub fn build_planner(options: &GridPlanOptions) -> Result<Box<dyn GridPlanner>, PlanError> {
-    // Only A* reads the weight, but a NaN is a mistake whichever planner runs.
-    check_weight(options.weight)?;
-    Ok(match options.algorithm {
-        Algorithm::AStar => Box::new(AStar::new(AStarConfig {
-            heuristic: options.heuristic,
-            weight: options.weight,
-            diagonal: options.diagonal,
-        })?),
-        Algorithm::Dijkstra => Box::new(AStar::dijkstra(options.diagonal)),
-        Algorithm::Jps => Box::new(Jps::new(JpsConfig {
-            heuristic: options.heuristic,
-            diagonal: options.diagonal,
-        })?),
-        Algorithm::SafeAStar => Box::new(SafeAStar::new(options.safe)?),
-        Algorithm::Bfs => Box::new(Bfs {
-            diagonal: options.diagonal,
-        }),
-        Algorithm::Greedy => Box::new(Greedy {
-            diagonal: options.diagonal,
-            heuristic: options.heuristic,
-        }),
-        Algorithm::BidirectionalAStar => Box::new(BidirectionalAStar {
-            diagonal: options.diagonal,
-            heuristic: options.heuristic,
-        }),
-        Algorithm::IdaStar => Box::new(IdaStar {
-            diagonal: options.diagonal,
-            heuristic: options.heuristic,
-        }),
-        Algorithm::ThetaStar => Box::new(ThetaStar {
-            diagonal: options.diagonal,
-        }),
-        Algorithm::DStarLite => Box::new(DStarLitePlanner {
-            diagonal: options.diagonal,
-        }),
-    })
+    boxed_planner!(options)
+}
+
+/// As [`build_planner`], a planner whose search can be watched (the grid
+/// page's recorded searches; `planlab plan` with the expanded cells).
+pub fn build_observed_planner(
+    options: &GridPlanOptions,
+) -> Result<Box<dyn ObservedGridPlanner>, PlanError> {
+    boxed_planner!(options)
 }
 
 /// The passability grid `options` imply: unknown cells per
@@ -305,8 +322,8 @@ pub fn plan_grid_for(
     Ok(PlanGrid::new(&inflated, options.allow_unknown))
 }
 
-/// Plans from `start` to `goal` on `grid` as `options` say; when
-/// `record_expanded`, the expanded cells are returned for drawing.
+/// Plans from `start` to `goal` on `grid` as `options` say
+/// ([`plan_on_map_recording`] also returns the expanded cells).
 ///
 /// ```
 /// use planlab_core::global::plan::{plan_on_map, Algorithm, GridPlanOptions};
@@ -318,7 +335,7 @@ pub fn plan_grid_for(
 /// .#...
 /// ").unwrap();
 /// let opts = GridPlanOptions { algorithm: Algorithm::Jps, keypoints: true, ..Default::default() };
-/// let plan = plan_on_map(&map, GridPos::new(0, 1), GridPos::new(4, 1), &opts, false).unwrap();
+/// let plan = plan_on_map(&map, GridPos::new(0, 1), GridPos::new(4, 1), &opts).unwrap();
 /// // No corner cutting: round the walls through the top row.
 /// assert_eq!(plan.path.cost, 6.0);
 /// assert_eq!(plan.keypoints, vec![GridPos::new(0, 1), GridPos::new(0, 0), GridPos::new(4, 0), GridPos::new(4, 1)]);
@@ -328,11 +345,23 @@ pub fn plan_on_map(
     start: GridPos,
     goal: GridPos,
     options: &GridPlanOptions,
-    record_expanded: bool,
 ) -> Result<GridPlan, GridPlanError> {
-    if !record_expanded {
-        return plan_on_map_observed(grid, start, goal, options, &mut ());
-    }
+    let planner = build_planner(options)?;
+    check_bottom_up(options)?;
+    let plan_grid = plan_grid_for(grid, options)?;
+    plan_with(grid, &plan_grid, start, goal, options, &mut (), |_| {
+        planner.plan(&plan_grid, start, goal)
+    })
+}
+
+/// As [`plan_on_map`], with the expanded cells in `expanded_cells`, in
+/// expansion order (for drawing the search).
+pub fn plan_on_map_recording(
+    grid: &OccupancyGrid,
+    start: GridPos,
+    goal: GridPos,
+    options: &GridPlanOptions,
+) -> Result<GridPlan, GridPlanError> {
     let mut expanded = Vec::new();
     let mut plan =
         plan_on_map_observed(grid, start, goal, options, &mut ClosedCells(&mut expanded))?;
@@ -350,7 +379,7 @@ pub fn plan_on_map_observed(
     options: &GridPlanOptions,
     obs: &mut impl SearchObserver,
 ) -> Result<GridPlan, GridPlanError> {
-    let planner = build_planner(options)?;
+    let planner = build_observed_planner(options)?;
     check_bottom_up(options)?;
     let plan_grid = plan_grid_for(grid, options)?;
     plan_on_grid_observed(
@@ -365,19 +394,42 @@ pub fn plan_on_map_observed(
 }
 
 /// As [`plan_on_map_observed`] with the planning grid (`plan_grid_for(map,
-/// options)`) and the planner (`build_planner(options)`) already built:
-/// for callers that keep both between plans and edit the grid cell by cell
-/// (the grid page's session), so a replan costs about the search alone.
+/// options)`) and the planner (`build_observed_planner(options)`) already
+/// built: for callers that keep both between plans and edit the grid cell
+/// by cell (the grid page's session), so a replan costs about the search
+/// alone.
 pub fn plan_on_grid_observed<O: SearchObserver + ?Sized>(
     map: &OccupancyGrid,
     plan_grid: &PlanGrid,
-    planner: &dyn GridPlanner,
+    planner: &dyn ObservedGridPlanner,
     start: GridPos,
     goal: GridPos,
     options: &GridPlanOptions,
     obs: &mut O,
 ) -> Result<GridPlan, GridPlanError> {
     check_bottom_up(options)?;
+    plan_with(map, plan_grid, start, goal, options, obs, |obs| {
+        // The plain search when nobody listens: full speed, no virtual calls.
+        if obs.enabled() {
+            planner.plan_observed(plan_grid, start, goal, &mut &mut *obs)
+        } else {
+            planner.plan(plan_grid, start, goal)
+        }
+    })
+}
+
+/// Checks the endpoints on `plan_grid`, runs `search`, then adds key
+/// points, Bottom-Up nodes (their segment checks reported to `obs`) and
+/// safety indices.
+fn plan_with<O: SearchObserver + ?Sized>(
+    map: &OccupancyGrid,
+    plan_grid: &PlanGrid,
+    start: GridPos,
+    goal: GridPos,
+    options: &GridPlanOptions,
+    obs: &mut O,
+    search: impl FnOnce(&mut O) -> Result<Path, PlanError>,
+) -> Result<GridPlan, GridPlanError> {
     if let Err(e) = plan_grid.check_endpoints(start, goal) {
         // Say "blocked after inflation" rather than a bare "inside an
         // obstacle" when the raw map has the endpoint free.
@@ -396,12 +448,7 @@ pub fn plan_on_grid_observed<O: SearchObserver + ?Sized>(
         }
         return Err(e.into());
     }
-    // The plain search when nobody listens: full speed, no virtual calls.
-    let path = if obs.enabled() {
-        planner.plan_observed(plan_grid, start, goal, &mut &mut *obs)?
-    } else {
-        planner.plan(plan_grid, start, goal)?
-    };
+    let path = search(obs)?;
     let keypoints = if options.keypoints {
         key_points_observed(plan_grid, &path.cells, options.diagonal, obs)
     } else {
