@@ -55,6 +55,34 @@ function cli() {
   throw new Error('build planlab (cargo build -p planlab-cli) or set PLANLAB_BIN for the CLI comparison');
 }
 
+/** Passable cells of a Moving AI map file: `free(col, row)`. */
+function movingAiFree(file) {
+  const lines = fs.readFileSync(file, 'utf8').split('\n');
+  const at = lines.findIndex((l) => l.trim() === 'map') + 1;
+  return (c, r) => r >= 0 && c >= 0 && '.GS'.includes(lines[at + r]?.[c] ?? '@');
+}
+
+/** The first index from `from` on of a path cell with every cell within
+ *  3 free: a short wall across the path there leaves a way round it. */
+function openStretch(free, cells, from) {
+  for (let k = from; k < cells.length - 1; k++) {
+    const [c, r] = cells[k];
+    let open = true;
+    for (let dr = -3; dr <= 3 && open; dr++) for (let dc = -3; dc <= 3 && open; dc++) open = free(c + dc, r + dr);
+    if (open) return k;
+  }
+  throw new Error('no open stretch on the path');
+}
+
+/** A 3-cell wall across the path at `cells[k]` (perpendicular to the step
+ *  to `cells[k + 1]`), as two cell ends for dragCells. */
+function wallAcross(cells, k) {
+  const [c, r] = cells[k];
+  const [nc, nr] = cells[k + 1];
+  const [pc, pr] = nr === r ? [0, 1] : nc === c ? [1, 0] : [nc - c, -(nr - r)];
+  return [[c - pc, r - pr], [c + pc, r + pr]];
+}
+
 function near(actual, expected, tol, what) {
   assert.ok(Math.abs(actual - expected) <= tol, `${what}: ${actual} not within ${tol} of ${expected}`);
 }
@@ -219,12 +247,14 @@ test('D* Lite repairs a painted wall with fewer expansions than a fresh A*', asy
   assert.equal(await errorText(page), null);
   near(await metric(page, 'cost'), ROW2.optimal, 1e-3, 'D* Lite cost');
   const before = await pathCells(page);
-  // A wall across the far end of the path: D* Lite searches from the goal,
-  // so only the part of its search behind the wall is repaired.
-  const [mc, mr] = before[Math.floor(before.length * 0.1)];
+  // A wall across the far end of the path (from the goal, which D* Lite
+  // searches from), where the map is open round it: only the part of its
+  // search behind the wall is repaired.
+  const k = openStretch(movingAiFree(ARENA2), before, Math.floor(before.length * 0.1));
+  const [mc, mr] = before[k];
   await chooseTool(page, 'wall');
   // One stroke, one replan: the wall is painted as one segment.
-  await dragCells(page, [mc, mr - 2], [mc, mr + 2], 1);
+  await dragCells(page, ...wallAcross(before, k), 1);
   assert.equal(await errorText(page), null);
   const repair = (await page.getAttribute('body', 'data-repair')).split(',').map(Number);
   assert.equal(repair.length, 2, 'a repair was reported');
@@ -257,13 +287,13 @@ test('Drive: the robot follows the D* Lite path, a wall painted ahead of it is r
   assert.equal(await page.getAttribute('body', 'data-driving'), 'false');
   const at = (await page.getAttribute('#map-canvas', 'data-start')).split(',').map(Number);
   assert.ok(first.some(([c, r]) => c === at[0] && r === at[1]), `the robot ${at} is on the first path`);
-  // A wall across the path a few cells ahead of the robot.
+  // A wall across the path a few cells ahead of the robot, where the map
+  // is open round it.
   const ahead = await pathCells(page);
-  const [mc, mr] = ahead[8];
-  const [nc, nr] = ahead[9];
-  const [pc, pr] = nc !== mc && nr === mr ? [0, 1] : [1, 0];
+  const k = openStretch(movingAiFree(ARENA2), ahead, 8);
+  const [mc, mr] = ahead[k];
   await chooseTool(page, 'wall');
-  await dragCells(page, [mc - 3 * pc, mr - 3 * pr], [mc + 3 * pc, mr + 3 * pr], 1);
+  await dragCells(page, ...wallAcross(ahead, k), 1);
   assert.equal(await errorText(page), null);
   const [repaired, freshAStar] = (await page.getAttribute('body', 'data-repair')).split(',').map(Number);
   assert.ok(repaired > 0 && repaired < freshAStar, `repair expanded ${repaired}, a fresh A* ${freshAStar}`);

@@ -603,40 +603,21 @@ impl ThetaStar {
         goal: GridPos,
         obs: &mut O,
     ) -> Result<Path, PlanError> {
-        if let Some(p) = prelude(grid, start, goal)? {
-            return Ok(p);
-        }
         let w = grid.width();
         let diagonal = self.diagonal;
         let h = |p: GridPos| estimate(Heuristic::Euclidean, p, goal);
         let dist = |a: GridPos, b: GridPos| estimate(Heuristic::Euclidean, a, b);
-        with_nodes(grid, |[nodes, _]| {
-            let mut heap = BinaryHeap::new();
-            let s = index(w, start);
-            nodes.set(s, 0.0, NONE);
-            heap.push(Entry {
-                key: h(start),
-                g: 0.0,
-                idx: s,
-            });
-            emit(obs, || open_event(start, None, 0.0, h(start)));
-            let mut expanded = 0;
-            while let Some(Entry { idx: i, g: ge, .. }) = heap.pop() {
-                if nodes.closed(i) || ge > nodes.g(i) {
-                    continue;
-                }
-                nodes.close(i);
-                expanded += 1;
-                let here = pos(w, i);
-                emit(obs, || SearchEvent::Close { cell: here });
-                if here == goal {
-                    return Ok(path_of(nodes.chain(w, i), expanded));
-                }
+        lowest_f_first(
+            grid,
+            (start, goal),
+            h,
+            obs,
+            |_, chain| chain,
+            |nodes, i, here, obs, offer| {
                 let g = nodes.g(i);
                 let grand = nodes.parent[i];
                 for_each_move(grid, here, diagonal, |q, c| {
-                    let j = index(w, q);
-                    if nodes.closed(j) {
+                    if nodes.closed(index(w, q)) {
                         return;
                     }
                     // Path 2: straight from the parent's parent, if visible.
@@ -653,19 +634,10 @@ impl ThetaStar {
                             (par, ng) = (grand as usize, nodes.g(grand as usize) + dist(gp, q));
                         }
                     }
-                    if ng < nodes.g(j) {
-                        nodes.set(j, ng, par as u32);
-                        heap.push(Entry {
-                            key: ng + h(q),
-                            g: ng,
-                            idx: j,
-                        });
-                        emit(obs, || open_event(q, Some(pos(w, par)), ng, h(q)));
-                    }
+                    offer.push((q, ng, par));
                 });
-            }
-            Err(PlanError::Unreachable { expanded })
-        })
+            },
+        )
     }
 }
 super::grid_planner_via_search!(ThetaStar);
@@ -682,38 +654,22 @@ pub(crate) fn jps4<O: SearchObserver + ?Sized>(
     heuristic: Heuristic,
     obs: &mut O,
 ) -> Result<Path, PlanError> {
-    if let Some(p) = prelude(grid, start, goal)? {
-        return Ok(p);
-    }
     let w = grid.width();
     let h = |p: GridPos| estimate(heuristic, p, goal);
-    with_nodes(grid, |[nodes, _]| {
-        let mut heap = BinaryHeap::new();
-        let s = index(w, start);
-        nodes.set(s, 0.0, NONE);
-        heap.push(Entry {
-            key: h(start),
-            g: 0.0,
-            idx: s,
-        });
-        emit(obs, || open_event(start, None, 0.0, h(start)));
-        let mut expanded = 0;
-        while let Some(Entry { idx: i, g: ge, .. }) = heap.pop() {
-            if nodes.closed(i) || ge > nodes.g(i) {
-                continue;
+    lowest_f_first(
+        grid,
+        (start, goal),
+        h,
+        obs,
+        // The jump points, joined by the straight runs between them.
+        |start, points| {
+            let mut cells = vec![start];
+            for pair in points.windows(2) {
+                fill_straight(&mut cells, pair[0], pair[1]);
             }
-            nodes.close(i);
-            expanded += 1;
-            let here = pos(w, i);
-            emit(obs, || SearchEvent::Close { cell: here });
-            if here == goal {
-                let points = nodes.chain(w, i);
-                let mut cells = vec![start];
-                for pair in points.windows(2) {
-                    fill_straight(&mut cells, pair[0], pair[1]);
-                }
-                return Ok(path_of(cells, expanded));
-            }
+            cells
+        },
+        |nodes, i, here, obs, offer| {
             let g = nodes.g(i);
             let dirs: &[(i64, i64)] = match nodes.parent[i] {
                 NONE => &[(1, 0), (-1, 0), (0, 1), (0, -1)],
@@ -729,21 +685,69 @@ pub(crate) fn jps4<O: SearchObserver + ?Sized>(
                 }
             };
             for &(dx, dy) in dirs {
-                let Some(q) = jump4(grid, here, (dx, dy), goal, obs) else {
-                    continue;
-                };
+                if let Some(q) = jump4(grid, here, (dx, dy), goal, obs) {
+                    offer.push((q, g + estimate(Heuristic::Manhattan, here, q), i));
+                }
+            }
+        },
+    )
+}
+
+/// The best-first loop on f = g + h that Theta* and 4-connected JPS share:
+/// open the start, take the lowest f, skip stale entries, close and report
+/// it, stop at the goal (`finish(start, chain)` turns the parent chain into
+/// the path's cells), else let `expand` offer successors as (cell, g,
+/// parent index); an offer is taken when the cell is open or unseen and its
+/// g improves.
+fn lowest_f_first<O: SearchObserver + ?Sized>(
+    grid: &PlanGrid,
+    (start, goal): (GridPos, GridPos),
+    h: impl Fn(GridPos) -> f64,
+    obs: &mut O,
+    finish: impl Fn(GridPos, Vec<GridPos>) -> Vec<GridPos>,
+    mut expand: impl FnMut(&Nodes, usize, GridPos, &mut O, &mut Vec<(GridPos, f64, usize)>),
+) -> Result<Path, PlanError> {
+    if let Some(p) = prelude(grid, start, goal)? {
+        return Ok(p);
+    }
+    let w = grid.width();
+    with_nodes(grid, |[nodes, _]| {
+        let mut heap = BinaryHeap::new();
+        let s = index(w, start);
+        nodes.set(s, 0.0, NONE);
+        heap.push(Entry {
+            key: h(start),
+            g: 0.0,
+            idx: s,
+        });
+        emit(obs, || open_event(start, None, 0.0, h(start)));
+        let mut expanded = 0;
+        let mut offers = Vec::new();
+        while let Some(Entry { idx: i, g: ge, .. }) = heap.pop() {
+            if nodes.closed(i) || ge > nodes.g(i) {
+                continue;
+            }
+            nodes.close(i);
+            expanded += 1;
+            let here = pos(w, i);
+            emit(obs, || SearchEvent::Close { cell: here });
+            if here == goal {
+                return Ok(path_of(finish(start, nodes.chain(w, i)), expanded));
+            }
+            offers.clear();
+            expand(nodes, i, here, obs, &mut offers);
+            for &(q, ng, par) in &offers {
                 let j = index(w, q);
-                let ng = g + estimate(Heuristic::Manhattan, here, q);
                 if nodes.closed(j) || ng >= nodes.g(j) {
                     continue;
                 }
-                nodes.set(j, ng, i as u32);
+                nodes.set(j, ng, par as u32);
                 heap.push(Entry {
                     key: ng + h(q),
                     g: ng,
                     idx: j,
                 });
-                emit(obs, || open_event(q, Some(here), ng, h(q)));
+                emit(obs, || open_event(q, Some(pos(w, par)), ng, h(q)));
             }
         }
         Err(PlanError::Unreachable { expanded })
