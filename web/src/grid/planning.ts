@@ -105,16 +105,12 @@ export class GridSession {
     };
     try {
       if (d && d.key === key && same(d.goal, goal)) {
-        try {
-          if (!same(d.start, start)) d.s.moveStart(start[0], start[1]);
-          d.start = start;
-          rec = d.s.plan();
-          repaired = true;
-        } catch {
-          // A failed repair is checked by a fresh search, which gives the
-          // answer (and its error, if any) the page shows.
-          rec = fresh();
-        }
+        // The repair's own answer, errors included (no fresh search behind
+        // it: a wrong "unreachable" would show, not hide).
+        if (!same(d.start, start)) d.s.moveStart(start[0], start[1]);
+        d.start = start;
+        rec = d.s.plan();
+        repaired = true;
       } else {
         rec = fresh();
       }
