@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # Builds the two wasm packages of the site (release):
-#  - web/pkg:     planlab-wasm without the arm (index, robot, apf, bench and
-#                 every other page),
+#  - web/pkg:     planlab-wasm with feature robot (episodes, APF, DWA
+#                 bench: the robot, compare, gallery and APF pages),
+#  - web/pkg-grid: planlab-wasm with feature grid-search (maps, plans,
+#                 recorded searches, D* Lite sessions: the grid, race and
+#                 bench pages; the bench page loads web/pkg too, lazily,
+#                 for its DWA step),
 #  - web/pkg-arm: planlab-wasm-arm, the arm page's own small module (the arm
 #                 page also loads three.js; one module with everything would
 #                 not fit its 1.5 MB first-load budget),
@@ -26,10 +30,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export CARGO_PROFILE_RELEASE_OPT_LEVEL="${WASM_OPT_LEVEL:-s}"
-wasm-pack build crates/planlab-wasm --release --target web --out-dir ../../web/pkg --no-pack -- --no-default-features
+wasm-pack build crates/planlab-wasm --release --target web --out-dir ../../web/pkg --no-pack -- --no-default-features --features robot
+wasm-pack build crates/planlab-wasm --release --target web --out-dir ../../web/pkg-grid --no-pack -- --no-default-features --features grid-search
 wasm-pack build crates/planlab-wasm-arm --release --target web --out-dir ../../web/pkg-arm --no-pack
 wasm-pack build crates/planlab-wasm-reproduce --release --target web --out-dir ../../web/pkg-reproduce --no-pack
-modules=(web/pkg/planlab_wasm_bg.wasm web/pkg-arm/planlab_wasm_arm_bg.wasm web/pkg-reproduce/planlab_wasm_reproduce_bg.wasm)
+modules=(web/pkg/planlab_wasm_bg.wasm web/pkg-grid/planlab_wasm_bg.wasm web/pkg-arm/planlab_wasm_arm_bg.wasm web/pkg-reproduce/planlab_wasm_reproduce_bg.wasm)
 if [ "${WASM_OPT:-1}" != 0 ]; then
   WASM_OPT_BIN=web/node_modules/.bin/wasm-opt
   if [ ! -x "$WASM_OPT_BIN" ]; then

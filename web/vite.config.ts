@@ -126,6 +126,7 @@ export default defineConfig({
         gallery: resolve(here, 'gallery.html'),
         robot: resolve(here, 'robot.html'),
         compare: resolve(here, 'compare.html'),
+        race: resolve(here, 'race.html'),
         arm: resolve(here, 'arm.html'),
         apf: resolve(here, 'apf.html'),
         bench: resolve(here, 'bench.html'),

@@ -156,6 +156,22 @@ test('item7: digits enough to check the relations; the gallery run ends with the
   await screenshot(page, 'class-gallery-end.png');
   assert.deepEqual(problems, []);
   await page.close();
+  // The potential-field and arm pages' gallery runs end with their relation too.
+  for (const [url, id] of [
+    ['apf.html?scenario=T-fig4-8.json&run=1&exp=T-fig4-8&as=apf', 'T-fig4-8'],
+    ['arm.html?scenario=T-tab5-3.json&run=1&exp=T-tab5-3&as=rnn', 'T-tab5-3'],
+  ]) {
+    const g = await openAt(url);
+    await g.page.waitForSelector('#gallery-note');
+    await g.page.waitForFunction(() => document.body.dataset.relation, null, { timeout: 180_000 });
+    const rel = await g.page.evaluate(() => document.body.dataset.relation);
+    const text = await g.page.textContent('.gallery-note-check');
+    assert.ok(rel === 'holds' || rel === 'fails', `${id}: ${rel}: ${text}`);
+    assert.match(text, new RegExp(`^[✓✗] relation (holds|does not hold) on the presets \\(planlab reproduce ${id}\\)`), text);
+    assert.match(text, /min distance \d\.\d{4} m/, text);
+    assert.deepEqual(g.problems, []);
+    await g.page.close();
+  }
   // The arm's minimum distance to the hand: 0.1 mm (RNN vs constant velocity).
   const arm = await openAt('arm.html?scenario=T-tab5-3.json');
   await arm.page.waitForFunction(() => /\d\.\d{4} m/.test(document.getElementById('metric-min')?.textContent ?? ''), null, { timeout: 30_000 }).catch(() => {});

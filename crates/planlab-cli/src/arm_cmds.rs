@@ -43,13 +43,13 @@ pub fn report(
         metrics: m,
     };
     if args.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string(&report).map_err(|e| e.to_string())?
         );
     } else {
-        println!("{title} — {}, seed {}", report.planner, report.seed);
-        print!("{}", crate::sim_cmds::apf_metrics_table(m));
+        outln!("{title} — {}, seed {}", report.planner, report.seed);
+        out!("{}", crate::sim_cmds::apf_metrics_table(m));
     }
     Ok(())
 }

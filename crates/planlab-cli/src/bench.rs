@@ -4,7 +4,8 @@
 use crate::peer::pathfinding_cost;
 use planlab_core::global::astar::{AStar, AStarConfig};
 use planlab_core::global::jps::{Jps, JpsConfig};
-use planlab_core::global::{GridPlanner, PlanGrid};
+use planlab_core::global::plan::{build_planner, Algorithm, GridPlanOptions};
+use planlab_core::global::{GridPlanner, Path, PlanError, PlanGrid};
 use planlab_core::map::io::movingai::ScenRow;
 use planlab_core::map::OccupancyGrid;
 use serde::Serialize;
@@ -25,7 +26,32 @@ pub struct BenchReport {
     pub astar_speedup: f64,
     /// astar_ms / jps_ms.
     pub jps_speedup: f64,
+    /// Every other planner of `planlab plan --algo`, on the same rows.
+    pub planners: Vec<PlannerRow>,
 }
+
+/// One more planner's figures in [`BenchReport`].
+#[derive(Debug, Serialize)]
+pub struct PlannerRow {
+    /// The `--algo` name.
+    pub algo: &'static str,
+    /// Rows it ran (IDA* runs only the short ones, see [`IDA_MAX_OPTIMAL`]).
+    pub rows: usize,
+    /// Rows it solved (IDA* may stop at its search limit).
+    pub solved: usize,
+    /// ms per query.
+    pub ms: f64,
+    /// ms / A*'s ms in this run.
+    pub ratio_to_astar: f64,
+    /// Mean cells expanded per solved query.
+    pub expanded: f64,
+    /// Mean cost / optimum over solved queries (1 = optimal).
+    pub cost_ratio: f64,
+}
+
+/// IDA* is timed only on rows whose optimum is below this (cells): longer
+/// ones mostly end at its search limit, after seconds each.
+pub const IDA_MAX_OPTIMAL: f64 = 40.0;
 
 /// Least time each planner is timed for, over all repetitions (s).
 const MIN_SECONDS: f64 = 0.2;
@@ -84,6 +110,74 @@ pub fn bench_grid(
     let pathfinding_ms = time("pathfinding astar", &|r| {
         pathfinding_cost(&plan_grid, r.start, r.goal)
     })?;
+    let mut planners = Vec::new();
+    for (algo, name) in Algorithm::ALL {
+        if matches!(algo, Algorithm::AStar | Algorithm::Jps) {
+            continue;
+        }
+        let options = GridPlanOptions {
+            algorithm: algo,
+            ..GridPlanOptions::default()
+        };
+        let planner = build_planner(&options).map_err(|e| e.to_string())?;
+        let subset: Vec<&ScenRow> = rows
+            .iter()
+            .filter(|r| algo != Algorithm::IdaStar || r.optimal < IDA_MAX_OPTIMAL)
+            .collect();
+        if subset.is_empty() {
+            continue;
+        }
+        // One untimed pass: answers and expansions, each checked.
+        let (mut solved, mut expanded, mut ratio) = (0usize, 0usize, 0.0);
+        for (i, r) in subset.iter().enumerate() {
+            match planner.plan(&plan_grid, r.start, r.goal) {
+                Ok(p) => {
+                    // Optimal planners give the row's optimum; the others
+                    // any legal path, which no shorter than the straight
+                    // line (Theta* and safe A*'s smoothed paths cut corners,
+                    // so they may beat the 8-connected optimum).
+                    let ok = if algo.optimal() {
+                        matches(p.cost, r.optimal)
+                    } else {
+                        p.cost >= Path::polyline_length(&[r.start, r.goal]) - 1e-9
+                    };
+                    if !ok {
+                        return Err(format!(
+                            "{name} row {i}: cost {} against the optimum {}",
+                            p.cost, r.optimal
+                        ));
+                    }
+                    solved += 1;
+                    expanded += p.expanded;
+                    ratio += p.cost / r.optimal.max(1e-9);
+                }
+                Err(PlanError::SearchLimit { .. }) if algo == Algorithm::IdaStar => {}
+                Err(e) => return Err(format!("{name} row {i}: {e}")),
+            }
+        }
+        let (mut best, mut total, mut done) = (f64::INFINITY, 0.0, 0);
+        while done < reps.max(1) || total < MIN_SECONDS {
+            let t = Instant::now();
+            for r in &subset {
+                std::hint::black_box(planner.plan(&plan_grid, r.start, r.goal).ok());
+            }
+            let elapsed = t.elapsed().as_secs_f64();
+            best = best.min(elapsed);
+            total += elapsed;
+            done += 1;
+        }
+        let ms = best * 1e3 / subset.len() as f64;
+        let n = solved.max(1) as f64;
+        planners.push(PlannerRow {
+            algo: name,
+            rows: subset.len(),
+            solved,
+            ms,
+            ratio_to_astar: ms / astar_ms,
+            expanded: expanded as f64 / n,
+            cost_ratio: ratio / n,
+        });
+    }
     Ok(BenchReport {
         rows: rows.len(),
         astar_ms,
@@ -91,6 +185,7 @@ pub fn bench_grid(
         pathfinding_ms,
         astar_speedup: pathfinding_ms / astar_ms,
         jps_speedup: astar_ms / jps_ms,
+        planners,
     })
 }
 

@@ -103,12 +103,12 @@ pub fn run(c: &GenerateConfig, out: &Path, json: bool) -> Result<(), String> {
         out: &out.to_string_lossy(),
     };
     if json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string(&report).map_err(|e| e.to_string())?
         );
     } else {
-        println!(
+        outln!(
             "wrote {}: {} seed {}, {}×{} cells at {} m, {} occupied, start ({:.2}, {:.2}) m, goal ({:.2}, {:.2}) m, grid hash {}",
             report.out,
             report.kind,

@@ -64,7 +64,7 @@ pub fn scen(
             mismatches += 1;
         }
         if json {
-            println!(
+            outln!(
                 "{}",
                 json!({
                     "row": i,
@@ -81,9 +81,13 @@ pub fn scen(
                 Ok(p) => format!("{:.5}", p.cost),
                 Err(e) => e.to_string(),
             };
-            println!(
+            outln!(
                 "row {i}: ({},{}) -> ({},{}) optimal {:.5}, got {got}",
-                row.start.col, row.start.row, row.goal.col, row.goal.row, row.optimal
+                row.start.col,
+                row.start.row,
+                row.goal.col,
+                row.goal.row,
+                row.optimal
             );
         }
     }
@@ -93,12 +97,12 @@ pub fn scen(
         total_micros / rows.len() as f64
     };
     if json {
-        println!(
+        outln!(
             "{}",
             json!({"rows": rows.len(), "mismatches": mismatches, "mean_micros": (mean * 1000.0).round() / 1000.0})
         );
     } else {
-        println!(
+        outln!(
             "{}: {} rows solved with {}, {} mismatches, mean {:.1} µs per query",
             scen_path.display(),
             rows.len(),
@@ -125,8 +129,8 @@ pub struct PlanArgs {
 /// Plans once on any supported map file and prints the result.
 pub fn plan(map_path: &Path, grid: &OccupancyGrid, args: &PlanArgs) -> Result<(), String> {
     let t = Instant::now();
-    let result = plan_on_map(grid, args.start, args.goal, &args.options, false)
-        .map_err(|e| e.to_string())?;
+    let result =
+        plan_on_map(grid, args.start, args.goal, &args.options).map_err(|e| e.to_string())?;
     let micros = t.elapsed().as_secs_f64() * 1e6;
     let cells = |v: &[GridPos]| v.iter().map(|p| [p.col, p.row]).collect::<Vec<_>>();
     if args.json {
@@ -144,9 +148,9 @@ pub fn plan(map_path: &Path, grid: &OccupancyGrid, args: &PlanArgs) -> Result<()
         if !result.safety.is_empty() {
             out["safety"] = json!(result.safety);
         }
-        println!("{out}");
+        outln!("{out}");
     } else {
-        println!(
+        outln!(
             "{} on {} ({}×{} cells, {} m/cell): cost {:.4} cells, length {:.3} m, {} nodes, {} expanded, {:.1} µs",
             args.options.algorithm.name(),
             map_path.display(),
@@ -160,14 +164,14 @@ pub fn plan(map_path: &Path, grid: &OccupancyGrid, args: &PlanArgs) -> Result<()
             micros
         );
         if args.options.keypoints {
-            println!(
+            outln!(
                 "key points ({}): {:?}",
                 result.keypoints.len(),
                 cells(&result.keypoints)
             );
         }
         if args.options.bottom_up_eps.is_some() {
-            println!(
+            outln!(
                 "Bottom-Up feature nodes ({}): {:?}",
                 result.feature_nodes.len(),
                 cells(&result.feature_nodes)

@@ -1,7 +1,18 @@
 //! `planlab`: command-line front end of planlab-core.
 //!
 //! Every failure prints one line `planlab: error: …` on stderr and exits
-//! non-zero; usage errors exit 2 (clap's convention).
+//! non-zero; usage errors exit 2 (clap's convention). Output goes through
+//! [`outln!`]/[`out!`]: a reader that closes the pipe early (`planlab plan
+//! --json | head -1`) ends the program quietly, where `println!` panics.
+
+/// `print!` that ends the program quietly when stdout's reader went away.
+macro_rules! out {
+    ($($t:tt)*) => { $crate::write_out(&format!($($t)*)) };
+}
+/// `println!` that ends the program quietly when stdout's reader went away.
+macro_rules! outln {
+    ($($t:tt)*) => { $crate::write_out(&format!("{}\n", format_args!($($t)*))) };
+}
 
 mod arm_cmds;
 mod batch_cmd;
@@ -31,23 +42,35 @@ struct Cli {
     command: Command,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
-enum AlgoArg {
-    Astar,
-    Dijkstra,
-    Jps,
-    #[value(name = "safe-astar")]
-    SafeAstar,
+/// A grid planner on the command line: every [`Algorithm`] by its name,
+/// with its one-line description in `--help`.
+#[derive(Clone, Copy)]
+struct AlgoArg(Algorithm);
+
+/// Every planner, in [`Algorithm::ALL`] order (clap wants a static slice).
+const ALGO_ARGS: [AlgoArg; Algorithm::ALL.len()] = {
+    let mut out = [AlgoArg(Algorithm::AStar); Algorithm::ALL.len()];
+    let mut i = 0;
+    while i < out.len() {
+        out[i] = AlgoArg(Algorithm::ALL[i].0);
+        i += 1;
+    }
+    out
+};
+
+impl ValueEnum for AlgoArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        &ALGO_ARGS
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        Some(clap::builder::PossibleValue::new(self.0.name()).help(self.0.description()))
+    }
 }
 
 impl From<AlgoArg> for Algorithm {
     fn from(a: AlgoArg) -> Self {
-        match a {
-            AlgoArg::Astar => Algorithm::AStar,
-            AlgoArg::Dijkstra => Algorithm::Dijkstra,
-            AlgoArg::Jps => Algorithm::Jps,
-            AlgoArg::SafeAstar => Algorithm::SafeAStar,
-        }
+        a.0
     }
 }
 
@@ -115,7 +138,8 @@ impl From<GenKindArg> for planlab_core::map::generate::GeneratorKind {
 #[derive(Subcommand)]
 enum BenchKind {
     /// Our A* and JPS against the `pathfinding` crate's astar on a Moving AI
-    /// scenario; prints one JSON line with ms per query and the ratios.
+    /// scenario, then every other `--algo` planner as a row (ms per query,
+    /// ratio to A*, expansions, cost / optimum); prints one JSON line.
     Grid {
         /// Moving AI .map file.
         map: PathBuf,
@@ -584,7 +608,7 @@ fn run(cli: Cli) -> Result<(), String> {
             planlab_core::map::io::movingai::check_scen_against_map(&rows, &grid)
                 .map_err(|e| format!("{} does not fit {}: {e}", scen.display(), map.display()))?;
             let report = bench::bench_grid(&grid, &rows, reps.max(1))?;
-            println!(
+            outln!(
                 "{}",
                 serde_json::to_string(&report).map_err(|e| e.to_string())?
             );
@@ -594,7 +618,7 @@ fn run(cli: Cli) -> Result<(), String> {
             kind: BenchKind::Step { steps, blocks },
         } => {
             let report = bench::bench_step(steps, blocks)?;
-            println!(
+            outln!(
                 "{}",
                 serde_json::to_string(&report).map_err(|e| e.to_string())?
             );
@@ -612,7 +636,7 @@ fn run(cli: Cli) -> Result<(), String> {
             let grid = load::load_movingai(&map)?;
             let text = load::read_text(&scen)?;
             let report = bench::bench_scen(&grid, &text, reps, inner)?;
-            println!(
+            outln!(
                 "{}",
                 serde_json::to_string(&report).map_err(|e| e.to_string())?
             );
@@ -631,6 +655,15 @@ fn usage_error_line(e: &clap::Error) -> String {
     let mut line = body.split_whitespace().collect::<Vec<_>>().join(" ");
     line = line.replace(" tip:", "; tip:");
     format!("{line} (see --help)")
+}
+
+/// Writes to stdout (see `sim_cmds::emit`: a closed pipe exits 0); any
+/// other write error is the usual one-line error, exit 1.
+fn write_out(text: &str) {
+    if let Err(e) = sim_cmds::emit(text) {
+        eprintln!("planlab: error: {e}");
+        std::process::exit(1);
+    }
 }
 
 fn main() -> ExitCode {

@@ -419,7 +419,7 @@ async fn run(root: PathBuf, addrs: Vec<SocketAddr>, limits: Limits) -> Result<()
     let addr = listener
         .local_addr()
         .map_err(|e| format!("cannot read bound address: {e}"))?;
-    println!("serving {} on http://{addr}/", root.display());
+    outln!("serving {} on http://{addr}/", root.display());
     let root = Arc::new(root);
     let slots = Arc::new(Semaphore::new(limits.max_connections));
     loop {

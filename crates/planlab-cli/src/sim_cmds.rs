@@ -190,15 +190,15 @@ fn report_apf(
         metrics: m,
     };
     if args.json {
-        println!(
+        outln!(
             "{}",
             serde_json::to_string(&report).map_err(|e| e.to_string())?
         );
     } else {
-        println!("{title} — {} ({dims}D)", report.planner);
-        print!("{}", apf_metrics_table(m));
-        println!("{:<22}{}", "steps", report.steps);
-        println!("{:<22}{}", "trace hash", report.trace_hash);
+        outln!("{title} — {} ({dims}D)", report.planner);
+        out!("{}", apf_metrics_table(m));
+        outln!("{:<22}{}", "steps", report.steps);
+        outln!("{:<22}{}", "trace hash", report.trace_hash);
     }
     Ok(())
 }
@@ -414,24 +414,27 @@ pub fn train_predictor(
     write_atomically(out, text.as_bytes())?;
     let r = &w.report;
     if json {
-        println!("{}", serde_json::to_string(r).map_err(|e| e.to_string())?);
+        outln!("{}", serde_json::to_string(r).map_err(|e| e.to_string())?);
     } else {
-        println!(
+        outln!(
             "SimpleRNN 6 → 15 tanh → 3, 5 steps of 0.1 s, 0.5 s ahead; seed {}",
             r.seed
         );
-        println!("{:<34}{}", "epochs", r.epochs);
-        println!(
+        outln!("{:<34}{}", "epochs", r.epochs);
+        outln!(
             "{:<34}{} / {}",
-            "windows train / held-out", r.train_samples, r.heldout_samples
+            "windows train / held-out",
+            r.train_samples,
+            r.heldout_samples
         );
-        println!("{:<34}{:.3e} m²", "train MSE", r.train_mse);
-        println!("{:<34}{:.3e} m²", "held-out MSE, RNN", r.heldout_mse);
-        println!(
+        outln!("{:<34}{:.3e} m²", "train MSE", r.train_mse);
+        outln!("{:<34}{:.3e} m²", "held-out MSE, RNN", r.heldout_mse);
+        outln!(
             "{:<34}{:.3e} m²",
-            "held-out MSE, constant velocity", r.heldout_mse_constant_velocity
+            "held-out MSE, constant velocity",
+            r.heldout_mse_constant_velocity
         );
-        println!("weights written to {}", out.display());
+        outln!("weights written to {}", out.display());
     }
     Ok(())
 }

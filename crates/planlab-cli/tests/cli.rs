@@ -181,6 +181,42 @@ fn bench_grid_prints_ratios() {
     assert!((ratio - v["astar_speedup"].as_f64().unwrap()).abs() < 1e-6 * ratio);
 }
 
+/// Any-angle planners (Theta*, safe A*'s smoothed path) may beat the
+/// 8-connected optimum: the bench takes them (the knight's move of an open
+/// map: √5 against 1 + √2) and reports their cost ratio below 1.
+#[test]
+fn bench_grid_takes_paths_shorter_than_the_8_connected_optimum() {
+    let dir = std::env::temp_dir().join(format!("planlab-bench-anyangle-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let map = dir.join("open.map");
+    std::fs::write(
+        &map,
+        "type octile\nheight 5\nwidth 5\nmap\n.....\n.....\n.....\n.....\n.....\n",
+    )
+    .unwrap();
+    let scen = dir.join("open.map.scen");
+    std::fs::write(
+        &scen,
+        "version 1\n0\topen.map\t5\t5\t0\t0\t2\t1\t2.41421356\n",
+    )
+    .unwrap();
+    let o = planlab(&["bench", "grid", s(&map), s(&scen), "--reps", "1"]);
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    let theta = v["planners"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["algo"] == "theta-star")
+        .unwrap_or_else(|| panic!("no theta-star row in {v}"));
+    let ratio = theta["cost_ratio"].as_f64().unwrap();
+    assert!(
+        (ratio - 5f64.sqrt() / (1.0 + 2f64.sqrt())).abs() < 1e-6,
+        "{theta}"
+    );
+}
+
 #[test]
 fn plan_uses_a_scenarios_endpoints_and_options_and_flags_override_them() {
     let demo = repo("assets/scenarios/grid-demo.json");

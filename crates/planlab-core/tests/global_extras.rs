@@ -10,7 +10,8 @@ use planlab_core::global::safe_astar::{
     safety_index, safety_term, SafeAStar, SafeAStarConfig, MAX_WINDOW_RADIUS, SAFETY_INDEX_MAX,
 };
 use planlab_core::global::{
-    Diagonal, Endpoint, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid,
+    Diagonal, Endpoint, GridPlanner, GridPos, Heuristic, ObservedGridPlanner, Path, PlanError,
+    PlanGrid,
 };
 use planlab_core::map::OccupancyGrid;
 use proptest::prelude::*;

@@ -6,7 +6,8 @@
 use planlab_core::global::astar::{AStar, AStarConfig};
 use planlab_core::global::jps::{Jps, JpsConfig};
 use planlab_core::global::{
-    Diagonal, Endpoint, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid,
+    Diagonal, Endpoint, GridPlanner, GridPos, Heuristic, ObservedGridPlanner, Path, PlanError,
+    PlanGrid,
 };
 use planlab_core::map::io::movingai::{parse_map, parse_scen};
 use planlab_core::map::OccupancyGrid;
@@ -467,7 +468,7 @@ fn invalid_weights_and_rules_are_refused() {
     })
     .is_ok());
     let err = Jps::new(JpsConfig {
-        diagonal: Diagonal::Never,
+        diagonal: Diagonal::Always,
         ..JpsConfig::default()
     })
     .unwrap_err();
@@ -484,7 +485,7 @@ fn recording_lists_each_expansion_in_order() {
 ",
     );
     let (a, b) = (p(0, 1), p(8, 1));
-    let planners: [&dyn GridPlanner; 2] = [&AStar::default(), &Jps::default()];
+    let planners: [&dyn ObservedGridPlanner; 2] = [&AStar::default(), &Jps::default()];
     for planner in planners {
         let mut seen = Vec::new();
         let path = planner.plan_recording(&g, a, b, Some(&mut seen)).unwrap();

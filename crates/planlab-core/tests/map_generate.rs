@@ -19,7 +19,6 @@ fn connected_for_robot(g: &GeneratedMap, radius: f64) -> bool {
         GridPos::new(s.0 as u32, s.1 as u32),
         GridPos::new(t.0 as u32, t.1 as u32),
         &opts,
-        false,
     )
     .is_ok()
 }

@@ -601,14 +601,9 @@ fn grid_demo_is_solvable_with_its_own_settings() {
     let g = s
         .load_grid(&mut |p| Err(format!("no files here: {p}")))
         .unwrap();
-    let plan = planlab_core::global::plan::plan_on_map(
-        &g,
-        s.start.pos(),
-        s.goal.pos(),
-        &s.grid_planner,
-        false,
-    )
-    .unwrap();
+    let plan =
+        planlab_core::global::plan::plan_on_map(&g, s.start.pos(), s.goal.pos(), &s.grid_planner)
+            .unwrap();
     assert_eq!(plan.path.cells.first(), Some(&s.start.pos()));
     assert_eq!(plan.path.cells.last(), Some(&s.goal.pos()));
 }

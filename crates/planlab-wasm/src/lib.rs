@@ -17,6 +17,12 @@
 //!   `planlab bench scen` for the wasm-vs-native comparison
 //!   (`scripts/bench-browser.mjs`).
 //!
+//! - [`PlanSession`] keeps a map's planner and passability grid between
+//!   plans for the grid page (edits update it cell by cell) and returns the
+//!   search as events ([`RecordedPlan`]); [`DStarSession`] keeps a D* Lite
+//!   search, repaired after edits and moved starts; see [`session`]. Both
+//!   come with the `grid-search` feature (the grid page's module only).
+//!
 //! - [`SimHandle`] runs one robot episode (core `sim::Episode`) for the
 //!   robot page: steps, live edits (goal, movers, planner and its
 //!   parameters) and everything drawn or plotted as typed arrays; see
@@ -33,12 +39,22 @@
 //! Cell kinds cross as bytes: 0 free, 1 occupied, 2 unknown
 //! ([`Cell`]'s `repr(u8)`).
 
+#[cfg(feature = "robot")]
 pub mod apf;
 pub mod batch;
+#[cfg(feature = "grid-search")]
+pub mod dstar;
+#[cfg(feature = "robot")]
 pub mod files;
+#[cfg(feature = "grid-search")]
+pub mod session;
+#[cfg(feature = "robot")]
 pub mod sim;
 
+#[cfg(feature = "robot")]
 pub use apf::ApfHandle;
+#[cfg(feature = "grid-search")]
+pub use dstar::{grid_algorithms, DStarSession};
 /// The arm page's handle, from its own crate (the arm page loads that
 /// crate's smaller wasm module; the playground pages build this crate
 /// without the feature).
@@ -51,9 +67,14 @@ pub use planlab_wasm_arm::{arm_choices, ArmHandle};
 /// this crate without the feature).
 #[cfg(feature = "reproduce")]
 pub use planlab_wasm_reproduce::{reproduce_variant, reproduce_variant_info};
+#[cfg(feature = "grid-search")]
+pub use session::{PlanSession, RecordedPlan};
+#[cfg(feature = "robot")]
 pub use sim::{generated_grid_hash, planners, SimHandle};
 
-use planlab_core::global::plan::{plan_grid_for, plan_on_map, GridPlan, GridPlanOptions};
+use planlab_core::global::plan::{plan_grid_for, GridPlan, GridPlanOptions};
+#[cfg(feature = "grid-search")]
+use planlab_core::global::plan::{plan_on_map, plan_on_map_recording};
 use planlab_core::global::{GridPos, PlanGrid};
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::{Cell, OccupancyGrid};
@@ -78,6 +99,18 @@ fn cell_of(kind: u8) -> Result<Cell, JsError> {
             "cell kind {k} is not 0 (free), 1 (occupied) or 2 (unknown)"
         ))),
     }
+}
+
+/// Paints the segment `[col0, row0, col1, row1]` with cell kind `kind` (a
+/// brush stroke between two pointer samples); returns how many cells changed.
+pub(crate) fn paint_grid(
+    grid: &mut OccupancyGrid,
+    seg: [u32; 4],
+    kind: u8,
+) -> Result<u32, JsError> {
+    let cell = cell_of(kind)?;
+    let [c0, r0, c1, r1] = seg.map(|v| v as usize);
+    Ok(grid.paint_segment((c0, r0), (c1, r1), cell)? as u32)
 }
 
 /// Flattens cells into `col, row` pairs for a `Uint32Array`.
@@ -219,13 +252,7 @@ impl MapHandle {
         row1: u32,
         kind: u8,
     ) -> Result<u32, JsError> {
-        let cell = cell_of(kind)?;
-        let changed = self.grid.paint_segment(
-            (col0 as usize, row0 as usize),
-            (col1 as usize, row1 as usize),
-            cell,
-        )?;
-        Ok(changed as u32)
+        paint_grid(&mut self.grid, [col0, row0, col1, row1], kind)
     }
 
     /// The map as a Moving AI `.map` (unknown written as blocked).
@@ -415,7 +442,10 @@ impl PlanResult {
 ///
 /// `options` is a [`GridPlanOptions`] as a JS object (missing fields take
 /// their defaults), e.g. `{algorithm: "jps", diagonal: "no_corner_cutting"}`.
-/// With `record_expanded` the result also lists the expanded cells.
+/// With `record_expanded` the result also lists the expanded cells. In the
+/// grid pages' module only (feature `grid-search`): recording links every
+/// planner's observed search, which the robot pages do not need.
+#[cfg(feature = "grid-search")]
 #[wasm_bindgen]
 pub fn plan(
     map: &MapHandle,
@@ -427,13 +457,15 @@ pub fn plan(
     record_expanded: bool,
 ) -> Result<PlanResult, JsError> {
     let options = options_from_js(options)?;
-    let plan = plan_on_map(
-        &map.grid,
+    let (start, goal) = (
         GridPos::new(start_col, start_row),
         GridPos::new(goal_col, goal_row),
-        &options,
-        record_expanded,
-    )?;
+    );
+    let plan = if record_expanded {
+        plan_on_map_recording(&map.grid, start, goal, &options)?
+    } else {
+        plan_on_map(&map.grid, start, goal, &options)?
+    };
     Ok(PlanResult { plan })
 }
 
@@ -452,6 +484,14 @@ pub fn inflation_mask(map: &MapHandle, options: JsValue) -> Result<Vec<u8>, JsEr
         *m = u8::from(raw.is_free(c, r) && !planned.is_free(c, r));
     }
     Ok(mask)
+}
+
+/// The core's word when `radius_m` of inflation cannot change a map of
+/// `resolution` m cells (less than one cell), else `undefined`: the grid
+/// page shows it beside the plan, as `planlab plan --inflate` prints it.
+#[wasm_bindgen(js_name = inflationNote)]
+pub fn inflation_note(radius_m: f64, resolution: f64) -> Option<String> {
+    planlab_core::map::costmap::inflation_note(radius_m, resolution)
 }
 
 /// Every query of a Moving AI `.scen` on one map, ready to be solved in a
@@ -495,11 +535,13 @@ impl ScenBatch {
 /// The DWA step of the reference benchmark scene
 /// ([`planlab_core::bench::DwaStepBench`]), for timing from JS: the same
 /// work `planlab bench step` times natively.
+#[cfg(feature = "robot")]
 #[wasm_bindgen]
 pub struct DwaBench {
     inner: planlab_core::bench::DwaStepBench,
 }
 
+#[cfg(feature = "robot")]
 #[wasm_bindgen]
 impl DwaBench {
     /// Builds the reference scene (200 × 200 map, 20 movers, 20 × 40 samples, 3 s).

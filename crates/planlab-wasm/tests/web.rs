@@ -672,3 +672,150 @@ fn reproduce_variant_bad_input_is_an_error() {
     .contains("variant"));
     assert!(planlab_wasm::reproduce_variant("T-fig3-2", "improved", MAX_VARIANTS - 1, 0).is_ok());
 }
+
+/// A wall painted and a cell set through a session give the same plan as a
+/// fresh `plan` on a map edited the same way, without rebuilding the grid.
+#[wasm_bindgen_test]
+fn session_edits_plan_as_a_fresh_plan_on_the_edited_map() {
+    use planlab_wasm::PlanSession;
+    let arena = include_str!("../../../assets/maps/arena.map");
+    let mut map = MapHandle::from_movingai(arena).unwrap();
+    for algo in ["astar", "dijkstra", "jps"] {
+        let opts = || options(&format!(r#"{{"algorithm":"{algo}"}}"#));
+        let mut session = PlanSession::new(&map, opts()).unwrap();
+        let before = session.plan(1, 11, 42, 46, false).unwrap();
+        let fresh = plan(&map, 1, 11, 42, 46, opts(), false).unwrap();
+        assert_eq!(before.path(), fresh.path(), "{algo}: before any edit");
+        // A wall across the middle of the path, and one cell freed again.
+        let mid = before.path();
+        let (c, r) = (mid[mid.len() / 2 & !1], mid[(mid.len() / 2 & !1) + 1]);
+        let mut edited = map.duplicate();
+        let top = r.saturating_sub(8).max(1);
+        edited.paint_segment(c, top, c, r + 8, 1).unwrap();
+        edited.set_cell(c, top, 0).unwrap();
+        session.paint_segment(c, top, c, r + 8, 1).unwrap();
+        session.set_cell(c, top, 0).unwrap();
+        let after = session.plan(1, 11, 42, 46, true).unwrap();
+        let fresh = plan(&edited, 1, 11, 42, 46, opts(), true).unwrap();
+        assert_eq!(after.path(), fresh.path(), "{algo}: after the edit");
+        assert_eq!(after.cost(), fresh.cost());
+        assert_eq!(after.expanded_count(), fresh.expanded_count());
+        assert_eq!(after.expanded(), fresh.expanded());
+        assert!(
+            after.cost() > before.cost(),
+            "{algo}: the wall lengthens the path"
+        );
+        assert_eq!(session.rebuilds(), 1, "{algo}: edits update the kept grid");
+    }
+    // Inflation: an edit rebuilds (cells up to the radius away change) and
+    // still agrees with a fresh plan.
+    let inflated = || options(r#"{"algorithm":"astar","inflate_m":1.0}"#);
+    let mut session = PlanSession::new(&map, inflated()).unwrap();
+    session.plan(5, 15, 40, 40, false).unwrap();
+    session.paint_segment(20, 20, 28, 20, 1).unwrap();
+    map.paint_segment(20, 20, 28, 20, 1).unwrap();
+    let a = session.plan(5, 15, 40, 40, false).unwrap();
+    let b = plan(&map, 5, 15, 40, 40, inflated(), false).unwrap();
+    assert_eq!(a.path(), b.path());
+    assert_eq!(session.rebuilds(), 2);
+}
+
+/// The recorded plan's events are columns of equal length whose close
+/// events are the expanded cells in order.
+#[wasm_bindgen_test]
+fn recorded_plan_events_are_typed_columns() {
+    use planlab_wasm::PlanSession;
+    let map = MapHandle::from_ascii(MAP).unwrap();
+    let mut session = PlanSession::new(&map, options(r#"{"algorithm":"astar"}"#)).unwrap();
+    let rec = session.plan_recorded(0, 0, 0, 4).unwrap();
+    let n = rec.length() as usize;
+    let kinds = rec.kinds();
+    assert_eq!(kinds.len(), n);
+    assert_eq!(rec.cells().len(), 2 * n);
+    assert_eq!(rec.others().len(), 2 * n);
+    assert_eq!((rec.g().len(), rec.h().len()), (n, n));
+    let plan = rec.plan();
+    let closes: Vec<u32> = kinds
+        .iter()
+        .zip(rec.cells().chunks(2))
+        .filter(|(k, _)| **k == 1)
+        .flat_map(|(_, c)| c.to_vec())
+        .collect();
+    let fresh = plan_fn(&map);
+    assert_eq!(closes, fresh.expanded());
+    // Every expanded cell was opened first, with its g and h.
+    let (g, h, cells) = (rec.g(), rec.h(), rec.cells());
+    for close in closes.chunks(2) {
+        let opened = (0..n).find(|&i| kinds[i] == 0 && cells[2 * i..2 * i + 2] == *close);
+        let i = opened.expect("a closed cell was opened before");
+        assert!(g[i].is_finite() && h[i].is_finite() && g[i] >= 0.0);
+    }
+    assert_eq!(
+        (cells[0], cells[1], kinds[0]),
+        (0, 0, 0),
+        "the start is opened first"
+    );
+    assert_eq!(plan.expanded_count() as usize, closes.len() / 2);
+    assert!(!rec.truncated());
+}
+
+fn plan_fn(map: &MapHandle) -> planlab_wasm::PlanResult {
+    plan(map, 0, 0, 0, 4, options(r#"{"algorithm":"astar"}"#), true).unwrap()
+}
+
+/// D* Lite through its session: a painted wall is repaired to the cost of
+/// a fresh plan on the edited map with fewer expansions than a fresh A*;
+/// a moved start replans from there; each call's events are its own.
+#[wasm_bindgen_test]
+fn dstar_session_repairs_edits_and_moved_starts() {
+    use planlab_wasm::{DStarSession, PlanSession};
+    let arena = include_str!("../../../assets/maps/arena.map");
+    let mut map = MapHandle::from_movingai(arena).unwrap();
+    let opts = || options(r#"{"algorithm":"dstar-lite"}"#);
+    let astar = || options(r#"{"algorithm":"astar"}"#);
+    let mut dstar = DStarSession::new(&map, opts(), 1, 11, 42, 46).unwrap();
+    let first = dstar.plan().unwrap();
+    let fresh = plan(&map, 1, 11, 42, 46, astar(), false).unwrap();
+    assert!((first.plan().cost() - fresh.cost()).abs() < 1e-9);
+    assert!(first.length() > 0);
+    // A wall across the path near the start.
+    let path = first.plan().path();
+    let k = (path.len() / 2 / 4) * 2;
+    let (c, r) = (path[k], path[k + 1]);
+    let (top, bottom) = (r.saturating_sub(4).max(1), (r + 4).min(47));
+    dstar.paint_segment(c, top, c, bottom, 1).unwrap();
+    map.paint_segment(c, top, c, bottom, 1).unwrap();
+    let repaired = dstar.plan().unwrap();
+    let fresh = plan(&map, 1, 11, 42, 46, astar(), false).unwrap();
+    assert!(
+        (repaired.plan().cost() - fresh.cost()).abs() < 1e-9,
+        "repaired to the optimum"
+    );
+    assert!(repaired.plan().cost() > first.plan().cost());
+    let closes = repaired.kinds().iter().filter(|&&k| k == 1).count() as u32;
+    assert_eq!(
+        closes,
+        repaired.plan().expanded_count(),
+        "the events are this call's"
+    );
+    assert!(
+        repaired.plan().expanded_count() < fresh.expanded_count(),
+        "repair {} vs fresh A* {}",
+        repaired.plan().expanded_count(),
+        fresh.expanded_count()
+    );
+    // The robot moved along the path: plan from there.
+    let (sc, sr) = (path[2], path[3]);
+    dstar.move_start(sc, sr).unwrap();
+    let moved = dstar.plan().unwrap();
+    let fresh = plan(&map, sc, sr, 42, 46, astar(), false).unwrap();
+    assert!((moved.plan().cost() - fresh.cost()).abs() < 1e-9);
+    assert_eq!(&moved.plan().path()[..2], &[sc, sr]);
+    // Errors are typed, not panics.
+    assert!(dstar.set_cell(99, 99, 1).is_err());
+    assert!(DStarSession::new(&map, opts(), 0, 0, 42, 46).is_err());
+    // The plain session plans D* Lite too, to the same cost.
+    let mut session = PlanSession::new(&map, opts()).unwrap();
+    let once = session.plan(1, 11, 42, 46, false).unwrap();
+    assert!((once.cost() - repaired.plan().cost()).abs() < 1e-9);
+}

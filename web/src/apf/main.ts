@@ -11,7 +11,7 @@ import { loadVariant } from '../shell/variant';
 import { installShell } from '../shell/help';
 import { installLegend } from '../shell/legend';
 import { apfHelp } from '../shell/help-content';
-import { showGalleryNote } from '../shell/gallery-note';
+import { galleryRunEnded, showGalleryNote } from '../shell/gallery-note';
 import { el, messageOf } from '../shell/dom';
 
 const ui = {
@@ -200,6 +200,8 @@ function draw(): void {
   setMetric('metric-time', `${m.time_s.toFixed(1)} s`, m.time_s);
   el('metric-kind').textContent = h.stepKind();
   document.body.dataset.outcome = m.outcome;
+  // A run opened from a gallery card: the ✓/✗ of its relation when it ends.
+  if (m.outcome !== 'running') galleryRunEnded(m.outcome);
   document.body.dataset.pathPoints = String(path.length / 2);
 }
 

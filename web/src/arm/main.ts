@@ -10,7 +10,7 @@ import { loadVariant } from '../shell/variant';
 import { installShell } from '../shell/help';
 import { installLegend } from '../shell/legend';
 import { armHelp } from '../shell/help-content';
-import { showGalleryNote } from '../shell/gallery-note';
+import { galleryRunEnded, showGalleryNote } from '../shell/gallery-note';
 import init, { ArmHandle, armChoices } from '../../pkg-arm/planlab_wasm_arm.js';
 import { ArmView, type Frame } from './view';
 import { DistancePlot } from './distplot';
@@ -192,6 +192,7 @@ function refresh(): void {
     `${h.name} — predictor ${pred}, hand ${h.handPreset} ×${h.handSpeed} (seed ${h.seed}); ` +
     `t = ${h.time.toFixed(1)} s, ${out}`;
   if (out !== 'running' && playing) setPlaying(false);
+  if (out !== 'running') galleryRunEnded(out);
 }
 
 function stepOnce(n: number): void {

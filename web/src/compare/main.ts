@@ -8,7 +8,7 @@
 // URL: ?scenario=FILE&planners=a,b&set=path=value (repeatable, as `planlab
 // run --set`)&view=side|overlay&speed=X&autorun=1|instant
 
-import init, { drawLayerNames, planners as plannerListJson } from '../../pkg/planlab_wasm.js';
+import init, { drawLayerNames, planners as plannerListJson, rosImageName } from '../../pkg/planlab_wasm.js';
 import { fillPresetSelect, showOpened } from '../shell/preset-select';
 import { mapOf, type RobotView } from '../scene/view';
 import { DrawList, Layer, checkLayers, mask } from '../scene/draw';
@@ -254,7 +254,7 @@ function setScenario(text: string, file: string, label: string, files: Record<st
 
 async function loadPreset(file: string, withEdits: [string, string][] = []): Promise<void> {
   try {
-    const { text, files } = await loadPresetFiles(file);
+    const { text, files } = await loadPresetFiles(file, rosImageName);
     setScenario(text, file, file, files, withEdits);
   } catch (e) {
     throw new Error(`${file}: ${messageOf(e)}`);

@@ -5,6 +5,8 @@
 // &inflate=0.3` (safe A* with key points and Bottom-Up feature nodes on the
 // map inflated as safe-dual-dwa inflates it).
 
+import { GRID_PLANNER_NAMES as ALGORITHMS } from '../shell/grid-planners';
+
 /** What the URL asks for; `problems` are the parameters it could not take. */
 export interface GridUrl {
   scenario: string | null;
@@ -13,7 +15,6 @@ export interface GridUrl {
   problems: string[];
 }
 
-const ALGORITHMS = ['astar', 'dijkstra', 'jps', 'safe-astar'];
 
 function flag(v: string): boolean | null {
   if (['1', 'true', 'on', 'yes'].includes(v)) return true;

@@ -1,18 +1,25 @@
 // Playground wiring: loads maps through the wasm readers, turns clicks and
-// drags into map edits and endpoint moves, and re-plans through the wasm
-// `plan` after every edit. No planning happens in this file: it converts
-// control values into the core's GridPlanOptions and paints what comes back.
+// drags into map edits and endpoint moves (the S and G markers can be
+// dragged with any tool), and re-plans through the page's wasm PlanSession
+// after every edit (planning.ts); the search plays in player-ui.ts. No
+// planning happens in this file: it converts control values into the core's
+// GridPlanOptions and paints what comes back.
 
-import init, { MapHandle, plan, ScenarioHandle, defaultPlanOptions, inflationMask } from '../../pkg/planlab_wasm.js';
+import init, { MapHandle, ScenarioHandle, defaultPlanOptions, gridAlgorithms, inflationMask, inflationNote, rosImageName } from '../../pkg-grid/planlab_wasm.js';
 import { MapView, type Cell } from './render';
+import { GridSession } from './planning';
+import { SearchPlayer, exposeForTests } from './player-ui';
 import { installShell } from '../shell/help';
-import { gridHelp } from '../shell/help-content';
+import { gridHelp, type CorePlanner } from '../shell/help-content';
 import { gridUrl } from './grid-url';
 import { loadPresetFiles } from '../shell/scenario-files';
 import { el, errorBanner, messageOf } from '../shell/dom';
 import { panZoom } from '../shell/canvas-input';
 import { applyOptions, getDefaults, onOptionInput, readOptions, setDefaults, showExpanded, syncControls } from './options';
 import { installScenario, loadFiles, loadPreset, type MapHost } from './maps';
+import { describeSearch } from './inspect';
+import { clearMetrics, showMetrics } from './metrics';
+import { Driver } from './drive';
 
 type Tool = 'start' | 'goal' | 'wall' | 'erase';
 
@@ -34,14 +41,7 @@ const ui = {
   canvas: el<HTMLCanvasElement>('map-canvas'),
   hover: el('hover'),
   status: el('status'),
-  metric: {
-    cost: el('metric-cost'),
-    length: el('metric-length'),
-    expanded: el('metric-expanded'),
-    nodes: el('metric-nodes'),
-    keypoints: el('metric-keypoints'),
-    time: el('metric-time'),
-  },
+
 };
 
 // ------------------------------------------------------------------ errors
@@ -50,6 +50,8 @@ const { showError, clearError, guard } = errorBanner(ui.error, ui.body, () => (u
 
 // ------------------------------------------------------------------- state
 const view = new MapView(ui.canvas);
+const session = new GridSession();
+const player = new SearchPlayer(view);
 let map: MapHandle | null = null;
 /** The map as loaded, for "Reset edits". */
 let loaded: MapHandle | null = null;
@@ -62,17 +64,8 @@ let inflation: Uint8Array | null = null;
 let planSeq = 0;
 let cellsDirty = false;
 let replanQueued = false;
-
-// ----------------------------------------------------------------- metrics
-function setMetric(e: HTMLElement, text: string, value: number | null): void {
-  e.textContent = text;
-  if (value === null) delete e.dataset.value;
-  else e.dataset.value = String(value);
-}
-
-function clearMetrics(): void {
-  for (const e of Object.values(ui.metric)) setMetric(e, '—', null);
-}
+/** The plan's cells, for the driving robot. */
+let currentPath: Cell[] | null = null;
 
 function hintForTool(): string {
   switch (tool) {
@@ -133,13 +126,15 @@ function replan(): void {
   const opts = readOptions();
   updateInflation(opts);
   view.setEndpoints(start, goal);
-  const empty = { path: null, expanded: null, keyPoints: null, featureNodes: null, inflation };
+  const empty = { path: null, keyPoints: null, featureNodes: null, inflation };
   ui.canvas.dataset.start = start ? start.join(',') : '';
   ui.canvas.dataset.goal = goal ? goal.join(',') : '';
   planSeq += 1;
   ui.body.dataset.planSeq = String(planSeq);
+  currentPath = null;
   if (!start || !goal) {
     view.setLayers(empty);
+    player.load(null);
     clearMetrics();
     clearError();
     ui.body.dataset.state = 'idle';
@@ -147,42 +142,39 @@ function replan(): void {
     ui.status.textContent = !start ? 'Place the start: click a free cell.' : 'Place the goal: click a free cell.';
     return;
   }
-  const t0 = performance.now();
-  let res;
+  let planned;
   try {
-    res = plan(map, start[0], start[1], goal[0], goal[1], opts, showExpanded());
+    planned = session.plan(start, goal, opts, showExpanded(), map);
   } catch (e) {
     view.setLayers(empty);
+    player.load(null);
     clearMetrics();
     ui.canvas.dataset.pathLen = '0';
     ui.status.textContent = 'No path.';
     showError(messageOf(e));
     return;
   }
-  const ms = performance.now() - t0;
+  const { result: res, playback, ms, repair, truncated } = planned;
   try {
     const path = res.path();
     const keyPoints = res.keyPoints();
     const featureNodes = res.featureNodes();
     const safety = res.safety();
-    view.setLayers({ path, expanded: res.expanded(), keyPoints, featureNodes, inflation });
+    view.setLayers({ path, keyPoints, featureNodes, inflation });
+    player.load(playback);
     clearError();
     ui.body.dataset.state = 'ok';
-    setMetric(ui.metric.cost, res.cost.toFixed(4), res.cost);
-    setMetric(ui.metric.length, `${res.lengthM.toFixed(2)} m`, res.lengthM);
-    setMetric(ui.metric.expanded, res.expandedCount.toLocaleString('en-US'), res.expandedCount);
-    setMetric(ui.metric.nodes, String(res.pathLen), res.pathLen);
-    const kp = keyPoints.length / 2;
-    const fn = featureNodes.length / 2;
-    const parts = [];
-    if (opts.keypoints) parts.push(String(kp));
-    if (opts.bottom_up_eps !== null) parts.push(`${fn} BU`);
-    setMetric(ui.metric.keypoints, parts.length ? parts.join(' · ') : '—', opts.keypoints ? kp : null);
-    setMetric(ui.metric.time, `${ms.toFixed(2)} ms`, ms);
+    showMetrics(res, opts, ms, keyPoints, featureNodes);
     ui.canvas.dataset.pathLen = String(res.pathLen);
     ui.canvas.dataset.path = Array.from(path).join(',');
+    currentPath = Array.from({ length: path.length / 2 }, (_, i): Cell => [path[2 * i], path[2 * i + 1]]);
     let status = `Path found: ${res.pathLen} cells, ${res.lengthM.toFixed(2)} m`;
     if (safety.length) status += ` · min safety index ${safety.reduce((a, b) => Math.min(a, b), Infinity).toFixed(2)}/10`;
+    if (repair) status += ` · D* Lite repair: ${repair.expanded.toLocaleString('en-US')} cells expanded (a fresh A*: ${repair.freshAStar.toLocaleString('en-US')})`;
+    if (truncated) status += ` · the search recording stopped at ${playback?.n.toLocaleString('en-US')} events`;
+    const note = inflationNote(Number(opts.inflate_m), map.resolution);
+    if (note) status += ` · note: ${note}`;
+    ui.body.dataset.repair = repair ? `${repair.expanded},${repair.freshAStar}` : '';
     ui.status.textContent = status;
   } finally {
     res.free();
@@ -195,6 +187,7 @@ function installMap(m: MapHandle, name: string, s: Cell | null, g: Cell | null):
   loaded?.free();
   map = m;
   loaded = m.clone();
+  session.attach(m);
   mapVersion += 1;
   inflationKey = '';
   start = s;
@@ -211,6 +204,13 @@ function installMap(m: MapHandle, name: string, s: Cell | null, g: Cell | null):
 }
 
 const maps: MapHost = { install: installMap, applyOptions, defaults: getDefaults };
+const driver = new Driver(el<HTMLButtonElement>('drive'), {
+  path: () => currentPath,
+  moveStart: guard((c: Cell) => {
+    start = c;
+    replan();
+  }),
+});
 
 // ------------------------------------------------------------------- input
 function canvasPoint(ev: MouseEvent): [number, number] {
@@ -219,6 +219,8 @@ function canvasPoint(ev: MouseEvent): [number, number] {
 }
 
 let painting: { kind: number; last: Cell | null } | null = null;
+/** The endpoint marker being dragged (replans at every new cell). */
+let dragging: 'start' | 'goal' | null = null;
 // Before the tools' handlers: a pan gesture goes no further.
 panZoom(ui.canvas, () => [view]);
 
@@ -232,6 +234,7 @@ function paintTo(cell: Cell | null): void {
   const changed = map.paintSegment(from[0], from[1], cell[0], cell[1], painting.kind);
   painting.last = cell;
   if (changed > 0) {
+    session.paint(from, cell, painting.kind);
     mapVersion += 1;
     cellsDirty = true;
     scheduleReplan();
@@ -242,7 +245,10 @@ function describeCell(cell: Cell | null): string {
   if (!cell || !map) return '—';
   const kind = CELL_NAMES[view.cellKind(cell[0], cell[1]) ?? 0];
   const [x, y] = map.cellToWorld(cell[0], cell[1]);
-  return `cell (${cell[0]}, ${cell[1]}) · ${kind} · world (${x.toFixed(2)}, ${y.toFixed(2)}) m`;
+  const where = `cell (${cell[0]}, ${cell[1]}) · ${kind} · world (${x.toFixed(2)}, ${y.toFixed(2)}) m`;
+  const search = player.playback ? describeSearch(player.playback.info(cell[0], cell[1])) : '';
+  ui.hover.dataset.search = search;
+  return search ? `${where} · ${search}` : where;
 }
 
 ui.canvas.addEventListener(
@@ -252,7 +258,12 @@ ui.canvas.addEventListener(
     const [x, y] = canvasPoint(ev);
     const cell = view.cellAt(x, y);
     if (!cell) return;
-    if (ev.shiftKey || tool === 'goal') {
+    const grab = view.markerAt(x, y, start, goal);
+    if (grab && !ev.shiftKey) {
+      dragging = grab;
+      ui.canvas.setPointerCapture(ev.pointerId);
+      ui.body.dataset.dragging = grab;
+    } else if (ev.shiftKey || tool === 'goal') {
       goal = cell;
       scheduleReplan();
     } else if (tool === 'start') {
@@ -273,11 +284,21 @@ ui.canvas.addEventListener(
     const cell = view.cellAt(x, y);
     ui.hover.textContent = describeCell(cell);
     if (painting) paintTo(cell);
+    if (dragging && cell && view.cellKind(cell[0], cell[1]) !== 1) {
+      const at = dragging === 'start' ? start : goal;
+      if (!at || at[0] !== cell[0] || at[1] !== cell[1]) {
+        if (dragging === 'start') start = cell;
+        else goal = cell;
+        scheduleReplan();
+      }
+    }
   }),
 );
 
 const endStroke = guard((ev: PointerEvent) => {
   painting = null;
+  dragging = null;
+  delete ui.body.dataset.dragging;
   if (ui.canvas.hasPointerCapture(ev.pointerId)) ui.canvas.releasePointerCapture(ev.pointerId);
 });
 ui.canvas.addEventListener('pointerup', endStroke);
@@ -293,7 +314,12 @@ window.addEventListener('keydown', (ev) => {
   const keys: Record<string, Tool> = { s: 'start', g: 'goal', w: 'wall', e: 'erase' };
   const k = ev.key.toLowerCase();
   if (keys[k]) setTool(keys[k]);
+  else if (k === ' ') {
+    ev.preventDefault();
+    player.toggle();
+  } else if (k === ',' || k === '.') player.stepBy(k === '.' ? 1 : -1);
   else if (k === 'f') view.fit();
+  else if (k === 'd') driver.toggle();
 });
 
 onOptionInput(scheduleReplan);
@@ -321,6 +347,7 @@ ui.reset.addEventListener(
     if (!loaded) return;
     map?.free();
     map = loaded.clone();
+    session.reload(map);
     mapVersion += 1;
     cellsDirty = true;
     scheduleReplan();
@@ -334,6 +361,7 @@ async function boot(): Promise<void> {
   syncControls();
   clearMetrics();
   await init();
+  corePlanners = gridAlgorithms() as CorePlanner[];
   setDefaults(defaultPlanOptions() as Record<string, unknown>);
   applyOptions(getDefaults());
   syncControls();
@@ -342,7 +370,7 @@ async function boot(): Promise<void> {
   const url = gridUrl();
   if (url.scenario) {
     try {
-      const { text, files } = await loadPresetFiles(url.scenario);
+      const { text, files } = await loadPresetFiles(url.scenario, rosImageName);
       installScenario(maps, ScenarioHandle.fromJson(text), url.scenario, files, url.options);
       const linked = ui.preset.querySelector<HTMLOptionElement>('option[value=""]');
       if (linked) linked.textContent = `${url.scenario} (linked)`;
@@ -361,7 +389,11 @@ async function boot(): Promise<void> {
   if (url.problems.length) showError(url.problems.join(' · '));
 }
 
-installShell(gridHelp());
+/** The core's planners with their references (for the help), after init. */
+let corePlanners: CorePlanner[] = [];
+installShell(() => gridHelp(corePlanners));
+
+exposeForTests(player, () => session.rebuilds);
 
 boot().catch((e) => {
   showError(`Could not start the playground: ${messageOf(e)}`);

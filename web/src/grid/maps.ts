@@ -4,7 +4,7 @@
 // `.json` with the map files it refers to). The wasm readers parse them;
 // errors name the file.
 
-import { MapHandle, ScenarioHandle, rosImageName } from '../../pkg/planlab_wasm.js';
+import { MapHandle, ScenarioHandle, rosImageName } from '../../pkg-grid/planlab_wasm.js';
 import { checkSizes, fetchBytes, fetchText } from '../shell/scenario-files';
 import { messageOf } from '../shell/dom';
 import type { Cell } from './render';

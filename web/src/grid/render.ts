@@ -1,17 +1,19 @@
 // Canvas painter for the playground: the map is drawn into an offscreen
-// canvas (one pixel per cell) once per edit, the search tint into a second
-// one per plan; each frame only scales those two images and strokes the
-// path on top, so 512×512 maps pan and zoom smoothly. Nothing here plans.
+// canvas (one pixel per cell) once per edit, the search into a second one
+// as it plays (only the cells an event touched; scene/search-tint.ts); each
+// frame only scales those two images and strokes the line checks, the
+// current cell and the path on top, so 512×512 maps pan, zoom and animate
+// smoothly. Nothing here plans.
 
 import { knownBox, offscreen, sizeToBox } from '../shell/cells';
+import type { SearchPlayback } from '../scene/search-player';
+import { SEARCH_CSS, SearchTint } from '../scene/search-tint';
 
 export type Cell = [number, number];
 
 export interface Layers {
   /** Path cells as col,row pairs. */
   path: Uint32Array | null;
-  /** Expanded cells in expansion order, col,row pairs. */
-  expanded: Uint32Array | null;
   keyPoints: Uint32Array | null;
   featureNodes: Uint32Array | null;
   /** 1 = free on the map but blocked after inflation. */
@@ -45,9 +47,9 @@ export class MapView {
   private h = 0;
   private base: HTMLCanvasElement | null = null;
   private baseCtx: CanvasRenderingContext2D | null = null;
-  private tint: HTMLCanvasElement | null = null;
-  private tintCtx: CanvasRenderingContext2D | null = null;
-  private layers: Layers = { path: null, expanded: null, keyPoints: null, featureNodes: null, inflation: null };
+  private tint: SearchTint | null = null;
+  private search: SearchPlayback | null = null;
+  private layers: Layers = { path: null, keyPoints: null, featureNodes: null, inflation: null };
   private cells: Uint8Array | null = null;
   private start: Cell | null = null;
   private goal: Cell | null = null;
@@ -82,8 +84,9 @@ export class MapView {
     this.w = w;
     this.h = h;
     [this.base, this.baseCtx] = offscreen(w, h);
-    [this.tint, this.tintCtx] = offscreen(w, h);
-    this.layers = { path: null, expanded: null, keyPoints: null, featureNodes: null, inflation: null };
+    this.tint = new SearchTint(w, h);
+    this.search = null;
+    this.layers = { path: null, keyPoints: null, featureNodes: null, inflation: null };
     this.start = this.goal = null;
     this.updateCells(cells);
     this.known = knownBox(w, h, cells);
@@ -107,8 +110,23 @@ export class MapView {
     const inflationChanged = layers.inflation !== this.layers.inflation;
     this.layers = layers;
     if (inflationChanged) this.paintBase();
-    this.paintTint();
     this.request();
+  }
+
+  /** The search to show (null: none); the path is drawn once it is played out. */
+  setSearch(p: SearchPlayback | null): void {
+    this.search = p;
+    if (!p) this.tint?.clear();
+    this.request();
+  }
+
+  /** Paints the played events and draws the frame now (the player's
+   *  animation loop calls this inside its own frame); returns the cells
+   *  repainted. */
+  drawNow(): number {
+    const n = this.search && this.tint ? this.tint.paint(this.search) : 0;
+    this.draw();
+    return n;
   }
 
   /**
@@ -156,6 +174,22 @@ export class MapView {
     const r = Math.floor((y - this.view.oy) / this.view.scale);
     if (c < 0 || r < 0 || c >= this.w || r >= this.h) return null;
     return [c, r];
+  }
+
+  /** Which endpoint marker is under the canvas point (x, y), if any
+   *  (the marker's disc, at least its cell). */
+  markerAt(x: number, y: number, start: Cell | null, goal: Cell | null): 'start' | 'goal' | null {
+    const rad = this.markerRadius() + 2;
+    for (const [which, cell] of [['goal', goal], ['start', start]] as const) {
+      if (!cell) continue;
+      const [cx, cy] = this.centre(cell[0], cell[1]);
+      if (Math.hypot(x - cx, y - cy) <= Math.max(rad, this.view.scale / 2)) return which;
+    }
+    return null;
+  }
+
+  private markerRadius(): number {
+    return Math.min(13, Math.max(6, this.view.scale * 0.6));
   }
 
   cellKind(c: number, r: number): number | null {
@@ -206,36 +240,12 @@ export class MapView {
     this.baseCtx.putImageData(img, 0, 0);
   }
 
-  /** Expanded cells, shaded from light (early) to deeper (late). */
-  private paintTint(): void {
-    if (!this.tintCtx) return;
-    const img = this.tintCtx.createImageData(this.w, this.h);
-    const ex = this.layers.expanded;
-    if (ex && ex.length) {
-      const px = img.data;
-      const n = ex.length / 2;
-      for (let k = 0; k < n; k++) {
-        const c = ex[2 * k];
-        const r = ex[2 * k + 1];
-        if (c >= this.w || r >= this.h) continue;
-        const t = n > 1 ? k / (n - 1) : 0;
-        const o = (r * this.w + c) * 4;
-        // sky-300 → indigo-400 by expansion order
-        px[o] = 125 + (129 - 125) * t;
-        px[o + 1] = 211 + (140 - 211) * t;
-        px[o + 2] = 252 + (248 - 252) * t;
-        px[o + 3] = 150;
-      }
-    }
-    this.tintCtx.putImageData(img, 0, 0);
-  }
-
   request(): void {
     if (this.pending) return;
     this.pending = true;
     requestAnimationFrame(() => {
       this.pending = false;
-      this.draw();
+      this.drawNow();
     });
   }
 
@@ -279,7 +289,7 @@ export class MapView {
     ctx.fillRect(ox, oy, this.w * scale, this.h * scale);
     ctx.restore();
     ctx.drawImage(this.base, ox, oy, this.w * scale, this.h * scale);
-    ctx.drawImage(this.tint, ox, oy, this.w * scale, this.h * scale);
+    ctx.drawImage(this.tint.canvas, ox, oy, this.w * scale, this.h * scale);
 
     if (scale >= 9) this.gridLines();
 
@@ -290,7 +300,11 @@ export class MapView {
     const thin = Math.max(1.5, lw * 0.5);
     if (L.featureNodes && L.featureNodes.length >= 4) this.polyline(L.featureNodes, COLORS.feature, thin, [6, 4]);
     if (L.keyPoints && L.keyPoints.length >= 4) this.polyline(L.keyPoints, COLORS.keypoint, thin, [4, 4]);
-    if (L.path) {
+    const playing = this.search !== null && !this.search.done;
+    if (playing) this.searchOverlay(this.search!);
+    const pathDrawn = String(L.path !== null && !playing);
+    if (this.canvas.dataset.pathDrawn !== pathDrawn) this.canvas.dataset.pathDrawn = pathDrawn;
+    if (L.path && !playing) {
       // White casing keeps the path readable over dark walls and tints.
       this.polyline(L.path, 'rgba(255,255,255,0.85)', lw + 2.5);
       this.polyline(L.path, COLORS.path, lw);
@@ -327,6 +341,30 @@ export class MapView {
     this.marker(this.goal, COLORS.goal, 'G');
   }
 
+  /** Line checks of the last events (blocked ones red) and the cell being
+   *  expanded, while the search plays. */
+  private searchOverlay(p: SearchPlayback): void {
+    const ctx = this.ctx;
+    const lines = p.recentLines(48);
+    ctx.lineWidth = Math.min(3, Math.max(1, this.view.scale * 0.15));
+    for (const [c0, r0, c1, r1, clear] of lines) {
+      const [x0, y0] = this.centre(c0, r0);
+      const [x1, y1] = this.centre(c1, r1);
+      ctx.beginPath();
+      ctx.moveTo(x0, y0);
+      ctx.lineTo(x1, y1);
+      ctx.strokeStyle = clear ? SEARCH_CSS.lineClear : SEARCH_CSS.lineBlocked;
+      ctx.stroke();
+    }
+    const cur = p.expanding();
+    if (cur) {
+      const [x, y] = this.centre(cur[0], cur[1]);
+      const s = Math.max(7, this.view.scale);
+      ctx.fillStyle = SEARCH_CSS.current;
+      ctx.fillRect(x - s / 2, y - s / 2, s, s);
+    }
+  }
+
   private gridLines(): void {
     const ctx = this.ctx;
     const { scale, ox, oy } = this.view;
@@ -354,7 +392,7 @@ export class MapView {
     if (!cell) return;
     const ctx = this.ctx;
     const [x, y] = this.centre(cell[0], cell[1]);
-    const rad = Math.min(13, Math.max(6, this.view.scale * 0.6));
+    const rad = this.markerRadius();
     ctx.beginPath();
     ctx.arc(x, y, rad, 0, Math.PI * 2);
     ctx.fillStyle = color;

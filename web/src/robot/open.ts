@@ -6,6 +6,7 @@
 import presets from 'virtual:robot-presets';
 import { applyRun, runParams, variantParams } from '../shell/runlink';
 import { loadVariant } from '../shell/variant';
+import { rosImageName } from '../../pkg/planlab_wasm.js';
 import { loadPresetFiles, mapFilesOf, type MapFiles } from '../shell/scenario-files';
 import { messageOf } from '../shell/dom';
 
@@ -23,7 +24,7 @@ export interface OpenHost {
 /** Preset `file` of the site, its text passed through `edit`. */
 export async function loadPreset(host: OpenHost, file: string, edit: (text: string) => string = (t) => t): Promise<void> {
   try {
-    const { text, files } = await loadPresetFiles(file);
+    const { text, files } = await loadPresetFiles(file, rosImageName);
     host.load(edit(text), file, files);
   } catch (e) {
     throw new Error(`${file}: ${messageOf(e)}`);
@@ -54,7 +55,7 @@ export async function openFirst(host: OpenHost): Promise<void> {
     if (variant) {
       const v = await loadVariant(variant);
       const label = `${variant.exp} variant ${variant.k} (${variant.as})`;
-      host.load(v.text, label, await mapFilesOf(v.text, new URL(`scenarios/${first}`, document.baseURI)));
+      host.load(v.text, label, await mapFilesOf(v.text, new URL(`scenarios/${first}`, document.baseURI), rosImageName));
       document.body.dataset.variant = String(variant.k);
       if (link.run) host.play();
       return;

@@ -5,6 +5,7 @@
 // with their paper sections (docs/algorithms.md).
 
 import type { HelpContent, HelpParam, HelpPlanner } from './help';
+import { plannerLabel } from './grid-planners';
 
 /** The registry's planner info as the robot page receives it from wasm. */
 export interface RegistryPlanner {
@@ -63,6 +64,14 @@ export function robotHelp(planners: RegistryPlanner[], current: string): HelpCon
   };
 }
 
+/** A grid planner as the core describes it (wasm `gridAlgorithms()`). */
+export interface CorePlanner {
+  name: string;
+  optimal: boolean;
+  reference: string;
+  summary: string;
+}
+
 const GRID_PLANNERS: HelpPlanner[] = [
   { name: 'A*', paper: '[T] Wu 2022 §3.2.1, eq 3-6', summary: 'Best-first search on f = g + h with a weight w on h (w = 1 is optimal). Diagonal moves cost √2 and may not cut corners by default (the Moving AI rule).' },
   { name: 'Dijkstra', paper: 'baseline (not in the papers)', summary: 'A* with h = 0: optimal, expands every cell cheaper than the goal.' },
@@ -72,13 +81,31 @@ const GRID_PLANNERS: HelpPlanner[] = [
   { name: 'Bottom-Up segmentation', paper: '[S] Ge & Li 2022 §4.1, Fig 6', summary: "Keogh's Bottom-Up: merges adjacent path segments while the merged segment's largest perpendicular error stays below ε and it stays collision-free; the segment ends are the feature nodes (80 → 7 in [S] Fig 6)." },
 ];
 
+/** Post-processing steps the grid page offers beside the planners. */
+const GRID_EXTRAS = GRID_PLANNERS.slice(-2);
+
+/** The grid planners' help: the core's reference and plain-language
+ *  summary for each (`Algorithm::ALL`), then key points and Bottom-Up;
+ *  without the core's list, the fixed entries above. */
+export function gridPlannerHelp(core: CorePlanner[] = []): HelpPlanner[] {
+  if (!core.length) return GRID_PLANNERS;
+  return [
+    ...core.map((p) => ({
+      name: plannerLabel(p.name),
+      paper: p.reference,
+      summary: `${p.summary}${p.optimal ? '' : ' (Not optimal: its path can be longer than the shortest.)'}`,
+    })),
+    ...GRID_EXTRAS,
+  ];
+}
+
 /** The grid page (index.html). */
-export function gridHelp(): HelpContent {
+export function gridHelp(core: CorePlanner[] = []): HelpContent {
   return {
     page: 'grid',
     intro:
-      'The grid page plans global paths on an occupancy grid: Moving AI maps, ROS maps or scenario files. Place the start and goal, paint walls, and every change replans at once; the expanded cells, the path, its key points or feature nodes and the planner statistics are shown.',
-    planners: GRID_PLANNERS,
+      'The grid page plans global paths on an occupancy grid: Moving AI maps, ROS maps or scenario files. Place the start and goal (drag the S and G markers), paint walls, and every change replans at once. Press Play to watch the search: green cells are open (reached, waiting), blue cells closed (expanded), the orange square is the cell being expanded, violet lines are straight-line checks (JPS jump scans, Theta* line of sight; red when blocked), and the path appears when the search has played out. Step with , and . or drag the scrubber; hover a cell for its g, h, f, parent and the steps it was opened and expanded at. With D* Lite, painting a wall repairs the plan instead of starting over: the status line says how many cells the repair expanded against a fresh A*.',
+    planners: gridPlannerHelp(core),
     params: [
       { name: 'Heuristic', unit: 'cells', default: 'octile', doc: 'A* / JPS distance estimate: octile (exact on 8-connected grids), Euclidean, Manhattan, Chebyshev or zero.' },
       { name: 'Weight', unit: '—', default: 1, doc: 'w in f = g + w·h; above 1 the search is faster and the path at most w times longer.' },
@@ -95,6 +122,9 @@ export function gridHelp(): HelpContent {
       { keys: 'W', action: 'tool: paint walls' },
       { keys: 'E', action: 'tool: erase walls' },
       { keys: 'F', action: 'fit the map into the view' },
+      { keys: 'Space', action: 'play / pause the search' },
+      { keys: ', / .', action: 'one search event back / forward' },
+      { keys: 'drag S or G', action: 'move the start or goal; replans live' },
       { keys: 'Shift + click', action: 'place the goal with any tool' },
       { keys: 'wheel', action: 'zoom' },
       { keys: 'right or middle drag', action: 'pan' },

@@ -2,9 +2,12 @@
 // builds a SimHandle: a preset from the site's ./scenarios/ (its map file,
 // and a ROS yaml's image, fetched relative to it), or the files a person
 // picked (the .json plus the map files among them). Map files are keyed by
-// base name, as SimHandle.fromScenario looks them up.
+// base name, as SimHandle.fromScenario looks them up. The ROS yaml's image
+// name comes from the caller's wasm module (`rosImageName`): the grid page
+// loads another module than the robot page, and this file imports neither.
 
-import { rosImageName } from '../../pkg/planlab_wasm.js';
+/** The core's reader of a ROS yaml's `image:` (each page's wasm module). */
+export type ImageNameOf = (yaml: string) => string;
 
 export type MapFiles = Record<string, Uint8Array>;
 
@@ -41,7 +44,7 @@ export const baseName = (p: string): string => p.split(/[\\/]/).pop() ?? p;
 /** The map files scenario `text` refers to, fetched relative to its URL
  *  (none for an inline map; JSON errors are left to SimHandle, which
  *  reports them with their position). */
-export async function mapFilesOf(text: string, scenarioUrl: URL): Promise<MapFiles> {
+export async function mapFilesOf(text: string, scenarioUrl: URL, rosImageName: ImageNameOf): Promise<MapFiles> {
   let ref: unknown;
   try {
     ref = (JSON.parse(text) as { map?: { file?: unknown } }).map?.file;
@@ -60,10 +63,10 @@ export async function mapFilesOf(text: string, scenarioUrl: URL): Promise<MapFil
 }
 
 /** A preset of the site (`scenarios/FILE`) with its map files. */
-export async function loadPresetFiles(file: string): Promise<{ text: string; files: MapFiles }> {
+export async function loadPresetFiles(file: string, rosImageName: ImageNameOf): Promise<{ text: string; files: MapFiles }> {
   const url = new URL(`scenarios/${file}`, document.baseURI);
   const text = await fetchText(url);
-  return { text, files: await mapFilesOf(text, url) };
+  return { text, files: await mapFilesOf(text, url, rosImageName) };
 }
 
 /** Picked files: the scenario .json and the others as map files; null when

@@ -25,12 +25,16 @@
 //! assert_eq!(path.cost, 5.0);
 //! ```
 
+use super::events::emit;
 use super::search::{
-    check_size, dir_index, finish, improves, trivial_path, with_space, xy, Estimate,
+    cells, check_size, dir_index, finish, improves, trivial_path, with_space, xy, Estimate,
     FixedHeuristic, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DIAG, G_MASK, G_SHIFT,
     OPEN, STRAIGHT,
 };
-use super::{check_weight, Diagonal, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
+use super::{
+    check_weight, Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent,
+    SearchObserver,
+};
 use serde::{Deserialize, Serialize};
 
 /// A* settings.
@@ -86,13 +90,16 @@ impl AStar {
     }
 }
 
-impl GridPlanner for AStar {
-    fn plan_recording(
+super::grid_planner_via_search!(AStar);
+
+impl AStar {
+    /// The search, reporting its events to `obs` (`()`: none, at no cost).
+    pub fn search<O: SearchObserver + ?Sized>(
         &self,
         grid: &PlanGrid,
         start: GridPos,
         goal: GridPos,
-        expanded: Option<&mut Vec<GridPos>>,
+        obs: &mut O,
     ) -> Result<Path, PlanError> {
         grid.check_endpoints(start, goal)?;
         check_size(grid)?;
@@ -106,7 +113,7 @@ impl GridPlanner for AStar {
                 start,
                 goal,
                 space,
-                record: expanded,
+                obs,
             };
             match (c.heuristic, c.weight == 1.0) {
                 (Heuristic::Octile, true) => by_rule(q, c.diagonal, OctileEstimate),
@@ -118,12 +125,12 @@ impl GridPlanner for AStar {
 }
 
 /// One search's inputs.
-struct Query<'a> {
+struct Query<'a, O: ?Sized> {
     grid: &'a PlanGrid,
     start: GridPos,
     goal: GridPos,
     space: &'a mut SearchSpace,
-    record: Option<&'a mut Vec<GridPos>>,
+    obs: &'a mut O,
 }
 
 const NEVER: u8 = 0;
@@ -131,12 +138,16 @@ const NO_CORNER_CUTTING: u8 = 1;
 const ONE_SIDE_FREE: u8 = 2;
 const ALWAYS: u8 = 3;
 
-fn by_rule<E: Estimate>(q: Query<'_>, diagonal: Diagonal, est: E) -> Result<Path, PlanError> {
+fn by_rule<E: Estimate, O: SearchObserver + ?Sized>(
+    q: Query<'_, O>,
+    diagonal: Diagonal,
+    est: E,
+) -> Result<Path, PlanError> {
     match diagonal {
-        Diagonal::Never => run::<E, NEVER>(q, est),
-        Diagonal::NoCornerCutting => run::<E, NO_CORNER_CUTTING>(q, est),
-        Diagonal::OneSideFree => run::<E, ONE_SIDE_FREE>(q, est),
-        Diagonal::Always => run::<E, ALWAYS>(q, est),
+        Diagonal::Never => run::<E, NEVER, O>(q, est),
+        Diagonal::NoCornerCutting => run::<E, NO_CORNER_CUTTING, O>(q, est),
+        Diagonal::OneSideFree => run::<E, ONE_SIDE_FREE, O>(q, est),
+        Diagonal::Always => run::<E, ALWAYS, O>(q, est),
     }
 }
 
@@ -153,13 +164,16 @@ fn diagonal_ok<const RULE: u8>(side_a: bool, side_b: bool, target: bool) -> bool
         }
 }
 
-fn run<E: Estimate, const RULE: u8>(q: Query<'_>, est: E) -> Result<Path, PlanError> {
+fn run<E: Estimate, const RULE: u8, O: SearchObserver + ?Sized>(
+    q: Query<'_, O>,
+    est: E,
+) -> Result<Path, PlanError> {
     let Query {
         grid,
         start,
         goal,
         space,
-        record,
+        obs,
     } = q;
     let s = grid.padded_index(start);
     let t = grid.padded_index(goal);
@@ -172,9 +186,9 @@ fn run<E: Estimate, const RULE: u8>(q: Query<'_>, est: E) -> Result<Path, PlanEr
         ..
     } = &mut *space;
     let (reached, expanded) = if E::MONOTONE {
-        search::<E, RULE, _>(grid, s, t, words, radix, tag, est, record)
+        search::<E, RULE, _, O>(grid, s, t, words, radix, tag, est, obs)
     } else {
-        search::<E, RULE, _>(grid, s, t, words, binary, tag, est, record)
+        search::<E, RULE, _, O>(grid, s, t, words, binary, tag, est, obs)
     };
     finish(grid, space, (s, t), reached, expanded)
 }
@@ -182,7 +196,7 @@ fn run<E: Estimate, const RULE: u8>(q: Query<'_>, est: E) -> Result<Path, PlanEr
 /// The A* loop: whether `t` was reached, and how many cells were expanded.
 /// `tag` is the open word of cost 0 (see [`SearchSpace::open_word`]).
 #[allow(clippy::too_many_arguments)]
-fn search<E: Estimate, const RULE: u8, Q: OpenList>(
+fn search<E: Estimate, const RULE: u8, Q: OpenList, O: SearchObserver + ?Sized>(
     grid: &PlanGrid,
     s: usize,
     t: usize,
@@ -190,7 +204,7 @@ fn search<E: Estimate, const RULE: u8, Q: OpenList>(
     open: &mut Q,
     tag: u64,
     est: E,
-    mut record: Option<&mut Vec<GridPos>>,
+    obs: &mut O,
 ) -> (bool, usize) {
     let free = grid.padded();
     let stride = grid.stride();
@@ -201,7 +215,14 @@ fn search<E: Estimate, const RULE: u8, Q: OpenList>(
         *w = tag;
     }
     let (sx, sy) = xy(s, stride);
-    open.push(est.h(sx.abs_diff(gx), sy.abs_diff(gy)), 0, s);
+    let h0 = est.h(sx.abs_diff(gx), sy.abs_diff(gy));
+    open.push(h0, 0, s);
+    emit(obs, || SearchEvent::Open {
+        cell: grid.pos_of(s),
+        parent: None,
+        g: 0.0,
+        h: est.unweighted_cells(h0),
+    });
 
     let mut expanded = 0usize;
     while let Some(i) = open.pop() {
@@ -213,9 +234,9 @@ fn search<E: Estimate, const RULE: u8, Q: OpenList>(
         *w &= !OPEN;
         let g = (*w >> G_SHIFT) & G_MASK;
         expanded += 1;
-        if let Some(r) = record.as_deref_mut() {
-            r.push(grid.pos_of(i));
-        }
+        emit(obs, || SearchEvent::Close {
+            cell: grid.pos_of(i),
+        });
         if i == t {
             return (true, expanded);
         }
@@ -239,6 +260,12 @@ fn search<E: Estimate, const RULE: u8, Q: OpenList>(
                         *old = new;
                         let h = est.h(($nx).abs_diff(gx), ($ny).abs_diff(gy));
                         open.push(ng.saturating_add(h), ng, j);
+                        emit(obs, || SearchEvent::Open {
+                            cell: grid.pos_of(j),
+                            parent: Some(grid.pos_of(i)),
+                            g: cells(ng),
+                            h: est.unweighted_cells(h),
+                        });
                     }
                 }
             }};
@@ -277,6 +304,7 @@ fn search<E: Estimate, const RULE: u8, Q: OpenList>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::global::GridPlanner;
     use crate::map::OccupancyGrid;
 
     fn grid(text: &str) -> PlanGrid {

@@ -23,8 +23,9 @@
 //!   errors in time linear in their segment's length, so the worst case is
 //!   O(n²) and typical paths run in O(n log n).
 
+use super::events::emit;
 use super::keypoints::segment_free;
-use super::{Diagonal, GridPos, PlanError, PlanGrid};
+use super::{Diagonal, GridPos, PlanError, PlanGrid, SearchEvent, SearchObserver};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -115,6 +116,20 @@ pub fn bottom_up(
     max_error: f64,
     diagonal: Diagonal,
 ) -> Result<Vec<GridPos>, PlanError> {
+    bottom_up_observed(grid, cells, max_error, diagonal, &mut ())
+}
+
+/// As [`bottom_up`], reporting each segment check as a [`SearchEvent::Line`].
+///
+/// # Errors
+/// As [`bottom_up`].
+pub fn bottom_up_observed<O: SearchObserver + ?Sized>(
+    grid: &PlanGrid,
+    cells: &[GridPos],
+    max_error: f64,
+    diagonal: Diagonal,
+    obs: &mut O,
+) -> Result<Vec<GridPos>, PlanError> {
     if !(max_error.is_finite() && max_error >= 0.0) {
         return Err(PlanError::InvalidConfig(format!(
             "Bottom-Up max_error {max_error} must be a finite number ≥ 0 (cells)"
@@ -150,7 +165,13 @@ pub fn bottom_up(
             break; // every live candidate costs at least this much
         }
         let (a, b) = (prev[idx], next[idx]);
-        if !segment_free(grid, cells[a], cells[b], diagonal) {
+        let clear = segment_free(grid, cells[a], cells[b], diagonal);
+        emit(obs, || SearchEvent::Line {
+            from: cells[a],
+            to: cells[b],
+            clear,
+        });
+        if !clear {
             continue; // re-queued only if a neighbour's merge changes a or b
         }
         alive[idx] = false;

@@ -6,9 +6,11 @@
 //! This is *online* JPS: no preprocessing. Straight jumps scan 64 cells per
 //! step over the bit-packed rows (horizontal) and columns (vertical) that
 //! [`PlanGrid`] keeps beside its bitmap; diagonal jumps step cell by cell and
-//! run the two straight scans at each step. Only the Moving AI move rule
-//! ([`Diagonal::NoCornerCutting`]) is implemented; other rules are refused
-//! with [`PlanError::InvalidConfig`] (use A* for them).
+//! run the two straight scans at each step. Two move rules are implemented:
+//! the Moving AI rule ([`Diagonal::NoCornerCutting`]), and 4-connected moves
+//! ([`Diagonal::Never`], the cell-by-cell jumps of
+//! [`super::classic`]); the corner-cutting rules are refused with
+//! [`PlanError::InvalidConfig`] (use A* for them).
 //!
 //! [`Path::cells`] lists every cell: each jump is expanded into its
 //! intermediate cells, so consecutive cells are one legal move apart.
@@ -29,12 +31,14 @@
 //! assert!((path.cost - 7.0).abs() < 1e-9);
 //! ```
 
+use super::classic::jps4;
+use super::events::emit;
 use super::search::{
-    check_size, dir_index, finish, improves, trivial_path, with_space, xy, Estimate,
+    cells, check_size, dir_index, finish, improves, trivial_path, with_space, xy, Estimate,
     FixedHeuristic, LineBits, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DIAG, DIRS,
     DIR_MASK, G_MASK, G_SHIFT, OPEN, STRAIGHT,
 };
-use super::{Diagonal, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
+use super::{Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent, SearchObserver};
 use serde::{Deserialize, Serialize};
 
 /// Jump Point Search settings.
@@ -43,8 +47,8 @@ use serde::{Deserialize, Serialize};
 pub struct JpsConfig {
     /// Distance estimate to the goal (cells); octile by default.
     pub heuristic: Heuristic,
-    /// Diagonal rule; only [`Diagonal::NoCornerCutting`] (the default) is
-    /// supported.
+    /// Diagonal rule: [`Diagonal::NoCornerCutting`] (the default) or
+    /// [`Diagonal::Never`].
     pub diagonal: Diagonal,
 }
 
@@ -64,12 +68,14 @@ pub struct Jps {
 }
 
 impl Jps {
-    /// A JPS planner; refuses diagonal rules other than no corner cutting.
+    /// A JPS planner for 8-connected moves without corner cutting or for
+    /// 4-connected moves ([`Diagonal::Never`]); refuses the corner-cutting
+    /// rules, whose forced-neighbour conditions differ.
     pub fn new(config: JpsConfig) -> Result<Self, PlanError> {
-        if config.diagonal != Diagonal::NoCornerCutting {
+        if matches!(config.diagonal, Diagonal::OneSideFree | Diagonal::Always) {
             return Err(PlanError::InvalidConfig(format!(
-                "jump point search supports only the no_corner_cutting diagonal rule, \
-                 not {:?}; use A* for other move rules",
+                "jump point search supports the no_corner_cutting and never diagonal rules, \
+                 not {:?}; use A* for moves that cut corners",
                 config.diagonal
             )));
         }
@@ -82,14 +88,22 @@ impl Jps {
     }
 }
 
-impl GridPlanner for Jps {
-    fn plan_recording(
+super::grid_planner_via_search!(Jps);
+
+impl Jps {
+    /// The search, reporting its events to `obs` (`()`: none, at no cost):
+    /// every expanded jump point, every jump point opened, and every jump
+    /// scan as a [`SearchEvent::Line`].
+    pub fn search<O: SearchObserver + ?Sized>(
         &self,
         grid: &PlanGrid,
         start: GridPos,
         goal: GridPos,
-        expanded: Option<&mut Vec<GridPos>>,
+        obs: &mut O,
     ) -> Result<Path, PlanError> {
+        if self.config.diagonal == Diagonal::Never {
+            return jps4(grid, start, goal, self.config.heuristic, obs);
+        }
         grid.check_endpoints(start, goal)?;
         check_size(grid)?;
         if start == goal {
@@ -97,16 +111,9 @@ impl GridPlanner for Jps {
         }
         let heuristic = self.config.heuristic;
         with_space(|space| match heuristic {
-            Heuristic::Octile => run(grid, start, goal, space, expanded, OctileEstimate),
-            Heuristic::Zero => run(grid, start, goal, space, expanded, ZeroEstimate),
-            h => run(
-                grid,
-                start,
-                goal,
-                space,
-                expanded,
-                FixedHeuristic::new(h, 1.0),
-            ),
+            Heuristic::Octile => run(grid, start, goal, space, obs, OctileEstimate),
+            Heuristic::Zero => run(grid, start, goal, space, obs, ZeroEstimate),
+            h => run(grid, start, goal, space, obs, FixedHeuristic::new(h, 1.0)),
         })
     }
 }
@@ -154,8 +161,15 @@ impl Jumper<'_> {
     }
 }
 
+/// Map cell of a padded index (free cells are interior, so no wrap).
+#[inline(always)]
+fn padded_pos(i: usize, stride: usize) -> GridPos {
+    let (x, y) = xy(i, stride);
+    GridPos::new(x.wrapping_sub(1) as u32, y.wrapping_sub(1) as u32)
+}
+
 /// One search's mutable state.
-struct Search<'a, E, Q> {
+struct Search<'a, E, Q, O: ?Sized> {
     jumper: Jumper<'a>,
     words: &'a mut [u64],
     open: &'a mut Q,
@@ -164,13 +178,15 @@ struct Search<'a, E, Q> {
     est: E,
     /// `f` of the node being expanded.
     f_now: u64,
+    obs: &'a mut O,
 }
 
-impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
+impl<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Search<'_, E, Q, O> {
     /// Records cell `j` at `(jx, jy)` reached at cost `g` by a move in
-    /// direction `dir`, and opens it, if that improves on what it has.
+    /// direction `dir` from the jump that started at padded cell `parent`,
+    /// and opens it, if that improves on what it has.
     #[inline(always)]
-    fn relax(&mut self, j: usize, jx: usize, jy: usize, g: u64, dir: u64) {
+    fn relax(&mut self, j: usize, jx: usize, jy: usize, g: u64, dir: u64, parent: usize) {
         let new = self.tag | g << G_SHIFT | dir;
         if let Some(old) = self.words.get_mut(j) {
             if improves(*old, new) {
@@ -178,7 +194,58 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
                 let (gx, gy) = (self.jumper.gx, self.jumper.gy);
                 let h = self.est.h(jx.abs_diff(gx), jy.abs_diff(gy));
                 self.open.push(g.saturating_add(h), g, j);
+                let stride = self.jumper.stride;
+                emit(self.obs, || SearchEvent::Open {
+                    cell: padded_pos(j, stride),
+                    parent: Some(padded_pos(parent, stride)),
+                    g: cells(g),
+                    h: cells(h),
+                });
             }
+        }
+    }
+
+    /// Reports the straight scan from padded `(x, y)` along `(dx, dy)` that
+    /// found `found` (a position along the line) or ran into an obstacle.
+    #[inline(always)]
+    fn scan_event(&mut self, x: usize, y: usize, dx: isize, dy: isize, found: Option<usize>) {
+        if !self.obs.enabled() {
+            return;
+        }
+        let stride = self.jumper.stride;
+        let (tx, ty) = match found {
+            Some(k) if dy == 0 => (k, y),
+            Some(k) => (x, k),
+            None => {
+                // The last free cell before the obstacle.
+                let (mut tx, mut ty) = (x, y);
+                while self
+                    .jumper
+                    .free((ty.wrapping_add_signed(dy)) * stride + tx.wrapping_add_signed(dx))
+                {
+                    tx = tx.wrapping_add_signed(dx);
+                    ty = ty.wrapping_add_signed(dy);
+                }
+                (tx, ty)
+            }
+        };
+        self.obs.event(SearchEvent::Line {
+            from: padded_pos(y * stride + x, stride),
+            to: padded_pos(ty * stride + tx, stride),
+            clear: found.is_some(),
+        });
+    }
+
+    /// Reports a diagonal jump from padded cell `from` to `to`.
+    #[inline(always)]
+    fn diagonal_event(&mut self, from: usize, to: usize, clear: bool) {
+        let stride = self.jumper.stride;
+        if from != to {
+            emit(self.obs, || SearchEvent::Line {
+                from: padded_pos(from, stride),
+                to: padded_pos(to, stride),
+                clear,
+            });
         }
     }
 
@@ -191,12 +258,16 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
         let mut corners = 0usize;
         loop {
             let (j, jx, jy, jg) = if dy == 0 {
-                let Some(jx) = self.jumper.horizontal(x, y, dx) else {
+                let found = self.jumper.horizontal(x, y, dx);
+                self.scan_event(x, y, dx, dy, found);
+                let Some(jx) = found else {
                     return;
                 };
                 (y * stride + jx, jx, y, g + STRAIGHT * jx.abs_diff(x) as u64)
             } else {
-                let Some(jy) = self.jumper.vertical(x, y, dy) else {
+                let found = self.jumper.vertical(x, y, dy);
+                self.scan_event(x, y, dx, dy, found);
+                let Some(jy) = found else {
                     return;
                 };
                 (jy * stride + x, x, jy, g + STRAIGHT * jy.abs_diff(y) as u64)
@@ -224,7 +295,7 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
                     continue;
                 }
             }
-            self.relax(j, jx, jy, jg, dir);
+            self.relax(j, jx, jy, jg, dir, y * stride + x);
             return;
         }
     }
@@ -251,11 +322,13 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
         let (stride, t) = (self.jumper.stride, self.jumper.t);
         let step_y = DY * stride as isize;
         let (mut x, mut y, mut n) = (x, y, 0u64);
-        let mut i = y * stride + x;
+        let from = y * stride + x;
+        let mut i = from;
         loop {
             let side_x = i.wrapping_add_signed(DX);
             let next = side_x.wrapping_add_signed(step_y);
             if !(free(side_x) && free(i.wrapping_add_signed(step_y)) && free(next)) {
+                self.diagonal_event(from, i, false);
                 return;
             }
             i = next;
@@ -266,22 +339,28 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
                 break;
             }
             let h = self.jumper.horizontal(x, y, DX);
+            self.scan_event(x, y, DX, 0, h);
             let v = self.jumper.vertical(x, y, DY);
+            self.scan_event(x, y, 0, DY, v);
             if (h.is_some() || v.is_some())
-                && !self.diagonal_hit::<DX, DY>(i, x, y, g + n * DIAG, h, v)
+                && !self.diagonal_hit::<DX, DY>(i, x, y, g + n * DIAG, h, v, from)
             {
+                self.diagonal_event(from, i, true);
                 return;
             }
         }
-        self.relax(i, x, y, g + n * DIAG, dir_index(DX, DY));
+        self.diagonal_event(from, i, true);
+        self.relax(i, x, y, g + n * DIAG, dir_index(DX, DY), from);
     }
 
     /// A jump point `i` = `(x, y)` (cost `g`) of a diagonal jump, where the
     /// straight jumps found `h` (a column) and/or `v` (a row): relaxes
     /// those, then records the cell and returns whether the jump goes on
     /// past it, or queues it and returns `false` (see [`Search::diagonal`]).
-    /// Kept out of line so the sweep stays tight.
+    /// `from`: where the diagonal jump started. Kept out of line so the
+    /// sweep stays tight.
     #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
     fn diagonal_hit<const DX: isize, const DY: isize>(
         &mut self,
         i: usize,
@@ -290,15 +369,16 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
         g: u64,
         h: Option<usize>,
         v: Option<usize>,
+        from: usize,
     ) -> bool {
         let stride = self.jumper.stride;
         if let Some(jx) = h {
             let cost = STRAIGHT * jx.abs_diff(x) as u64;
-            self.relax(y * stride + jx, jx, y, g + cost, dir_index(DX, 0));
+            self.relax(y * stride + jx, jx, y, g + cost, dir_index(DX, 0), i);
         }
         if let Some(jy) = v {
             let cost = STRAIGHT * jy.abs_diff(y) as u64;
-            self.relax(jy * stride + x, x, jy, g + cost, dir_index(0, DY));
+            self.relax(jy * stride + x, x, jy, g + cost, dir_index(0, DY), i);
         }
         let (gx, gy) = (self.jumper.gx, self.jumper.gy);
         let f = g.saturating_add(self.est.h(x.abs_diff(gx), y.abs_diff(gy)));
@@ -307,7 +387,7 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
             // reached as cheaply (or expanded).
             self.mark(i, g, dir_index(DX, DY))
         } else {
-            self.relax(i, x, y, g, dir_index(DX, DY));
+            self.relax(i, x, y, g, dir_index(DX, DY), from);
             false
         }
     }
@@ -387,12 +467,12 @@ impl<E: Estimate, Q: OpenList> Search<'_, E, Q> {
     }
 }
 
-fn run<E: Estimate>(
+fn run<E: Estimate, O: SearchObserver + ?Sized>(
     grid: &PlanGrid,
     start: GridPos,
     goal: GridPos,
     space: &mut SearchSpace,
-    record: Option<&mut Vec<GridPos>>,
+    obs: &mut O,
     est: E,
 ) -> Result<Path, PlanError> {
     space.reset(grid.padded().len());
@@ -405,9 +485,9 @@ fn run<E: Estimate>(
         ..
     } = &mut *space;
     let (reached, expanded) = if E::MONOTONE {
-        search(grid, s, t, words, radix, tag, est, record)
+        search(grid, s, t, words, radix, tag, est, obs)
     } else {
-        search(grid, s, t, words, binary, tag, est, record)
+        search(grid, s, t, words, binary, tag, est, obs)
     };
     finish(grid, space, (s, t), reached, expanded)
 }
@@ -415,7 +495,7 @@ fn run<E: Estimate>(
 /// The JPS loop: whether `t` was reached, and how many jump points were
 /// expanded.
 #[allow(clippy::too_many_arguments)]
-fn search<E: Estimate, Q: OpenList>(
+fn search<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized>(
     grid: &PlanGrid,
     s: usize,
     t: usize,
@@ -423,7 +503,7 @@ fn search<E: Estimate, Q: OpenList>(
     open: &mut Q,
     tag: u64,
     est: E,
-    mut record: Option<&mut Vec<GridPos>>,
+    obs: &mut O,
 ) -> (bool, usize) {
     let stride = grid.stride();
     let (gx, gy) = xy(t, stride);
@@ -441,14 +521,20 @@ fn search<E: Estimate, Q: OpenList>(
         tag,
         est,
         f_now: 0,
+        obs,
     };
     if let Some(w) = search.words.get_mut(s) {
         *w = tag;
     }
     let (sx, sy) = xy(s, stride);
-    search
-        .open
-        .push(est.h(sx.abs_diff(gx), sy.abs_diff(gy)), 0, s);
+    let h0 = est.h(sx.abs_diff(gx), sy.abs_diff(gy));
+    search.open.push(h0, 0, s);
+    emit(search.obs, || SearchEvent::Open {
+        cell: grid.pos_of(s),
+        parent: None,
+        g: 0.0,
+        h: cells(h0),
+    });
 
     let mut expanded = 0usize;
     while let Some(i) = search.open.pop() {
@@ -462,9 +548,9 @@ fn search<E: Estimate, Q: OpenList>(
         *w &= !OPEN;
         let (g, dir) = ((*w >> G_SHIFT) & G_MASK, *w & DIR_MASK);
         expanded += 1;
-        if let Some(r) = record.as_deref_mut() {
-            r.push(grid.pos_of(i));
-        }
+        emit(search.obs, || SearchEvent::Close {
+            cell: grid.pos_of(i),
+        });
         if i == t {
             return (true, expanded);
         }
@@ -479,6 +565,7 @@ fn search<E: Estimate, Q: OpenList>(
 mod tests {
     use super::*;
     use crate::global::astar::AStar;
+    use crate::global::GridPlanner;
     use crate::map::OccupancyGrid;
 
     fn grid(text: &str) -> PlanGrid {
@@ -510,7 +597,7 @@ mod tests {
 
     #[test]
     fn refuses_other_move_rules() {
-        for diagonal in [Diagonal::Never, Diagonal::OneSideFree, Diagonal::Always] {
+        for diagonal in [Diagonal::OneSideFree, Diagonal::Always] {
             let err = Jps::new(JpsConfig {
                 diagonal,
                 ..JpsConfig::default()

@@ -16,7 +16,8 @@
 //! free, so a removal is seen at once by the next test. Sweeps repeat until
 //! one removes nothing. Start and goal are never removed.
 
-use super::{Diagonal, GridPos, PlanGrid};
+use super::events::emit;
+use super::{Diagonal, GridPos, PlanGrid, SearchEvent, SearchObserver};
 
 /// `b − a` reduced by the gcd of its components, so steps of (2, 0) and
 /// (1, 0) — or (4, 2) and (2, 1) — count as the same direction; (0, 0) for a
@@ -82,6 +83,16 @@ pub fn turning_points(cells: &[GridPos]) -> Vec<GridPos> {
 /// collision-free input gives a collision-free output. Fewer than three
 /// points are returned unchanged.
 pub fn prune(grid: &PlanGrid, points: &[GridPos], diagonal: Diagonal) -> Vec<GridPos> {
+    prune_observed(grid, points, diagonal, &mut ())
+}
+
+/// As [`prune`], reporting each segment check as a [`SearchEvent::Line`].
+pub fn prune_observed<O: SearchObserver + ?Sized>(
+    grid: &PlanGrid,
+    points: &[GridPos],
+    diagonal: Diagonal,
+    obs: &mut O,
+) -> Vec<GridPos> {
     let mut pts = points.to_vec();
     loop {
         if pts.len() < 3 {
@@ -93,7 +104,13 @@ pub fn prune(grid: &PlanGrid, points: &[GridPos], diagonal: Diagonal) -> Vec<Gri
         for w in pts.windows(3) {
             // The last point kept before w[1]: w[0] unless w[0] was removed.
             let prev = kept.last().copied().unwrap_or(w[0]);
-            if segment_free(grid, prev, w[2], diagonal) {
+            let clear = segment_free(grid, prev, w[2], diagonal);
+            emit(obs, || SearchEvent::Line {
+                from: prev,
+                to: w[2],
+                clear,
+            });
+            if clear {
                 removed = true;
             } else {
                 kept.push(w[1]);
@@ -112,6 +129,16 @@ pub fn prune(grid: &PlanGrid, points: &[GridPos], diagonal: Diagonal) -> Vec<Gri
 /// Both steps: [`prune`] applied to the [`turning_points`] of `cells`.
 pub fn key_points(grid: &PlanGrid, cells: &[GridPos], diagonal: Diagonal) -> Vec<GridPos> {
     prune(grid, &turning_points(cells), diagonal)
+}
+
+/// As [`key_points`], reporting each segment check as a [`SearchEvent::Line`].
+pub fn key_points_observed<O: SearchObserver + ?Sized>(
+    grid: &PlanGrid,
+    cells: &[GridPos],
+    diagonal: Diagonal,
+    obs: &mut O,
+) -> Vec<GridPos> {
+    prune_observed(grid, &turning_points(cells), diagonal, obs)
 }
 
 #[cfg(test)]

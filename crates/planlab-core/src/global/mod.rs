@@ -7,6 +7,9 @@
 
 pub mod astar;
 pub mod bottom_up;
+pub mod classic;
+pub mod dstar_lite;
+pub mod events;
 pub mod jps;
 pub mod keypoints;
 pub mod plan;
@@ -17,6 +20,7 @@ pub mod search;
 /// segments too); the planners' code names them from here as before.
 pub use crate::map::{supercover, supercover_while, GridPos};
 use crate::map::{Cell, OccupancyGrid};
+pub use events::{SearchEvent, SearchLog, SearchObserver};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -142,6 +146,18 @@ pub enum PlanError {
     /// A configuration value is out of range.
     #[error("invalid planner configuration: {}", crate::text::one_line(.0))]
     InvalidConfig(String),
+    /// The search stopped at its bound on work (IDA*), before finding a
+    /// path or proving there is none.
+    #[error(
+        "search limit reached: {expanded} expansions (limit {limit}) without a path; \
+         A* finds it with one expansion per cell"
+    )]
+    SearchLimit {
+        /// Nodes expanded when it stopped.
+        expanded: usize,
+        /// The bound.
+        limit: usize,
+    },
 }
 
 /// A planned grid path.
@@ -174,9 +190,22 @@ impl Path {
 /// What every grid planner offers.
 pub trait GridPlanner {
     /// A path from `start` to `goal`, or why there is none.
-    fn plan(&self, grid: &PlanGrid, start: GridPos, goal: GridPos) -> Result<Path, PlanError> {
-        self.plan_recording(grid, start, goal, None)
-    }
+    fn plan(&self, grid: &PlanGrid, start: GridPos, goal: GridPos) -> Result<Path, PlanError>;
+}
+
+/// A grid planner whose search can be watched. A trait of its own so that
+/// a `dyn GridPlanner` (what the robot pages and the batch runs plan with)
+/// does not pull the observed copy of every search into a wasm module.
+pub trait ObservedGridPlanner: GridPlanner {
+    /// As [`GridPlanner::plan`], reporting every search event to `obs`
+    /// (same path, cost and expansions as the plain search).
+    fn plan_observed(
+        &self,
+        grid: &PlanGrid,
+        start: GridPos,
+        goal: GridPos,
+        obs: &mut dyn SearchObserver,
+    ) -> Result<Path, PlanError>;
 
     /// As [`GridPlanner::plan`], and when `expanded` is given, pushes every
     /// expanded cell onto it in expansion order (for drawing the search).
@@ -186,8 +215,46 @@ pub trait GridPlanner {
         start: GridPos,
         goal: GridPos,
         expanded: Option<&mut Vec<GridPos>>,
-    ) -> Result<Path, PlanError>;
+    ) -> Result<Path, PlanError> {
+        match expanded {
+            None => self.plan(grid, start, goal),
+            Some(cells) => self.plan_observed(grid, start, goal, &mut events::ClosedCells(cells)),
+        }
+    }
 }
+
+/// Implements [`GridPlanner`] and [`ObservedGridPlanner`] for a planner
+/// with an inherent
+/// `fn search<O: SearchObserver + ?Sized>(&self, grid, start, goal, obs: &mut O)`:
+/// the plain search monomorphised for `()` (no events, full speed), the
+/// observed one for `dyn SearchObserver`.
+macro_rules! grid_planner_via_search {
+    ($t:ty) => {
+        impl $crate::global::GridPlanner for $t {
+            fn plan(
+                &self,
+                grid: &$crate::global::PlanGrid,
+                start: $crate::global::GridPos,
+                goal: $crate::global::GridPos,
+            ) -> Result<$crate::global::Path, $crate::global::PlanError> {
+                self.search(grid, start, goal, &mut ())
+            }
+        }
+
+        impl $crate::global::ObservedGridPlanner for $t {
+            fn plan_observed(
+                &self,
+                grid: &$crate::global::PlanGrid,
+                start: $crate::global::GridPos,
+                goal: $crate::global::GridPos,
+                obs: &mut dyn $crate::global::SearchObserver,
+            ) -> Result<$crate::global::Path, $crate::global::PlanError> {
+                self.search(grid, start, goal, obs)
+            }
+        }
+    };
+}
+pub(crate) use grid_planner_via_search;
 
 /// Passability of a map as planners see it: a row-major bitmap with a
 /// one-cell blocked border, so neighbour lookups need no bounds checks.

@@ -35,7 +35,8 @@
 //! shortest). [`SafeAStarConfig::admissible`] moves the safety term into the
 //! edge cost instead; see there.
 
-use super::{Diagonal, GridPlanner, GridPos, Heuristic, Path, PlanError, PlanGrid};
+use super::events::emit;
+use super::{Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent, SearchObserver};
 use serde::{Deserialize, Serialize};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -307,13 +308,18 @@ impl Ord for Open {
 
 const NO_PARENT: usize = usize::MAX;
 
-impl GridPlanner for SafeAStar {
-    fn plan_recording(
+super::grid_planner_via_search!(SafeAStar);
+
+impl SafeAStar {
+    /// The search, reporting its events to `obs` (`()`: none, at no cost).
+    /// Open events carry the search's own g (length plus safety terms when
+    /// admissible).
+    pub fn search<O: SearchObserver + ?Sized>(
         &self,
         grid: &PlanGrid,
         start: GridPos,
         goal: GridPos,
-        mut expanded: Option<&mut Vec<GridPos>>,
+        obs: &mut O,
     ) -> Result<Path, PlanError> {
         grid.check_endpoints(start, goal)?;
         let (w, h) = (grid.width(), grid.height());
@@ -339,6 +345,12 @@ impl GridPlanner for SafeAStar {
             h: h0,
             idx: si,
         });
+        emit(obs, || SearchEvent::Open {
+            cell: start,
+            parent: None,
+            g: 0.0,
+            h: h0,
+        });
         let mut n_expanded = 0usize;
         while let Some(Open { idx, .. }) = open.pop() {
             if closed[idx] {
@@ -348,9 +360,7 @@ impl GridPlanner for SafeAStar {
             n_expanded += 1;
             let (col, row) = (idx % w, idx / w);
             let here = GridPos::new(col as u32, row as u32);
-            if let Some(rec) = expanded.as_deref_mut() {
-                rec.push(here);
-            }
+            emit(obs, || SearchEvent::Close { cell: here });
             if idx == gi {
                 let mut cells = vec![here];
                 let mut cur = idx;
@@ -402,6 +412,12 @@ impl GridPlanner for SafeAStar {
                         f: tentative + hm + extra,
                         h: hm,
                         idx: mi,
+                    });
+                    emit(obs, || SearchEvent::Open {
+                        cell: next,
+                        parent: Some(here),
+                        g: tentative,
+                        h: hm,
                     });
                 }
             }

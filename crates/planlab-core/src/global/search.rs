@@ -424,6 +424,19 @@ pub(crate) trait Estimate: Copy {
 
     /// Estimate for absolute offsets `dx`, `dy` in cells.
     fn h(&self, dx: usize, dy: usize) -> u64;
+
+    /// An estimate from [`Estimate::h`] back in cells, without the weight
+    /// (what [`super::SearchEvent::Open`] reports).
+    #[inline(always)]
+    fn unweighted_cells(&self, h: u64) -> f64 {
+        cells(h)
+    }
+}
+
+/// A fixed-point cost in cells.
+#[inline(always)]
+pub(crate) fn cells(cost: u64) -> f64 {
+    cost as f64 / STRAIGHT as f64
 }
 
 /// Exact octile distance, weight 1.
@@ -456,6 +469,10 @@ impl Estimate for FixedHeuristic {
     #[inline(always)]
     fn h(&self, dx: usize, dy: usize) -> u64 {
         self.eval(dx, dy)
+    }
+
+    fn unweighted_cells(&self, h: u64) -> f64 {
+        cells(h) / self.weight
     }
 }
 

@@ -93,7 +93,7 @@ pub fn plan_route(
         .ok_or_else(|| no_path("no free cell near the start on the inflated map".into()))?;
     let g = snap(&plan_grid, g, ring)
         .ok_or_else(|| no_path("no free cell near the goal on the inflated map".into()))?;
-    let plan = plan_on_map(grid, s, g, options, false).map_err(|e| match e {
+    let plan = plan_on_map(grid, s, g, options).map_err(|e| match e {
         GridPlanError::Plan(p) => no_path(p.to_string()),
         other => no_path(other.to_string()),
     })?;

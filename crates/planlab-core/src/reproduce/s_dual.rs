@@ -71,7 +71,7 @@ pub fn feature_nodes_of(sc: &Scenario) -> Result<(usize, usize, bool), SimError>
             "start or goal off the map".into(),
         )));
     };
-    let plan = plan_on_map(&grid, s, g, &opts, false)
+    let plan = plan_on_map(&grid, s, g, &opts)
         .map_err(|e| SimError::Scenario(ScenarioError::Invalid(e.to_string())))?;
     let inflated = crate::global::plan::plan_grid_for(&grid, &opts)
         .map_err(|e| SimError::Scenario(ScenarioError::Invalid(e.to_string())))?;

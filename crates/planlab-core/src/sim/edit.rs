@@ -115,11 +115,11 @@ impl Episode {
             inflate_m: radius,
             ..Default::default()
         };
-        match plan_on_map(grid, s, g, &inflated, false) {
+        match plan_on_map(grid, s, g, &inflated) {
             Err(GridPlanError::Plan(_)) => {}
             _ => return None,
         }
-        plan_on_map(grid, s, g, &GridPlanOptions::default(), false)
+        plan_on_map(grid, s, g, &GridPlanOptions::default())
             .is_ok()
             .then(|| {
                 format!(

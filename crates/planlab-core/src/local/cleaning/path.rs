@@ -168,7 +168,7 @@ impl CleaningDwa {
                     inflate_m: r,
                     ..Default::default()
                 };
-                match plan_on_map(&self.solid, ca, cb, &opts, false) {
+                match plan_on_map(&self.solid, ca, cb, &opts) {
                     Err(GridPlanError::BlockedByInflation { .. }) => continue,
                     other => {
                         result = Some(other);

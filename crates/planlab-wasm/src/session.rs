@@ -1,0 +1,374 @@
+//! A planning session for the grid page: the planner and its passability
+//! grid are built once from the map and the options and kept between calls,
+//! and edits update the grid cell by cell, so a replan while the user drags
+//! an endpoint or paints a wall costs about the search alone (a fresh
+//! [`crate::plan`] rebuilds the `PlanGrid` and its bit-packed lines every
+//! call: 2–3 ms on a 512 × 512 map).
+//!
+//! [`PlanSession::plan_recorded`] also returns the search as events for the
+//! page's player ([`RecordedPlan`]).
+
+use crate::{cell_of, options_from_js, paint_grid, MapHandle, PlanResult};
+use planlab_core::global::plan::{
+    build_observed_planner, plan_grid_for, plan_on_grid_observed, GridPlan, GridPlanError,
+    GridPlanOptions,
+};
+use planlab_core::global::{
+    supercover, GridPos, ObservedGridPlanner, PlanError, PlanGrid, SearchEvent, SearchObserver,
+};
+use planlab_core::map::OccupancyGrid;
+use wasm_bindgen::prelude::*;
+
+/// Events kept at most per recording (each is ~40 bytes across the
+/// boundary): a 512 × 512 Dijkstra records a few million.
+pub const EVENT_LIMIT: usize = 4_000_000;
+
+/// A map, options, planner and passability grid kept between plans.
+#[wasm_bindgen]
+pub struct PlanSession {
+    map: OccupancyGrid,
+    options: GridPlanOptions,
+    /// The planner the options ask for, or why they cannot build one (shown
+    /// at the next plan, as a fresh `plan` would).
+    planner: Result<Box<dyn ObservedGridPlanner>, PlanError>,
+    /// The passability grid; `None` until the next plan rebuilds it (first
+    /// use, new options, or an edit under inflation, which can change cells
+    /// up to the radius away).
+    grid: Option<PlanGrid>,
+    /// Grid rebuilds so far (the tests check that edits do not rebuild).
+    rebuilds: u32,
+}
+
+impl PlanSession {
+    /// A session over `map` (Rust callers and tests).
+    pub fn with_options(map: OccupancyGrid, options: GridPlanOptions) -> Self {
+        Self {
+            planner: build_observed_planner(&options),
+            map,
+            options,
+            grid: None,
+            rebuilds: 0,
+        }
+    }
+
+    /// The passability grid, rebuilt if an edit or new options invalidated it.
+    fn grid(&mut self) -> Result<&PlanGrid, GridPlanError> {
+        if self.grid.is_none() {
+            self.grid = Some(plan_grid_for(&self.map, &self.options)?);
+            self.rebuilds += 1;
+        }
+        Ok(self.grid.as_ref().expect("built above"))
+    }
+
+    /// Keeps the grid in step with one edited map cell.
+    fn sync_cell(&mut self, col: usize, row: usize) {
+        if self.options.inflate_m > 0.0 {
+            self.grid = None;
+        } else if let (Some(grid), Some(cell)) = (self.grid.as_mut(), self.map.get(col, row)) {
+            grid.set_free(col, row, cell.passable(self.options.allow_unknown));
+        }
+    }
+
+    /// Plans on the kept grid, reporting the search's events (and key
+    /// points' / Bottom-Up's segment checks) to `obs`: the core's
+    /// `plan_on_grid_observed` on the kept grid and planner.
+    pub fn plan_observed(
+        &mut self,
+        start: GridPos,
+        goal: GridPos,
+        obs: &mut dyn SearchObserver,
+    ) -> Result<GridPlan, GridPlanError> {
+        if let Err(e) = &self.planner {
+            return Err(e.clone().into());
+        }
+        self.grid()?;
+        let (map, grid) = (&self.map, self.grid.as_ref().expect("built above"));
+        let planner = self.planner.as_ref().expect("checked above");
+        plan_on_grid_observed(map, grid, planner.as_ref(), start, goal, &self.options, obs)
+    }
+}
+
+/// The expanded cells in order (the close events).
+struct Closed(Vec<GridPos>);
+
+impl SearchObserver for Closed {
+    fn event(&mut self, e: SearchEvent) {
+        if let SearchEvent::Close { cell } = e {
+            self.0.push(cell);
+        }
+    }
+}
+
+/// The cells a painted segment between two cell centres covers (as
+/// `OccupancyGrid::paint_segment` paints them).
+pub(crate) fn segment_cells(col0: u32, row0: u32, col1: u32, row1: u32) -> Vec<(usize, usize)> {
+    let mut cells = Vec::new();
+    supercover(
+        GridPos::new(col0, row0),
+        GridPos::new(col1, row1),
+        |c, r, _| cells.push((c as usize, r as usize)),
+    );
+    cells
+}
+
+#[wasm_bindgen]
+impl PlanSession {
+    /// A session over a copy of `map` with `options` (a `GridPlanOptions`
+    /// object; `undefined` = defaults). Bad options are reported by the
+    /// first plan, as `plan` would.
+    #[wasm_bindgen(constructor)]
+    pub fn new(map: &MapHandle, options: JsValue) -> Result<PlanSession, JsError> {
+        Ok(Self::with_options(
+            map.grid().clone(),
+            options_from_js(options)?,
+        ))
+    }
+
+    /// New options: the planner is rebuilt, the grid only when the
+    /// passability changes (inflation, unknown cells).
+    #[wasm_bindgen(js_name = setOptions)]
+    pub fn set_options(&mut self, options: JsValue) -> Result<(), JsError> {
+        let options = options_from_js(options)?;
+        let same_grid = options.inflate_m.to_bits() == self.options.inflate_m.to_bits()
+            && options.allow_unknown == self.options.allow_unknown;
+        if !same_grid {
+            self.grid = None;
+        }
+        self.planner = build_observed_planner(&options);
+        self.options = options;
+        Ok(())
+    }
+
+    /// Replaces the map (e.g. "reset edits"); the grid is rebuilt.
+    #[wasm_bindgen(js_name = setMap)]
+    pub fn set_map(&mut self, map: &MapHandle) {
+        self.map = map.grid().clone();
+        self.grid = None;
+    }
+
+    /// Sets one cell (0 free, 1 occupied, 2 unknown).
+    #[wasm_bindgen(js_name = setCell)]
+    pub fn set_cell(&mut self, col: u32, row: u32, kind: u8) -> Result<(), JsError> {
+        let cell = cell_of(kind)?;
+        self.map.set(col as usize, row as usize, cell)?;
+        self.sync_cell(col as usize, row as usize);
+        Ok(())
+    }
+
+    /// Paints the cells the segment between two cell centres crosses, as
+    /// `MapHandle.paintSegment`; returns how many changed.
+    #[wasm_bindgen(js_name = paintSegment)]
+    pub fn paint_segment(
+        &mut self,
+        col0: u32,
+        row0: u32,
+        col1: u32,
+        row1: u32,
+        kind: u8,
+    ) -> Result<u32, JsError> {
+        let changed = paint_grid(&mut self.map, [col0, row0, col1, row1], kind)?;
+        if changed > 0 {
+            for (c, r) in segment_cells(col0, row0, col1, row1) {
+                self.sync_cell(c, r);
+            }
+        }
+        Ok(changed)
+    }
+
+    /// How many times the passability grid was built (edits without
+    /// inflation do not rebuild it).
+    #[wasm_bindgen(getter)]
+    pub fn rebuilds(&self) -> u32 {
+        self.rebuilds
+    }
+
+    /// Plans as the free function `plan` does, on the kept grid.
+    pub fn plan(
+        &mut self,
+        start_col: u32,
+        start_row: u32,
+        goal_col: u32,
+        goal_row: u32,
+        record_expanded: bool,
+    ) -> Result<PlanResult, JsError> {
+        let (start, goal) = (
+            GridPos::new(start_col, start_row),
+            GridPos::new(goal_col, goal_row),
+        );
+        let plan = if record_expanded {
+            let mut closed = Closed(Vec::new());
+            let mut plan = self.plan_observed(start, goal, &mut closed)?;
+            plan.expanded_cells = closed.0;
+            plan
+        } else {
+            self.plan_observed(start, goal, &mut ())?
+        };
+        Ok(PlanResult { plan })
+    }
+
+    /// Plans and returns the search as events for the player.
+    #[wasm_bindgen(js_name = planRecorded)]
+    pub fn plan_recorded(
+        &mut self,
+        start_col: u32,
+        start_row: u32,
+        goal_col: u32,
+        goal_row: u32,
+    ) -> Result<RecordedPlan, JsError> {
+        let mut events = EventColumns::with_limit(EVENT_LIMIT);
+        let plan = self.plan_observed(
+            GridPos::new(start_col, start_row),
+            GridPos::new(goal_col, goal_row),
+            &mut events,
+        )?;
+        Ok(RecordedPlan::new(PlanResult { plan }, events))
+    }
+}
+
+/// Event kinds as they cross (`kinds` bytes).
+pub mod kind {
+    /// A cell entered the open set or its g improved.
+    pub const OPEN: u8 = 0;
+    /// A cell was expanded (closed).
+    pub const CLOSE: u8 = 1;
+    /// A straight-line check that passed.
+    pub const LINE_CLEAR: u8 = 2;
+    /// A straight-line check that failed.
+    pub const LINE_BLOCKED: u8 = 3;
+}
+
+/// "No cell" in the `others` column (an open event without a parent).
+pub const NO_CELL: u32 = u32::MAX;
+
+/// Search events as columns, one entry per event (bounded like the core's
+/// `SearchLog`: at most `limit`, then `truncated`).
+#[derive(Clone, Debug, Default)]
+pub struct EventColumns {
+    limit: usize,
+    kinds: Vec<u8>,
+    /// The event's cell (open, close) or the line's start, `col, row`.
+    cells: Vec<u32>,
+    /// The parent (open) or the line's end, `col, row`; [`NO_CELL`] twice
+    /// when there is none.
+    others: Vec<u32>,
+    g: Vec<f64>,
+    h: Vec<f64>,
+    truncated: bool,
+}
+
+impl EventColumns {
+    fn push(&mut self, k: u8, cell: GridPos, other: Option<GridPos>, g: f64, h: f64) {
+        self.kinds.push(k);
+        self.cells.extend([cell.col, cell.row]);
+        let o = other.map_or([NO_CELL, NO_CELL], |p| [p.col, p.row]);
+        self.others.extend(o);
+        self.g.push(g);
+        self.h.push(h);
+    }
+
+    /// Columns keeping at most `limit` events.
+    pub fn with_limit(limit: usize) -> Self {
+        Self {
+            limit,
+            ..Self::default()
+        }
+    }
+
+    /// Number of events.
+    pub fn len(&self) -> usize {
+        self.kinds.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.kinds.is_empty()
+    }
+}
+
+impl SearchObserver for EventColumns {
+    fn event(&mut self, e: SearchEvent) {
+        if self.len() >= self.limit {
+            self.truncated = true;
+            return;
+        }
+        match e {
+            SearchEvent::Open { cell, parent, g, h } => self.push(kind::OPEN, cell, parent, g, h),
+            SearchEvent::Close { cell } => self.push(kind::CLOSE, cell, None, f64::NAN, f64::NAN),
+            SearchEvent::Line { from, to, clear } => {
+                let k = if clear {
+                    kind::LINE_CLEAR
+                } else {
+                    kind::LINE_BLOCKED
+                };
+                self.push(k, from, Some(to), f64::NAN, f64::NAN);
+            }
+        }
+    }
+
+    /// Off once full: the planner stops building events nobody keeps.
+    fn enabled(&self) -> bool {
+        !self.truncated
+    }
+}
+
+/// A plan with its search as events: `kinds[i]` (see [`kind`]),
+/// `cells`/`others` as `col, row` pairs, `g`/`h` (NaN where they do not
+/// apply).
+#[wasm_bindgen]
+pub struct RecordedPlan {
+    result: PlanResult,
+    events: EventColumns,
+}
+
+impl RecordedPlan {
+    /// A plan and the events of its search.
+    pub fn new(result: PlanResult, events: EventColumns) -> Self {
+        Self { result, events }
+    }
+}
+
+#[wasm_bindgen]
+impl RecordedPlan {
+    /// The plan (path, cost, expanded count …); an independent copy.
+    #[wasm_bindgen(getter)]
+    pub fn plan(&self) -> PlanResult {
+        self.result.clone()
+    }
+
+    /// Number of events.
+    #[wasm_bindgen(getter)]
+    pub fn length(&self) -> u32 {
+        self.events.len() as u32
+    }
+
+    /// Whether the recording stopped at [`EVENT_LIMIT`] events.
+    #[wasm_bindgen(getter)]
+    pub fn truncated(&self) -> bool {
+        self.events.truncated
+    }
+
+    /// Event kinds.
+    pub fn kinds(&self) -> Vec<u8> {
+        self.events.kinds.clone()
+    }
+
+    /// Each event's cell as `col, row`.
+    pub fn cells(&self) -> Vec<u32> {
+        self.events.cells.clone()
+    }
+
+    /// Each event's parent / line end as `col, row`.
+    pub fn others(&self) -> Vec<u32> {
+        self.events.others.clone()
+    }
+
+    /// g per event.
+    pub fn g(&self) -> Vec<f64> {
+        self.events.g.clone()
+    }
+
+    /// h per event.
+    pub fn h(&self) -> Vec<f64> {
+        self.events.h.clone()
+    }
+}

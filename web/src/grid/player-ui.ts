@@ -1,0 +1,167 @@
+// The grid page's search player: play, pause, step forward and back, speed
+// and a scrubber over the recorded search, the counters at the current
+// step, and the animation loop with its frame meter. Each frame plays
+// `speed` events (an event budget per frame), repaints only the cells they
+// touched and draws; the frame's work is measured for the tests and the
+// README (window.planlabGrid.frameStats()).
+
+import { el } from '../shell/dom';
+import { FrameMeter } from '../shell/frame-meter';
+import type { SearchPlayback } from '../scene/search-player';
+import type { MapView } from './render';
+
+const ui = {
+  play: el<HTMLButtonElement>('play'),
+  back: el<HTMLButtonElement>('step-back'),
+  fwd: el<HTMLButtonElement>('step-fwd'),
+  speed: el<HTMLSelectElement>('speed'),
+  scrub: el<HTMLInputElement>('scrub'),
+  step: el('count-step'),
+  expanded: el('count-expanded'),
+  open: el('count-open'),
+  f: el('count-f'),
+  lines: el('count-lines'),
+};
+
+function setCount(e: HTMLElement, text: string, value: number | null): void {
+  e.textContent = text;
+  if (value === null || Number.isNaN(value)) delete e.dataset.value;
+  else e.dataset.value = String(value);
+}
+
+export class SearchPlayer {
+  private view: MapView;
+  private p: SearchPlayback | null = null;
+  private playing = false;
+  private last = 0;
+  readonly meter = new FrameMeter();
+
+  constructor(view: MapView) {
+    this.view = view;
+    ui.play.addEventListener('click', () => this.toggle());
+    ui.back.addEventListener('click', () => this.stepBy(-1));
+    ui.fwd.addEventListener('click', () => this.stepBy(1));
+    ui.scrub.addEventListener('input', () => {
+      this.pause();
+      this.seek(Number(ui.scrub.value));
+    });
+    this.show();
+  }
+
+  get playback(): SearchPlayback | null {
+    return this.p;
+  }
+
+  get isPlaying(): boolean {
+    return this.playing;
+  }
+
+  /** Events played per animation frame. */
+  get speed(): number {
+    return Math.max(1, Number(ui.speed.value) || 1);
+  }
+
+  /** A new recording (null: none), shown played out unless `fromStart`. */
+  load(p: SearchPlayback | null, fromStart = false): void {
+    this.pause();
+    this.p = p;
+    if (p) p.seek(fromStart ? 0 : p.n);
+    this.view.setSearch(p);
+    this.show();
+  }
+
+  toggle(): void {
+    if (this.playing) this.pause();
+    else this.play();
+  }
+
+  play(): void {
+    if (!this.p || this.playing) return;
+    if (this.p.done) this.p.seek(0);
+    this.playing = true;
+    this.meter.reset();
+    this.last = performance.now();
+    document.body.dataset.playing = 'true';
+    requestAnimationFrame((t) => this.frame(t));
+    this.show();
+  }
+
+  pause(): void {
+    this.playing = false;
+    document.body.dataset.playing = 'false';
+    ui.play.textContent = '▶ Play';
+  }
+
+  stepBy(d: number): void {
+    if (!this.p) return;
+    this.pause();
+    this.seek(this.p.step + d);
+  }
+
+  seek(step: number): void {
+    if (!this.p) return;
+    this.p.seek(step);
+    this.view.drawNow();
+    this.show();
+  }
+
+  private frame(t: number): void {
+    if (!this.playing || !this.p) return;
+    const t0 = performance.now();
+    this.p.seek(this.p.step + this.speed);
+    const t1 = performance.now();
+    this.view.drawNow();
+    const t2 = performance.now();
+    this.show();
+    const t3 = performance.now();
+    this.meter.push(t - this.last, t1 - t0, t2 - t1, t3 - t0);
+    this.last = t;
+    if (this.p.done) {
+      this.pause();
+      this.show();
+      return;
+    }
+    requestAnimationFrame((tt) => this.frame(tt));
+  }
+
+  /** Scrubber, buttons, counters and the state the tests read. */
+  private show(): void {
+    const p = this.p;
+    const d = document.body.dataset;
+    for (const b of [ui.play, ui.back, ui.fwd, ui.scrub]) b.disabled = !p;
+    if (this.playing) ui.play.textContent = '❚❚ Pause';
+    if (!p) {
+      ui.scrub.max = '0';
+      ui.scrub.value = '0';
+      for (const e of [ui.step, ui.expanded, ui.open, ui.f, ui.lines]) setCount(e, '—', null);
+      d.searchStep = '0';
+      d.searchEvents = '0';
+      return;
+    }
+    const c = p.counters();
+    ui.scrub.max = String(p.n);
+    ui.scrub.value = String(c.step);
+    setCount(ui.step, `${c.step.toLocaleString('en-US')} / ${c.events.toLocaleString('en-US')}`, c.step);
+    setCount(ui.expanded, c.expanded.toLocaleString('en-US'), c.expanded);
+    setCount(ui.open, c.open.toLocaleString('en-US'), c.open);
+    setCount(ui.f, Number.isNaN(c.f) ? '—' : c.f.toFixed(3), c.f);
+    setCount(ui.lines, c.lines.toLocaleString('en-US'), c.lines);
+    d.searchStep = String(c.step);
+    d.searchEvents = String(c.events);
+  }
+}
+
+/** `window.planlabGrid`: the player's state and its frame meter, for the
+ *  e2e tests and the README's figures. */
+export function exposeForTests(player: SearchPlayer, rebuilds: () => number): void {
+  (window as unknown as Record<string, unknown>).planlabGrid = {
+    seek: (k: number) => player.seek(k),
+    play: () => player.play(),
+    cellState: (c: number, r: number) => player.playback?.info(c, r)?.state ?? null,
+    info: (c: number, r: number) => player.playback?.info(c, r) ?? null,
+    current: () => player.playback?.expanding() ?? null,
+    counters: () => player.playback?.counters() ?? null,
+    frameStats: () => player.meter.stats(),
+    rebuilds,
+  };
+}

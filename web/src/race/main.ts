@@ -1,0 +1,281 @@
+// The race: one map, one query, 2–4 grid planners side by side. Each lane
+// plans through its own wasm PlanSession with the search recorded, then the
+// lanes play in step: every animation frame gives each lane the same budget
+// of search events, so a planner that needs fewer events finishes first.
+// The table compares the counters; the winners are the fewest expanded
+// cells and the lowest path cost. Nothing here plans.
+
+import init, { MapHandle, defaultPlanOptions, gridAlgorithms } from '../../pkg-grid/planlab_wasm.js';
+import { MapView, type Cell } from '../grid/render';
+import { GridSession } from '../grid/planning';
+import { loadPreset, type MapHost } from '../grid/maps';
+import type { SearchPlayback } from '../scene/search-player';
+import { GRID_PLANNERS, plannerLabel } from '../shell/grid-planners';
+import { el, errorBanner, messageOf } from '../shell/dom';
+import { panZoom } from '../shell/canvas-input';
+import { installShell } from '../shell/help';
+import { raceHelp } from './help';
+import type { CorePlanner } from '../shell/help-content';
+
+const ui = {
+  body: document.body,
+  hint: el('hint'),
+  preset: el<HTMLSelectElement>('preset'),
+  picks: el('lane-picks'),
+  diagonal: el<HTMLSelectElement>('diagonal'),
+  speed: el<HTMLSelectElement>('speed'),
+  go: el<HTMLButtonElement>('race-go'),
+  finish: el<HTMLButtonElement>('race-finish'),
+  lanes: el('lanes'),
+  table: el<HTMLTableElement>('race-table'),
+  winner: el('race-winner'),
+  error: el('error'),
+  status: el('status'),
+};
+const { showError, clearError, guard } = errorBanner(ui.error, ui.body, () => (ui.body.dataset.state = 'error'));
+
+interface Lane {
+  algorithm: string;
+  root: HTMLElement;
+  view: MapView;
+  session: GridSession;
+  playback: SearchPlayback | null;
+  cost: number;
+  pathLen: number;
+  error: string | null;
+  /** Frame at which its playback ended (null: still going). */
+  doneAt: number | null;
+}
+
+/** The default line-up; "" = no lane. */
+const DEFAULT_PICKS = ['astar', 'dijkstra', 'jps', 'greedy'];
+let defaults: Record<string, unknown> = {};
+let map: MapHandle | null = null;
+let start: Cell | null = null;
+let goal: Cell | null = null;
+let lanes: Lane[] = [];
+let frame = 0;
+let racing = false;
+
+const pickers: HTMLSelectElement[] = DEFAULT_PICKS.map((name, i) => {
+  const s = document.createElement('select');
+  s.id = `pick-${i}`;
+  s.setAttribute('aria-label', `Lane ${i + 1} planner`);
+  const none = i >= 2 ? '<option value="">— no lane —</option>' : '';
+  s.innerHTML = none + GRID_PLANNERS.map((p) => `<option value="${p.name}">${p.label}</option>`).join('');
+  s.value = name;
+  ui.picks.append(s);
+  return s;
+});
+
+function options(algorithm: string): Record<string, unknown> {
+  return { ...defaults, algorithm, diagonal: ui.diagonal.value };
+}
+
+/** Builds the lanes for the chosen planners on the current map. */
+function buildLanes(): void {
+  for (const l of lanes) l.view.setSearch(null);
+  lanes = [];
+  ui.lanes.replaceChildren();
+  if (!map) return;
+  for (const algorithm of pickers.map((p) => p.value).filter(Boolean)) {
+    const root = document.createElement('div');
+    root.className = 'lane';
+    root.dataset.algorithm = algorithm;
+    root.innerHTML = `<header><b>${plannerLabel(algorithm)}</b><span class="lane-counts">—</span></header><div class="lane-error" hidden></div><div class="lane-canvas"><canvas></canvas></div>`;
+    ui.lanes.append(root);
+    const view = new MapView(root.querySelector('canvas')!);
+    view.setMap(map.width, map.height, map.cells());
+    const session = new GridSession();
+    session.attach(map);
+    lanes.push({ algorithm, root, view, session, playback: null, cost: NaN, pathLen: 0, error: null, doneAt: null });
+  }
+  ui.lanes.dataset.count = String(lanes.length);
+  replan();
+}
+
+/** Plans every lane (search recorded) and shows them at step 0. */
+function replan(): void {
+  racing = false;
+  frame = 0;
+  for (const l of lanes) {
+    l.view.setEndpoints(start, goal);
+    l.playback = null;
+    l.error = null;
+    l.doneAt = null;
+    l.cost = NaN;
+    l.pathLen = 0;
+    if (start && goal) {
+      try {
+        const { result, playback } = l.session.plan(start, goal, options(l.algorithm), true);
+        try {
+          l.cost = result.cost;
+          l.pathLen = result.pathLen;
+          l.view.setLayers({ path: result.path(), keyPoints: null, featureNodes: null, inflation: null });
+        } finally {
+          result.free();
+        }
+        l.playback = playback;
+        playback?.seek(0);
+      } catch (e) {
+        l.error = messageOf(e);
+      }
+    }
+    l.view.setSearch(l.playback);
+    const err = l.root.querySelector<HTMLElement>('.lane-error')!;
+    err.hidden = l.error === null;
+    err.textContent = l.error ?? '';
+    showLane(l);
+  }
+  ui.body.dataset.raceState = 'ready';
+  ui.status.textContent = start && goal ? `${lanes.length} planners ready: press Race.` : 'Click a map to place the start, Shift+click for the goal.';
+  showTable();
+}
+
+function showLane(l: Lane): void {
+  const c = l.playback?.counters();
+  const span = l.root.querySelector<HTMLElement>('.lane-counts')!;
+  span.textContent = c ? `step ${c.step}/${c.events} · expanded ${c.expanded} · open ${c.open}` : l.error ? 'error' : '—';
+}
+
+/** One frame: the same event budget for every lane. */
+function tick(): void {
+  if (!racing) return;
+  frame++;
+  const budget = Number(ui.speed.value) || 16;
+  let running = 0;
+  for (const l of lanes) {
+    const p = l.playback;
+    if (!p || l.doneAt !== null) continue;
+    p.seek(p.step + budget);
+    l.view.drawNow();
+    showLane(l);
+    if (p.done) l.doneAt = frame;
+    else running++;
+  }
+  showTable();
+  if (running === 0) {
+    racing = false;
+    ui.body.dataset.raceState = 'finished';
+    ui.status.textContent = `Race finished after ${frame} frames.`;
+    showTable();
+    return;
+  }
+  requestAnimationFrame(tick);
+}
+
+function go(): void {
+  if (!lanes.some((l) => l.playback)) return;
+  frame = 0;
+  for (const l of lanes) {
+    l.playback?.seek(0);
+    l.doneAt = null;
+    l.view.drawNow();
+    showLane(l);
+  }
+  racing = true;
+  ui.body.dataset.raceState = 'racing';
+  ui.status.textContent = 'Racing…';
+  requestAnimationFrame(tick);
+}
+
+/** Every lane played out at once (the frame counts then stay empty). */
+function finish(): void {
+  racing = false;
+  for (const l of lanes) {
+    l.playback?.seek(l.playback.n);
+    l.view.drawNow();
+    showLane(l);
+  }
+  ui.body.dataset.raceState = 'finished';
+  showTable();
+}
+
+/** The results table; winners once every lane has finished. */
+function showTable(): void {
+  const body = ui.table.tBodies[0];
+  body.replaceChildren();
+  const finished = ui.body.dataset.raceState === 'finished';
+  const ok = lanes.filter((l) => l.playback && !l.error);
+  const fewest = Math.min(...ok.map((l) => l.playback!.expandedAt[l.playback!.n]));
+  const cheapest = Math.min(...ok.map((l) => l.cost));
+  for (const l of lanes) {
+    const tr = body.insertRow();
+    tr.dataset.algorithm = l.algorithm;
+    const p = l.playback;
+    const end = p ? p.counters() : null;
+    const expandedEnd = p ? p.expandedAt[p.n] : NaN;
+    const cells: [string, boolean][] = [
+      [plannerLabel(l.algorithm), false],
+      [end ? String(end.expanded) : '—', finished && expandedEnd === fewest],
+      [end ? String(end.open) : '—', false],
+      [p ? String(p.n) : '—', false],
+      [l.error ? 'error (see the lane)' : Number.isFinite(l.cost) ? l.cost.toFixed(4) : '—', finished && Math.abs(l.cost - cheapest) < 1e-9],
+      [l.error ? '—' : String(l.pathLen), false],
+      [l.doneAt === null ? '—' : String(l.doneAt), false],
+    ];
+    for (const [text, best] of cells) {
+      const td = tr.insertCell();
+      td.textContent = text;
+      if (best) td.className = 'best';
+    }
+  }
+  if (!finished || !ok.length) {
+    ui.winner.textContent = '—';
+    return;
+  }
+  const names = (xs: Lane[]) => xs.map((l) => plannerLabel(l.algorithm)).join(', ');
+  const byExpanded = ok.filter((l) => l.playback!.expandedAt[l.playback!.n] === fewest);
+  const byCost = ok.filter((l) => Math.abs(l.cost - cheapest) < 1e-9);
+  ui.winner.textContent = `Fewest expanded: ${names(byExpanded)} (${fewest}) · Lowest cost: ${names(byCost)} (${cheapest.toFixed(4)})`;
+  ui.winner.dataset.expanded = byExpanded.map((l) => l.algorithm).join(',');
+  ui.winner.dataset.cost = byCost.map((l) => l.algorithm).join(',');
+}
+
+const host: MapHost = {
+  install(m: MapHandle, _name: string, s: Cell | null, g: Cell | null) {
+    map?.free();
+    map = m;
+    start = s;
+    goal = g;
+    buildLanes();
+    clearError();
+    ui.body.dataset.state = 'ok';
+  },
+  applyOptions: () => {},
+  defaults: () => defaults,
+};
+
+// Click any lane: start; Shift+click: goal (pan and zoom move every lane).
+panZoom(ui.lanes, (c) => (lanes.some((l) => l.view.canvas === c) ? lanes.map((l) => l.view) : null));
+ui.lanes.addEventListener(
+  'pointerdown',
+  guard((ev: PointerEvent) => {
+    const lane = lanes.find((l) => l.view.canvas === ev.target);
+    if (!lane || ev.button !== 0) return;
+    const r = lane.view.canvas.getBoundingClientRect();
+    const cell = lane.view.cellAt(ev.clientX - r.left, ev.clientY - r.top);
+    if (!cell) return;
+    if (ev.shiftKey) goal = cell;
+    else start = cell;
+    replan();
+  }),
+);
+ui.go.addEventListener('click', guard(go));
+ui.finish.addEventListener('click', guard(finish));
+for (const p of pickers) p.addEventListener('change', guard(buildLanes));
+ui.diagonal.addEventListener('change', guard(replan));
+ui.preset.addEventListener('change', guard(() => loadPreset(host, ui.preset.value)));
+
+let corePlanners: CorePlanner[] = [];
+installShell(() => raceHelp(corePlanners));
+
+async function boot(): Promise<void> {
+  await init();
+  corePlanners = gridAlgorithms() as CorePlanner[];
+  defaults = defaultPlanOptions() as Record<string, unknown>;
+  ui.hint.textContent = 'Pick 2–4 planners and press Race.';
+  await loadPreset(host, ui.preset.value || 'arena');
+}
+
+boot().catch((e) => showError(`Could not start the race: ${messageOf(e)}`));
