@@ -8,11 +8,13 @@ mod batch_cmd;
 mod bench;
 mod gen_cmd;
 mod grid_cmds;
-mod load;
 mod peer;
 mod reproduce_cmd;
 mod serve;
 mod sim_cmds;
+
+/// File reading is shared with the Python package.
+use planlab_files as load;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use planlab_core::global::plan::{Algorithm, GridPlanOptions};
