@@ -508,6 +508,35 @@ impl Scenario {
         to_py(py, &self.tree)
     }
 
+    /// The folder relative map files are read from.
+    #[getter]
+    fn base_dir(&self) -> PathBuf {
+        self.dir.clone()
+    }
+
+    /// The same robot scenario with its map inline (no file references), so
+    /// it can travel to another process or machine as a dict.
+    fn inlined(&self) -> PyResult<Scenario> {
+        let (s, grid) = self.robot()?;
+        let s = s.clone().with_inline_grid(grid);
+        let tree = serde_json::to_value(&s).map_err(err::<ScenarioError>)?;
+        Scenario::of_tree(tree, self.dir.clone())
+    }
+
+    /// Variant `index` of `planlab batch --seed SEED --jitter JITTER`
+    /// (start, goal and movers jittered, the episode seed the variant's;
+    /// variant 0 is this scenario with that seed).
+    #[pyo3(signature = (index, seed = 0, jitter = 0.3))]
+    fn variant(&self, index: u32, seed: u64, jitter: f64) -> PyResult<Scenario> {
+        let (base, grid) = self.robot()?;
+        let v = batch::variant(base, &grid, index, seed, jitter).map_err(|e| match e {
+            batch::BatchError::BadJitter(_) => err::<ParamError>(e),
+            _ => err::<ScenarioError>(e),
+        })?;
+        let tree = serde_json::to_value(&v).map_err(err::<ScenarioError>)?;
+        Scenario::of_tree(tree, self.dir.clone())
+    }
+
     /// `robot`, `APF` or `arm`.
     #[getter]
     fn kind(&self) -> &'static str {
@@ -794,6 +823,13 @@ impl Episode {
     #[getter]
     fn planner(&self) -> String {
         self.ep.planner_choice().name.clone()
+    }
+
+    /// The map's extent in metres: (x_min, y_min, x_max, y_max).
+    #[getter]
+    fn bounds(&self) -> (f64, f64, f64, f64) {
+        let b = self.ep.map().bounds();
+        (b[0], b[1], b[2], b[3])
     }
 
     /// The robot's limits and the control period: `v_min`, `v_max`,
