@@ -84,10 +84,13 @@ fn to_py<'py>(py: Python<'py>, v: &impl serde::Serialize) -> PyResult<Bound<'py,
 
 /// A Python object (dict, list, number …) as a JSON tree, through `json`.
 fn from_py(obj: &Bound<'_, PyAny>) -> PyResult<Value> {
+    let kwargs = PyDict::new(obj.py());
+    kwargs.set_item("allow_nan", false)?;
     let text: String = obj
         .py()
         .import("json")?
-        .call_method1("dumps", (obj,))?
+        .call_method("dumps", (obj,), Some(&kwargs))
+        .map_err(|e| err::<ParamError>(format!("not a JSON document: {e}")))?
         .extract()?;
     serde_json::from_str(&text).map_err(err::<ParamError>)
 }
@@ -414,9 +417,19 @@ fn set_edits(set: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, String)>>
                 .map_err(|_| err::<ParamError>("set: keys are dotted paths like sim.dt"))?;
             // Strings as written (a planner name, `true`); anything else as
             // its JSON text.
-            let value = match v.extract::<String>() {
-                Ok(s) => s,
-                Err(_) => from_py(&v)?.to_string(),
+            let value = if let Ok(s) = v.extract::<String>() {
+                s
+            } else if v.is_instance_of::<pyo3::types::PyFloat>() {
+                // NaN and infinities as the CLI's text, which the core
+                // refuses with its own message; JSON has no form for them.
+                let x: f64 = v.extract()?;
+                match x {
+                    x if x.is_nan() => "NaN".into(),
+                    x if x.is_infinite() => (if x > 0.0 { "inf" } else { "-inf" }).into(),
+                    x => format!("{x:?}"),
+                }
+            } else {
+                from_py(&v)?.to_string()
             };
             out.push((key, value));
         }
