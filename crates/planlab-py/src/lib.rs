@@ -486,9 +486,9 @@ impl Scenario {
                 self.parsed.kind().name()
             )));
         };
-        let grid = self.load_grid(&self.parsed)?.ok_or_else(|| {
-            err::<ScenarioError>("the scenario's map could not be loaded")
-        })?;
+        let grid = self
+            .load_grid(&self.parsed)?
+            .ok_or_else(|| err::<ScenarioError>("the scenario's map could not be loaded"))?;
         Ok((s, grid))
     }
 }
@@ -500,7 +500,8 @@ impl Scenario {
     #[staticmethod]
     fn from_file(path: PathBuf) -> PyResult<Scenario> {
         let text = planlab_files::read_text(&path).map_err(err::<ScenarioError>)?;
-        let at = |e: &dyn std::fmt::Display| err::<ScenarioError>(format!("{}: {e}", path.display()));
+        let at =
+            |e: &dyn std::fmt::Display| err::<ScenarioError>(format!("{}: {e}", path.display()));
         // Parsed from the text so errors point at the file's lines.
         let parsed = AnyScenario::from_json(&text).map_err(|e| at(&e))?;
         let tree: Value = serde_json::from_str(&text).map_err(|e| at(&e))?;
@@ -513,7 +514,10 @@ impl Scenario {
     #[staticmethod]
     #[pyo3(signature = (doc, base_dir = None))]
     fn from_dict(doc: &Bound<'_, PyAny>, base_dir: Option<PathBuf>) -> PyResult<Scenario> {
-        Scenario::of_tree(from_py(doc)?, base_dir.unwrap_or_else(|| PathBuf::from(".")))
+        Scenario::of_tree(
+            from_py(doc)?,
+            base_dir.unwrap_or_else(|| PathBuf::from(".")),
+        )
     }
 
     /// The JSON document as a dict.
@@ -648,8 +652,8 @@ impl Scenario {
         let cfg = match lidar {
             None => LidarConfig::default(),
             Some(d) => {
-                let mut v = serde_json::to_value(LidarConfig::default())
-                    .map_err(err::<ParamError>)?;
+                let mut v =
+                    serde_json::to_value(LidarConfig::default()).map_err(err::<ParamError>)?;
                 for (k, x) in from_py(d.as_any())?.as_object().into_iter().flatten() {
                     v[k] = x.clone();
                 }

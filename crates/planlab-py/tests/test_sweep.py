@@ -9,10 +9,10 @@ import os
 import pytest
 
 import planlab
-from conftest import SCENARIOS
+from conftest import ROOM, SCENARIOS
 
 DEMO = SCENARIOS / "dwa-demo.json"
-CROWD = SCENARIOS / "dwa-crowd.json"
+CROWD = ROOM  # small and quick, one mover
 PLANNERS = ["dwa", "improved-dwa"]
 
 
