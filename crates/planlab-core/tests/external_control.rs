@@ -10,14 +10,9 @@ use planlab_core::scenario::Scenario;
 use planlab_core::sim::{Episode, Outcome, USER_MODE};
 use planlab_core::world::Command;
 
-fn preset(file: &str) -> (Scenario, OccupancyGrid) {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/scenarios")
-        .join(file);
-    let s = Scenario::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
-    let g = s
-        .load_grid(&mut |p| Err(format!("inline map, not {p}")))
-        .unwrap();
+fn preset(text: &str) -> (Scenario, OccupancyGrid) {
+    let s = Scenario::from_json(text).unwrap();
+    let g = s.inline_grid().unwrap().expect("an inline map");
     (s, g)
 }
 
@@ -138,7 +133,7 @@ fn the_scan_sees_the_walls_of_the_room() {
 
 #[test]
 fn the_scan_and_the_observation_see_the_movers() {
-    let (s, g) = preset("dwa-crowd.json");
+    let (s, g) = preset(include_str!("../../../assets/scenarios/dwa-crowd.json"));
     let ep = Episode::from_scenario(&s, g.clone()).unwrap();
     let observed = ep.observed_movers();
     let range = ep.config().sensing_range;
@@ -177,7 +172,7 @@ fn the_scan_and_the_observation_see_the_movers() {
 
 #[test]
 fn one_batch_episode_equals_the_episode_of_its_variant() {
-    let (base, grid) = preset("dwa-demo.json");
+    let (base, grid) = preset(include_str!("../../../assets/scenarios/dwa-demo.json"));
     let choices = batch::planner_choices(&base, &["dwa".into(), "improved-dwa".into()]).unwrap();
     for k in [0, 3] {
         let v = batch::variant(&base, &grid, k, 11, 0.3).unwrap();

@@ -12,13 +12,16 @@
 
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
+use std::sync::OnceLock;
 
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
 use planlab_core::arm::ArmPredictor;
 use planlab_core::batch;
-use planlab_core::global::plan::{plan_on_map, Algorithm, GridPlanError, GridPlanOptions};
-use planlab_core::global::{Diagonal, GridPos, Heuristic, PlanError as CorePlanError};
+use planlab_core::global::plan::{
+    plan_on_map, plan_on_plan_grid, Algorithm, GridPlanError, GridPlanOptions, GridPlanOverrides,
+};
+use planlab_core::global::{Diagonal, GridPos, Heuristic, PlanError as CorePlanError, PlanGrid};
 use planlab_core::lidar::{Lidar, LidarConfig};
 use planlab_core::map::{Cell, OccupancyGrid, Pose2};
 use planlab_core::metrics::EpisodeMetrics;
@@ -107,6 +110,22 @@ struct Grid {
     start: Option<GridPos>,
     goal: Option<GridPos>,
     options: GridPlanOptions,
+    /// The passability grid without inflation, by `allow_unknown`, built on
+    /// the first query that needs it: later queries skip that pass over the
+    /// map (the CLI's bench builds it once too).
+    prepared: [OnceLock<PlanGrid>; 2],
+}
+
+impl Grid {
+    fn of(grid: OccupancyGrid, scenario: Option<&CoreScenario>) -> Grid {
+        Grid {
+            grid,
+            start: scenario.map(|s| s.start.pos()),
+            goal: scenario.map(|s| s.goal.pos()),
+            options: scenario.map_or_else(GridPlanOptions::default, |s| s.grid_planner),
+            prepared: Default::default(),
+        }
+    }
 }
 
 #[pymethods]
@@ -155,12 +174,7 @@ impl Grid {
                 )
             })
             .map_err(err::<MapError>)?;
-        Ok(Grid {
-            grid,
-            start: None,
-            goal: None,
-            options: GridPlanOptions::default(),
-        })
+        Ok(Grid::of(grid, None))
     }
 
     /// `occupancy[row, col]` as a uint8 array (a copy).
@@ -228,14 +242,7 @@ fn load_map(py: Python<'_>, path: PathBuf) -> PyResult<Grid> {
     let (grid, scenario) = py
         .detach(|| planlab_files::load_any(&path))
         .map_err(err::<MapError>)?;
-    Ok(Grid {
-        grid,
-        start: scenario.as_ref().map(|s| s.start.pos()),
-        goal: scenario.as_ref().map(|s| s.goal.pos()),
-        options: scenario
-            .as_ref()
-            .map_or_else(GridPlanOptions::default, |s| s.grid_planner),
-    })
+    Ok(Grid::of(grid, scenario.as_ref()))
 }
 
 /// The rows of a Moving AI `.scen` as an (n, 5) float array: start col,
@@ -310,36 +317,28 @@ fn plan<'py>(
     bottom_up: Option<f64>,
     epsilon: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let mut options = grid.options;
-    if let Some(a) = algo {
-        options.algorithm = Algorithm::from_str(a.trim()).map_err(err::<ParamError>)?;
-    }
-    if let Some(h) = heuristic {
-        options.heuristic = by_serde_name::<Heuristic>("heuristic", h)?;
-    }
-    if let Some(d) = diagonal {
-        options.diagonal = by_serde_name::<Diagonal>("diagonal", d)?;
-    }
-    if let Some(w) = weight {
-        options.weight = w;
-    }
-    if let Some(r) = inflate {
-        if !(r.is_finite() && r >= 0.0) {
-            return Err(err::<ParamError>(format!(
-                "inflate {}: must be a finite number ≥ 0 (metres)",
-                planlab_core::num::fmt_num(r)
-            )));
-        }
-        options.inflate_m = r;
-    }
-    options.allow_unknown |= allow_unknown;
-    options.keypoints |= keypoints;
-    if bottom_up.is_some() {
-        options.bottom_up_eps = bottom_up;
-    }
-    if let Some(eps) = epsilon {
-        options.safe.epsilon = eps;
-    }
+    let overrides = GridPlanOverrides {
+        algorithm: algo
+            .map(|a| Algorithm::from_str(a.trim()))
+            .transpose()
+            .map_err(err::<ParamError>)?,
+        heuristic: heuristic
+            .map(|h| by_serde_name::<Heuristic>("heuristic", h))
+            .transpose()?,
+        weight,
+        diagonal: diagonal
+            .map(|d| by_serde_name::<Diagonal>("diagonal", d))
+            .transpose()?,
+        inflate_m: inflate,
+        allow_unknown,
+        keypoints,
+        bottom_up_eps: bottom_up,
+        epsilon,
+    };
+    let options = grid.options.overridden(&overrides).map_err(|e| match e {
+        CorePlanError::InvalidConfig(m) => err::<ParamError>(m),
+        e => err::<ParamError>(e),
+    })?;
     let endpoint = |name: &str, given: Option<(i64, i64)>, own: Option<GridPos>| match (given, own)
     {
         (Some(p), _) => cell(name, p),
@@ -352,7 +351,15 @@ fn plan<'py>(
     let goal = endpoint("goal", goal, grid.goal)?;
     let g = &grid.grid;
     let result = py
-        .detach(|| plan_on_map(g, start, goal, &options, false))
+        .detach(|| {
+            if options.inflate_m == 0.0 {
+                let prepared = grid.prepared[usize::from(options.allow_unknown)]
+                    .get_or_init(|| PlanGrid::new(g, options.allow_unknown));
+                plan_on_plan_grid(g, prepared, start, goal, &options, false)
+            } else {
+                plan_on_map(g, start, goal, &options, false)
+            }
+        })
         .map_err(|e| match e {
             GridPlanError::Plan(CorePlanError::InvalidConfig(_)) | GridPlanError::Map(_) => {
                 err::<ParamError>(e)

@@ -105,6 +105,68 @@ impl Default for GridPlanOptions {
     }
 }
 
+/// Changes to a map's or scenario's grid plan options: the `planlab plan`
+/// flags, the Python `plan` keywords. `None` / `false` keep the value.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GridPlanOverrides {
+    /// Planner to run.
+    pub algorithm: Option<Algorithm>,
+    /// A* / JPS heuristic.
+    pub heuristic: Option<Heuristic>,
+    /// A* heuristic weight.
+    pub weight: Option<f64>,
+    /// Diagonal move rule.
+    pub diagonal: Option<Diagonal>,
+    /// Inflation radius, metres (checked: finite, ≥ 0).
+    pub inflate_m: Option<f64>,
+    /// Also treat unknown cells as free.
+    pub allow_unknown: bool,
+    /// Also extract key points.
+    pub keypoints: bool,
+    /// Bottom-Up maximum error, cells.
+    pub bottom_up_eps: Option<f64>,
+    /// Safe A* ε.
+    pub epsilon: Option<f64>,
+}
+
+impl GridPlanOptions {
+    /// These options with `o` applied. The inflation radius is checked
+    /// here (`InvalidConfig("inflate …")`, the caller names its flag); the
+    /// other values when a planner is built from the options.
+    pub fn overridden(mut self, o: &GridPlanOverrides) -> Result<GridPlanOptions, PlanError> {
+        if let Some(a) = o.algorithm {
+            self.algorithm = a;
+        }
+        if let Some(h) = o.heuristic {
+            self.heuristic = h;
+        }
+        if let Some(w) = o.weight {
+            self.weight = w;
+        }
+        if let Some(d) = o.diagonal {
+            self.diagonal = d;
+        }
+        if let Some(r) = o.inflate_m {
+            if !(r.is_finite() && r >= 0.0) {
+                return Err(PlanError::InvalidConfig(format!(
+                    "inflate {}: must be a finite number ≥ 0 (metres)",
+                    crate::num::fmt_num(r)
+                )));
+            }
+            self.inflate_m = r;
+        }
+        self.allow_unknown |= o.allow_unknown;
+        self.keypoints |= o.keypoints;
+        if o.bottom_up_eps.is_some() {
+            self.bottom_up_eps = o.bottom_up_eps;
+        }
+        if let Some(eps) = o.epsilon {
+            self.safe.epsilon = eps;
+        }
+        Ok(self)
+    }
+}
+
 /// A plan with everything the CLI and the page show.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct GridPlan {
@@ -203,6 +265,46 @@ pub fn plan_on_map(
     options: &GridPlanOptions,
     record_expanded: bool,
 ) -> Result<GridPlan, GridPlanError> {
+    let planner = checked_planner(options)?;
+    let plan_grid = plan_grid_for(grid, options)?;
+    plan_prepared(
+        grid,
+        &plan_grid,
+        &*planner,
+        start,
+        goal,
+        options,
+        record_expanded,
+    )
+}
+
+/// [`plan_on_map`] on a passability grid built beforehand, so many queries
+/// on one map (the Python package's `plan`, a benchmark) build it once.
+/// `plan_grid` must be [`plan_grid_for`]`(grid, options)`; the result is
+/// then exactly [`plan_on_map`]'s.
+pub fn plan_on_plan_grid(
+    grid: &OccupancyGrid,
+    plan_grid: &PlanGrid,
+    start: GridPos,
+    goal: GridPos,
+    options: &GridPlanOptions,
+    record_expanded: bool,
+) -> Result<GridPlan, GridPlanError> {
+    let planner = checked_planner(options)?;
+    plan_prepared(
+        grid,
+        plan_grid,
+        &*planner,
+        start,
+        goal,
+        options,
+        record_expanded,
+    )
+}
+
+/// The planner of `options`, after checking the options the planner does
+/// not check itself.
+fn checked_planner(options: &GridPlanOptions) -> Result<Box<dyn GridPlanner>, GridPlanError> {
     let planner = build_planner(options)?;
     if let Some(eps) = options.bottom_up_eps {
         if !(eps.is_finite() && eps >= 0.0) {
@@ -212,7 +314,19 @@ pub fn plan_on_map(
             .into());
         }
     }
-    let plan_grid = plan_grid_for(grid, options)?;
+    Ok(planner)
+}
+
+/// The plan itself: endpoints, search, key points, feature nodes, safety.
+fn plan_prepared(
+    grid: &OccupancyGrid,
+    plan_grid: &PlanGrid,
+    planner: &dyn GridPlanner,
+    start: GridPos,
+    goal: GridPos,
+    options: &GridPlanOptions,
+    record_expanded: bool,
+) -> Result<GridPlan, GridPlanError> {
     if let Err(e) = plan_grid.check_endpoints(start, goal) {
         // Say "blocked after inflation" rather than a bare "inside an
         // obstacle" when the raw map has the endpoint free.
@@ -233,22 +347,22 @@ pub fn plan_on_map(
     }
     let mut expanded = Vec::new();
     let path = planner.plan_recording(
-        &plan_grid,
+        plan_grid,
         start,
         goal,
         record_expanded.then_some(&mut expanded),
     )?;
     let keypoints = if options.keypoints {
-        key_points(&plan_grid, &path.cells, options.diagonal)
+        key_points(plan_grid, &path.cells, options.diagonal)
     } else {
         Vec::new()
     };
     let feature_nodes = match options.bottom_up_eps {
-        Some(eps) => bottom_up(&plan_grid, &path.cells, eps, options.diagonal)?,
+        Some(eps) => bottom_up(plan_grid, &path.cells, eps, options.diagonal)?,
         None => Vec::new(),
     };
     let safety = if options.algorithm == Algorithm::SafeAStar {
-        safety_index(&plan_grid, &path.cells, options.safe.window_radius)
+        safety_index(plan_grid, &path.cells, options.safe.window_radius)
     } else {
         Vec::new()
     };
