@@ -751,10 +751,6 @@ struct Episode {
     lidar: Lidar,
 }
 
-fn outcome_str(o: Outcome) -> &'static str {
-    o.as_str()
-}
-
 #[pymethods]
 impl Episode {
     /// What the robot knows now, as a dict of arrays: `t`, `pose` (x, y,
@@ -815,18 +811,17 @@ impl Episode {
                 )))
             }
         };
-        Ok(outcome_str(o))
+        Ok(o.as_str())
     }
 
     /// Steps with the scenario's planner until the episode ends.
-    fn run(&mut self, py: Python<'_>) -> &'static str {
-        let _ = py;
-        outcome_str(self.ep.run())
+    fn run(&mut self) -> &'static str {
+        self.ep.run().as_str()
     }
 
     #[getter]
     fn outcome(&self) -> &'static str {
-        outcome_str(self.ep.outcome())
+        self.ep.outcome().as_str()
     }
 
     #[getter]
