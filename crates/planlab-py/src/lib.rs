@@ -98,6 +98,17 @@ fn from_py(obj: &Bound<'_, PyAny>) -> PyResult<Value> {
     serde_json::from_str(&text).map_err(err::<ParamError>)
 }
 
+/// A (rows, cols) array from row-major values.
+fn table<T: numpy::Element>(
+    py: Python<'_>,
+    rows: usize,
+    cols: usize,
+    flat: Vec<T>,
+) -> PyResult<Bound<'_, PyArray2<T>>> {
+    let a = Array2::from_shape_vec((rows, cols), flat).map_err(err::<PlanlabError>)?;
+    Ok(a.into_pyarray(py))
+}
+
 // ---------------------------------------------------------------- maps
 
 /// An occupancy grid: `occupancy[row, col]` (uint8: 0 free, 1 occupied,
@@ -182,8 +193,7 @@ impl Grid {
     fn occupancy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u8>>> {
         let g = &self.grid;
         let cells: Vec<u8> = g.cells().iter().map(|c| *c as u8).collect();
-        let a = Array2::from_shape_vec((g.height(), g.width()), cells).map_err(err::<MapError>)?;
-        Ok(a.into_pyarray(py))
+        table(py, g.height(), g.width(), cells)
     }
 
     #[getter]
@@ -262,8 +272,7 @@ fn load_scen<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyArray
             ]
         })
         .collect();
-    let a = Array2::from_shape_vec((rows.len(), 5), flat).map_err(err::<MapError>)?;
-    Ok(a.into_pyarray(py))
+    table(py, rows.len(), 5, flat)
 }
 
 /// A name in the core's serde spelling (`no_corner_cutting`); the CLI's
@@ -289,8 +298,7 @@ fn cells_array<'py>(py: Python<'py>, cells: &[GridPos]) -> PyResult<Bound<'py, P
         .iter()
         .flat_map(|p| [i64::from(p.col), i64::from(p.row)])
         .collect();
-    let a = Array2::from_shape_vec((cells.len(), 2), flat).map_err(err::<PlanlabError>)?;
-    Ok(a.into_pyarray(py))
+    table(py, cells.len(), 2, flat)
 }
 
 /// Plans on `grid` from `start` to `goal` (cells (col, row); default: the
@@ -680,9 +688,8 @@ impl Scenario {
 /// An (n, 3) array of points.
 fn points<'py>(py: Python<'py>, pts: &[[f64; 3]]) -> PyResult<Bound<'py, PyDict>> {
     let flat: Vec<f64> = pts.iter().flatten().copied().collect();
-    let a = Array2::from_shape_vec((pts.len(), 3), flat).map_err(err::<PlanlabError>)?;
     let d = PyDict::new(py);
-    d.set_item("path", a.into_pyarray(py))?;
+    d.set_item("path", table(py, pts.len(), 3, flat)?)?;
     Ok(d)
 }
 
@@ -783,8 +790,7 @@ impl Episode {
                 ]
             })
             .collect();
-        let a = Array2::from_shape_vec((movers.len(), 6), flat).map_err(err::<PlanlabError>)?;
-        d.set_item("movers", a.into_pyarray(py))?;
+        d.set_item("movers", table(py, movers.len(), 6, flat)?)?;
         Ok(d)
     }
 

@@ -14,6 +14,9 @@ import planlab.gym as pgym
 from conftest import ROOM, SCENARIOS
 
 
+# The action is (v, ω) in the robot's own units and limits, by design; the
+# checker's advice to normalise it to [-1, 1] is not a failure.
+@pytest.mark.filterwarnings("ignore:.*symmetric and normalized space:UserWarning")
 def test_check_env_passes_on_the_default_and_a_preset():
     check_env(pgym.PlanlabEnv(), skip_render_check=True)
     check_env(pgym.PlanlabEnv(SCENARIOS / "dwa-crowd.json", beams=16, jitter=0.3),
