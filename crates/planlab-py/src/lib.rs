@@ -12,7 +12,7 @@
 
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
-use std::sync::OnceLock;
+use std::sync::{Mutex, MutexGuard, OnceLock};
 
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
@@ -604,10 +604,9 @@ impl Scenario {
             set: set_edits(set)?,
         };
         let (scenario, grid) = self.edited(&edits)?;
-        // The GIL stays held: an episode's planner is not `Send`.
-        let done = scenario
-            .start(grid)
-            .and_then(AnyRun::run)
+        // Other Python threads run meanwhile.
+        let done = py
+            .detach(|| scenario.start(grid).and_then(AnyRun::run))
             .map_err(err::<ScenarioError>)?;
         let d = PyDict::new(py);
         d.set_item("scenario", scenario.name())?;
@@ -677,7 +676,9 @@ impl Scenario {
             }
         };
         let lidar = Lidar::new(cfg, "lidar").map_err(err::<ParamError>)?;
-        Ok(Episode { ep, lidar })
+        Ok(Episode {
+            inner: Mutex::new(Stepped { ep, lidar }),
+        })
     }
 
     fn __repr__(&self) -> String {
@@ -750,12 +751,25 @@ fn trace_columns<'py>(py: Python<'py>, trace: &Trace) -> PyResult<Bound<'py, PyD
 
 // ------------------------------------------------------------ episodes
 
-/// A robot episode stepped from Python. `unsendable`: a planner is not
-/// shared across threads; the episode stays on the thread that made it.
-#[pyclass(module = "planlab", unsendable)]
+/// A robot episode stepped from Python. Behind a mutex so any Python
+/// thread may use it (a pyclass must be `Sync`; a planner is only `Send`).
+#[pyclass(module = "planlab", frozen)]
 struct Episode {
+    inner: Mutex<Stepped>,
+}
+
+/// The episode and the sensor `observe` scans with.
+struct Stepped {
     ep: CoreEpisode,
     lidar: Lidar,
+}
+
+impl Episode {
+    fn lock(&self) -> MutexGuard<'_, Stepped> {
+        // Nothing panics while the lock is held; a poisoned lock still
+        // holds a consistent episode.
+        self.inner.lock().unwrap_or_else(|e| e.into_inner())
+    }
 }
 
 #[pymethods]
@@ -764,19 +778,21 @@ impl Episode {
     /// θ), `velocity` (v, vy, ω), `goal` (x, y), `scan` (ranges, m; inf =
     /// no return), `scan_angles` (rad, robot frame), `movers` ((k, 6):
     /// id, x, y, vx, vy, radius of the movers within sensing range).
-    fn observe<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let s = *self.ep.state();
-        let scan = self.ep.scan(&mut self.lidar);
+    fn observe<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let mut g = self.lock();
+        let Stepped { ep, lidar } = &mut *g;
+        let s = *ep.state();
+        let scan = ep.scan(lidar);
         let n = scan.len();
         let d = PyDict::new(py);
-        d.set_item("t", self.ep.time())?;
+        d.set_item("t", ep.time())?;
         d.set_item("pose", PyArray1::from_vec(py, vec![s.x, s.y, s.theta]))?;
         d.set_item("velocity", PyArray1::from_vec(py, vec![s.v, s.vy, s.w]))?;
-        d.set_item("goal", PyArray1::from_vec(py, self.ep.goal().to_vec()))?;
+        d.set_item("goal", PyArray1::from_vec(py, ep.goal().to_vec()))?;
         d.set_item("scan", PyArray1::from_vec(py, scan.ranges().to_vec()))?;
         let angles: Vec<f64> = (0..n).map(|i| scan.angle(i)).collect();
         d.set_item("scan_angles", PyArray1::from_vec(py, angles))?;
-        let movers = self.ep.observed_movers();
+        let movers = ep.observed_movers();
         let flat: Vec<f64> = movers
             .iter()
             .flat_map(|m| {
@@ -799,15 +815,15 @@ impl Episode {
     /// Returns the outcome: `running`, `reached`, `collision`, `timeout`,
     /// `stuck`.
     #[pyo3(signature = (command = None))]
-    fn step(&mut self, command: Option<Vec<f64>>) -> PyResult<&'static str> {
+    fn step(&self, command: Option<Vec<f64>>) -> PyResult<&'static str> {
+        let mut g = self.lock();
+        let ep = &mut g.ep;
         let o = match command.as_deref() {
-            None => self.ep.step(),
-            Some(&[v, w]) => self
-                .ep
+            None => ep.step(),
+            Some(&[v, w]) => ep
                 .step_with(Command { v, vy: 0.0, w })
                 .map_err(err::<ParamError>)?,
-            Some(&[v, vy, w]) => self
-                .ep
+            Some(&[v, vy, w]) => ep
                 .step_with(Command { v, vy, w })
                 .map_err(err::<ParamError>)?,
             Some(other) => {
@@ -821,39 +837,39 @@ impl Episode {
     }
 
     /// Steps with the scenario's planner until the episode ends.
-    fn run(&mut self) -> &'static str {
-        self.ep.run().as_str()
+    fn run(&self, py: Python<'_>) -> &'static str {
+        py.detach(|| self.lock().ep.run().as_str())
     }
 
     #[getter]
     fn outcome(&self) -> &'static str {
-        self.ep.outcome().as_str()
+        self.lock().ep.outcome().as_str()
     }
 
     #[getter]
     fn done(&self) -> bool {
-        self.ep.outcome() != Outcome::Running
+        self.lock().ep.outcome() != Outcome::Running
     }
 
     #[getter]
     fn time(&self) -> f64 {
-        self.ep.time()
+        self.lock().ep.time()
     }
 
     #[getter]
     fn steps(&self) -> u64 {
-        self.ep.steps()
+        self.lock().ep.steps()
     }
 
     #[getter]
     fn planner(&self) -> String {
-        self.ep.planner_choice().name.clone()
+        self.lock().ep.planner_choice().name.clone()
     }
 
     /// The map's extent in metres: (x_min, y_min, x_max, y_max).
     #[getter]
     fn bounds(&self) -> (f64, f64, f64, f64) {
-        let b = self.ep.map().bounds();
+        let b = self.lock().ep.map().bounds();
         (b[0], b[1], b[2], b[3])
     }
 
@@ -862,8 +878,9 @@ impl Episode {
     /// `max_time`, `radius` (circumscribed), `lidar_range`, `lidar_beams`.
     #[getter]
     fn limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let l = self.ep.robot().limits;
-        let c = self.ep.config();
+        let g = self.lock();
+        let l = g.ep.robot().limits;
+        let c = g.ep.config();
         let d = PyDict::new(py);
         for (k, v) in [
             ("v_min", l.v_min),
@@ -876,9 +893,9 @@ impl Episode {
             ("dt", c.dt),
             ("goal_tolerance", c.goal_tolerance),
             ("max_time", c.max_time),
-            ("radius", self.ep.robot().footprint.circumscribed_radius()),
-            ("lidar_range", self.lidar.config().range),
-            ("lidar_beams", f64::from(self.lidar.config().beams)),
+            ("radius", g.ep.robot().footprint.circumscribed_radius()),
+            ("lidar_range", g.lidar.config().range),
+            ("lidar_beams", f64::from(g.lidar.config().beams)),
         ] {
             d.set_item(k, v)?;
         }
@@ -888,17 +905,17 @@ impl Episode {
     /// The metrics the core computes from the trace so far (what `planlab
     /// run` prints once the episode has ended).
     fn metrics<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        to_py(py, &EpisodeMetrics::of_episode(&self.ep))
+        to_py(py, &EpisodeMetrics::of_episode(&self.lock().ep))
     }
 
     /// The trace so far as columns (see `Scenario.run`).
     fn trace<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        trace_columns(py, self.ep.trace())
+        trace_columns(py, self.lock().ep.trace())
     }
 
     /// FNV-1a of the trace so far, hex (`planlab run`'s once ended).
     fn trace_hash(&self) -> String {
-        format!("{:016x}", self.ep.trace().hash())
+        format!("{:016x}", self.lock().ep.trace().hash())
     }
 }
 

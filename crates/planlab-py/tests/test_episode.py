@@ -88,3 +88,20 @@ def test_steps_after_the_end_change_nothing():
     n, h = ep.steps, ep.trace_hash()
     assert ep.step(command=(1.0, 0.0)) == "reached"
     assert (ep.steps, ep.trace_hash()) == (n, h)
+
+
+def test_an_episode_may_be_used_from_another_thread():
+    from concurrent.futures import ThreadPoolExecutor
+
+    s = planlab.Scenario.from_file(SCENARIOS / "dwa-demo.json")
+    want = s.run()["trace_hash"]
+    ep = s.episode()
+    ep.step()
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        assert pool.submit(ep.run).result() == "reached"
+    assert ep.trace_hash() == want
+    # Runs of several threads at once give each its own episode's hash.
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        hashes = list(pool.map(lambda p: s.run(planner=p)["trace_hash"],
+                               ["dwa", "improved-dwa", "dwa"]))
+    assert hashes[0] == hashes[2] == want and hashes[1] != want
