@@ -23,7 +23,7 @@ use planlab_core::global::plan::{
 };
 use planlab_core::global::{Diagonal, GridPos, Heuristic, PlanError as CorePlanError, PlanGrid};
 use planlab_core::lidar::{Lidar, LidarConfig};
-use planlab_core::map::{Cell, OccupancyGrid, Pose2};
+use planlab_core::map::{Cell, OccupancyGrid, Pose2, MAX_CELLS};
 use planlab_core::metrics::EpisodeMetrics;
 use planlab_core::planners;
 use planlab_core::reproduce::{self, Experiment, RunMetrics};
@@ -151,15 +151,41 @@ impl Grid {
         origin: (f64, f64, f64),
     ) -> PyResult<Grid> {
         let py = occupancy.py();
-        // Any integer or bool array becomes uint8 in numpy (one pass in C).
-        let arr = py
-            .import("numpy")?
-            .call_method1("asarray", (occupancy, "uint8"))?;
+        let a = py.import("numpy")?.call_method1("asarray", (occupancy,))?;
+        let dtype = a.getattr("dtype")?;
+        let kind: String = dtype.getattr("kind")?.extract()?;
+        if !matches!(kind.as_str(), "b" | "i" | "u") {
+            return Err(err::<MapError>(format!(
+                "occupancy: expected a bool or integer array (0 free, 1 occupied, 2 unknown), got {}",
+                dtype.str()?
+            )));
+        }
+        // Out-of-range integers would wrap in the cast to uint8: refused
+        // first (min and max are one pass each, in C).
+        if a.getattr("size")?.extract::<usize>()? > 0 {
+            for end in ["min", "max"] {
+                let v: i64 = a
+                    .call_method0(end)?
+                    .call_method0("__int__")?
+                    .extract()
+                    .unwrap_or(i64::MAX);
+                if !(0..=2).contains(&v) {
+                    return Err(err::<MapError>(format!(
+                        "occupancy value {v}: expected 0 (free), 1 (occupied) or 2 (unknown)"
+                    )));
+                }
+            }
+        }
+        let arr = a.call_method1("astype", ("uint8",))?;
         let arr: PyReadonlyArray2<u8> = arr
             .extract()
             .map_err(|_| err::<MapError>("occupancy must be a 2-D array of 0/1/2 values"))?;
         let view = arr.as_array();
         let (h, w) = view.dim();
+        if (w as u64).saturating_mul(h as u64) > MAX_CELLS {
+            // The core's own refusal, before anything is allocated.
+            OccupancyGrid::new(w, h).map_err(err::<MapError>)?;
+        }
         let mut cells = Vec::with_capacity(w * h);
         for v in view.iter() {
             cells.push(match v {

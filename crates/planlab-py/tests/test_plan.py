@@ -116,3 +116,11 @@ def test_a_grid_from_numpy():
     assert res["cost"] == 10 and res["length_m"] == 5.0
     with pytest.raises(planlab.MapError, match="occupancy value 7"):
         planlab.Grid(np.full((2, 2), 7))
+    # 4·10⁸ cells (a zero-copy view): refused before any allocation.
+    with pytest.raises(planlab.MapError, match="100000000"):
+        planlab.Grid(np.broadcast_to(np.uint8(0), (20000, 20000)))
+    for bad, match in [(np.zeros((0, 3), dtype=int), "empty"), (np.zeros(5, dtype=int), "2-D"),
+                       ([[0.5, 1]], "bool or integer"), ([[0, -1]], "value -1"),
+                       ([[0, 256]], "value 256"), (np.array([[0, 2**62]]), "value 4611686018427387904")]:
+        with pytest.raises(planlab.MapError, match=match):
+            planlab.Grid(bad)
