@@ -51,6 +51,29 @@ if [ ! -f web/node_modules/.package-lock.json ] || [ web/package-lock.json -nt w
   (cd web && npm ci --no-audit --no-fund)
 fi
 
+# The Python package's virtual environment: .venv at the root (git-ignored)
+# with the pinned dev requirements of crates/planlab-py; pip runs only when
+# the venv is new or the requirements file changed since the last install.
+PY_REQ=crates/planlab-py/requirements-dev.txt
+if ! command -v python3 >/dev/null 2>&1; then
+  log "installing Python 3"
+  $SUDO apt-get update -qq && $SUDO apt-get install -y -qq python3 python3-venv
+fi
+if [ ! -x .venv/bin/python ]; then
+  if ! python3 -c 'import ensurepip' >/dev/null 2>&1; then
+    log "installing python3-venv"
+    $SUDO apt-get update -qq && $SUDO apt-get install -y -qq python3-venv
+  fi
+  log "creating the Python virtual environment .venv"
+  python3 -m venv .venv
+fi
+if ! cmp -s "$PY_REQ" .venv/.requirements-dev.txt; then
+  log "installing the Python dev requirements into .venv (maturin, pytest, numpy, gymnasium, ray, matplotlib)"
+  .venv/bin/python -m pip install -q --upgrade pip
+  .venv/bin/python -m pip install -q -r "$PY_REQ"
+  cp "$PY_REQ" .venv/.requirements-dev.txt
+fi
+
 if [ "${1:-}" = "--browser" ]; then
   if ! command -v chromium >/dev/null 2>&1 || ! command -v chromedriver >/dev/null 2>&1; then
     log "installing Chromium and ChromeDriver (Debian packages)"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every check planlab promises: formatting, clippy (native and wasm32),
 # native unit/integration/doc tests, benches once, docs, the wasm build,
-# wasm-pack browser tests and the browser end-to-end tests.
+# wasm-pack browser tests, the browser end-to-end tests and the Python
+# package's tests (pytest in .venv).
 # Installs what is missing first. Exits non-zero on the first failure.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -38,5 +39,12 @@ wasm-pack test --headless --chrome crates/planlab-wasm
 
 step "browser end-to-end tests"
 (cd web && npm run e2e)
+
+step "python package: build the wheel into .venv, pytest"
+# The dev profile (planlab-core itself is optimised in it) reuses what
+# `cargo test` built above; the tests compare with the release CLI.
+(cd crates/planlab-py && VIRTUAL_ENV="$PWD/../../.venv" PATH="$PWD/../../.venv/bin:$PATH" \
+  maturin develop --profile dev --quiet)
+PLANLAB_CLI="${CARGO_TARGET_DIR:-$PWD/target}/release/planlab" .venv/bin/python -m pytest -q crates/planlab-py/tests
 
 step "all checks passed"

@@ -7,9 +7,8 @@ use std::time::Instant;
 
 use planlab_core::batch::{self, metric_values, PlannerSummary};
 use planlab_core::metrics::EpisodeMetrics;
-use planlab_core::planners::{self, PlannerChoice};
+use planlab_core::planners::PlannerChoice;
 use planlab_core::scenario::Scenario;
-use planlab_core::sim::Episode;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -54,17 +53,6 @@ struct BatchFooter<'a> {
     seconds: f64,
 }
 
-/// The planner `name` of a batch of a scenario whose own planner is `own`:
-/// the scenario's own keeps its tuning; others start from their papers'
-/// defaults, as `planlab run --planner` does.
-pub(crate) fn choice_for(own: &PlannerChoice, name: &str) -> PlannerChoice {
-    if own.name == name {
-        own.clone()
-    } else {
-        PlannerChoice::named(name)
-    }
-}
-
 /// `planlab batch`.
 pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
     if args.variants == 0 || args.variants > batch::MAX_VARIANTS {
@@ -77,27 +65,8 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
     let text = load::read_text(path)?;
     let base = Scenario::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let grid = load::grid_of(path, &base)?;
-    let own = base.local_planner.clone().unwrap_or_default();
-    let choices: Vec<PlannerChoice> = if args.planners.is_empty() {
-        vec![own.clone()]
-    } else {
-        let known: Vec<String> = planners::list().into_iter().map(|p| p.name).collect();
-        let mut out: Vec<PlannerChoice> = Vec::new();
-        for name in args.planners {
-            let name = name.trim();
-            if !known.iter().any(|k| k == name) {
-                return Err(format!(
-                    "--planners: unknown planner `{name}`; known: {}",
-                    known.join(", ")
-                ));
-            }
-            if out.iter().any(|c| c.name == name) {
-                return Err(format!("--planners: `{name}` is listed twice"));
-            }
-            out.push(choice_for(&own, name));
-        }
-        out
-    };
+    let choices =
+        batch::planner_choices(&base, args.planners).map_err(|e| format!("--planners: {e}"))?;
     let started = Instant::now();
     // The CSV is opened first and written a chunk of variants at a time, so
     // a long batch shows its rows as they finish and a bad path fails fast.
@@ -193,24 +162,15 @@ fn run_variants(
     let first = jobs.first().map_or(0, |j| j.0);
     jobs.par_iter()
         .map(|&(v, p)| {
-            let mut s = variants[(v - first) as usize].clone();
-            s.local_planner = Some(choices[p].clone());
-            let mut ep = Episode::from_scenario(&s, grid.clone()).map_err(|e| {
-                format!(
-                    "{}: variant {v}, planner {}: {e}",
-                    path.display(),
-                    choices[p].name
-                )
-            })?;
-            ep.run();
-            let metrics = EpisodeMetrics::of_episode(&ep);
+            let r = batch::run_variant(&variants[(v - first) as usize], grid, v, &choices[p])
+                .map_err(|e| format!("{}: {e}", path.display()))?;
             Ok(RunRow {
                 variant: v,
                 planner: p,
-                seed: s.seed.unwrap_or(0),
-                steps: ep.steps(),
-                hash: ep.trace().hash(),
-                metrics,
+                seed: r.seed,
+                steps: r.steps,
+                hash: r.trace_hash,
+                metrics: r.metrics,
             })
         })
         .collect()

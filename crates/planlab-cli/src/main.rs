@@ -19,15 +19,17 @@ mod batch_cmd;
 mod bench;
 mod gen_cmd;
 mod grid_cmds;
-mod load;
 mod peer;
 mod reproduce_cmd;
 mod serve;
 mod sim_cmds;
 
+/// File reading is shared with the Python package.
+use planlab_files as load;
+
 use clap::{Parser, Subcommand, ValueEnum};
-use planlab_core::global::plan::{Algorithm, GridPlanOptions};
-use planlab_core::global::{Diagonal, GridPos, Heuristic};
+use planlab_core::global::plan::{Algorithm, GridPlanOptions, GridPlanOverrides};
+use planlab_core::global::{Diagonal, GridPos, Heuristic, PlanError};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -546,38 +548,26 @@ fn run(cli: Cli) -> Result<(), String> {
             let (grid, scenario) = load::load_any(&map)?;
             // Flags override the scenario's planner section, which overrides
             // the defaults.
-            let mut options = scenario
+            let overrides = GridPlanOverrides {
+                algorithm: algo.map(Into::into),
+                heuristic: heuristic.map(Into::into),
+                weight,
+                diagonal: diagonal.map(Into::into),
+                inflate_m: inflate,
+                allow_unknown,
+                keypoints,
+                bottom_up_eps: bottom_up,
+                epsilon,
+            };
+            let options = scenario
                 .as_ref()
-                .map_or_else(GridPlanOptions::default, |s| s.grid_planner);
-            if let Some(a) = algo {
-                options.algorithm = a.into();
-            }
-            if let Some(h) = heuristic {
-                options.heuristic = h.into();
-            }
-            if let Some(w) = weight {
-                options.weight = w;
-            }
-            if let Some(d) = diagonal {
-                options.diagonal = d.into();
-            }
-            if let Some(r) = inflate {
-                if !(r.is_finite() && r >= 0.0) {
-                    return Err(format!(
-                        "--inflate {}: must be a finite number ≥ 0 (metres)",
-                        planlab_core::num::fmt_num(r)
-                    ));
-                }
-                options.inflate_m = r;
-            }
-            options.allow_unknown |= allow_unknown;
-            options.keypoints |= keypoints;
-            if bottom_up.is_some() {
-                options.bottom_up_eps = bottom_up;
-            }
-            if let Some(eps) = epsilon {
-                options.safe.epsilon = eps;
-            }
+                .map_or_else(GridPlanOptions::default, |s| s.grid_planner)
+                .overridden(&overrides)
+                .map_err(|e| match e {
+                    // The flag's name: `--inflate NaN: must be …`.
+                    PlanError::InvalidConfig(m) => format!("--{m}"),
+                    e => e.to_string(),
+                })?;
             let endpoint = |flag: Option<String>, name: &str, from_scenario: Option<GridPos>| match (
                 flag,
                 from_scenario,

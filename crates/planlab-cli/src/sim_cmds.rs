@@ -146,7 +146,7 @@ fn batch_variant(
         .map_err(|e| format!("{}: {e}", path.display()))?;
     if let Some(name) = args.planner {
         let own = base.local_planner.clone().unwrap_or_default();
-        s.local_planner = Some(crate::batch_cmd::choice_for(&own, name));
+        s.local_planner = Some(planlab_core::batch::choice_for(&own, name));
     }
     Ok((AnyScenario::Robot(s), Some(grid)))
 }

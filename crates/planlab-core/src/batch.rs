@@ -11,8 +11,9 @@ use thiserror::Error;
 use crate::map::OccupancyGrid;
 use crate::metrics::EpisodeMetrics;
 use crate::num::Rng;
+use crate::planners::{self, PlannerChoice};
 use crate::scenario::{Scenario, ScenarioPoint, WorldPoint};
-use crate::sim::{Episode, Outcome};
+use crate::sim::{Episode, Outcome, SimError};
 use crate::world::MotionModel;
 
 /// Why a batch could not be set up.
@@ -34,6 +35,103 @@ pub enum BatchError {
         /// The last rejection.
         last: String,
     },
+    /// The planner list names an unknown planner or one twice.
+    #[error("{0}")]
+    BadPlanners(String),
+    /// The variant's episode could not be built.
+    #[error("variant {index}, planner {planner}: {source}")]
+    Episode {
+        /// Variant index.
+        index: u32,
+        /// Planner name.
+        planner: String,
+        /// Why.
+        source: SimError,
+    },
+}
+
+/// The planner `name` in a batch of a scenario whose own planner is `own`:
+/// the scenario's own keeps its tuning; others start from their papers'
+/// defaults, as `planlab run --planner` does.
+pub fn choice_for(own: &PlannerChoice, name: &str) -> PlannerChoice {
+    if own.name == name {
+        own.clone()
+    } else {
+        PlannerChoice::named(name)
+    }
+}
+
+/// The planners of a batch of `base` by name (trimmed); none = the
+/// scenario's own. Unknown names and repeats are refused.
+pub fn planner_choices(
+    base: &Scenario,
+    names: &[String],
+) -> Result<Vec<PlannerChoice>, BatchError> {
+    let own = base.local_planner.clone().unwrap_or_default();
+    if names.is_empty() {
+        return Ok(vec![own]);
+    }
+    let known: Vec<String> = planners::list().into_iter().map(|p| p.name).collect();
+    let mut out: Vec<PlannerChoice> = Vec::new();
+    for name in names {
+        let name = name.trim();
+        if !known.iter().any(|k| k == name) {
+            return Err(BatchError::BadPlanners(format!(
+                "unknown planner `{name}`; known: {}",
+                known.join(", ")
+            )));
+        }
+        if out.iter().any(|c| c.name == name) {
+            return Err(BatchError::BadPlanners(format!("`{name}` is listed twice")));
+        }
+        out.push(choice_for(&own, name));
+    }
+    Ok(out)
+}
+
+/// One finished episode of a batch.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BatchRun {
+    /// Variant index.
+    pub variant: u32,
+    /// Planner name.
+    pub planner: String,
+    /// The episode's own seed ([`variant_seed`]).
+    pub seed: u64,
+    /// Steps taken.
+    pub steps: u64,
+    /// FNV-1a of the trace (what `planlab batch --csv` writes).
+    pub trace_hash: u64,
+    /// What it measured.
+    pub metrics: EpisodeMetrics,
+}
+
+/// Runs variant `index` (built by [`variant`]) with `choice`: the episode
+/// `planlab batch` runs for that row, so any process (a thread, a Ray
+/// task) that calls this gets the same trace hash.
+pub fn run_variant(
+    variant_scenario: &Scenario,
+    grid: &OccupancyGrid,
+    index: u32,
+    choice: &PlannerChoice,
+) -> Result<BatchRun, BatchError> {
+    let mut s = variant_scenario.clone();
+    s.local_planner = Some(choice.clone());
+    let mut ep =
+        Episode::from_scenario(&s, grid.clone()).map_err(|source| BatchError::Episode {
+            index,
+            planner: choice.name.clone(),
+            source,
+        })?;
+    ep.run();
+    Ok(BatchRun {
+        variant: index,
+        planner: choice.name.clone(),
+        seed: s.seed.unwrap_or(0),
+        steps: ep.steps(),
+        trace_hash: ep.trace().hash(),
+        metrics: EpisodeMetrics::of_episode(&ep),
+    })
 }
 
 /// The most variants one batch may ask for: each is an episode per planner,

@@ -965,3 +965,54 @@ proptest! {
         }
     }
 }
+
+/// A passability grid built once gives every query exactly what
+/// `plan_on_map` gives (the Python package plans this way).
+#[test]
+fn planning_on_a_prepared_grid_equals_plan_on_map() {
+    use planlab_core::global::plan::{
+        plan_grid_for, plan_on_map, plan_on_plan_grid, Algorithm, GridPlanOptions,
+    };
+    use planlab_core::map::io::movingai;
+    let dir =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/movingai/dao");
+    let grid = movingai::parse_map(&std::fs::read_to_string(dir.join("arena.map")).unwrap())
+        .unwrap()
+        .with_frame(0.5, Default::default())
+        .unwrap();
+    let rows = movingai::parse_scen(&std::fs::read_to_string(dir.join("arena.map.scen")).unwrap())
+        .unwrap();
+    let cases = [
+        GridPlanOptions::default(),
+        GridPlanOptions {
+            algorithm: Algorithm::Jps,
+            keypoints: true,
+            ..Default::default()
+        },
+        GridPlanOptions {
+            algorithm: Algorithm::SafeAStar,
+            bottom_up_eps: Some(1.0),
+            ..Default::default()
+        },
+        GridPlanOptions {
+            inflate_m: 0.5,
+            ..Default::default()
+        },
+        GridPlanOptions {
+            weight: f64::NAN,
+            ..Default::default()
+        },
+    ];
+    let mut planned = 0;
+    for options in &cases {
+        let prepared = plan_grid_for(&grid, options).unwrap();
+        for r in rows.iter().step_by(7) {
+            let want = plan_on_map(&grid, r.start, r.goal, options);
+            let got = plan_on_plan_grid(&grid, &prepared, r.start, r.goal, options);
+            assert_eq!(got, want, "{options:?} {r:?}");
+            planned += usize::from(got.is_ok());
+        }
+    }
+    // The cases plan most rows, and the NaN weight refuses every one.
+    assert!(planned > 50, "{planned}");
+}

@@ -209,6 +209,68 @@ impl Default for GridPlanOptions {
     }
 }
 
+/// Changes to a map's or scenario's grid plan options: the `planlab plan`
+/// flags, the Python `plan` keywords. `None` / `false` keep the value.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GridPlanOverrides {
+    /// Planner to run.
+    pub algorithm: Option<Algorithm>,
+    /// A* / JPS heuristic.
+    pub heuristic: Option<Heuristic>,
+    /// A* heuristic weight.
+    pub weight: Option<f64>,
+    /// Diagonal move rule.
+    pub diagonal: Option<Diagonal>,
+    /// Inflation radius, metres (checked: finite, ≥ 0).
+    pub inflate_m: Option<f64>,
+    /// Also treat unknown cells as free.
+    pub allow_unknown: bool,
+    /// Also extract key points.
+    pub keypoints: bool,
+    /// Bottom-Up maximum error, cells.
+    pub bottom_up_eps: Option<f64>,
+    /// Safe A* ε.
+    pub epsilon: Option<f64>,
+}
+
+impl GridPlanOptions {
+    /// These options with `o` applied. The inflation radius is checked
+    /// here (`InvalidConfig("inflate …")`, the caller names its flag); the
+    /// other values when a planner is built from the options.
+    pub fn overridden(mut self, o: &GridPlanOverrides) -> Result<GridPlanOptions, PlanError> {
+        if let Some(a) = o.algorithm {
+            self.algorithm = a;
+        }
+        if let Some(h) = o.heuristic {
+            self.heuristic = h;
+        }
+        if let Some(w) = o.weight {
+            self.weight = w;
+        }
+        if let Some(d) = o.diagonal {
+            self.diagonal = d;
+        }
+        if let Some(r) = o.inflate_m {
+            if !(r.is_finite() && r >= 0.0) {
+                return Err(PlanError::InvalidConfig(format!(
+                    "inflate {}: must be a finite number ≥ 0 (metres)",
+                    crate::num::fmt_num(r)
+                )));
+            }
+            self.inflate_m = r;
+        }
+        self.allow_unknown |= o.allow_unknown;
+        self.keypoints |= o.keypoints;
+        if o.bottom_up_eps.is_some() {
+            self.bottom_up_eps = o.bottom_up_eps;
+        }
+        if let Some(eps) = o.epsilon {
+            self.safe.epsilon = eps;
+        }
+        Ok(self)
+    }
+}
+
 /// A plan with everything the CLI and the page show.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct GridPlan {
@@ -346,11 +408,27 @@ pub fn plan_on_map(
     goal: GridPos,
     options: &GridPlanOptions,
 ) -> Result<GridPlan, GridPlanError> {
-    let planner = build_planner(options)?;
+    build_planner(options)?;
     check_bottom_up(options)?;
     let plan_grid = plan_grid_for(grid, options)?;
-    plan_with(grid, &plan_grid, start, goal, options, &mut (), |_| {
-        planner.plan(&plan_grid, start, goal)
+    plan_on_plan_grid(grid, &plan_grid, start, goal, options)
+}
+
+/// [`plan_on_map`] on a passability grid built beforehand, so many queries
+/// on one map (the Python package's `plan`, a benchmark) build it once.
+/// `plan_grid` must be [`plan_grid_for`]`(grid, options)`; the result is
+/// then exactly [`plan_on_map`]'s.
+pub fn plan_on_plan_grid(
+    grid: &OccupancyGrid,
+    plan_grid: &PlanGrid,
+    start: GridPos,
+    goal: GridPos,
+    options: &GridPlanOptions,
+) -> Result<GridPlan, GridPlanError> {
+    let planner = build_planner(options)?;
+    check_bottom_up(options)?;
+    plan_with(grid, plan_grid, start, goal, options, &mut (), |_| {
+        planner.plan(plan_grid, start, goal)
     })
 }
 

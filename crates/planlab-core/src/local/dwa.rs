@@ -1275,7 +1275,7 @@ impl<G: GoalProvider> DwaPlanner<G> {
     }
 }
 
-impl<G: GoalProvider> LocalPlanner for DwaPlanner<G> {
+impl<G: GoalProvider + Send> LocalPlanner for DwaPlanner<G> {
     fn name(&self) -> &'static str {
         self.guide.name()
     }

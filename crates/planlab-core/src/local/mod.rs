@@ -131,7 +131,7 @@ pub struct PlannerDebug {
 }
 
 /// A local planner: called once per control period.
-pub trait LocalPlanner {
+pub trait LocalPlanner: Send {
     /// The planner's registry name.
     fn name(&self) -> &'static str;
     /// Chooses the command for this period.

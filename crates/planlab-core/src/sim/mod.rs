@@ -35,15 +35,17 @@ pub use trace::{Column, Trace, TraceStep};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use crate::local::{LocalError, LocalPlanner, ObservedMover, PlannerDebug};
+use crate::lidar::scan::Disc;
+use crate::lidar::{Lidar, Scan};
+use crate::local::{GoalKind, LocalError, LocalPlanner, ObservedMover, PlannerDebug};
 use crate::map::io::ScenarioError;
 use crate::map::MapError;
 use crate::num::{cos, fmt_num, hypot, sin};
 use crate::params::param_problem;
 use crate::planners::{self, PlannerChoice};
 use crate::world::{
-    Footprint, MoverSpec, MoverState, OdometrySample, RobotSpec, RobotState, StaticMap, Terrain,
-    TerrainSpec, WorldError,
+    Command, Footprint, MoverSpec, MoverState, OdometrySample, RobotSpec, RobotState, StaticMap,
+    Terrain, TerrainSpec, WorldError,
 };
 
 /// Clearance values in traces and metrics are capped here, metres: farther
@@ -61,6 +63,9 @@ pub const MAX_STEPS: f64 = 1_000_000.0;
 /// and checks collisions only at its end, so a long period moves the robot
 /// through walls (issue 14: `sim.dt=1e9` moved it 7.6·10⁸ m in one step).
 pub const MAX_DT: f64 = 1.0;
+
+/// The trace's `mode` of a step driven by [`Episode::step_with`].
+pub const USER_MODE: &str = "user";
 
 /// Simulation settings of an episode.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -559,18 +564,13 @@ impl Episode {
         }
     }
 
-    /// Advances one control period and returns the outcome (unchanged once
-    /// the episode has ended).
-    pub fn step(&mut self) -> Outcome {
-        if self.outcome != Outcome::Running {
-            return self.outcome;
-        }
-        let dt = self.config.dt;
-        let t = self.time();
-        let now = self.movers_at(t);
+    /// The movers the robot perceives now: those whose surface is within
+    /// `sensing_range` of its centre, with their true velocities (what the
+    /// planner is given each step).
+    pub fn observed_movers(&self) -> Vec<ObservedMover> {
+        let now = self.movers_at(self.time());
         let range = self.config.sensing_range;
-        let observed: Vec<ObservedMover> = self
-            .movers
+        self.movers
             .iter()
             .zip(&now)
             .filter(|(m, ms)| {
@@ -582,18 +582,75 @@ impl Episode {
                 vel: ms.vel,
                 radius: m.radius,
             })
+            .collect()
+    }
+
+    /// A LiDAR scan from the robot's current pose against the map and every
+    /// mover (as discs at their current positions). The sensor is the
+    /// caller's, so its noise stream goes on across calls.
+    pub fn scan(&self, lidar: &mut Lidar) -> Scan {
+        let s = &self.state;
+        let discs: Vec<Disc> = self
+            .movers
+            .iter()
+            .zip(self.movers_at(self.time()))
+            .map(|(m, ms)| Disc {
+                centre: ms.pos,
+                radius: m.radius,
+            })
             .collect();
-        let obs = crate::local::Observation {
-            time: t,
-            dt,
-            state: &self.state,
-            goal: self.goal,
-            map: &self.map,
-            movers: &observed,
-            odometry: self.odometry,
-            accel_z: self.accel_z,
+        lidar.scan(&self.map, [s.x, s.y, s.theta], &discs)
+    }
+
+    /// Advances one control period with the scenario's planner and returns
+    /// the outcome (unchanged once the episode has ended).
+    pub fn step(&mut self) -> Outcome {
+        self.advance(None)
+    }
+
+    /// Advances one control period with `command` instead of the planner's
+    /// (an external controller drives the robot): the command is clamped to
+    /// the robot's limits like the planner's, the world, collisions, goal
+    /// and trace go on as in [`Episode::step`], so the metrics are the same
+    /// measure. The trace row's goal is the final goal and its mode `user`.
+    /// A non-finite component is refused before anything moves.
+    pub fn step_with(&mut self, command: Command) -> Result<Outcome, SimError> {
+        for (name, v) in [("v", command.v), ("vy", command.vy), ("w", command.w)] {
+            if !v.is_finite() {
+                return Err(SimError::InvalidConfig(format!(
+                    "command {name} = {}: must be a finite number",
+                    fmt_num(v)
+                )));
+            }
+        }
+        Ok(self.advance(Some(command)))
+    }
+
+    /// One control period with the planner's command (`None`) or the
+    /// given one.
+    fn advance(&mut self, user: Option<Command>) -> Outcome {
+        if self.outcome != Outcome::Running {
+            return self.outcome;
+        }
+        let dt = self.config.dt;
+        let t = self.time();
+        let raw = match user {
+            Some(cmd) => cmd,
+            None => {
+                let observed = self.observed_movers();
+                let obs = crate::local::Observation {
+                    time: t,
+                    dt,
+                    state: &self.state,
+                    goal: self.goal,
+                    map: &self.map,
+                    movers: &observed,
+                    odometry: self.odometry,
+                    accel_z: self.accel_z,
+                };
+                self.planner.step(&obs)
+            }
         };
-        let raw = self.planner.step(&obs);
         let cmd = self.robot.feasible(&self.state, raw, dt);
         let ts = self.terrain.step(&self.state, cmd, dt);
         self.state = ts.next;
@@ -627,7 +684,14 @@ impl Episode {
         } else {
             Outcome::Running
         };
-        let row = self.trace_row(cmd, Some(&ts), &next);
+        let mut row = self.trace_row(cmd, Some(&ts), &next);
+        if user.is_some() {
+            // The planner did not run: its debug is stale.
+            row.goal = self.goal;
+            row.goal_kind = GoalKind::Final;
+            row.mode = USER_MODE.to_string();
+            row.classes.clear();
+        }
         self.trace.steps.push(row);
         self.outcome
     }

@@ -1,5 +1,7 @@
-//! Reading maps from disk for the CLI: the core parses bytes, this module
-//! finds and reads the files (the core never touches the file system).
+//! Reading maps and scenarios from disk for the native front ends (the
+//! `planlab` CLI and the Python package): the core parses bytes, this crate
+//! finds and reads the files (the core never touches the file system), so
+//! both refuse devices, folders and oversized files the same way.
 
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::{OccupancyGrid, MAX_CELLS};

@@ -1,0 +1,1122 @@
+//! `planlab._planlab`: the Python bindings of planlab-core (built by maturin
+//! into the `planlab` package; the Python half is in `python/planlab/`).
+//!
+//! Everything goes through the core's own entry points, as the CLI does:
+//! `map::io` through [`planlab_files`] for files, `plan_on_map` and the
+//! core's algorithm / heuristic / diagonal names for grid plans,
+//! `AnyScenario` for runs, `batch::variant` / `batch::run_variant` for
+//! batch episodes, `reproduce` for the papers' experiments. So the numbers
+//! are the CLI's, and a planner or algorithm added to the core appears here
+//! with no change. Every core error becomes a `PlanlabError` subclass with
+//! the core's one-line message; nothing panics across the boundary.
+
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+use std::sync::{Mutex, MutexGuard, OnceLock};
+
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
+use planlab_core::arm::ArmPredictor;
+use planlab_core::batch;
+use planlab_core::global::plan::{
+    plan_on_map, plan_on_plan_grid, Algorithm, GridPlanError, GridPlanOptions, GridPlanOverrides,
+};
+use planlab_core::global::{Diagonal, GridPos, Heuristic, PlanError as CorePlanError, PlanGrid};
+use planlab_core::lidar::{Lidar, LidarConfig};
+use planlab_core::map::{Cell, OccupancyGrid, Pose2, MAX_CELLS};
+use planlab_core::metrics::EpisodeMetrics;
+use planlab_core::planners;
+use planlab_core::reproduce::{self, Experiment, RunMetrics};
+use planlab_core::scenario::{
+    set_json_path, set_planner_name, AnyRun, AnyScenario, FinishedRun, Scenario as CoreScenario,
+    ScenarioKind,
+};
+use planlab_core::sim::{Column, Episode as CoreEpisode, Outcome, Trace};
+use planlab_core::text::one_line;
+use planlab_core::world::Command;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use serde_json::Value;
+
+/// The exception hierarchy: `PlanlabError` and one subclass per kind of
+/// input that can be wrong.
+mod errors {
+    use pyo3::create_exception;
+    create_exception!(
+        planlab,
+        PlanlabError,
+        pyo3::exceptions::PyException,
+        "Base of every planlab error; the message is the core's one line."
+    );
+    create_exception!(
+        planlab,
+        MapError,
+        PlanlabError,
+        "A map file or array could not be read or is invalid."
+    );
+    create_exception!(
+        planlab,
+        ScenarioError,
+        PlanlabError,
+        "A scenario could not be read, built or run."
+    );
+    create_exception!(
+        planlab,
+        PlanError,
+        PlanlabError,
+        "A grid plan failed: an endpoint off the map or in a wall, no path."
+    );
+    create_exception!(
+        planlab,
+        ParamError,
+        PlanlabError,
+        "A parameter is out of range, not finite or unknown."
+    );
+}
+use errors::{MapError, ParamError, PlanError, PlanlabError, ScenarioError};
+
+fn err<E: pyo3::PyTypeInfo>(msg: impl std::fmt::Display) -> PyErr {
+    PyErr::new::<E, _>(one_line(&msg.to_string()))
+}
+
+/// A JSON document (serde) as a Python object, through Python's `json`.
+fn to_py<'py>(py: Python<'py>, v: &impl serde::Serialize) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(v).map_err(err::<PlanlabError>)?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// A Python object (dict, list, number …) as a JSON tree, through `json`.
+fn from_py(obj: &Bound<'_, PyAny>) -> PyResult<Value> {
+    let kwargs = PyDict::new(obj.py());
+    kwargs.set_item("allow_nan", false)?;
+    let text: String = obj
+        .py()
+        .import("json")?
+        .call_method("dumps", (obj,), Some(&kwargs))
+        .map_err(|e| err::<ParamError>(format!("not a JSON document: {e}")))?
+        .extract()?;
+    serde_json::from_str(&text).map_err(err::<ParamError>)
+}
+
+/// A (rows, cols) array from row-major values.
+fn table<T: numpy::Element>(
+    py: Python<'_>,
+    rows: usize,
+    cols: usize,
+    flat: Vec<T>,
+) -> PyResult<Bound<'_, PyArray2<T>>> {
+    let a = Array2::from_shape_vec((rows, cols), flat).map_err(err::<PlanlabError>)?;
+    Ok(a.into_pyarray(py))
+}
+
+// ---------------------------------------------------------------- maps
+
+/// An occupancy grid: `occupancy[row, col]` (uint8: 0 free, 1 occupied,
+/// 2 unknown), `resolution` (m per cell) and `origin` (x, y, yaw). A grid
+/// read from a scenario also carries its start and goal cells and its grid
+/// planner options, which `plan` uses as defaults (as `planlab plan` does).
+#[pyclass(module = "planlab", frozen)]
+struct Grid {
+    grid: OccupancyGrid,
+    start: Option<GridPos>,
+    goal: Option<GridPos>,
+    options: GridPlanOptions,
+    /// The passability grid without inflation, by `allow_unknown`, built on
+    /// the first query that needs it: later queries skip that pass over the
+    /// map (the CLI's bench builds it once too).
+    prepared: [OnceLock<PlanGrid>; 2],
+}
+
+impl Grid {
+    fn of(grid: OccupancyGrid, scenario: Option<&CoreScenario>) -> Grid {
+        Grid {
+            grid,
+            start: scenario.map(|s| s.start.pos()),
+            goal: scenario.map(|s| s.goal.pos()),
+            options: scenario.map_or_else(GridPlanOptions::default, |s| s.grid_planner),
+            prepared: Default::default(),
+        }
+    }
+}
+
+#[pymethods]
+impl Grid {
+    /// A grid from a 2-D array (`[row, col]`; bool or integers: 0 free,
+    /// 1 occupied, 2 unknown).
+    #[new]
+    #[pyo3(signature = (occupancy, resolution = 1.0, origin = (0.0, 0.0, 0.0)))]
+    fn new(
+        occupancy: &Bound<'_, PyAny>,
+        resolution: f64,
+        origin: (f64, f64, f64),
+    ) -> PyResult<Grid> {
+        let py = occupancy.py();
+        let a = py.import("numpy")?.call_method1("asarray", (occupancy,))?;
+        let dtype = a.getattr("dtype")?;
+        let kind: String = dtype.getattr("kind")?.extract()?;
+        if !matches!(kind.as_str(), "b" | "i" | "u") {
+            return Err(err::<MapError>(format!(
+                "occupancy: expected a bool or integer array (0 free, 1 occupied, 2 unknown), got {}",
+                dtype.str()?
+            )));
+        }
+        // Out-of-range integers would wrap in the cast to uint8: refused
+        // first (min and max are one pass each, in C).
+        if a.getattr("size")?.extract::<usize>()? > 0 {
+            for end in ["min", "max"] {
+                let v: i64 = a
+                    .call_method0(end)?
+                    .call_method0("__int__")?
+                    .extract()
+                    .unwrap_or(i64::MAX);
+                if !(0..=2).contains(&v) {
+                    return Err(err::<MapError>(format!(
+                        "occupancy value {v}: expected 0 (free), 1 (occupied) or 2 (unknown)"
+                    )));
+                }
+            }
+        }
+        let arr = a.call_method1("astype", ("uint8",))?;
+        let arr: PyReadonlyArray2<u8> = arr
+            .extract()
+            .map_err(|_| err::<MapError>("occupancy must be a 2-D array of 0/1/2 values"))?;
+        let view = arr.as_array();
+        let (h, w) = view.dim();
+        if (w as u64).saturating_mul(h as u64) > MAX_CELLS {
+            // The core's own refusal, before anything is allocated.
+            OccupancyGrid::new(w, h).map_err(err::<MapError>)?;
+        }
+        let mut cells = Vec::with_capacity(w * h);
+        for v in view.iter() {
+            cells.push(match v {
+                0 => Cell::Free,
+                1 => Cell::Occupied,
+                2 => Cell::Unknown,
+                other => {
+                    return Err(err::<MapError>(format!(
+                        "occupancy value {other}: expected 0 (free), 1 (occupied) or 2 (unknown)"
+                    )))
+                }
+            });
+        }
+        let grid = OccupancyGrid::from_cells(w, h, cells)
+            .and_then(|g| {
+                g.with_frame(
+                    resolution,
+                    Pose2 {
+                        x: origin.0,
+                        y: origin.1,
+                        yaw: origin.2,
+                    },
+                )
+            })
+            .map_err(err::<MapError>)?;
+        Ok(Grid::of(grid, None))
+    }
+
+    /// `occupancy[row, col]` as a uint8 array (a copy).
+    #[getter]
+    fn occupancy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u8>>> {
+        let g = &self.grid;
+        let cells: Vec<u8> = g.cells().iter().map(|c| *c as u8).collect();
+        table(py, g.height(), g.width(), cells)
+    }
+
+    #[getter]
+    fn width(&self) -> usize {
+        self.grid.width()
+    }
+
+    #[getter]
+    fn height(&self) -> usize {
+        self.grid.height()
+    }
+
+    #[getter]
+    fn resolution(&self) -> f64 {
+        self.grid.resolution()
+    }
+
+    /// (x, y, yaw) of the map's origin, metres and radians.
+    #[getter]
+    fn origin(&self) -> (f64, f64, f64) {
+        let o = self.grid.origin();
+        (o.x, o.y, o.yaw)
+    }
+
+    /// The scenario's start cell (col, row), or None.
+    #[getter]
+    fn start(&self) -> Option<(u32, u32)> {
+        self.start.map(|p| (p.col, p.row))
+    }
+
+    /// The scenario's goal cell (col, row), or None.
+    #[getter]
+    fn goal(&self) -> Option<(u32, u32)> {
+        self.goal.map(|p| (p.col, p.row))
+    }
+
+    /// World coordinates (m) of a cell's centre.
+    fn cell_to_world(&self, col: usize, row: usize) -> (f64, f64) {
+        self.grid.cell_to_world(col, row)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Grid({}×{} cells, {} m/cell)",
+            self.grid.width(),
+            self.grid.height(),
+            self.grid.resolution()
+        )
+    }
+}
+
+/// Reads a map: a ROS map_server `.yaml` (+ its image), a Moving AI `.map`
+/// or a scenario `.json` (its map, start, goal and grid planner options).
+#[pyfunction]
+fn load_map(py: Python<'_>, path: PathBuf) -> PyResult<Grid> {
+    let (grid, scenario) = py
+        .detach(|| planlab_files::load_any(&path))
+        .map_err(err::<MapError>)?;
+    Ok(Grid::of(grid, scenario.as_ref()))
+}
+
+/// The rows of a Moving AI `.scen` as an (n, 5) float array: start col,
+/// start row, goal col, goal row, optimal length.
+#[pyfunction]
+fn load_scen<'py>(py: Python<'py>, path: PathBuf) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let rows = planlab_files::load_scen(&path).map_err(err::<MapError>)?;
+    let flat: Vec<f64> = rows
+        .iter()
+        .flat_map(|r| {
+            [
+                f64::from(r.start.col),
+                f64::from(r.start.row),
+                f64::from(r.goal.col),
+                f64::from(r.goal.row),
+                r.optimal,
+            ]
+        })
+        .collect();
+    table(py, rows.len(), 5, flat)
+}
+
+/// A name in the core's serde spelling (`no_corner_cutting`); the CLI's
+/// `no-corner-cutting` is accepted too.
+fn by_serde_name<T: serde::de::DeserializeOwned>(what: &str, name: &str) -> PyResult<T> {
+    serde_json::from_value(Value::String(name.trim().replace('-', "_")))
+        .map_err(|e| err::<ParamError>(format!("{what} {name:?}: {e}")))
+}
+
+fn cell(which: &str, p: (i64, i64)) -> PyResult<GridPos> {
+    let ok = |v: i64| u32::try_from(v).ok();
+    match (ok(p.0), ok(p.1)) {
+        (Some(c), Some(r)) => Ok(GridPos::new(c, r)),
+        _ => Err(err::<ParamError>(format!(
+            "{which} ({}, {}): expected (COLUMN, ROW) with non-negative integers",
+            p.0, p.1
+        ))),
+    }
+}
+
+fn cells_array<'py>(py: Python<'py>, cells: &[GridPos]) -> PyResult<Bound<'py, PyArray2<i64>>> {
+    let flat: Vec<i64> = cells
+        .iter()
+        .flat_map(|p| [i64::from(p.col), i64::from(p.row)])
+        .collect();
+    table(py, cells.len(), 2, flat)
+}
+
+/// Plans on `grid` from `start` to `goal` (cells (col, row); default: the
+/// scenario's) with the core's `plan_on_map`, as `planlab plan` does.
+/// Returns a dict: `path` ((n, 2) int array of (col, row)), `cost` (cells),
+/// `length_m`, `expanded`, `keypoints`, `feature_nodes`, `safety`.
+#[pyfunction]
+#[pyo3(signature = (grid, start = None, goal = None, algo = None, heuristic = None,
+    diagonal = None, weight = None, inflate = None, allow_unknown = false,
+    keypoints = false, bottom_up = None, epsilon = None))]
+#[allow(clippy::too_many_arguments)]
+fn plan<'py>(
+    py: Python<'py>,
+    grid: &Grid,
+    start: Option<(i64, i64)>,
+    goal: Option<(i64, i64)>,
+    algo: Option<&str>,
+    heuristic: Option<&str>,
+    diagonal: Option<&str>,
+    weight: Option<f64>,
+    inflate: Option<f64>,
+    allow_unknown: bool,
+    keypoints: bool,
+    bottom_up: Option<f64>,
+    epsilon: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let overrides = GridPlanOverrides {
+        algorithm: algo
+            .map(|a| Algorithm::from_str(a.trim()))
+            .transpose()
+            .map_err(err::<ParamError>)?,
+        heuristic: heuristic
+            .map(|h| by_serde_name::<Heuristic>("heuristic", h))
+            .transpose()?,
+        weight,
+        diagonal: diagonal
+            .map(|d| by_serde_name::<Diagonal>("diagonal", d))
+            .transpose()?,
+        inflate_m: inflate,
+        allow_unknown,
+        keypoints,
+        bottom_up_eps: bottom_up,
+        epsilon,
+    };
+    let options = grid.options.overridden(&overrides).map_err(|e| match e {
+        CorePlanError::InvalidConfig(m) => err::<ParamError>(m),
+        e => err::<ParamError>(e),
+    })?;
+    let endpoint = |name: &str, given: Option<(i64, i64)>, own: Option<GridPos>| match (given, own)
+    {
+        (Some(p), _) => cell(name, p),
+        (None, Some(p)) => Ok(p),
+        (None, None) => Err(err::<ParamError>(format!(
+            "{name} (COLUMN, ROW) is required for this map"
+        ))),
+    };
+    let start = endpoint("start", start, grid.start)?;
+    let goal = endpoint("goal", goal, grid.goal)?;
+    let g = &grid.grid;
+    let result = py
+        .detach(|| {
+            if options.inflate_m == 0.0 {
+                let prepared = grid.prepared[usize::from(options.allow_unknown)]
+                    .get_or_init(|| PlanGrid::new(g, options.allow_unknown));
+                plan_on_plan_grid(g, prepared, start, goal, &options)
+            } else {
+                plan_on_map(g, start, goal, &options)
+            }
+        })
+        .map_err(|e| match e {
+            GridPlanError::Plan(CorePlanError::InvalidConfig(_)) | GridPlanError::Map(_) => {
+                err::<ParamError>(e)
+            }
+            _ => err::<PlanError>(e),
+        })?;
+    let d = PyDict::new(py);
+    d.set_item("path", cells_array(py, &result.path.cells)?)?;
+    d.set_item("cost", result.path.cost)?;
+    d.set_item("length_m", result.length_m)?;
+    d.set_item("expanded", result.path.expanded)?;
+    d.set_item("keypoints", cells_array(py, &result.keypoints)?)?;
+    d.set_item("feature_nodes", cells_array(py, &result.feature_nodes)?)?;
+    d.set_item("safety", PyArray1::from_vec(py, result.safety))?;
+    d.set_item("algorithm", options.algorithm.name())?;
+    Ok(d)
+}
+
+/// The grid algorithms' names (what `plan(algo=…)` accepts).
+#[pyfunction]
+fn algorithms() -> Vec<&'static str> {
+    Algorithm::ALL.iter().map(|(_, n)| *n).collect()
+}
+
+/// The local planner catalogue (`planlab planners --json`).
+#[pyfunction]
+fn planner_catalogue(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    to_py(py, &planners::list())
+}
+
+// ----------------------------------------------------------- scenarios
+
+/// A scenario document of any kind (robot, APF, arm) and the folder its
+/// map files are relative to.
+#[pyclass(module = "planlab", frozen)]
+struct Scenario {
+    tree: Value,
+    dir: PathBuf,
+    parsed: AnyScenario,
+}
+
+/// Options of a run or an episode: `planlab run`'s `--planner`, `--seed`,
+/// `--set`.
+struct Edits<'a> {
+    planner: Option<&'a str>,
+    seed: Option<u64>,
+    set: Vec<(String, String)>,
+}
+
+impl Edits<'_> {
+    fn none(&self) -> bool {
+        self.planner.is_none() && self.seed.is_none() && self.set.is_empty()
+    }
+}
+
+fn set_edits(set: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, String)>> {
+    let mut out = Vec::new();
+    if let Some(d) = set {
+        for (k, v) in d.iter() {
+            let key: String = k
+                .extract()
+                .map_err(|_| err::<ParamError>("set: keys are dotted paths like sim.dt"))?;
+            // Strings as written (a planner name, `true`); anything else as
+            // its JSON text.
+            let value = if let Ok(s) = v.extract::<String>() {
+                s
+            } else if v.is_instance_of::<pyo3::types::PyFloat>() {
+                // NaN and infinities as the CLI's text, which the core
+                // refuses with its own message; JSON has no form for them.
+                let x: f64 = v.extract()?;
+                match x {
+                    x if x.is_nan() => "NaN".into(),
+                    x if x.is_infinite() => (if x > 0.0 { "inf" } else { "-inf" }).into(),
+                    x => format!("{x:?}"),
+                }
+            } else {
+                from_py(&v)?.to_string()
+            };
+            out.push((key, value));
+        }
+    }
+    Ok(out)
+}
+
+impl Scenario {
+    fn of_tree(tree: Value, dir: PathBuf) -> PyResult<Scenario> {
+        let parsed = AnyScenario::from_value(&tree).map_err(err::<ScenarioError>)?;
+        Ok(Scenario { tree, dir, parsed })
+    }
+
+    /// The scenario with the edits applied (as `planlab run` applies them)
+    /// and its loaded map.
+    fn edited(&self, e: &Edits<'_>) -> PyResult<(AnyScenario, Option<OccupancyGrid>)> {
+        let scenario = if e.none() {
+            self.parsed.clone()
+        } else {
+            let mut tree = self.tree.clone();
+            let arm = ScenarioKind::of(&tree) == ScenarioKind::Arm;
+            if let (Some(p), false) = (e.planner, arm) {
+                set_planner_name(&mut tree, p).map_err(err::<ScenarioError>)?;
+            }
+            if let Some(seed) = e.seed {
+                set_json_path(&mut tree, "seed", &seed.to_string())
+                    .map_err(err::<ScenarioError>)?;
+            }
+            for (k, v) in &e.set {
+                set_json_path(&mut tree, k.trim(), v).map_err(err::<ScenarioError>)?;
+            }
+            let mut s = AnyScenario::from_value(&tree).map_err(err::<ScenarioError>)?;
+            if let (Some(p), AnyScenario::Arm(a)) = (e.planner, &mut s) {
+                ArmPredictor::parse(p)
+                    .map_err(err::<ScenarioError>)?
+                    .apply(&mut a.arm.apf);
+            }
+            s
+        };
+        let grid = self.load_grid(&scenario)?;
+        Ok((scenario, grid))
+    }
+
+    fn load_grid(&self, s: &AnyScenario) -> PyResult<Option<OccupancyGrid>> {
+        let dir = &self.dir;
+        s.load_grid(&mut |rel: &str| planlab_files::read_map_file(&dir.join(rel)))
+            .map_err(err::<ScenarioError>)
+    }
+
+    fn robot(&self) -> PyResult<(&CoreScenario, OccupancyGrid)> {
+        let AnyScenario::Robot(s) = &self.parsed else {
+            return Err(err::<ScenarioError>(format!(
+                "{} scenarios have no batch variants or episodes to step",
+                self.parsed.kind().name()
+            )));
+        };
+        let grid = self
+            .load_grid(&self.parsed)?
+            .ok_or_else(|| err::<ScenarioError>("the scenario's map could not be loaded"))?;
+        Ok((s, grid))
+    }
+}
+
+#[pymethods]
+impl Scenario {
+    /// Reads a scenario `.json` (any kind); a map file it names is found
+    /// relative to it.
+    #[staticmethod]
+    fn from_file(path: PathBuf) -> PyResult<Scenario> {
+        let text = planlab_files::read_text(&path).map_err(err::<ScenarioError>)?;
+        let at =
+            |e: &dyn std::fmt::Display| err::<ScenarioError>(format!("{}: {e}", path.display()));
+        // Parsed from the text so errors point at the file's lines.
+        let parsed = AnyScenario::from_json(&text).map_err(|e| at(&e))?;
+        let tree: Value = serde_json::from_str(&text).map_err(|e| at(&e))?;
+        let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+        Ok(Scenario { tree, dir, parsed })
+    }
+
+    /// A scenario from a dict (the JSON document); relative map files are
+    /// found in `base_dir` (default: the working folder).
+    #[staticmethod]
+    #[pyo3(signature = (doc, base_dir = None))]
+    fn from_dict(doc: &Bound<'_, PyAny>, base_dir: Option<PathBuf>) -> PyResult<Scenario> {
+        Scenario::of_tree(
+            from_py(doc)?,
+            base_dir.unwrap_or_else(|| PathBuf::from(".")),
+        )
+    }
+
+    /// The JSON document as a dict.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.tree)
+    }
+
+    /// The folder relative map files are read from.
+    #[getter]
+    fn base_dir(&self) -> PathBuf {
+        self.dir.clone()
+    }
+
+    /// The same robot scenario with its map inline (no file references), so
+    /// it can travel to another process or machine as a dict.
+    fn inlined(&self) -> PyResult<Scenario> {
+        let (s, grid) = self.robot()?;
+        let s = s.clone().with_inline_grid(grid);
+        let tree = serde_json::to_value(&s).map_err(err::<ScenarioError>)?;
+        Scenario::of_tree(tree, self.dir.clone())
+    }
+
+    /// Variant `index` of `planlab batch --seed SEED --jitter JITTER`
+    /// (start, goal and movers jittered, the episode seed the variant's;
+    /// variant 0 is this scenario with that seed).
+    #[pyo3(signature = (index, seed = 0, jitter = 0.3))]
+    fn variant(&self, index: u32, seed: u64, jitter: f64) -> PyResult<Scenario> {
+        let (base, grid) = self.robot()?;
+        let v = batch::variant(base, &grid, index, seed, jitter).map_err(|e| match e {
+            batch::BatchError::BadJitter(_) => err::<ParamError>(e),
+            _ => err::<ScenarioError>(e),
+        })?;
+        let tree = serde_json::to_value(&v).map_err(err::<ScenarioError>)?;
+        Scenario::of_tree(tree, self.dir.clone())
+    }
+
+    /// `robot`, `APF` or `arm`.
+    #[getter]
+    fn kind(&self) -> &'static str {
+        self.parsed.kind().name()
+    }
+
+    #[getter]
+    fn name(&self) -> String {
+        self.parsed.name().to_string()
+    }
+
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.parsed.seed()
+    }
+
+    /// Runs to the end, as `planlab run` does (same planner, seed and
+    /// `set` edits: `{"sim.dt": 0.05}`). Returns a dict: `scenario`,
+    /// `planner`, `seed`, `steps`, `trace_hash` (hex, `planlab run`'s),
+    /// `metrics` (dict) and `trace` (dict of 1-D arrays; APF and arm runs:
+    /// `path`, an (n, 3) array of points).
+    #[pyo3(signature = (planner = None, seed = None, set = None))]
+    fn run<'py>(
+        &self,
+        py: Python<'py>,
+        planner: Option<&str>,
+        seed: Option<u64>,
+        set: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let edits = Edits {
+            planner,
+            seed,
+            set: set_edits(set)?,
+        };
+        let (scenario, grid) = self.edited(&edits)?;
+        // Other Python threads run meanwhile.
+        let done = py
+            .detach(|| scenario.start(grid).and_then(AnyRun::run))
+            .map_err(err::<ScenarioError>)?;
+        let d = PyDict::new(py);
+        d.set_item("scenario", scenario.name())?;
+        d.set_item("trace_hash", format!("{:016x}", done.trace_hash()))?;
+        match &done {
+            FinishedRun::Robot(ep, m) => {
+                d.set_item("planner", &ep.planner_choice().name)?;
+                d.set_item("seed", scenario.seed())?;
+                d.set_item("steps", ep.steps())?;
+                d.set_item("metrics", to_py(py, m)?)?;
+                d.set_item("trace", trace_columns(py, ep.trace())?)?;
+            }
+            FinishedRun::Apf(r, m) => {
+                d.set_item("planner", format!("apf:{}", r.mode_label()))?;
+                d.set_item("steps", r.steps())?;
+                d.set_item("metrics", to_py(py, m)?)?;
+                let pts: Vec<[f64; 3]> = r.path_xyz().iter().map(|p| [p.x, p.y, p.z]).collect();
+                d.set_item("trace", points(py, &pts)?)?;
+            }
+            FinishedRun::Arm(ep, m) => {
+                d.set_item("seed", scenario.seed())?;
+                d.set_item("metrics", to_py(py, m)?)?;
+                let pts: Vec<[f64; 3]> = ep.tool_path().iter().map(|p| [p.x, p.y, p.z]).collect();
+                d.set_item("trace", points(py, &pts)?)?;
+            }
+        }
+        Ok(d)
+    }
+
+    /// A robot episode to step: `ep.observe()`, `ep.step()` (the
+    /// scenario's planner) or `ep.step(command=(v, omega))`. `lidar`
+    /// configures the scan `observe` returns (`{"beams": 360, "range":
+    /// 10.0, "noise_std": 0.0, "noise_seed": 0}`).
+    #[pyo3(signature = (seed = None, planner = None, set = None, lidar = None))]
+    fn episode(
+        &self,
+        seed: Option<u64>,
+        planner: Option<&str>,
+        set: Option<&Bound<'_, PyDict>>,
+        lidar: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Episode> {
+        let edits = Edits {
+            planner,
+            seed,
+            set: set_edits(set)?,
+        };
+        let (scenario, grid) = self.edited(&edits)?;
+        let AnyScenario::Robot(s) = &scenario else {
+            return Err(err::<ScenarioError>(format!(
+                "{} scenarios run whole (Scenario.run); only robot episodes step",
+                scenario.kind().name()
+            )));
+        };
+        let grid =
+            grid.ok_or_else(|| err::<ScenarioError>("the scenario's map could not be loaded"))?;
+        let ep = CoreEpisode::from_scenario(s, grid).map_err(err::<ScenarioError>)?;
+        let cfg = match lidar {
+            None => LidarConfig::default(),
+            Some(d) => {
+                let mut v =
+                    serde_json::to_value(LidarConfig::default()).map_err(err::<ParamError>)?;
+                for (k, x) in from_py(d.as_any())?.as_object().into_iter().flatten() {
+                    v[k] = x.clone();
+                }
+                planlab_core::params::parse_config::<LidarConfig>("lidar", &v)
+                    .map_err(err::<ParamError>)?
+            }
+        };
+        let lidar = Lidar::new(cfg, "lidar").map_err(err::<ParamError>)?;
+        Ok(Episode {
+            inner: Mutex::new(Stepped { ep, lidar }),
+        })
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Scenario({:?}, kind={})", self.parsed.name(), self.kind())
+    }
+}
+
+/// An (n, 3) array of points.
+fn points<'py>(py: Python<'py>, pts: &[[f64; 3]]) -> PyResult<Bound<'py, PyDict>> {
+    let flat: Vec<f64> = pts.iter().flatten().copied().collect();
+    let d = PyDict::new(py);
+    d.set_item("path", table(py, pts.len(), 3, flat)?)?;
+    Ok(d)
+}
+
+/// The trace as columns, in the core's column order
+/// ([`planlab_core::sim::TraceStep::columns`]): every number as a 1-D
+/// float array (wheel loads NaN without a vehicle model), `goal_kind` and
+/// `mode` as lists of str. The per-row mover and class lists are left out.
+fn trace_columns<'py>(py: Python<'py>, trace: &Trace) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let Some(first) = trace.steps.first() else {
+        return Ok(d);
+    };
+    let n = trace.steps.len();
+    for (i, col) in first.columns().iter().enumerate() {
+        let pick = |f: &dyn Fn(&Column<'_>) -> Option<f64>| -> Vec<f64> {
+            trace
+                .steps
+                .iter()
+                .map(|r| f(&r.columns()[i]).unwrap_or(f64::NAN))
+                .collect()
+        };
+        match col {
+            Column::Num(name, _) => {
+                let v = pick(&|c| match c {
+                    Column::Num(_, x) => Some(*x),
+                    _ => None,
+                });
+                d.set_item(*name, PyArray1::from_vec(py, v))?;
+            }
+            Column::WheelLoads(_) => {
+                for (w, name) in col.csv_names().iter().enumerate() {
+                    let v = pick(&|c| match c {
+                        Column::WheelLoads(l) => l.map(|l| l[w]),
+                        _ => None,
+                    });
+                    d.set_item(*name, PyArray1::from_vec(py, v))?;
+                }
+            }
+            Column::GoalKind(_) | Column::Mode(_) => {
+                let mut v: Vec<String> = Vec::with_capacity(n);
+                for r in &trace.steps {
+                    v.push(match &r.columns()[i] {
+                        Column::Mode(m) => m.to_string(),
+                        Column::GoalKind(k) => serde_json::to_value(k)
+                            .ok()
+                            .and_then(|x| x.as_str().map(String::from))
+                            .unwrap_or_default(),
+                        _ => String::new(),
+                    });
+                }
+                d.set_item(col.csv_names()[0], PyList::new(py, v)?)?;
+            }
+            Column::Classes(_) | Column::Movers(_) => {}
+        }
+    }
+    Ok(d)
+}
+
+// ------------------------------------------------------------ episodes
+
+/// A robot episode stepped from Python. Behind a mutex so any Python
+/// thread may use it (a pyclass must be `Sync`; a planner is only `Send`).
+#[pyclass(module = "planlab", frozen)]
+struct Episode {
+    inner: Mutex<Stepped>,
+}
+
+/// The episode and the sensor `observe` scans with.
+struct Stepped {
+    ep: CoreEpisode,
+    lidar: Lidar,
+}
+
+impl Episode {
+    fn lock(&self) -> MutexGuard<'_, Stepped> {
+        // Nothing panics while the lock is held; a poisoned lock still
+        // holds a consistent episode.
+        self.inner.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+#[pymethods]
+impl Episode {
+    /// What the robot knows now, as a dict of arrays: `t`, `pose` (x, y,
+    /// θ), `velocity` (v, vy, ω), `goal` (x, y), `scan` (ranges, m; inf =
+    /// no return), `scan_angles` (rad, robot frame), `movers` ((k, 6):
+    /// id, x, y, vx, vy, radius of the movers within sensing range).
+    fn observe<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let mut g = self.lock();
+        let Stepped { ep, lidar } = &mut *g;
+        let s = *ep.state();
+        let scan = ep.scan(lidar);
+        let n = scan.len();
+        let d = PyDict::new(py);
+        d.set_item("t", ep.time())?;
+        d.set_item("pose", PyArray1::from_vec(py, vec![s.x, s.y, s.theta]))?;
+        d.set_item("velocity", PyArray1::from_vec(py, vec![s.v, s.vy, s.w]))?;
+        d.set_item("goal", PyArray1::from_vec(py, ep.goal().to_vec()))?;
+        d.set_item("scan", PyArray1::from_vec(py, scan.ranges().to_vec()))?;
+        let angles: Vec<f64> = (0..n).map(|i| scan.angle(i)).collect();
+        d.set_item("scan_angles", PyArray1::from_vec(py, angles))?;
+        let movers = ep.observed_movers();
+        let flat: Vec<f64> = movers
+            .iter()
+            .flat_map(|m| {
+                [
+                    f64::from(m.id),
+                    m.pos[0],
+                    m.pos[1],
+                    m.vel[0],
+                    m.vel[1],
+                    m.radius,
+                ]
+            })
+            .collect();
+        d.set_item("movers", table(py, movers.len(), 6, flat)?)?;
+        Ok(d)
+    }
+
+    /// One control period: the scenario's planner, or `command` = (v, ω)
+    /// or (v, vy, ω) (clamped to the robot's limits like a planner's).
+    /// Returns the outcome: `running`, `reached`, `collision`, `timeout`,
+    /// `stuck`.
+    #[pyo3(signature = (command = None))]
+    fn step(&self, command: Option<Vec<f64>>) -> PyResult<&'static str> {
+        let mut g = self.lock();
+        let ep = &mut g.ep;
+        let o = match command.as_deref() {
+            None => ep.step(),
+            Some(&[v, w]) => ep
+                .step_with(Command { v, vy: 0.0, w })
+                .map_err(err::<ParamError>)?,
+            Some(&[v, vy, w]) => ep
+                .step_with(Command { v, vy, w })
+                .map_err(err::<ParamError>)?,
+            Some(other) => {
+                return Err(err::<ParamError>(format!(
+                    "command: expected (v, omega) or (v, vy, omega), got {} numbers",
+                    other.len()
+                )))
+            }
+        };
+        Ok(o.as_str())
+    }
+
+    /// Steps with the scenario's planner until the episode ends.
+    fn run(&self, py: Python<'_>) -> &'static str {
+        py.detach(|| self.lock().ep.run().as_str())
+    }
+
+    #[getter]
+    fn outcome(&self) -> &'static str {
+        self.lock().ep.outcome().as_str()
+    }
+
+    #[getter]
+    fn done(&self) -> bool {
+        self.lock().ep.outcome() != Outcome::Running
+    }
+
+    #[getter]
+    fn time(&self) -> f64 {
+        self.lock().ep.time()
+    }
+
+    #[getter]
+    fn steps(&self) -> u64 {
+        self.lock().ep.steps()
+    }
+
+    #[getter]
+    fn planner(&self) -> String {
+        self.lock().ep.planner_choice().name.clone()
+    }
+
+    /// The map's extent in metres: (x_min, y_min, x_max, y_max).
+    #[getter]
+    fn bounds(&self) -> (f64, f64, f64, f64) {
+        let b = self.lock().ep.map().bounds();
+        (b[0], b[1], b[2], b[3])
+    }
+
+    /// The robot's limits and the control period: `v_min`, `v_max`,
+    /// `vy_max`, `w_max`, `acc_v`, `acc_vy`, `acc_w`, `dt`, `goal_tolerance`,
+    /// `max_time`, `radius` (circumscribed), `lidar_range`, `lidar_beams`.
+    #[getter]
+    fn limits<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let g = self.lock();
+        let l = g.ep.robot().limits;
+        let c = g.ep.config();
+        let d = PyDict::new(py);
+        for (k, v) in [
+            ("v_min", l.v_min),
+            ("v_max", l.v_max),
+            ("vy_max", l.vy_max),
+            ("w_max", l.w_max),
+            ("acc_v", l.acc_v),
+            ("acc_vy", l.acc_vy),
+            ("acc_w", l.acc_w),
+            ("dt", c.dt),
+            ("goal_tolerance", c.goal_tolerance),
+            ("max_time", c.max_time),
+            ("radius", g.ep.robot().footprint.circumscribed_radius()),
+            ("lidar_range", g.lidar.config().range),
+            ("lidar_beams", f64::from(g.lidar.config().beams)),
+        ] {
+            d.set_item(k, v)?;
+        }
+        Ok(d)
+    }
+
+    /// The metrics the core computes from the trace so far (what `planlab
+    /// run` prints once the episode has ended).
+    fn metrics<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &EpisodeMetrics::of_episode(&self.lock().ep))
+    }
+
+    /// The trace so far as columns (see `Scenario.run`).
+    fn trace<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        trace_columns(py, self.lock().ep.trace())
+    }
+
+    /// FNV-1a of the trace so far, hex (`planlab run`'s once ended).
+    fn trace_hash(&self) -> String {
+        format!("{:016x}", self.lock().ep.trace().hash())
+    }
+}
+
+// ---------------------------------------------------- batches, sweeps
+
+/// Episodes of `planlab batch` on `scenario` (a robot scenario): for each
+/// variant index in `variants` and each planner in `planners` (names;
+/// empty = the scenario's own), the episode `planlab batch --seed SEED
+/// --jitter JITTER` runs for that row. Returns a list of dicts: `variant`,
+/// `planner`, `seed`, `steps`, `trace_hash` (hex), `metrics`. The GIL is
+/// released while the episodes run, so threads run them in parallel.
+#[pyfunction]
+#[pyo3(signature = (scenario, variants, planners = Vec::new(), seed = 0, jitter = 0.3))]
+fn batch_episodes<'py>(
+    py: Python<'py>,
+    scenario: &Scenario,
+    variants: Vec<i64>,
+    planners: Vec<String>,
+    seed: u64,
+    jitter: f64,
+) -> PyResult<Bound<'py, PyList>> {
+    let (base, grid) = scenario.robot()?;
+    let choices = batch::planner_choices(base, &planners)
+        .map_err(|e| err::<ParamError>(format!("planners: {e}")))?;
+    let mut idx = Vec::with_capacity(variants.len());
+    for v in variants {
+        match u32::try_from(v) {
+            Ok(k) if k < batch::MAX_VARIANTS => idx.push(k),
+            _ => {
+                return Err(err::<ParamError>(format!(
+                    "variant {v}: must be from 0 to {}",
+                    batch::MAX_VARIANTS - 1
+                )))
+            }
+        }
+    }
+    let runs = py.detach(|| -> Result<Vec<batch::BatchRun>, batch::BatchError> {
+        let mut out = Vec::with_capacity(idx.len() * choices.len());
+        for &k in &idx {
+            let v = batch::variant(base, &grid, k, seed, jitter)?;
+            for c in &choices {
+                out.push(batch::run_variant(&v, &grid, k, c)?);
+            }
+        }
+        Ok(out)
+    });
+    let runs = runs.map_err(|e| match e {
+        batch::BatchError::BadJitter(_) => err::<ParamError>(e),
+        _ => err::<ScenarioError>(e),
+    })?;
+    let list = PyList::empty(py);
+    for r in &runs {
+        let d = PyDict::new(py);
+        d.set_item("variant", r.variant)?;
+        d.set_item("planner", &r.planner)?;
+        d.set_item("seed", r.seed)?;
+        d.set_item("steps", r.steps)?;
+        d.set_item("trace_hash", format!("{:016x}", r.trace_hash))?;
+        d.set_item("metrics", to_py(py, &r.metrics)?)?;
+        list.append(d)?;
+    }
+    Ok(list)
+}
+
+/// Per-planner statistics of batch runs (`planlab batch --json`'s summary
+/// lines): `runs` is a list of metrics dicts of one planner.
+#[pyfunction]
+fn summarise<'py>(
+    py: Python<'py>,
+    planner: &str,
+    runs: &Bound<'py, PyList>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let runs: Vec<EpisodeMetrics> =
+        serde_json::from_value(from_py(runs.as_any())?).map_err(err::<ParamError>)?;
+    to_py(py, &batch::summarise(planner, &runs))
+}
+
+/// The largest batch (`planlab batch --variants`).
+#[pyfunction]
+fn max_variants() -> u32 {
+    batch::MAX_VARIANTS
+}
+
+// ----------------------------------------------------------- reproduce
+
+fn reproduce_one<M: RunMetrics + serde::Serialize>(
+    exp: &Experiment<M>,
+    variants: Option<u32>,
+    seed: u64,
+) -> Result<Value, String> {
+    let at = |e: &dyn std::fmt::Display| format!("{}: {e}", exp.id);
+    match variants {
+        None => {
+            let r = reproduce::run(exp).map_err(|e| at(&e))?;
+            serde_json::to_value(&r).map_err(|e| e.to_string())
+        }
+        Some(n) => {
+            let results = (0..n)
+                .map(|k| reproduce::run_variant(exp, seed, k, &[]))
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(|e| at(&e))?;
+            let f = reproduce::summarise(exp, seed, None, &results);
+            serde_json::to_value(&f).map_err(|e| e.to_string())
+        }
+    }
+}
+
+/// One of the papers' experiments, as `planlab reproduce ID --json`
+/// prints it: the presets, or with `variants=N` the family of N seeded
+/// variants (success rates, clauses, verdict).
+#[pyfunction(name = "reproduce")]
+#[pyo3(signature = (id, variants = None, seed = 0))]
+fn reproduce_experiment<'py>(
+    py: Python<'py>,
+    id: &str,
+    variants: Option<u32>,
+    seed: u64,
+) -> PyResult<Bound<'py, PyAny>> {
+    if let Some(n) = variants {
+        if n == 0 || n > reproduce::MAX_VARIANTS {
+            return Err(err::<ParamError>(format!(
+                "variants {n}: give 1 to {} (the preset is variant 0)",
+                reproduce::MAX_VARIANTS
+            )));
+        }
+    }
+    let out = py.detach(|| {
+        if let Some(e) = reproduce::find(id) {
+            reproduce_one(&e, variants, seed)
+        } else if let Some(e) = reproduce::find_path(id) {
+            reproduce_one(&e, variants, seed)
+        } else {
+            Err(format!(
+                "unknown experiment `{id}`; known ids: {}",
+                reproduce::ids().join(", ")
+            ))
+        }
+    });
+    let v = out.map_err(|e| {
+        if e.starts_with("unknown experiment") {
+            err::<ParamError>(e)
+        } else {
+            err::<ScenarioError>(e)
+        }
+    })?;
+    to_py(py, &v)
+}
+
+/// The experiments' ids, in `planlab reproduce` order.
+#[pyfunction]
+fn reproduce_ids() -> Vec<&'static str> {
+    reproduce::ids()
+}
+
+#[pymodule]
+fn _planlab(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("PlanlabError", py.get_type::<PlanlabError>())?;
+    m.add("MapError", py.get_type::<MapError>())?;
+    m.add("ScenarioError", py.get_type::<ScenarioError>())?;
+    m.add("PlanError", py.get_type::<PlanError>())?;
+    m.add("ParamError", py.get_type::<ParamError>())?;
+    m.add_class::<Grid>()?;
+    m.add_class::<Scenario>()?;
+    m.add_class::<Episode>()?;
+    m.add_function(wrap_pyfunction!(load_map, m)?)?;
+    m.add_function(wrap_pyfunction!(load_scen, m)?)?;
+    m.add_function(wrap_pyfunction!(plan, m)?)?;
+    m.add_function(wrap_pyfunction!(algorithms, m)?)?;
+    m.add_function(wrap_pyfunction!(planner_catalogue, m)?)?;
+    m.add_function(wrap_pyfunction!(batch_episodes, m)?)?;
+    m.add_function(wrap_pyfunction!(summarise, m)?)?;
+    m.add_function(wrap_pyfunction!(max_variants, m)?)?;
+    m.add_function(wrap_pyfunction!(reproduce_experiment, m)?)?;
+    m.add_function(wrap_pyfunction!(reproduce_ids, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}
