@@ -79,3 +79,4 @@ def test_reproduce_equals_planlab_reproduce(cli, args):
     assert len(want) == 1
     assert planlab.reproduce(exp, variants=n) == want[0]
     assert exp in planlab.reproduce_ids()
+
