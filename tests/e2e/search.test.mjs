@@ -299,6 +299,7 @@ test('Drive: the robot follows the D* Lite path, a wall painted ahead of it is r
   assert.ok(repaired > 0 && repaired < freshAStar, `repair expanded ${repaired}, a fresh A* ${freshAStar}`);
   const around = await pathCells(page);
   assert.ok(!around.some(([c, r]) => c === mc && r === mr), 'the repaired path avoids the wall');
+  await page.screenshot({ path: path.join(REPO, 'docs/grid-drive.png') });
   // Drives on round the wall to the goal.
   await page.click('#drive');
   await page.waitForFunction(() => document.body.dataset.driving === 'false', null, { timeout: 60_000 });

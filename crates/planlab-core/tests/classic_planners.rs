@@ -88,7 +88,10 @@ fn slack(optimum: f64) -> f64 {
 
 /// Every `steps[m]`-th row of map `m` (arena, arena2, random512, maze512;
 /// 1 = every row, 0 = none): `check` says what is wrong with a planner's
-/// answer.
+/// answer. The 8-connected optimal planners take every row of every map,
+/// as A* and JPS do; the others every row of the first three and a sample
+/// of maze512's 12 121 (their checks are bounds or a second search, and
+/// the suite must stay within CI's time).
 fn every_row(
     steps: [usize; 4],
     planner: &dyn GridPlanner,
@@ -153,7 +156,7 @@ fn jps_4_connected_equals_4_connected_astar_on_every_row() {
     .unwrap();
     let mut fewer = 0usize;
     let mut rows = 0usize;
-    every_row([1, 1, 1, 1], &jps, |grid, row, result| {
+    every_row([1, 1, 1, 4], &jps, |grid, row, result| {
         let best = four.plan(grid, row.start, row.goal).unwrap();
         rows += 1;
         match result {
@@ -224,7 +227,7 @@ fn ida_star_gives_a_typed_limit_error_on_a_long_512_query() {
 #[test]
 fn bfs_finds_fewest_moves_within_sqrt2_of_the_optimum() {
     let astar = AStar::default();
-    every_row([1, 1, 1, 1], &Bfs::default(), |grid, row, result| {
+    every_row([1, 1, 1, 8], &Bfs::default(), |grid, row, result| {
         let best = astar.plan(grid, row.start, row.goal).unwrap();
         match result {
             // Fewest moves: never more moves than A*'s path; each move is
@@ -268,7 +271,7 @@ fn bfs_is_optimal_on_4_connected_grids() {
 fn greedy_finds_a_legal_path_whenever_astar_does() {
     let mut longer = 0;
     every_row(
-        [1, 1, 1, 1],
+        [1, 1, 1, 8],
         &Greedy::default(),
         |grid, row, result| match result {
             Ok(p) => {
@@ -289,7 +292,7 @@ fn greedy_finds_a_legal_path_whenever_astar_does() {
 fn theta_star_is_no_longer_than_the_8_connected_optimum() {
     let mut shorter = 0;
     every_row(
-        [1, 1, 1, 1],
+        [1, 1, 1, 8],
         &ThetaStar::default(),
         |grid, row, result| match result {
             Ok(p) => {

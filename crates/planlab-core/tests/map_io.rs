@@ -712,9 +712,9 @@ fn scenario_errors_are_specific() {
         (
             minimal(inline).replace(
                 "\"goal\"",
-                "\"grid_planner\": {\"algorithm\": \"bfs\"}, \"goal\"",
+                "\"grid_planner\": {\"algorithm\": \"wavefront\"}, \"goal\"",
             ),
-            "bfs",
+            "wavefront",
         ),
         (
             minimal(inline).replace("\"goal\"", "\"grid_planner\": {\"weight\": 0.5}, \"goal\""),
