@@ -2,7 +2,7 @@
 //!
 //! Every failure prints one line `planlab: error: …` on stderr and exits
 //! non-zero; usage errors exit 2 (clap's convention). Output goes through
-//! [`outln!`]/[`out!`]: a reader that closes the pipe early (`planlab plan
+//! `outln!`/`out!`: a reader that closes the pipe early (`planlab plan
 //! --json | head -1`) ends the program quietly, where `println!` panics.
 
 /// `print!` that ends the program quietly when stdout's reader went away.
