@@ -44,21 +44,22 @@ use std::collections::BinaryHeap;
 /// A queue key `[k1; k2]`, compared lexicographically.
 type Key = (f64, f64);
 
-/// `a < b` lexicographically (the queue's order).
+/// `a < b` lexicographically: the queue's order, and the stop test's (one
+/// order for both: a tolerance in the stop test alone, tried before, let the
+/// heap's top sort above a key the stop test counted as smaller, and a
+/// repair stopped with a wrong g at the start). Keys are quantised
+/// ([`quantise`]) so that `g + h` summed along different routes, equal but
+/// for the last bits, compares equal in both.
 fn key_less(a: Key, b: Key) -> bool {
     a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
 }
 
-/// Whether a queued key `top` must still be expanded before the start's key
-/// `start` is final: `top < start` as the paper says, widened to every `top`
-/// whose first component is within rounding of the start's. `g + h` summed
-/// along different routes differs in the last bits, so an entry the paper
-/// counts as below the start's key can sort just above it; expanding such
-/// near-ties too costs a few expansions and keeps the start's g exact. (A
-/// tolerant comparison inside the heap instead would not be a total order,
-/// and the heap's top would no longer be the smallest key.)
-fn before_start(top: Key, start: Key) -> bool {
-    top.0.is_finite() && (top.0 <= start.0 + 1e-9 * start.0.abs().max(1.0) || key_less(top, start))
+/// `x` to the nearest multiple of 2⁻²⁰ (≈ 10⁻⁶): far above the rounding of
+/// a sum of moves (≈ 10⁻¹² here), far below the smallest difference
+/// between two different path costs on these grids (sums of 1 and √2).
+fn quantise(x: f64) -> f64 {
+    const SCALE: f64 = (1u64 << 20) as f64;
+    (x * SCALE).round() / SCALE
 }
 
 /// Queue entry; stale when its key is no longer the cell's queued key.
@@ -159,7 +160,7 @@ impl DStarLite {
     fn key(&self, i: usize) -> Key {
         let m = self.g[i].min(self.rhs[i]);
         let p = pos(self.grid.width(), i);
-        (m + self.h(self.start, p) + self.km, m)
+        (quantise(m + self.h(self.start, p) + self.km), quantise(m))
     }
 
     fn push(&mut self, i: usize, key: Key) {
@@ -237,7 +238,7 @@ impl DStarLite {
         while let Some(top) = self.top() {
             // Until the start itself is consistent (Fig. 3's rule; stopping while
             // it is only overconsistent leaves g(start) unset for the next repair).
-            if !(before_start(top.key, self.key(s)) || self.rhs[s] != self.g[s]) {
+            if !(key_less(top.key, self.key(s)) || self.rhs[s] != self.g[s]) {
                 break;
             }
             let u = top.idx;
