@@ -840,7 +840,7 @@ fn dstar_session_repairs_edits_and_moved_starts() {
     assert!((moved.plan().cost() - fresh.cost()).abs() < 1e-9);
     assert_eq!(&moved.plan().path()[..2], &[sc, sr]);
     // Errors are typed, not panics.
-    assert!(dstar.set_cell(99, 99, 1).is_err());
+    assert!(dstar.set_cell(10_000, 10_000, 1).is_err());
     assert!(DStarSession::new(&map, opts(), 0, 0, g.0, g.1).is_err());
     // The plain session plans D* Lite too, to the same cost.
     let mut session = PlanSession::new(&map, opts()).unwrap();
