@@ -51,15 +51,6 @@ impl PlanSession {
         }
     }
 
-    /// The passability grid, rebuilt if an edit or new options invalidated it.
-    fn grid(&mut self) -> Result<&PlanGrid, GridPlanError> {
-        if self.grid.is_none() {
-            self.grid = Some(plan_grid_for(&self.map, &self.options)?);
-            self.rebuilds += 1;
-        }
-        Ok(self.grid.as_ref().expect("built above"))
-    }
-
     /// Keeps the grid in step with one edited map cell.
     fn sync_cell(&mut self, col: usize, row: usize) {
         if self.options.inflate_m > 0.0 {
@@ -78,13 +69,29 @@ impl PlanSession {
         goal: GridPos,
         obs: &mut dyn SearchObserver,
     ) -> Result<GridPlan, GridPlanError> {
-        if let Err(e) = &self.planner {
-            return Err(e.clone().into());
-        }
-        self.grid()?;
-        let (map, grid) = (&self.map, self.grid.as_ref().expect("built above"));
-        let planner = self.planner.as_ref().expect("checked above");
-        plan_on_grid_observed(map, grid, planner.as_ref(), start, goal, &self.options, obs)
+        let planner = match &self.planner {
+            Ok(p) => p,
+            Err(e) => return Err(e.clone().into()),
+        };
+        // The kept grid, or a new one when an edit or new options dropped it.
+        let grid = match self.grid.take() {
+            Some(g) => g,
+            None => {
+                let built = plan_grid_for(&self.map, &self.options)?;
+                self.rebuilds += 1;
+                built
+            }
+        };
+        let grid = &*self.grid.insert(grid);
+        plan_on_grid_observed(
+            &self.map,
+            grid,
+            planner.as_ref(),
+            start,
+            goal,
+            &self.options,
+            obs,
+        )
     }
 }
 
