@@ -126,7 +126,7 @@ pub(crate) fn index(width: usize, p: GridPos) -> usize {
 }
 
 /// The eight moves, straight ones first.
-const MOVES: [(i64, i64); 8] = [
+pub(crate) const MOVES: [(i64, i64); 8] = [
     (1, 0),
     (-1, 0),
     (0, 1),

@@ -32,7 +32,7 @@
 //! assert!((repaired.cost - (4.0 + 2.0 * 2f64.sqrt())).abs() < 1e-9);
 //! ```
 
-use super::classic::{for_each_move, index, pos};
+use super::classic::{for_each_move, index, pos, MOVES};
 use super::events::emit;
 use super::plan::GridPlanOptions;
 use super::{
@@ -323,17 +323,7 @@ impl DStarLite {
         // The cell's own moves and every move into it or past its corner
         // start at the cell or one of its 8 neighbours.
         let mut touched = vec![cell];
-        for k in 0..8 {
-            let (dx, dy) = [
-                (1, 0),
-                (-1, 0),
-                (0, 1),
-                (0, -1),
-                (1, 1),
-                (1, -1),
-                (-1, 1),
-                (-1, -1),
-            ][k];
+        for (dx, dy) in MOVES {
             let (nx, ny) = (x + dx, y + dy);
             if nx >= 0 && ny >= 0 && (nx as usize) < w && (ny as usize) < h {
                 touched.push(GridPos::new(nx as u32, ny as u32));

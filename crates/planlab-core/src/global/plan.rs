@@ -408,10 +408,10 @@ pub fn plan_on_map(
     goal: GridPos,
     options: &GridPlanOptions,
 ) -> Result<GridPlan, GridPlanError> {
-    build_planner(options)?;
+    let planner = build_planner(options)?;
     check_bottom_up(options)?;
     let plan_grid = plan_grid_for(grid, options)?;
-    plan_on_plan_grid(grid, &plan_grid, start, goal, options)
+    plan_plain(grid, &plan_grid, planner.as_ref(), start, goal, options)
 }
 
 /// [`plan_on_map`] on a passability grid built beforehand, so many queries
@@ -427,6 +427,18 @@ pub fn plan_on_plan_grid(
 ) -> Result<GridPlan, GridPlanError> {
     let planner = build_planner(options)?;
     check_bottom_up(options)?;
+    plan_plain(grid, plan_grid, planner.as_ref(), start, goal, options)
+}
+
+/// The unobserved plan: search, then key points, Bottom-Up and safety.
+fn plan_plain(
+    grid: &OccupancyGrid,
+    plan_grid: &PlanGrid,
+    planner: &dyn GridPlanner,
+    start: GridPos,
+    goal: GridPos,
+    options: &GridPlanOptions,
+) -> Result<GridPlan, GridPlanError> {
     plan_with(grid, plan_grid, start, goal, options, &mut (), |_| {
         planner.plan(plan_grid, start, goal)
     })
