@@ -181,6 +181,31 @@ fn bench_grid_prints_ratios() {
     assert!((ratio - v["astar_speedup"].as_f64().unwrap()).abs() < 1e-6 * ratio);
 }
 
+/// A reader that goes away before the output (`planlab plan … | head -0`)
+/// ends `planlab` quietly with success; `println!` panicked there.
+#[test]
+fn a_closed_stdout_ends_quietly() {
+    let map = data("movingai/dao/arena.map");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_planlab"))
+        .args([
+            "plan",
+            s(&map),
+            "--start",
+            "1,11",
+            "--goal",
+            "42,46",
+            "--json",
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    assert!(o.status.success(), "{:?}: {}", o.status, stderr(&o));
+    assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
+}
+
 /// Any-angle planners (Theta*, safe A*'s smoothed path) may beat the
 /// 8-connected optimum: the bench takes them (the knight's move of an open
 /// map: √5 against 1 + √2) and reports their cost ratio below 1.
