@@ -309,6 +309,17 @@ test('Drive: the robot follows the D* Lite path, a wall painted ahead of it is r
   await page.close();
 });
 
+test('inflation below one cell is said on the grid page (issue 16 §2.5)', async () => {
+  // The arena preset has 1 m cells: 0.8 m of inflation grows no wall.
+  const { page, problems } = await openPage(session);
+  await afterReplan(page, () => page.fill('#inflate', '0.8'));
+  assert.match(await page.textContent('#status'), /note: 0\.8 m inflation < 1 cell \(1 m\): no effect/);
+  await afterReplan(page, () => page.fill('#inflate', '1'));
+  assert.doesNotMatch(await page.textContent('#status'), /no effect/);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 test('the race plays 2+ planners to a table with winners', async () => {
   const page = await session.context.newPage();
   const problems = [];
