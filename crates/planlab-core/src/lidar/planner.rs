@@ -389,6 +389,7 @@ impl LidarPlanner {
         let md = self.stack.motion_debug();
         let d = &mut self.debug;
         d.critics.clone_from(&md.critics);
+        d.weights.clone_from(&md.weights);
         d.chosen = md.chosen;
         d.rollouts.clear();
         if self.record {

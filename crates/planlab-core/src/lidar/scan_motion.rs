@@ -174,6 +174,7 @@ impl ScanMotion {
         let world = |p: [f64; 2]| [pose[0] + c * p[0] - s * p[1], pose[1] + s * p[0] + c * p[1]];
         let md = self.motion.debug();
         d.critics.clone_from(&md.critics);
+        d.weights.clone_from(&md.weights);
         d.chosen = md.chosen;
         d.rollouts.clear();
         if record {

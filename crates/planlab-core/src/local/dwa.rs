@@ -808,6 +808,8 @@ impl DwaCore {
             req.weights.beta * req.rho,
             req.weights.gamma,
         ];
+        self.debug.weights.clear();
+        self.debug.weights.extend_from_slice(&wts);
         let mut best: Option<(usize, f64)> = None;
         for (i, c) in self.cands.iter().enumerate() {
             if !c.admissible {

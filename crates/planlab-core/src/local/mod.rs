@@ -109,6 +109,11 @@ pub struct Rollout {
 pub struct PlannerDebug {
     /// Critic names, e.g. `["heading", "dist", "velocity"]`.
     pub critics: Vec<String>,
+    /// The weight each critic had in the last step's choice (after any
+    /// per-step factor such as \[T\]'s ρ), in the order of `critics`;
+    /// empty for a planner without weighted critics.
+    #[serde(default)]
+    pub weights: Vec<f64>,
     /// Every sampled rollout of the last step (may be empty when recording
     /// is off, see [`LocalPlanner::set_record_rollouts`]).
     pub rollouts: Vec<Rollout>,

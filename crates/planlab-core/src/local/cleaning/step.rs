@@ -325,6 +325,12 @@ impl LocalPlanner for CleaningDwa {
                 .collect(),
             score: -c.cost,
         };
+        self.debug.weights = vec![
+            self.cfg.alpha,
+            self.cfg.beta,
+            self.cfg.gamma,
+            self.cfg.twirl,
+        ];
         self.debug.mode = match (best, limited) {
             (None, _) => "no-admissible",
             (Some(_), true) => "load-limited",
