@@ -15,7 +15,8 @@ use thiserror::Error;
 
 use crate::global::plan::{build_planner, plan_grid_for, GridPlanError, GridPlanOptions};
 use crate::global::{GridPlanner, GridPos, PlanError, PlanGrid};
-use crate::local::dwa::{DwaConfig, DwaCore, StepRequest, StepResult};
+use crate::local::dwa::DwaConfig;
+use crate::local::engine::{Engine, StepRequest, StepResult};
 use crate::local::{LocalError, Observation, ObservedMover};
 use crate::map::io::movingai;
 use crate::map::{Cell, MapError, OccupancyGrid, Pose2};
@@ -29,8 +30,7 @@ pub struct DwaStepBench {
     movers: Vec<ObservedMover>,
     state: RobotState,
     goal: [f64; 2],
-    core: DwaCore,
-    req: StepRequest,
+    core: Engine,
     robot: RobotSpec,
 }
 
@@ -106,22 +106,14 @@ impl DwaStepBench {
             sim_dt: 0.1,
             ..Default::default()
         };
-        let core = DwaCore::new(cfg, &robot, "dwa")?;
+        let core = cfg.engine(&robot, "dwa", false)?;
         let goal = [18.0, 16.0];
-        let req = StepRequest {
-            goal,
-            weights: cfg.weights(),
-            rho: 1.0,
-            hold_v: None,
-            braking: false,
-        };
         Ok(Self {
             map,
             movers,
             state,
             goal,
             core,
-            req,
             robot,
         })
     }
@@ -158,7 +150,7 @@ impl DwaStepBench {
             odometry: None,
             accel_z: 0.0,
         };
-        self.core.plan(&obs, &self.req)
+        self.core.plan(&obs, &StepRequest::to(self.goal))
     }
 
     /// `n` steps; the sum of the chosen v + ω over them, a checksum both

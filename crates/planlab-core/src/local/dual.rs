@@ -12,7 +12,7 @@
 //!   not the global goal G and dist(robot, p) < d (`hold_distance`, 3 m) the
 //!   linear speed is held at the previous one (V_d for v collapses to
 //!   {v_{t−Δt}}) and only ω is chosen by the critics; otherwise the normal
-//!   window. The engine ([`super::dwa::DwaCore`]) releases the hold when no
+//!   window. The engine ([`super::engine::Engine`]) releases the hold when no
 //!   sample at the held speed is admissible (mode `hold-v-released`).
 //!   **Decision**: the hold needs a previous speed ≥ `hold_min_speed`; a
 //!   robot at rest (or crawling, e.g. after giving way to a mover) would
@@ -41,7 +41,7 @@
 //! MATLAB DWA sample both papers follow; 20 rad/s would be a full turn in
 //! 0.3 s). d = 3 m (\[S\] eq 12); ε = 100 and the 5×5 window of safe A\*.
 
-use super::dwa::{check_goal, DwaConfig, DwaCore, DwaPlanner, GoalProvider, Guidance, Weights};
+use super::dwa::{check_goal, DwaConfig, DwaPlanner, GoalProvider, Guidance, Weights};
 use super::route::{dist, plan_route, Route, Waypoints};
 use super::{GoalKind, LocalError, Observation, PlannerDebug};
 use crate::global::plan::{Algorithm, GridPlanOptions};
@@ -272,7 +272,7 @@ impl GoalProvider for DualGuide {
         }
     }
 
-    fn guide(&mut self, obs: &Observation<'_>, base: Weights, _core: &DwaCore) -> Guidance {
+    fn guide(&mut self, obs: &Observation<'_>, base: Weights) -> Guidance {
         let robot = [obs.state.x, obs.state.y];
         if dist(obs.goal, self.goal) > 1e-9 {
             // The final goal moved without set_goal: replan from here.
@@ -331,7 +331,6 @@ impl GoalProvider for DualGuide {
         map: &StaticMap,
         state: &RobotState,
         goal: [f64; 2],
-        _core: &DwaCore,
     ) -> Result<(), LocalError> {
         check_goal(goal)?;
         self.replan(map, [state.x, state.y], goal)
@@ -394,7 +393,8 @@ impl SafeDualDwa {
         };
         cfg.validate(name)?;
         check_goal(goal)?;
-        let core = DwaCore::new(cfg.dwa, robot, &format!("{name}.dwa"))?;
+        let dual = variant == DualVariant::SafeDual;
+        let engine = cfg.dwa.engine(robot, &format!("{name}.dwa"), dual)?;
         let r_robot = robot.footprint.circumscribed_radius();
         let route = plan_route(
             map,
@@ -404,7 +404,8 @@ impl SafeDualDwa {
             DualGuide::which(variant),
         )?;
         Ok(DwaPlanner::from_parts(
-            core,
+            engine,
+            cfg.dwa.weights(),
             DualGuide {
                 cfg,
                 variant,

@@ -63,7 +63,7 @@
 //! account of it waiting at the 0.01 m/s obstacle 4 of Table 3-2 suggests a
 //! lower one (a declared deviation; `fusion-53.v_static` sweeps it).
 
-use super::dwa::{check_goal, DwaConfig, DwaCore, DwaPlanner, GoalProvider, Guidance, Weights};
+use super::dwa::{check_goal, DwaConfig, DwaPlanner, GoalProvider, Guidance, Weights};
 use super::route::{dist, plan_route, Route, Waypoints};
 use super::{GoalKind, LocalError, Observation, ObservedMover, ObstacleClass, PlannerDebug};
 use crate::global::plan::GridPlanOptions;
@@ -186,7 +186,7 @@ impl FusionGuide {
         };
         cfg.validate(name)?;
         check_goal(goal)?;
-        let core = DwaCore::new(cfg.dwa, robot, &format!("{name}.dwa"))?;
+        let engine = cfg.dwa.engine(robot, &format!("{name}.dwa"), false)?;
         let r_robot = robot.footprint.circumscribed_radius();
         let route = plan_route(
             map,
@@ -196,7 +196,8 @@ impl FusionGuide {
             Waypoints::KeyPoints,
         )?;
         Ok(DwaPlanner::from_parts(
-            core,
+            engine,
+            cfg.dwa.weights(),
             FusionGuide {
                 cfg,
                 variant,
@@ -343,7 +344,7 @@ impl FusionGuide {
 
     /// Distance from the robot's centre to the nearest obstacle surface, m.
     fn nearest_obstacle(map: &StaticMap, movers: &[ObservedMover], p: [f64; 2]) -> f64 {
-        DwaCore::centre_clearance(map, movers, p)
+        super::engine::screen::centre_clearance(map, movers, p)
     }
 }
 
@@ -355,7 +356,7 @@ impl GoalProvider for FusionGuide {
         }
     }
 
-    fn guide(&mut self, obs: &Observation<'_>, base: Weights, _core: &DwaCore) -> Guidance {
+    fn guide(&mut self, obs: &Observation<'_>, base: Weights) -> Guidance {
         let robot = [obs.state.x, obs.state.y];
         if dist(obs.goal, self.goal) > 1e-9 {
             // The final goal moved without set_goal: replan from here.
@@ -510,7 +511,6 @@ impl GoalProvider for FusionGuide {
         map: &StaticMap,
         state: &RobotState,
         goal: [f64; 2],
-        _core: &DwaCore,
     ) -> Result<(), LocalError> {
         check_goal(goal)?;
         self.replan(map, [state.x, state.y], goal)

@@ -9,6 +9,7 @@
 pub mod cleaning;
 pub mod dual;
 pub mod dwa;
+pub mod engine;
 pub mod improved;
 pub mod pursuit;
 pub mod route;

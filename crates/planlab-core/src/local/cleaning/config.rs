@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::MAX_ROLLOUT_STEPS;
+use crate::local::engine::generator::MAX_ROLLOUT_STEPS;
 use crate::local::LocalError;
 use crate::params::{field_infos, parse_config, FieldInfo, Params};
 use crate::world::terrain::VehicleSpec;

@@ -95,8 +95,8 @@
 //!   curved rollouts that end on the path but start off it, and meanders.
 //!
 //! Files: `config` (settings, field list), `path` (global path, local
-//! goal), `step` (window, rollouts, cost, choice), `load` (vertical-load
-//! limit), `odometry` (compensation), `tests`.
+//! goal), `step` (the window, rollouts and cost as an engine
+//! composition), `load` (the held a_z), `odometry` (compensation), `tests`.
 
 mod config;
 mod load;
@@ -111,40 +111,29 @@ use std::collections::VecDeque;
 pub use config::{field_list, parse, CleaningDwaConfig, KStructure, LoadRegion};
 pub use odometry::{fit_k, Mat3};
 
-use super::{LocalError, PlannerDebug};
+use super::engine::critic::Twirling;
+use super::engine::{CriticSlot, Engine, Scoring};
+use super::LocalError;
 use crate::map::costmap::Costmap;
 use crate::map::{Cell, OccupancyGrid};
 use crate::world::terrain::IDENTITY;
 use crate::world::{RobotSpec, RobotState, StaticMap};
 use path::GlobalPath;
-
-/// Critic names, in the order of [`Rollout::raw`](crate::local::Rollout::raw).
-pub const CRITICS: [&str; 4] = [
-    "obstacle_cost",
-    "goal_distance_m",
-    "path_distance_m",
-    "twirl_rad_s",
-];
+pub use step::{CostmapObstacle, GoalDistanceL1, LoadWindow, PathDistanceL1};
 
 /// Costmap costs are divided by this (the highest decaying cost, 252) so
 /// one cell of the decay band weighs at most α, as one cell of distance
 /// weighs β or γ.
 pub const COST_SCALE: f64 = 252.0;
 
-/// Most integration steps in one rollout (`sim_time / sim_dt`).
-pub const MAX_ROLLOUT_STEPS: usize = 10_000;
-
 /// The `cleaning-dwa` / `traditional-dwa` planner (see the module doc).
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct CleaningDwa {
     name: &'static str,
     cfg: CleaningDwaConfig,
     robot: RobotSpec,
     /// Walls and unknown-as-obstacle cells of the map, as a grid.
     solid: OccupancyGrid,
-    costmap: Costmap,
-    res: f64,
-    origin: [f64; 2],
     path: GlobalPath,
     /// Segment of the last projection (never decreases).
     seg: usize,
@@ -161,8 +150,8 @@ pub struct CleaningDwa {
     az_recent: VecDeque<f64>,
     /// The a_z the load limit uses this step (peak of `az_recent`).
     az_estimate: f64,
-    record: bool,
-    debug: PlannerDebug,
+    /// \[C\]'s window and cost as an engine composition (`step`).
+    engine: Engine<LoadWindow>,
 }
 
 impl CleaningDwa {
@@ -202,13 +191,34 @@ impl CleaningDwa {
             cfg.cost_scaling,
         )
         .map_err(|e| LocalError::InvalidParameter(format!("{name}: costmap: {e}")))?;
-        let origin = grid.origin();
+        let critics = vec![
+            CriticSlot::new(
+                CostmapObstacle::new(
+                    costmap,
+                    map,
+                    robot,
+                    cfg.inflation_radius + cfg.safety_distance,
+                ),
+                cfg.alpha,
+            ),
+            CriticSlot::new(GoalDistanceL1, cfg.beta),
+            CriticSlot::new(PathDistanceL1, cfg.gamma),
+            CriticSlot::new(Twirling::named("twirl_rad_s"), cfg.twirl),
+        ];
+        let mut engine = Engine::new(
+            robot,
+            Box::new(LoadWindow::new(cfg.clone(), robot)),
+            critics,
+            Scoring::WeightedCost,
+            None,
+        )
+        .keep_chosen(true);
+        let d = engine.debug_mut();
+        d.current_goal = goal;
+        d.keypoints = cfg.waypoints.clone();
         let mut me = Self {
             name,
-            res: grid.resolution(),
-            origin: [origin.x, origin.y],
             solid,
-            costmap,
             path: GlobalPath::default(),
             seg: 0,
             s_robot: 0.0,
@@ -219,14 +229,7 @@ impl CleaningDwa {
             odo: VecDeque::new(),
             az_recent: VecDeque::new(),
             az_estimate: 0.0,
-            record: false,
-            debug: PlannerDebug {
-                critics: CRITICS.iter().map(|s| s.to_string()).collect(),
-                current_goal: goal,
-                keypoints: cfg.waypoints.clone(),
-                mode: "normal".into(),
-                ..Default::default()
-            },
+            engine,
             robot: *robot,
             cfg,
         };

@@ -210,7 +210,7 @@ impl CleaningDwa {
         self.seg = 0;
         self.s_robot = 0.0;
         self.goal = goal;
-        self.debug.global_path = self.path.pts.clone();
+        self.engine.debug_mut().global_path = self.path.pts.clone();
         Ok(())
     }
 

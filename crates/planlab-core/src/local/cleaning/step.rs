@@ -1,22 +1,22 @@
-//! One control period: the sampled window (\[C\] eq 9–10), the rollouts
-//! and their cost (eq 12–13, 18), and the choice.
+//! One control period as a composition of the local-planning engine: \[C\]'s
+//! load-limited window with its slip-matrix rollout ([`LoadWindow`], eq 9–10,
+//! 14, 18) as the generator, and the cost of eq 13 as four critics
+//! ([`CostmapObstacle`], [`GoalDistanceL1`], [`PathDistanceL1`] and nav2
+//! DWB's twirling) under the weighted-cost rule.
 
 use super::odometry::mat_vec;
 use super::path::l1_to_segment;
-use super::{CleaningDwa, LoadRegion, COST_SCALE, MAX_ROLLOUT_STEPS};
-use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug, Rollout};
-use crate::map::costmap::INSCRIBED;
+use super::{CleaningDwa, CleaningDwaConfig, LoadRegion, Mat3, COST_SCALE};
+use crate::local::engine::critic::{Critic, CriticContext};
+use crate::local::engine::generator::{
+    Sample, Trajectory, TrajectoryGenerator, Window, WindowRequest, MAX_ROLLOUT_STEPS,
+};
+use crate::local::engine::StepRequest;
+use crate::local::{LocalError, LocalPlanner, Observation, PlannerDebug};
+use crate::map::costmap::{Costmap, INSCRIBED};
 use crate::num::{cos, sin};
-use crate::world::{Command, Drive, RobotState, StaticMap};
-
-/// One evaluated sample.
-#[derive(Debug, Clone, Copy)]
-struct Sample {
-    cmd: Command,
-    admissible: bool,
-    raw: [f64; 4],
-    cost: f64,
-}
+use crate::world::terrain::{GRAVITY, IDENTITY};
+use crate::world::{Command, Drive, RobotSpec, RobotState, StaticMap};
 
 /// Samples of one velocity axis: `now + i·res` within [lo, hi] (the window
 /// ∩ the limits), plus lo and hi themselves; at most `max` (then evenly
@@ -53,10 +53,68 @@ pub(super) fn axis_samples(now: f64, lo: f64, hi: f64, res: f64, max: usize) -> 
     out
 }
 
-impl CleaningDwa {
-    /// The sampled window (v_x, v_y, ω lists) and whether the load limit
-    /// bound; samples violating the diamond are dropped later.
-    fn window(&self, obs: &Observation<'_>) -> (Vec<f64>, Vec<f64>, Vec<f64>, Option<f64>) {
+/// \[C\]'s window and rollout (module doc of [`super`]: **Window and
+/// samples**, **Vertical-load limit**, **Rollouts**). The planner sets the
+/// odometry correction K and the held a_z every period
+/// ([`LoadWindow::set_inputs`]).
+#[derive(Debug, Clone)]
+pub struct LoadWindow {
+    cfg: CleaningDwaConfig,
+    robot: RobotSpec,
+    steps: usize,
+    k: Mat3,
+    az: f64,
+}
+
+impl LoadWindow {
+    /// The window of `robot` under the settings `cfg` (validated).
+    pub fn new(cfg: CleaningDwaConfig, robot: &RobotSpec) -> Self {
+        let steps = ((cfg.sim_time / cfg.sim_dt).round() as usize).clamp(1, MAX_ROLLOUT_STEPS);
+        Self {
+            cfg,
+            robot: *robot,
+            steps,
+            k: IDENTITY,
+            az: 0.0,
+        }
+    }
+
+    /// This period's odometry correction and held vertical acceleration.
+    pub fn set_inputs(&mut self, k: Mat3, az: f64) {
+        self.k = k;
+        self.az = az;
+    }
+
+    /// Eq 14's bound on |a_x|, |a_y| (None: no load limit).
+    fn load_bound(&self) -> Option<f64> {
+        self.cfg.load_limit.then(|| {
+            let j = self.cfg.load_fraction;
+            let veh = &self.cfg.vehicle;
+            let b = if veh.h > 0.0 {
+                (GRAVITY - 4.0 * j * GRAVITY - self.az) * veh.l_r / veh.h
+            } else {
+                f64::INFINITY
+            };
+            b.max(0.0)
+        })
+    }
+
+    /// Smallest wheel load minus j·m·g (N) after accelerating to (vx, vy)
+    /// in one period (\[C\] eq 8 with the measured a_z); ≥ 0 is allowed.
+    /// Keeping the velocity is always allowed (+∞).
+    fn load_margin(&self, obs: &Observation<'_>, vx: f64, vy: f64) -> f64 {
+        let s = obs.state;
+        if (vx == s.v && vy == s.vy) || obs.dt <= 0.0 {
+            return f64::INFINITY;
+        }
+        let veh = &self.cfg.vehicle;
+        let min = self.cfg.load_fraction * veh.mass * GRAVITY;
+        let loads = veh.wheel_loads((vx - s.v) / obs.dt, (vy - s.vy) / obs.dt, self.az);
+        loads.iter().fold(f64::INFINITY, |a, &f| a.min(f)) - min
+    }
+
+    /// The sampled axes (v_x, v_y, ω lists) and the load bound.
+    fn axes(&self, obs: &Observation<'_>) -> (Vec<f64>, Vec<f64>, Vec<f64>, Option<f64>) {
         let l = &self.robot.limits;
         let s = obs.state;
         let dt = obs.dt.max(0.0);
@@ -94,115 +152,24 @@ impl CleaningDwa {
         (vx, vy, w, bound)
     }
 
-    /// Rolls `cmd` out; returns (admissible, raw critics) and fills
-    /// `points` when given.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn rollout(
+    /// Translational samples: the (v_x, v_y) grid, with samples faster than
+    /// the speed limit scaled back onto the circle |v| = vmax (dropping those
+    /// that then leave the window) so every direction offers the full speed
+    /// and no body heading is favoured by the grid; with the diamond load
+    /// region, only samples that keep every wheel loaded.
+    fn pairs(
         &self,
         obs: &Observation<'_>,
-        cmd: Command,
-        steps: usize,
-        goal: [f64; 2],
-        local: &[[f64; 2]],
-        radius: f64,
-        free: bool,
-        mut points: Option<&mut Vec<[f64; 2]>>,
-    ) -> (bool, [f64; 3]) {
-        let dt = self.cfg.sim_dt;
-        let inc = mat_vec(&self.k, [cmd.v * dt, cmd.vy * dt, cmd.w * dt]);
+        vxs: &[f64],
+        vys: &[f64],
+        diamond: bool,
+    ) -> Vec<(f64, f64)> {
         let s = obs.state;
-        let (mut x, mut y) = (s.x, s.y);
-        let (mut sn, mut cs) = (sin(s.theta), cos(s.theta));
-        let (sd, cd) = (sin(inc[2]), cos(inc[2]));
-        let (w, h) = (self.costmap.width as i64, self.costmap.height as i64);
-        let mut c_obs = 0.0;
-        let mut ok = true;
-        for k in 1..=steps {
-            x += cs * inc[0] - sn * inc[1];
-            y += sn * inc[0] + cs * inc[1];
-            (sn, cs) = (sn * cd + cs * sd, cs * cd - sn * sd);
-            if let Some(p) = points.as_deref_mut() {
-                p.push([x, y]);
-            }
-            if free || !ok {
-                continue;
-            }
-            let t = k as f64 * dt;
-            let col = ((x - self.origin[0]) / self.res).floor();
-            let row_b = ((y - self.origin[1]) / self.res).floor();
-            let on_map = col >= 0.0 && row_b >= 0.0 && (col as i64) < w && (row_b as i64) < h;
-            ok = on_map
-                && obs.map.clearance(x, y) > radius
-                && obs.movers.iter().all(|m| {
-                    let (mx, my) = (m.pos[0] + m.vel[0] * t, m.pos[1] + m.vel[1] * t);
-                    let r = radius + m.radius;
-                    (mx - x) * (mx - x) + (my - y) * (my - y) > r * r
-                });
-            if !ok {
-                if points.is_none() {
-                    break;
-                }
-                continue;
-            }
-            let idx = (h - 1 - row_b as i64) * w + col as i64;
-            let c = self
-                .costmap
-                .costs
-                .get(idx as usize)
-                .copied()
-                .unwrap_or(INSCRIBED);
-            c_obs += f64::from(c) / COST_SCALE;
-        }
-        let d_g = (x - goal[0]).abs() + (y - goal[1]).abs();
-        let d_p = local
-            .windows(2)
-            .map(|sgm| l1_to_segment([x, y], sgm[0], sgm[1]))
-            .fold(f64::INFINITY, f64::min);
-        let d_p = if d_p.is_finite() {
-            d_p
-        } else {
-            local
-                .first()
-                .map_or(0.0, |q| (x - q[0]).abs() + (y - q[1]).abs())
-        };
-        (ok, [c_obs, d_g, d_p])
-    }
-}
-
-impl LocalPlanner for CleaningDwa {
-    fn name(&self) -> &'static str {
-        self.name
-    }
-
-    fn step(&mut self, obs: &Observation<'_>) -> Command {
-        if self.cfg.compensate {
-            self.push_odometry(obs);
-        }
-        self.hold_accel_z(obs.accel_z);
-        let s = obs.state;
-        let (goal, kind, local) = self.local_goal([s.x, s.y]);
-        self.debug.current_goal = goal;
-        self.debug.goal_kind = kind;
-        let steps =
-            ((self.cfg.sim_time / self.cfg.sim_dt).round() as usize).clamp(1, MAX_ROLLOUT_STEPS);
-        // The clearance field may overestimate by up to a third of a cell:
-        // half a cell of margin keeps "admissible" collision-free.
-        let radius = self.robot.footprint.circumscribed_radius() + 0.5 * self.res;
-        let (vxs, vys, ws, bound) = self.window(obs);
-        let diamond = bound.is_some() && self.cfg.load_region == LoadRegion::Diamond;
-        // Shown as mode "load-limited" when eq 14's bound is tighter than
-        // the motors' acceleration limit.
-        let limited =
-            bound.is_some_and(|b| b < self.robot.limits.acc_v.max(self.robot.limits.acc_vy));
         let vmax = if self.cfg.max_speed > 0.0 {
             self.cfg.max_speed
         } else {
             self.robot.limits.v_max
         };
-        // Translational samples: the (v_x, v_y) grid, with samples faster
-        // than vmax scaled back onto the circle |v| = vmax (dropping those
-        // that then leave the window) so every direction offers the full
-        // speed and no body heading is favoured by the grid.
         let (xlo, xhi) = (
             vxs.first().copied().unwrap_or(s.v),
             vxs.last().copied().unwrap_or(s.v),
@@ -214,8 +181,8 @@ impl LocalPlanner for CleaningDwa {
         let mut pairs: Vec<(f64, f64)> = Vec::with_capacity(vxs.len() * vys.len());
         // The sample that keeps the most load, in case none keeps enough.
         let mut least_bad: Option<(f64, (f64, f64))> = None;
-        for &vx in &vxs {
-            for &vy in &vys {
+        for &vx in vxs {
+            for &vy in vys {
                 let n2 = vx * vx + vy * vy;
                 let (vx, vy) = if n2 > vmax * vmax && (vx, vy) != (s.v, s.vy) {
                     let f = vmax / n2.sqrt();
@@ -233,11 +200,7 @@ impl LocalPlanner for CleaningDwa {
                 if diamond {
                     let margin = self.load_margin(obs, vx, vy);
                     if margin < 0.0 {
-                        let better = match least_bad {
-                            None => true,
-                            Some((m, _)) => margin > m,
-                        };
-                        if better {
+                        if least_bad.map_or(true, |(m, _)| margin > m) {
                             least_bad = Some((margin, (vx, vy)));
                         }
                         continue;
@@ -253,9 +216,38 @@ impl LocalPlanner for CleaningDwa {
                 pairs.push(p);
             }
         }
-        // Far from every wall and mover no rollout can collide or enter the
-        // cost band: skip the per-point checks (same result, much faster in
-        // open yards). Reach ≤ ‖K_xy‖_F·|(v_x, v_y, ω)|·T.
+        pairs
+    }
+}
+
+impl TrajectoryGenerator for LoadWindow {
+    fn name(&self) -> &'static str {
+        "load-limited window"
+    }
+
+    fn horizon(&self) -> (usize, f64) {
+        (self.steps, self.cfg.sim_dt)
+    }
+
+    fn samples(
+        &mut self,
+        obs: &Observation<'_>,
+        _req: &WindowRequest,
+        out: &mut Vec<Sample>,
+    ) -> Window {
+        let (vxs, vys, ws, bound) = self.axes(obs);
+        let diamond = bound.is_some() && self.cfg.load_region == LoadRegion::Diamond;
+        let pairs = self.pairs(obs, &vxs, &vys, diamond);
+        out.clear();
+        for &w in &ws {
+            for &(v, vy) in &pairs {
+                out.push(Sample {
+                    cmd: Command { v, vy, w },
+                    decel: 0.0,
+                });
+            }
+        }
+        // Reach ≤ ‖K_xy‖_F·|(v_x, v_y, ω)|·T.
         let vt = pairs
             .iter()
             .map(|&(a, b)| a * a + b * b)
@@ -267,108 +259,209 @@ impl LocalPlanner for CleaningDwa {
             .map(|k| k * k)
             .sum::<f64>()
             .sqrt();
-        let reach = kf * (vt + wm).sqrt() * steps as f64 * self.cfg.sim_dt;
-        let band = self.cfg.inflation_radius + self.cfg.safety_distance;
-        let free = obs.movers.is_empty()
-            && obs.map.clearance(s.x, s.y) > reach + radius + band + 2.0 * self.res;
-        let mut samples: Vec<Sample> = Vec::with_capacity(pairs.len() * ws.len());
-        let mut all_points: Vec<Vec<[f64; 2]>> = Vec::new();
-        for &w in &ws {
-            for &(vx, vy) in &pairs {
-                {
-                    let cmd = Command { v: vx, vy, w };
-                    let mut pts = self.record.then(|| Vec::with_capacity(steps));
-                    let (ok, r) =
-                        self.rollout(obs, cmd, steps, goal, &local, radius, free, pts.as_mut());
-                    let raw = [r[0], r[1], r[2], w.abs()];
-                    let cost = self.cfg.alpha * raw[0]
-                        + self.cfg.beta * raw[1]
-                        + self.cfg.gamma * raw[2]
-                        + self.cfg.twirl * raw[3];
-                    samples.push(Sample {
-                        cmd,
-                        admissible: ok && cost.is_finite(),
-                        raw,
-                        cost,
-                    });
-                    if let Some(p) = pts {
-                        all_points.push(p);
-                    }
-                }
-            }
-        }
-        let best = samples
-            .iter()
-            .enumerate()
-            .filter(|(_, c)| c.admissible)
-            .fold(None::<(usize, f64)>, |b, (i, c)| match b {
-                Some((_, bc)) if bc <= c.cost => b,
-                _ => Some((i, c.cost)),
-            })
-            .map(|(i, _)| i);
-        let mut sums = [0.0; 4];
-        for c in samples.iter().filter(|c| c.admissible) {
-            for (s, r) in sums.iter_mut().zip(c.raw) {
-                *s += r;
-            }
-        }
-        let to_rollout = |c: &Sample, points: Vec<[f64; 2]>| Rollout {
-            cmd: c.cmd,
-            points,
-            admissible: c.admissible,
-            raw: c.raw.to_vec(),
-            normalised: c
-                .raw
-                .iter()
-                .zip(sums)
-                .map(|(r, s)| if s > 0.0 { r / s } else { 0.0 })
-                .collect(),
-            score: -c.cost,
+        let l = &self.robot.limits;
+        let span = |xs: &[f64], d: f64| {
+            (
+                xs.first().copied().unwrap_or(d),
+                xs.last().copied().unwrap_or(d),
+            )
         };
-        self.debug.weights = vec![
-            self.cfg.alpha,
-            self.cfg.beta,
-            self.cfg.gamma,
-            self.cfg.twirl,
-        ];
-        self.debug.mode = match (best, limited) {
-            (None, _) => "no-admissible",
-            (Some(_), true) => "load-limited",
-            (Some(_), false) => "normal",
+        Window {
+            v: span(&vxs, obs.state.v),
+            w: span(&ws, obs.state.w),
+            brake_v: None,
+            // Eq 14's bound tighter than the motors' acceleration limit.
+            limited: bound.is_some_and(|b| b < l.acc_v.max(l.acc_vy)),
+            reach: kf * (vt + wm).sqrt() * self.steps as f64 * self.cfg.sim_dt,
+        }
+    }
+
+    fn rollout(&self, obs: &Observation<'_>, sample: Sample, steps: usize, traj: &mut Trajectory) {
+        let dt = self.cfg.sim_dt;
+        let cmd = sample.cmd;
+        let inc = mat_vec(&self.k, [cmd.v * dt, cmd.vy * dt, cmd.w * dt]);
+        let s = obs.state;
+        traj.sample = sample;
+        traj.dt = dt;
+        traj.points.clear();
+        traj.dirs.clear();
+        traj.speeds.clear();
+        traj.min_clearance = f64::INFINITY;
+        let (mut x, mut y) = (s.x, s.y);
+        let (mut sn, mut cs) = (sin(s.theta), cos(s.theta));
+        let (sd, cd) = (sin(inc[2]), cos(inc[2]));
+        let speed = (inc[0] * inc[0] + inc[1] * inc[1]).sqrt() / dt;
+        for _ in 0..steps {
+            x += cs * inc[0] - sn * inc[1];
+            y += sn * inc[0] + cs * inc[1];
+            (sn, cs) = (sn * cd + cs * sd, cs * cd - sn * sd);
+            traj.points.push([x, y]);
+            traj.dirs.push([sn, cs]);
+            traj.speeds.push(speed);
+        }
+        traj.final_speed = speed;
+        traj.horizon = steps.min(self.steps);
+        traj.end_theta = crate::num::atan2(sn, cs);
+    }
+}
+
+/// \[C\] eq 13's c_obs: the costmap cost of the cells the rollout passes
+/// through, summed over its points (÷ [`COST_SCALE`]); illegal when a point
+/// comes within the robot's circumscribed radius (plus half a cell: the
+/// clearance field's error) of a wall or the map edge, or of a perceived
+/// mover moved on at constant velocity.
+#[derive(Debug, Clone)]
+pub struct CostmapObstacle {
+    costmap: Costmap,
+    origin: [f64; 2],
+    res: f64,
+    radius: f64,
+    /// Cost band beyond the footprint: inflation radius + safety distance.
+    band: f64,
+    /// This cycle: far from every wall and mover, nothing to check.
+    free: bool,
+}
+
+impl CostmapObstacle {
+    /// The critic on `costmap` (its frame is `map`'s) for `robot`, whose
+    /// costs reach `band` m beyond the inflation.
+    pub fn new(costmap: Costmap, map: &StaticMap, robot: &RobotSpec, band: f64) -> Self {
+        let grid = map.grid();
+        let o = grid.origin();
+        Self {
+            costmap,
+            origin: [o.x, o.y],
+            res: grid.resolution(),
+            radius: robot.footprint.circumscribed_radius() + 0.5 * grid.resolution(),
+            band,
+            free: false,
+        }
+    }
+}
+
+impl Critic for CostmapObstacle {
+    fn name(&self) -> &str {
+        "obstacle_cost"
+    }
+
+    fn prepare(&mut self, ctx: &CriticContext<'_>) {
+        // Far from every wall and mover no rollout can collide or enter the
+        // cost band: skip the per-point checks (same result, much faster in
+        // open yards).
+        let s = ctx.obs.state;
+        self.free = ctx.obs.movers.is_empty()
+            && ctx.obs.map.clearance(s.x, s.y)
+                > ctx.window.reach + self.radius + self.band + 2.0 * self.res;
+    }
+
+    fn score(&self, ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
+        if self.free {
+            return Some(0.0);
+        }
+        let obs = ctx.obs;
+        let (w, h) = (self.costmap.width as i64, self.costmap.height as i64);
+        let radius = self.radius;
+        let mut c_obs = 0.0;
+        for (i, &[x, y]) in traj.points.iter().enumerate() {
+            let t = (i + 1) as f64 * traj.dt;
+            let col = ((x - self.origin[0]) / self.res).floor();
+            let row_b = ((y - self.origin[1]) / self.res).floor();
+            let on_map = col >= 0.0 && row_b >= 0.0 && (col as i64) < w && (row_b as i64) < h;
+            let ok = on_map
+                && obs.map.clearance(x, y) > radius
+                && obs.movers.iter().all(|m| {
+                    let (mx, my) = (m.pos[0] + m.vel[0] * t, m.pos[1] + m.vel[1] * t);
+                    let r = radius + m.radius;
+                    (mx - x) * (mx - x) + (my - y) * (my - y) > r * r
+                });
+            if !ok {
+                return None;
+            }
+            let idx = (h - 1 - row_b as i64) * w + col as i64;
+            let c = self
+                .costmap
+                .costs
+                .get(idx as usize)
+                .copied()
+                .unwrap_or(INSCRIBED);
+            c_obs += f64::from(c) / COST_SCALE;
+        }
+        Some(c_obs)
+    }
+}
+
+/// \[C\] eq 13's d_g: the Manhattan distance (m) from the rollout's end to
+/// the goal.
+#[derive(Debug, Clone, Default)]
+pub struct GoalDistanceL1;
+
+impl Critic for GoalDistanceL1 {
+    fn name(&self) -> &str {
+        "goal_distance_m"
+    }
+    fn score(&self, ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
+        let [x, y] = traj.end();
+        Some((x - ctx.goal[0]).abs() + (y - ctx.goal[1]).abs())
+    }
+}
+
+/// \[C\] eq 13's d_p: the Manhattan distance (m) from the rollout's end to
+/// the local path (to its one point when it has no segment).
+#[derive(Debug, Clone, Default)]
+pub struct PathDistanceL1;
+
+impl Critic for PathDistanceL1 {
+    fn name(&self) -> &str {
+        "path_distance_m"
+    }
+    fn score(&self, ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
+        let [x, y] = traj.end();
+        let d_p = ctx
+            .path
+            .windows(2)
+            .map(|sgm| l1_to_segment([x, y], sgm[0], sgm[1]))
+            .fold(f64::INFINITY, f64::min);
+        Some(if d_p.is_finite() {
+            d_p
+        } else {
+            ctx.path
+                .first()
+                .map_or(0.0, |q| (x - q[0]).abs() + (y - q[1]).abs())
+        })
+    }
+}
+
+impl LocalPlanner for CleaningDwa {
+    fn name(&self) -> &'static str {
+        self.name
+    }
+
+    fn step(&mut self, obs: &Observation<'_>) -> Command {
+        if self.cfg.compensate {
+            self.push_odometry(obs);
+        }
+        self.hold_accel_z(obs.accel_z);
+        let s = obs.state;
+        let (goal, kind, local) = self.local_goal([s.x, s.y]);
+        let (k, az) = (self.k, self.az_estimate);
+        self.engine.generator_mut().set_inputs(k, az);
+        let res = self.engine.plan(
+            obs,
+            &StepRequest {
+                path: &local,
+                ..StepRequest::to(goal)
+            },
+        );
+        let d = self.engine.debug_mut();
+        d.current_goal = goal;
+        d.goal_kind = kind;
+        d.mode = match (res.admissible > 0, res.window.limited) {
+            (false, _) => "no-admissible",
+            (true, true) => "load-limited",
+            (true, false) => "normal",
         }
         .into();
-        if self.record {
-            self.debug.rollouts = samples
-                .iter()
-                .zip(all_points)
-                .map(|(c, p)| to_rollout(c, p))
-                .collect();
-            self.debug.chosen = best;
-        } else {
-            self.debug.rollouts.clear();
-            self.debug.chosen = None;
-            if let Some(i) = best {
-                let c = samples[i];
-                let mut pts = Vec::with_capacity(steps);
-                self.rollout(
-                    obs,
-                    c.cmd,
-                    steps,
-                    goal,
-                    &local,
-                    radius,
-                    free,
-                    Some(&mut pts),
-                );
-                self.debug.rollouts.push(to_rollout(&c, pts));
-                self.debug.chosen = Some(0);
-            }
-        }
-        match best {
-            Some(i) => samples[i].cmd,
-            // Nothing admissible: brake (the motors' limits shape it).
-            None => Command::default(),
-        }
+        res.cmd
     }
 
     fn set_goal(
@@ -386,16 +479,17 @@ impl LocalPlanner for CleaningDwa {
         // The cleaning targets belonged to the old route: go straight there
         // (on error nothing changes).
         self.replan([state.x, state.y], &[], goal)?;
-        self.debug.keypoints.clear();
-        self.debug.current_goal = goal;
+        let d = self.engine.debug_mut();
+        d.keypoints.clear();
+        d.current_goal = goal;
         Ok(())
     }
 
     fn debug(&self) -> &PlannerDebug {
-        &self.debug
+        self.engine.debug()
     }
 
     fn set_record_rollouts(&mut self, on: bool) {
-        self.record = on;
+        self.engine.set_record(on);
     }
 }

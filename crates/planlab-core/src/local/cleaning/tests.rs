@@ -2,8 +2,9 @@
 
 use super::odometry::mat_vec;
 use super::path::l1_to_segment;
-use super::step::axis_samples;
+use super::step::{axis_samples, LoadWindow};
 use super::*;
+use crate::local::engine::generator::{Sample, Trajectory, TrajectoryGenerator};
 use crate::local::testkit;
 use crate::local::{GoalKind, LocalPlanner, Observation, OdometrySample};
 use crate::num::{cos, sin, Rng};
@@ -166,26 +167,20 @@ fn compensated_rollout_predicts_the_slipping_motion() {
         theta: 0.4,
         ..Default::default()
     };
-    let mut p = planner("cleaning-dwa", json!({}), &map, &s, [8.0, 3.0]);
-    p.k = k_true;
+    let p = planner("cleaning-dwa", json!({}), &map, &s, [8.0, 3.0]);
+    let mut gen = LoadWindow::new(p.config().clone(), &p.robot);
+    gen.set_inputs(k_true, 0.0);
     let cmd = Command {
         v: 0.3,
         vy: -0.1,
         w: 0.5,
     };
-    let mut pts = Vec::new();
     let o = obs(&s, &map, 0.0);
-    let (ok, _) = p.rollout(
-        &o,
-        cmd,
-        20,
-        [8.0, 3.0],
-        &[[2.0, 3.0], [8.0, 3.0]],
-        0.35,
-        false,
-        Some(&mut pts),
-    );
-    assert!(ok);
+    let sample = Sample { cmd, decel: 0.0 };
+    let mut traj = Trajectory::default();
+    gen.rollout(&o, sample, 20, &mut traj);
+    let pts = traj.points.clone();
+    assert_eq!(pts.len(), 20);
     let spec = TerrainSpec {
         slip: SlipSpec {
             k_true,
@@ -203,18 +198,9 @@ fn compensated_rollout_predicts_the_slipping_motion() {
         );
     }
     // The uncompensated prediction misses by centimetres.
-    p.k = IDENTITY;
-    let mut ideal = Vec::new();
-    p.rollout(
-        &o,
-        cmd,
-        20,
-        [8.0, 3.0],
-        &[[2.0, 3.0], [8.0, 3.0]],
-        0.35,
-        false,
-        Some(&mut ideal),
-    );
+    gen.set_inputs(IDENTITY, 0.0);
+    gen.rollout(&o, sample, 20, &mut traj);
+    let ideal = traj.points.clone();
     let (a, b) = (ideal[19], pts[19]);
     assert!((a[0] - b[0]).abs() + (a[1] - b[1]).abs() > 0.05);
 }

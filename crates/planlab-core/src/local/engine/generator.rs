@@ -1,0 +1,330 @@
+//! Trajectory generators: the velocity window of one control cycle, its
+//! samples, and the integration of one sample into a rollout (Nav2 DWB's
+//! `TrajectoryGenerator` plugin has the same two duties).
+//!
+//! A generator knows kinematics only: whether a rollout is safe is the
+//! business of the engine's screen and critics.
+
+use std::fmt;
+
+use super::super::Observation;
+use crate::num::{cos, sin, wrap_angle};
+use crate::world::{Command, RobotLimits};
+
+/// Most samples on one axis of the window (a tiny resolution cannot make a
+/// step take forever).
+pub const MAX_SAMPLES_PER_AXIS: usize = 1001;
+
+/// Most integration steps in one rollout (`predict_time / sim_dt`).
+pub const MAX_ROLLOUT_STEPS: usize = 10_000;
+
+/// One sampled command of a control cycle.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Sample {
+    /// The command held (or, braking, started from) over the rollout.
+    pub cmd: Command,
+    /// Linear deceleration along the rollout, m/s² (0: constant speed; a
+    /// braking manoeuvre slows to a stop at this rate).
+    pub decel: f64,
+}
+
+/// A rolled-out sample: positions, headings and speeds per integration step.
+#[derive(Debug, Clone, Default)]
+pub struct Trajectory {
+    /// The sample.
+    pub sample: Sample,
+    /// Integration step, s.
+    pub dt: f64,
+    /// Positions (x, y) after each step, m.
+    pub points: Vec<[f64; 2]>,
+    /// (sin θ, cos θ) after each step.
+    pub dirs: Vec<[f64; 2]>,
+    /// Linear speed during each step, m/s.
+    pub speeds: Vec<f64>,
+    /// Linear speed after the last step, m/s.
+    pub final_speed: f64,
+    /// Number of points within the rollout horizon (more may follow: a
+    /// braking rollout followed to rest, an arc followed for V_a).
+    pub horizon: usize,
+    /// Heading at the horizon's end, rad.
+    pub end_theta: f64,
+    /// Smallest clearance along the checked part, m (the engine's screen
+    /// fills it; `INFINITY` without a screen).
+    pub min_clearance: f64,
+}
+
+impl Trajectory {
+    /// The position at the horizon's end (the start when empty).
+    pub fn end(&self) -> [f64; 2] {
+        self.points
+            .get(self.horizon.saturating_sub(1))
+            .copied()
+            .unwrap_or([f64::NAN; 2])
+    }
+
+    /// The pose (x, y, θ) at the horizon's end.
+    pub fn end_pose(&self) -> [f64; 3] {
+        let e = self.end();
+        [e[0], e[1], self.end_theta]
+    }
+
+    fn clear(&mut self, sample: Sample, dt: f64) {
+        self.sample = sample;
+        self.dt = dt;
+        self.points.clear();
+        self.dirs.clear();
+        self.speeds.clear();
+        self.horizon = 0;
+        self.min_clearance = f64::INFINITY;
+    }
+}
+
+/// What a cycle asks of the generator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WindowRequest {
+    /// Control period, s (the window is what the robot reaches in it).
+    pub dt: f64,
+    /// Hold the linear speed at this value (\[S\]'s dual-velocity model);
+    /// generators without that model ignore it.
+    pub hold_v: Option<f64>,
+    /// Also roll out braking manoeuvres (\[T\]'s deceleration strategy).
+    pub braking: bool,
+}
+
+/// The window a generator sampled.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Window {
+    /// Linear speeds [lo, hi], m/s.
+    pub v: (f64, f64),
+    /// Turn rates [lo, hi], rad/s.
+    pub w: (f64, f64),
+    /// Start speed of the braking rollouts, when there are any.
+    pub brake_v: Option<f64>,
+    /// A bound on how far any rollout point gets from the start, m
+    /// (`INFINITY`: not bounded), for critics that skip work far from
+    /// everything.
+    pub reach: f64,
+    /// Whether a limit beyond the motors' (a load limit) narrowed it.
+    pub limited: bool,
+}
+
+/// Samples a velocity window and integrates rollouts.
+pub trait TrajectoryGenerator: Send + fmt::Debug {
+    /// Name shown in parameter panels.
+    fn name(&self) -> &'static str;
+    /// Rollout horizon: (integration steps, step length in s).
+    fn horizon(&self) -> (usize, f64);
+    /// The window of this cycle: its samples go to `out` (cleared first).
+    fn samples(
+        &mut self,
+        obs: &Observation<'_>,
+        req: &WindowRequest,
+        out: &mut Vec<Sample>,
+    ) -> Window;
+    /// Rolls `sample` out from the observed state over `steps` steps into
+    /// `traj` (its buffers are reused); `traj.horizon` is set to
+    /// `min(steps, horizon().0)`.
+    fn rollout(&self, obs: &Observation<'_>, sample: Sample, steps: usize, traj: &mut Trajectory);
+}
+
+/// Sample values on `[lo, hi]`: `count` evenly spread, or every `res`
+/// (ending on `hi`), plus 0 when the interval straddles it.
+pub fn axis(out: &mut Vec<f64>, lo: f64, hi: f64, res: f64, count: u32) {
+    out.clear();
+    if hi - lo <= 1e-12 {
+        out.push(lo);
+        return;
+    }
+    if count > 0 {
+        let n = count as usize;
+        if n == 1 {
+            out.push(0.5 * (lo + hi));
+        } else {
+            let step = (hi - lo) / (n - 1) as f64;
+            out.extend((0..n).map(|i| if i + 1 == n { hi } else { lo + step * i as f64 }));
+        }
+    } else {
+        let n = (((hi - lo) / res + 1e-9).floor() as usize + 1).min(MAX_SAMPLES_PER_AXIS);
+        out.extend((0..n).map(|i| lo + res * i as f64));
+        if let Some(&last) = out.last() {
+            if hi - last > 1e-9 && out.len() < MAX_SAMPLES_PER_AXIS {
+                out.push(hi);
+            }
+        }
+    }
+    if lo < 0.0 && hi > 0.0 && !out.iter().any(|x| x.abs() < 1e-12) {
+        out.push(0.0);
+    }
+}
+
+/// The window [lo, hi] of one velocity component: `cur ± acc·dt` within
+/// [min, max]; when the two do not meet, the reachable end nearest them.
+pub fn reachable(cur: f64, acc: f64, min: f64, max: f64, dt: f64) -> (f64, f64) {
+    let (a, b) = (cur - acc * dt, cur + acc * dt);
+    let (lo, hi) = (a.max(min), b.min(max));
+    if lo <= hi {
+        (lo, hi)
+    } else if b < min {
+        (b, b)
+    } else {
+        (a, a)
+    }
+}
+
+/// Rollout steps of a horizon `time` integrated every `dt`.
+pub fn horizon_steps(time: f64, dt: f64) -> usize {
+    ((time / dt - 1e-9).ceil() as usize).clamp(1, MAX_ROLLOUT_STEPS)
+}
+
+/// Fox, Burgard & Thrun's dynamic window (V_s ∩ V_d) of a differential
+/// drive robot, sampled on a (v, ω) grid, rollouts by the Euler update of
+/// [`crate::world::robot::integrate`]. With `dual`, \[S\]'s dual-velocity
+/// window: a held linear speed collapses the v axis to that speed.
+#[derive(Debug, Clone)]
+pub struct DynamicWindow {
+    limits: RobotLimits,
+    v_res: f64,
+    w_res: f64,
+    v_samples: u32,
+    w_samples: u32,
+    sim_dt: f64,
+    steps: usize,
+    dual: bool,
+    vs: Vec<f64>,
+    ws: Vec<f64>,
+}
+
+impl DynamicWindow {
+    /// The window of `limits` sampled at (`v_res`, `w_res`) or
+    /// (`v_samples`, `w_samples`) per axis, rolled out over `predict_time`
+    /// every `sim_dt`; `dual` makes it \[S\]'s dual-velocity window.
+    /// Values are assumed validated.
+    pub fn new(
+        limits: RobotLimits,
+        (v_res, w_res): (f64, f64),
+        (v_samples, w_samples): (u32, u32),
+        (predict_time, sim_dt): (f64, f64),
+        dual: bool,
+    ) -> Self {
+        Self {
+            limits,
+            v_res,
+            w_res,
+            v_samples,
+            w_samples,
+            sim_dt,
+            steps: horizon_steps(predict_time, sim_dt),
+            dual,
+            vs: Vec::new(),
+            ws: Vec::new(),
+        }
+    }
+}
+
+/// One rollout step of `h` s at speed `v`: the position advances along
+/// the heading whose (sin, cos) is `sc`, then the heading turns by the
+/// exact rotation `rot` = (sin ωh, cos ωh) — the Euler update of
+/// `integrate` without a sin/cos per step.
+#[inline(always)]
+fn arc_step(
+    p: &mut [f64; 2],
+    (sn, cs): (&mut f64, &mut f64),
+    v: f64,
+    (sd, cd): (f64, f64),
+    h: f64,
+) {
+    p[0] += v * *cs * h;
+    p[1] += v * *sn * h;
+    let (ns, nc) = (*sn * cd + *cs * sd, *cs * cd - *sn * sd);
+    *sn = ns;
+    *cs = nc;
+}
+
+impl TrajectoryGenerator for DynamicWindow {
+    fn name(&self) -> &'static str {
+        if self.dual {
+            "dual-velocity window"
+        } else {
+            "dynamic window"
+        }
+    }
+
+    fn horizon(&self) -> (usize, f64) {
+        (self.steps, self.sim_dt)
+    }
+
+    fn samples(
+        &mut self,
+        obs: &Observation<'_>,
+        req: &WindowRequest,
+        out: &mut Vec<Sample>,
+    ) -> Window {
+        let s = obs.state;
+        let l = self.limits;
+        let (v_lo, v_hi) = match req.hold_v {
+            Some(v) if self.dual && v.is_finite() => {
+                let v = v.clamp(l.v_min, l.v_max);
+                (v, v)
+            }
+            _ => reachable(s.v, l.acc_v, l.v_min, l.v_max, req.dt),
+        };
+        let (w_lo, w_hi) = reachable(s.w, l.acc_w, -l.w_max, l.w_max, req.dt);
+        axis(&mut self.vs, v_lo, v_hi, self.v_res, self.v_samples);
+        axis(&mut self.ws, w_lo, w_hi, self.w_res, self.w_samples);
+        let brake_v = (req.braking && v_lo > 0.0).then_some(v_lo);
+        out.clear();
+        for &v in &self.vs {
+            for &w in &self.ws {
+                out.push(Sample {
+                    cmd: Command { v, vy: 0.0, w },
+                    decel: 0.0,
+                });
+            }
+        }
+        if let Some(v) = brake_v {
+            // The deceleration strategy of [T] Table 3-1: constant-speed
+            // rollouts cannot show that slowing down now avoids a mover
+            // later.
+            out.extend(self.ws.iter().map(|&w| Sample {
+                cmd: Command { v, vy: 0.0, w },
+                decel: l.acc_v,
+            }));
+        }
+        Window {
+            v: (v_lo, v_hi),
+            w: (w_lo, w_hi),
+            brake_v,
+            limited: false,
+            reach: f64::INFINITY,
+        }
+    }
+
+    fn rollout(&self, obs: &Observation<'_>, sample: Sample, steps: usize, traj: &mut Trajectory) {
+        let h = self.sim_dt;
+        traj.clear(sample, h);
+        let s = obs.state;
+        let (v, w, decel) = (sample.cmd.v, sample.cmd.w, sample.decel);
+        // cos/sin of θ_k = θ_0 + kωh advance by an exact rotation (one
+        // sin/cos per sample instead of per step; deterministic).
+        let rot = (sin(w * h), cos(w * h));
+        let (mut sn, mut cs) = (sin(s.theta), cos(s.theta));
+        let mut p = [s.x, s.y];
+        let mut vk = v;
+        for _ in 0..steps {
+            traj.speeds.push(vk);
+            arc_step(&mut p, (&mut sn, &mut cs), vk, rot, h);
+            if decel > 0.0 {
+                vk = (vk - decel * h).max(0.0);
+            }
+            traj.points.push(p);
+            traj.dirs.push([sn, cs]);
+            if decel > 0.0 && vk == 0.0 && traj.points.len() >= self.steps {
+                // At rest past the horizon: nothing more moves.
+                break;
+            }
+        }
+        traj.final_speed = vk;
+        traj.horizon = self.steps.min(traj.points.len());
+        traj.end_theta = wrap_angle(s.theta + w * h * self.steps as f64);
+    }
+}

@@ -1,0 +1,665 @@
+//! The DWA papers' safety screen: which rollouts are admissible.
+//!
+//! - **Collision** within the horizon: clearance of every rollout point —
+//!   the static map's [`StaticMap::clearance`] minus the footprint's
+//!   circumscribed radius (and `safety_margin`), and the distance to every
+//!   perceived mover disc, at its position at the rollout step's time when
+//!   `predict_movers` (constant velocity), else at its current position; a
+//!   moving disc counts larger by the distance it covers in one control
+//!   period (it may turn before the robot sees it again). A rollout whose
+//!   clearance reaches the threshold collides (early exit).
+//! - **V_a** (Fox, Burgard & Thrun 1997): v ≤ √(2·dist·v̇_b),
+//!   |ω| ≤ √(2·dist·ω̇_b), dist the distance the robot drives *along its
+//!   arc* before the first contact ([`va_time`]); past the horizon the arc
+//!   is followed on as far as braking needs.
+//! - **Braking rollouts** are followed past the horizon until the robot
+//!   stands, and must not stop in a mover's predicted path
+//!   ([`REST_HORIZONS`]); a constant-speed rollout that leaves the robot in
+//!   one must be brakeable afterwards (stranding).
+//! - **Passive safety**: a robot at rest starts off only on a sample it
+//!   could brake out of before any perceived mover, free to turn round at
+//!   once, could reach it.
+//!
+//! With no admissible sample the screen's fallback brakes at the largest
+//! deceleration and, for a circular footprint, turns in place toward the
+//! goal (only when that braking turn hits nothing) — unless braking itself
+//! would be hit or would stop the robot in a mover's predicted path: then
+//! the engine takes the collision-free sample with the best G.
+
+use super::generator::{Sample, Trajectory, Window, MAX_ROLLOUT_STEPS};
+use crate::geom::closest_along;
+use crate::local::{Observation, ObservedMover};
+use crate::num::{atan2, hypot, wrap_angle};
+use crate::world::robot::integrate;
+use crate::world::{Command, Footprint, RobotLimits, RobotSpec, RobotState, StaticMap};
+
+/// A braking rollout's rest point must stay out of every mover's predicted
+/// path for this many rollout horizons.
+pub const REST_HORIZONS: f64 = 4.0;
+
+/// The screen's settings (fields of `DwaConfig`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScreenConfig {
+    /// Clearance beyond this changes no decision, m.
+    pub dist_cap: f64,
+    /// Extra clearance kept beyond the footprint, m.
+    pub safety_margin: f64,
+    /// Movers move at their observed velocity along rollouts.
+    pub predict_movers: bool,
+    /// Apply V_a.
+    pub admissible_window: bool,
+    /// With no admissible sample, a round robot turns toward the goal.
+    pub rotate_in_place: bool,
+}
+
+/// How the screen judged one rollout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Verdict {
+    /// It collides within the horizon (or a braking rollout before rest).
+    pub collided: bool,
+    /// It passes every test.
+    pub admissible: bool,
+    /// Points worth drawing (up to the contact; V_a's look-ahead excluded).
+    pub shown: usize,
+}
+
+/// Sets `x` toward 0 by `d`, not past it.
+fn toward_zero(x: f64, d: f64) -> f64 {
+    if x > 0.0 {
+        (x - d).max(0.0)
+    } else {
+        (x + d).min(0.0)
+    }
+}
+
+/// How long an arc driven at (|v|, |ω|) must stay free of contact for
+/// V_a, s.
+///
+/// Fox, Burgard & Thrun (1997) admit (v, ω) when the robot can stop
+/// before the closest obstacle on its arc: v ≤ √(2·dist(v,ω)·v̇_b) and
+/// ω ≤ √(2·dist(v,ω)·ω̇_b), dist(v,ω) the distance to that obstacle
+/// *along the arc* (not the nearest wall in any direction: a corridor's
+/// side walls do not slow a robot driving down it). The paper writes one
+/// dist for both bounds; **Decision**: for ω we read it as the angle
+/// the robot turns on the arc before the contact, dist·|ω|/|v| (the
+/// only reading in which the units agree; for v = 0, turning on the
+/// spot, it is |ω| times the time until a mover arrives). With t_hit
+/// the time to the first contact at constant (v, ω), dist = |v|·t_hit
+/// and the angle = |ω|·t_hit, so both bounds read
+/// t_hit ≥ max(|v|/(2·v̇_b), |ω|/(2·ω̇_b)), the braking decelerations
+/// being the robot's `acc_v`, `acc_w`.
+pub fn va_time(v_abs: f64, w_abs: f64, l: &RobotLimits) -> f64 {
+    (v_abs / (2.0 * l.acc_v)).max(w_abs / (2.0 * l.acc_w))
+}
+
+/// Clearance (m) of the robot's centre to the nearest static obstacle or
+/// perceived mover surface, without the footprint.
+pub fn centre_clearance(map: &StaticMap, movers: &[ObservedMover], p: [f64; 2]) -> f64 {
+    let mut c = map.clearance(p[0], p[1]);
+    for m in movers {
+        c = c.min(hypot(m.pos[0] - p[0], m.pos[1] - p[1]) - m.radius);
+    }
+    c.max(0.0)
+}
+
+/// The safety screen of one engine (module doc); allocation-free per cycle
+/// once warmed up.
+#[derive(Debug, Clone)]
+pub struct Screen {
+    cfg: ScreenConfig,
+    limits: RobotLimits,
+    /// Footprint's circumscribed radius + safety margin, m.
+    r_eff: f64,
+    round: bool,
+    /// Rollout horizon (steps) and step (s) of the generator.
+    steps: usize,
+    h: f64,
+    /// Kept movers' positions per rollout step: `[k * m + j]`, k = 1..=steps.
+    mover_pos: Vec<[f64; 2]>,
+    mover_rad: Vec<f64>,
+    kept: Vec<usize>,
+    /// Rows of the mover table beyond the horizon: one control period, for
+    /// braking checks that start after it.
+    extra_rows: usize,
+    /// Last rollout step V_a may look at.
+    va_steps: usize,
+    /// Last rollout step a braking rollout may reach.
+    brake_steps: usize,
+    /// Every perceived mover (position, velocity, radius), for rest checks.
+    all_movers: Vec<([f64; 2], [f64; 2], f64)>,
+    /// Collision threshold: 0, or the current clearance when the robot
+    /// already sits inside the margin (it may leave, not go deeper).
+    limit: f64,
+    /// Static clearance at the robot (minus r_eff and slack).
+    stat0: f64,
+    horizon: f64,
+    dt: f64,
+    /// Half a map cell: allowance for the clearance field's error, m.
+    slack: f64,
+}
+
+impl Screen {
+    /// The screen for `robot`, its rollouts `steps` long at `h` s.
+    pub fn new(cfg: ScreenConfig, robot: &RobotSpec, (steps, h): (usize, f64)) -> Self {
+        Self {
+            cfg,
+            limits: robot.limits,
+            r_eff: robot.footprint.circumscribed_radius() + cfg.safety_margin,
+            round: matches!(robot.footprint, Footprint::Circle { .. }),
+            steps,
+            h,
+            mover_pos: Vec::new(),
+            mover_rad: Vec::new(),
+            kept: Vec::new(),
+            extra_rows: 1,
+            va_steps: 0,
+            brake_steps: 0,
+            all_movers: Vec::new(),
+            limit: 0.0,
+            stat0: 0.0,
+            horizon: 0.0,
+            dt: 0.1,
+            slack: 0.0,
+        }
+    }
+
+    /// Number of movers the last cycle kept for the rollouts (the rest
+    /// cannot come near them).
+    pub fn kept_movers(&self) -> usize {
+        self.mover_rad.len()
+    }
+
+    /// Footprint radius plus safety margin, m.
+    pub fn effective_radius(&self) -> f64 {
+        self.r_eff
+    }
+
+    /// Sets the cycle up: how far rollouts are followed, the movers'
+    /// table, the collision threshold. `dt` is the control period.
+    pub fn prepare(&mut self, obs: &Observation<'_>, window: &Window, dt: f64) {
+        let s = obs.state;
+        let l = self.limits;
+        let h = self.h;
+        // Beyond this distance clearance changes nothing: the critic is
+        // capped, and collisions and V_a only ask whether it reaches the
+        // threshold.
+        let v_abs = window.v.0.abs().max(window.v.1.abs());
+        let w_abs = window.w.0.abs().max(window.w.1.abs());
+        let horizon = self.cfg.dist_cap + 1e-6;
+        // V_a follows an arc for as long as its braking needs.
+        self.va_steps = if self.cfg.admissible_window {
+            let t = va_time(v_abs, w_abs, &l) / h;
+            // `as` saturates, and NaN cannot occur (limits are validated).
+            (t.ceil().min(MAX_ROLLOUT_STEPS as f64) as usize + 1).min(MAX_ROLLOUT_STEPS)
+        } else {
+            0
+        };
+        self.brake_steps = window.brake_v.map_or(0, |v| {
+            // `as` saturates; limits are validated (acc_v > 0).
+            ((v / l.acc_v / h).ceil().min(MAX_ROLLOUT_STEPS as f64) as usize + 1)
+                .min(MAX_ROLLOUT_STEPS)
+        });
+        let t_total = (self.steps.max(self.va_steps).max(self.brake_steps)) as f64 * h;
+        self.extra_rows = ((dt / h).round() as usize).clamp(1, MAX_ROLLOUT_STEPS);
+        self.prepare_movers(obs, s, v_abs * (t_total + dt), horizon, dt);
+        // The clearance field may exceed the exact distance by up to about
+        // a third of a cell: keep half a cell in hand so rollouts never touch.
+        self.slack = 0.5 * obs.map.grid().resolution();
+        let stat0 = obs.map.clearance(s.x, s.y) - self.r_eff - self.slack;
+        let c0 = self.mover_clearance(stat0, s.x, s.y, 0, horizon);
+        self.limit = c0.min(0.0);
+        self.stat0 = stat0;
+        self.dt = dt;
+        self.horizon = horizon;
+    }
+
+    /// How many steps to integrate `sample` for: the horizon, or as far as
+    /// its braking or V_a needs.
+    pub fn steps_for(&self, sample: &Sample) -> usize {
+        if sample.decel > 0.0 {
+            self.steps.max(self.brake_steps)
+        } else if self.cfg.admissible_window {
+            let t = va_time(sample.cmd.v.abs(), sample.cmd.w.abs(), &self.limits) / self.h;
+            let need = (t.ceil().min(MAX_ROLLOUT_STEPS as f64) as usize + 1).min(self.va_steps);
+            self.steps.max(need)
+        } else {
+            self.steps
+        }
+    }
+
+    /// Judges `traj` (rolled out from `obs.state` for
+    /// [`Self::steps_for`] steps) and sets its `min_clearance`.
+    pub fn check(&self, obs: &Observation<'_>, traj: &mut Trajectory) -> Verdict {
+        let map = obs.map;
+        let s = obs.state;
+        let h = traj.dt;
+        let (v, w, decel) = (traj.sample.cmd.v, traj.sample.cmd.w, traj.sample.decel);
+        let horizon = self.horizon;
+        let limit = self.limit;
+        let mut probe = Probe::new(map, self, horizon);
+        let mut min_c = f64::INFINITY;
+        let mut collided = false;
+        let mut shown = traj.horizon;
+        for i in 0..traj.horizon {
+            let p = traj.points[i];
+            let stat = probe.at(p, traj.speeds[i].abs() * h * (1.0 + 1e-9));
+            let c = self.mover_clearance(stat, p[0], p[1], i + 1, horizon);
+            min_c = min_c.min(c);
+            if c <= limit {
+                collided = true;
+                shown = i + 1;
+                break;
+            }
+        }
+        traj.min_clearance = min_c;
+        let mut rest = traj.end();
+        if decel > 0.0 && !collided {
+            // A braking rollout is only safe if the robot stops before any
+            // contact: follow it on past the horizon until it stands.
+            let mut k = traj.horizon + 1;
+            loop {
+                let moving = traj.speeds.get(k - 1).map_or(traj.final_speed, |&s| s) > 0.0;
+                if !moving {
+                    break;
+                }
+                let Some(&p) = traj.points.get(k - 1).filter(|_| k <= self.brake_steps) else {
+                    collided = true;
+                    break;
+                };
+                rest = p;
+                shown = k;
+                let stat = map.clearance(p[0], p[1]) - self.r_eff - self.slack;
+                if self.mover_clearance(stat, p[0], p[1], k, horizon) <= limit {
+                    collided = true;
+                    break;
+                }
+                k += 1;
+            }
+        }
+        if decel > 0.0 && !collided && self.rest_unsafe(rest[0], rest[1]) {
+            // Stopping here would leave the robot in a mover's way.
+            collided = true;
+        }
+        // A constant-speed rollout that does not get the robot out of every
+        // mover's way is only worth taking if the robot can still brake
+        // safely after it: DWA re-plans every period, and a run of ever
+        // slower "safe" choices must not end standing in a mover's path.
+        let mut stranded = false;
+        if decel == 0.0
+            && !collided
+            && self.cfg.predict_movers
+            && !self.all_movers.is_empty()
+            && self.rest_unsafe(rest[0], rest[1])
+        {
+            let next = integrate(s, Command { v, vy: 0.0, w }, self.dt);
+            stranded = self.braking_collides_from(map, &next, self.extra_rows, None, false);
+        }
+        // V_a: the arc must be free of contact for the braking time. A
+        // rollout that collides is out anyway, so within the horizon the
+        // collision test has decided; past it the arc is followed on, with
+        // the same contact test. A braking rollout stops by construction.
+        let mut va_ok = true;
+        if !collided && !stranded && decel == 0.0 && self.cfg.admissible_window {
+            let t_need = va_time(v.abs(), w.abs(), &self.limits);
+            // A contact at step k leaves (k − 1)·h of free arc.
+            let mut k = traj.horizon + 1;
+            while (k - 1) as f64 * h < t_need - 1e-12 {
+                let Some(&p) = traj.points.get(k - 1).filter(|_| k <= self.va_steps) else {
+                    // Not followed this far: only what was checked is free.
+                    va_ok = false;
+                    break;
+                };
+                let stat = probe.at(p, traj.speeds[k - 1].abs() * h * (1.0 + 1e-9));
+                if self.mover_clearance(stat, p[0], p[1], k, horizon) <= limit {
+                    va_ok = false;
+                    break;
+                }
+                k += 1;
+            }
+        }
+        let admissible = !collided && !stranded && va_ok && !self.passive_unsafe(s, v, w);
+        Verdict {
+            collided,
+            admissible,
+            shown,
+        }
+    }
+
+    /// Whether braking at the largest deceleration (turn rate to 0 as well)
+    /// from `s` hits something within the horizon, movers predicted as in
+    /// the last cycle: then the fallback evades instead of braking.
+    pub fn braking_collides(&self, map: &StaticMap, s: &RobotState) -> bool {
+        self.braking_collides_from(map, s, 0, None, false)
+    }
+
+    /// Number of rows in the movers' position table.
+    fn mover_rows(&self) -> usize {
+        self.mover_pos
+            .len()
+            .checked_div(self.mover_rad.len())
+            .unwrap_or(self.table_rows())
+    }
+
+    /// Rows the movers' position table needs: the horizon plus one control
+    /// period, or as far as V_a follows an arc or a braking rollout runs.
+    fn table_rows(&self) -> usize {
+        (self.steps + self.extra_rows)
+            .max(self.va_steps)
+            .max(self.brake_steps)
+            + 1
+    }
+
+    /// Whether a robot standing at (x, y) lies in the predicted path of a
+    /// mover within [`REST_HORIZONS`] rollout horizons: stopping is only safe
+    /// out of the way of what keeps coming. Without mover prediction the
+    /// movers stand still and only overlap counts.
+    fn rest_unsafe(&self, x: f64, y: f64) -> bool {
+        let t_rest = if self.cfg.predict_movers {
+            REST_HORIZONS * self.steps as f64 * self.h
+        } else {
+            0.0
+        };
+        self.all_movers.iter().any(|&(p, v, r)| {
+            // Distance from (x, y) to the segment p + v·t, t ∈ [0, t_rest].
+            let (dx, dy) = (v[0] * t_rest, v[1] * t_rest);
+            let len2 = dx * dx + dy * dy;
+            // Cheap rejections first (no division or root; the margin dwarfs
+            // rounding, so the answer is the exact test's): the segment lies
+            // within L/2 of its midpoint and on its line.
+            let reach = r + self.r_eff + self.limit + 1e-9;
+            if reach < 0.0 {
+                return false;
+            }
+            let (ex, ey) = (x - p[0], y - p[1]);
+            let (mx, my) = (ex - 0.5 * dx, ey - 0.5 * dy);
+            let disc = reach + 0.5 * len2.sqrt();
+            if mx * mx + my * my > disc * disc {
+                return false;
+            }
+            let cross = ex * dy - ey * dx;
+            if cross * cross > reach * reach * len2 * (1.0 + 1e-9) {
+                return false;
+            }
+            let (q, _) = closest_along([x, y], p, [dx, dy]);
+            hypot(q[0] - x, q[1] - y) - r - self.r_eff <= self.limit
+        })
+    }
+
+    /// Whether driving (v, ω) for one control period and then braking at
+    /// the largest deceleration could be caught, while still moving, by a
+    /// perceived mover that changes course the moment after it was seen.
+    ///
+    /// Passive safety (Fraichard's "if a collision occurs, the robot is at
+    /// rest"): a mover may turn round or toward the robot at any time —
+    /// constant-velocity prediction cannot foresee a turnaround — so from
+    /// its observed position it reaches |v_m|·t in time t (on top of its
+    /// one-period allowance). A sample is refused when the robot, braking
+    /// after this period, is still moving where such a mover could already
+    /// be. A robot at rest is not checked: standing still is always allowed
+    /// (the braking fallback). Without it the robot started off behind a
+    /// mover 5 cm away that was about to turn round, and was hit at
+    /// 0.08 m/s while braking (S-fig12, preliminary-fusion, variant 11).
+    fn passive_unsafe(&self, s: &RobotState, v: f64, w: f64) -> bool {
+        if self.all_movers.is_empty() || v == 0.0 || s.v != 0.0 {
+            return false;
+        }
+        let l = &self.limits;
+        let h = self.h;
+        let t_end = self.dt + v.abs() / l.acc_v;
+        let travel = v.abs() * self.dt + 0.5 * v * v / l.acc_v;
+        let reach0 = self.r_eff + self.limit.abs() + travel;
+        let near = self.all_movers.iter().any(|&(p, mv, r)| {
+            hypot(p[0] - s.x, p[1] - s.y) - r - hypot(mv[0], mv[1]) * t_end <= reach0
+        });
+        if !near {
+            return false;
+        }
+        let cmd_steps = self.extra_rows;
+        let (mut st, mut vk, mut wk) = (*s, v, w);
+        let mut k = 0usize;
+        while k < cmd_steps || vk != 0.0 {
+            if k >= cmd_steps {
+                vk = toward_zero(vk, l.acc_v * h);
+                wk = toward_zero(wk, l.acc_w * h);
+            }
+            st = integrate(
+                &st,
+                Command {
+                    v: vk,
+                    vy: 0.0,
+                    w: wk,
+                },
+                h,
+            );
+            k += 1;
+            if k > MAX_ROLLOUT_STEPS {
+                return true;
+            }
+            // At rest at the end of the period: nothing more to check.
+            if vk == 0.0 && k >= cmd_steps {
+                break;
+            }
+            let t = k as f64 * h;
+            let caught = self.all_movers.iter().any(|&(p, mv, r)| {
+                hypot(p[0] - st.x, p[1] - st.y) - r - self.r_eff - hypot(mv[0], mv[1]) * t
+                    <= self.limit
+            });
+            if caught {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// As [`Self::braking_collides`], starting `row0` rollout steps into the
+    /// movers' predicted future; with `turn_to`, the turn rate follows the
+    /// fallback's turn toward that goal instead of braking to 0; with
+    /// `to_rest`, followed until the robot stands even past the horizon.
+    fn braking_collides_from(
+        &self,
+        map: &StaticMap,
+        s: &RobotState,
+        row0: usize,
+        turn_to: Option<[f64; 2]>,
+        to_rest: bool,
+    ) -> bool {
+        let l = &self.limits;
+        let h = self.h;
+        let (mut st, mut v, mut w) = (*s, s.v, s.w);
+        let rows = self.mover_rows();
+        // From speed, or with a short horizon, the robot is still moving at
+        // the horizon's end. (Only the fallback asks past it: for the
+        // evade and stranding decisions, movers predicted at constant
+        // velocity that far out misled more than they helped — S-fig12's
+        // dual-velocity robot then stood beside a mover's turnaround.)
+        let stop = (v.abs() / l.acc_v).max(w.abs() / l.acc_w) / h;
+        let n = if to_rest {
+            self.steps
+                .max(stop.ceil().min(MAX_ROLLOUT_STEPS as f64) as usize + 1)
+        } else {
+            self.steps
+        };
+        for k in 1..=n {
+            v = toward_zero(v, l.acc_v * h);
+            w = match turn_to {
+                Some(g) => self.turn_toward(&st, g, h),
+                None => toward_zero(w, l.acc_w * h),
+            };
+            st = integrate(&st, Command { v, vy: 0.0, w }, h);
+            let stat = map.clearance(st.x, st.y) - self.r_eff - self.slack;
+            let row = (k + row0).min(rows.saturating_sub(1));
+            if self.mover_clearance(stat, st.x, st.y, row, self.horizon) <= self.limit {
+                return true;
+            }
+            // Turning on the spot moves no part of a round footprint.
+            let still = v == 0.0 && (w == 0.0 || turn_to.is_some());
+            if still && self.mover_rad.is_empty() {
+                break;
+            }
+        }
+        self.rest_unsafe(st.x, st.y)
+    }
+
+    /// The fallback's turn rate toward `goal`: the rate that closes the
+    /// bearing error in one period `dt`, within the limits and the angular
+    /// window.
+    fn turn_toward(&self, s: &RobotState, goal: [f64; 2], dt: f64) -> f64 {
+        let l = &self.limits;
+        let dw = l.acc_w * dt;
+        let err = wrap_angle(atan2(goal[1] - s.y, goal[0] - s.x) - s.theta);
+        let want = (err / dt).clamp(-l.w_max, l.w_max);
+        want.clamp(s.w - dw, s.w + dw)
+    }
+
+    /// Braking fallback: v toward 0 at the largest deceleration; a round
+    /// robot also turns toward the goal (within its angular window) when
+    /// that braking turn hits nothing, else its turn rate goes to 0 too.
+    pub fn fallback(&self, map: &StaticMap, s: &RobotState, goal: [f64; 2], dt: f64) -> Command {
+        let l = &self.limits;
+        let v = toward_zero(s.v, l.acc_v * dt);
+        // Turning while still moving sweeps a wider path than braking
+        // straight: it may reach a wall that straight braking stops short
+        // of (T-fig3-11 with a 1 s horizon drove into the side wall so).
+        let turn = self.cfg.rotate_in_place
+            && self.round
+            && (s.v == 0.0
+                || !self.braking_collides_from(map, s, 0, Some(goal), true)
+                || self.braking_collides_from(map, s, 0, None, true));
+        let w = if turn {
+            self.turn_toward(s, goal, dt)
+        } else {
+            toward_zero(s.w, l.acc_w * dt)
+        };
+        Command { v, vy: 0.0, w }
+    }
+
+    /// Keeps the movers that can come within `horizon` of a rollout and
+    /// tabulates their positions per rollout step.
+    ///
+    /// A moving disc counts `|v|·dt` larger, `dt` the control period: its
+    /// motion may change between two observations (a turnaround, a corner
+    /// of its loop) and the robot reacts one period later, so that much is
+    /// kept in hand. With the bare radius the constant-velocity prediction
+    /// let the robot wait, or creep, within millimetres of a mover's path
+    /// and be hit when the mover turned round (dwa-demo variants).
+    fn prepare_movers(
+        &mut self,
+        obs: &Observation<'_>,
+        s: &RobotState,
+        reach: f64,
+        horizon: f64,
+        dt: f64,
+    ) {
+        self.mover_pos.clear();
+        self.mover_rad.clear();
+        self.all_movers.clear();
+        let t_total = (self.table_rows() - 1) as f64 * self.h;
+        let predict = self.cfg.predict_movers;
+        let mut kept = std::mem::take(&mut self.kept);
+        kept.clear();
+        for (j, m) in obs.movers.iter().enumerate() {
+            let finite =
+                m.pos.iter().chain(m.vel.iter()).all(|x| x.is_finite()) && m.radius.is_finite();
+            if !finite {
+                continue;
+            }
+            let radius = m.radius + hypot(m.vel[0], m.vel[1]) * dt;
+            self.all_movers.push((m.pos, m.vel, radius));
+            let d0 = hypot(m.pos[0] - s.x, m.pos[1] - s.y) - radius - self.r_eff;
+            let travel = if predict {
+                hypot(m.vel[0], m.vel[1]) * t_total
+            } else {
+                0.0
+            };
+            if d0 - reach - travel <= horizon {
+                kept.push(j);
+            }
+        }
+        let n = kept.len();
+        if n == 0 {
+            self.kept = kept;
+            return;
+        }
+        self.mover_rad.extend(kept.iter().map(|&j| {
+            let m = &obs.movers[j];
+            m.radius + hypot(m.vel[0], m.vel[1]) * dt
+        }));
+        let rows = self.table_rows();
+        self.mover_pos.resize(rows * n, [0.0, 0.0]);
+        for k in 0..rows {
+            let t = if predict { k as f64 * self.h } else { 0.0 };
+            for (jj, &j) in kept.iter().enumerate() {
+                let m = &obs.movers[j];
+                self.mover_pos[k * n + jj] = [m.pos[0] + m.vel[0] * t, m.pos[1] + m.vel[1] * t];
+            }
+        }
+        self.kept = kept;
+    }
+
+    /// Clearance of the footprint (as a disc of radius `r_eff`) centred at
+    /// (x, y) at rollout step k, exact up to `horizon`, given its static
+    /// part `stat` (map clearance minus `r_eff`): map and movers.
+    // Always inlined: the rollout's innermost call; at the wasm build's
+    // opt-level "s" it would otherwise stay a call.
+    #[inline(always)]
+    fn mover_clearance(&self, stat: f64, x: f64, y: f64, k: usize, horizon: f64) -> f64 {
+        let mut best = stat;
+        let n = self.mover_rad.len();
+        if n > 0 {
+            let row = &self.mover_pos[k * n..(k + 1) * n];
+            for (p, &r) in row.iter().zip(&self.mover_rad) {
+                let (dx, dy) = (p[0] - x, p[1] - y);
+                let d2 = dx * dx + dy * dy;
+                let lim = best.min(horizon) + r + self.r_eff;
+                // Only a closer mover needs the square root.
+                if lim <= 0.0 || d2 < lim * lim {
+                    best = best.min(d2.sqrt() - r - self.r_eff);
+                }
+            }
+        }
+        best
+    }
+}
+
+/// The static clearance along a rollout, skipping map lookups far from
+/// walls: the clearance field is √2-Lipschitz (bilinear over samples
+/// 1-Lipschitz per axis) up to a cell at blocked-cell borders, so while the
+/// last looked-up value minus √2·(distance driven since) stays above
+/// horizon + a cell, the point's value is above the horizon and every
+/// decision (capped critic, V_a, collision) is the same as with the exact
+/// value.
+struct Probe<'a> {
+    map: &'a StaticMap,
+    r_eff: f64,
+    slack: f64,
+    skip_above: f64,
+    last: f64,
+    since: f64,
+}
+
+impl<'a> Probe<'a> {
+    fn new(map: &'a StaticMap, screen: &Screen, horizon: f64) -> Self {
+        Self {
+            map,
+            r_eff: screen.r_eff,
+            slack: screen.slack,
+            skip_above: horizon + map.grid().resolution(),
+            last: screen.stat0,
+            since: 0.0,
+        }
+    }
+
+    /// The static clearance (minus the footprint) at `p`, reached after a
+    /// step of at most `step_len` m.
+    #[inline(always)]
+    fn at(&mut self, p: [f64; 2], step_len: f64) -> f64 {
+        self.since += step_len;
+        if self.last - std::f64::consts::SQRT_2 * self.since > self.skip_above {
+            self.skip_above
+        } else {
+            self.last = self.map.clearance(p[0], p[1]) - self.r_eff - self.slack;
+            self.since = 0.0;
+            self.last
+        }
+    }
+}
