@@ -500,3 +500,142 @@ impl<G: TrajectoryGenerator + ?Sized> Engine<G> {
         self.debug.chosen = Some(0);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::critic::{Critic, CriticContext, Twirling};
+    use super::generator::DynamicWindow;
+    use super::*;
+    use crate::local::testkit;
+    use crate::world::RobotState;
+
+    /// Prefers turning left: the raw score is ω + 1 (positive, as the
+    /// normalised sum needs; under the cost rule it prefers turning right).
+    #[derive(Debug)]
+    struct TurnRate;
+
+    impl Critic for TurnRate {
+        fn name(&self) -> &str {
+            "turn_rate"
+        }
+        fn score(&self, _ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
+            Some(traj.sample.cmd.w + 1.0)
+        }
+    }
+
+    /// Declares every rollout turning right illegal.
+    #[derive(Debug)]
+    struct NoRightTurns;
+
+    impl Critic for NoRightTurns {
+        fn name(&self) -> &str {
+            "no_right_turns"
+        }
+        fn score(&self, _ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
+            (traj.sample.cmd.w >= 0.0).then_some(0.0)
+        }
+    }
+
+    fn engine(critics: Vec<CriticSlot>, scoring: Scoring) -> Engine {
+        let robot = RobotSpec::default();
+        let gen = DynamicWindow::new(robot.limits, (0.01, 0.01), (3, 5), (1.0, 0.1), false);
+        Engine::new(&robot, Box::new(gen), critics, scoring, None)
+    }
+
+    fn plan(e: &mut Engine, weights: Option<&[f64]>) -> StepResult {
+        let map = testkit::map(&".".repeat(40).repeat(1), 0.1);
+        let s = RobotState {
+            x: 1.0,
+            y: 0.05,
+            v: 0.5,
+            w: 0.0,
+            ..Default::default()
+        };
+        let obs = Observation {
+            time: 0.0,
+            dt: 0.1,
+            state: &s,
+            goal: [3.0, 0.05],
+            map: &map,
+            movers: &[],
+            odometry: None,
+            accel_z: 0.0,
+        };
+        e.plan(
+            &obs,
+            &StepRequest {
+                weights,
+                ..StepRequest::to([3.0, 0.05])
+            },
+        )
+    }
+
+    #[test]
+    fn the_normalised_sum_takes_the_highest_and_the_cost_rule_the_lowest() {
+        let mut hi = engine(vec![CriticSlot::new(TurnRate, 1.0)], Scoring::NormalisedSum);
+        let mut lo = engine(vec![CriticSlot::new(TurnRate, 1.0)], Scoring::WeightedCost);
+        let (a, b) = (plan(&mut hi, None), plan(&mut lo, None));
+        let w_max = a.window.w.1;
+        assert!(w_max > 0.0);
+        assert_eq!(a.cmd.w, w_max);
+        assert_eq!(b.cmd.w, a.window.w.0);
+        assert_eq!(a.samples, 15);
+        assert_eq!(hi.debug().critics, ["turn_rate"]);
+    }
+
+    #[test]
+    fn a_cycle_s_weights_override_the_built_in_ones() {
+        let critics = vec![
+            CriticSlot::new(TurnRate, 1.0),
+            CriticSlot::new(Twirling::named("twirl"), 0.0),
+        ];
+        let mut e = engine(critics, Scoring::WeightedCost);
+        assert!(plan(&mut e, None).cmd.w < 0.0);
+        // A heavy twirl weight makes driving straight the cheapest.
+        let r = plan(&mut e, Some(&[1.0, 10.0]));
+        assert_eq!(r.cmd.w, 0.0);
+        assert_eq!(e.debug().weights, [1.0, 10.0]);
+    }
+
+    #[test]
+    fn an_illegal_rollout_is_never_chosen_and_none_legal_stops() {
+        let critics = vec![
+            CriticSlot::new(TurnRate, 1.0),
+            CriticSlot::new(NoRightTurns, 1.0),
+        ];
+        let mut e = engine(critics, Scoring::WeightedCost);
+        e.set_record(true);
+        let r = plan(&mut e, None);
+        assert_eq!(r.cmd.w, 0.0, "the lowest legal turn rate");
+        let d = e.debug();
+        let illegal = d.rollouts.iter().filter(|r| !r.admissible).count();
+        assert_eq!(illegal, 6, "the two right-turn columns of 3 speeds");
+        assert!(d.rollouts.iter().all(|r| r.admissible == (r.cmd.w >= 0.0)));
+        let chosen = d.chosen.map(|i| d.rollouts[i].score);
+        assert_eq!(chosen, Some(-1.0));
+        // Nothing legal: without a screen the engine stops.
+        let mut none = engine(
+            vec![CriticSlot::new(NoRightTurns, 1.0)],
+            Scoring::NormalisedSum,
+        );
+        let map = testkit::map("....", 0.1);
+        let s = RobotState {
+            w: -1.0,
+            ..Default::default()
+        };
+        let obs = Observation {
+            time: 0.0,
+            dt: 0.1,
+            state: &s,
+            goal: [1.0, 0.0],
+            map: &map,
+            movers: &[],
+            odometry: None,
+            accel_z: 0.0,
+        };
+        let r = none.plan(&obs, &StepRequest::to([1.0, 0.0]));
+        assert_eq!(r.admissible, 0);
+        assert_eq!(r.cmd, Command::default());
+        assert_eq!(none.debug().mode, "no-admissible");
+    }
+}
