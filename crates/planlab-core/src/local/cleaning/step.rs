@@ -281,12 +281,7 @@ impl TrajectoryGenerator for LoadWindow {
         let cmd = sample.cmd;
         let inc = mat_vec(&self.k, [cmd.v * dt, cmd.vy * dt, cmd.w * dt]);
         let s = obs.state;
-        traj.sample = sample;
-        traj.dt = dt;
-        traj.points.clear();
-        traj.dirs.clear();
-        traj.speeds.clear();
-        traj.min_clearance = f64::INFINITY;
+        traj.clear(sample, dt);
         let (mut x, mut y) = (s.x, s.y);
         let (mut sn, mut cs) = (sin(s.theta), cos(s.theta));
         let (sd, cd) = (sin(inc[2]), cos(inc[2]));
@@ -296,7 +291,9 @@ impl TrajectoryGenerator for LoadWindow {
             y += sn * inc[0] + cs * inc[1];
             (sn, cs) = (sn * cd + cs * sd, cs * cd - sn * sd);
             traj.points.push([x, y]);
-            traj.dirs.push([sn, cs]);
+            if traj.with_dirs {
+                traj.dirs.push([sn, cs]);
+            }
             traj.speeds.push(speed);
         }
         traj.final_speed = speed;

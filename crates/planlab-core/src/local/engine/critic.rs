@@ -39,6 +39,11 @@ pub trait Critic: Send + fmt::Debug {
     /// The raw score of `traj`; `None` declares it illegal (it is then not
     /// chosen, whatever the other critics say).
     fn score(&self, ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64>;
+    /// Whether it reads every heading of a rollout (`Trajectory::dirs`;
+    /// e.g. a rectangular footprint's cost); most read only the end pose.
+    fn needs_headings(&self) -> bool {
+        false
+    }
     /// Called after the choice with the command driven (`None`: the
     /// fallback drove).
     fn debrief(&mut self, _chosen: Option<&Command>) {}

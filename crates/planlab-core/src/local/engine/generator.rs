@@ -37,10 +37,14 @@ pub struct Trajectory {
     pub dt: f64,
     /// Positions (x, y) after each step, m.
     pub points: Vec<[f64; 2]>,
-    /// (sin θ, cos θ) after each step.
+    /// (sin θ, cos θ) after each step, when `with_dirs` asked for them
+    /// (else empty: most critics read only the end pose).
     pub dirs: Vec<[f64; 2]>,
-    /// Linear speed during each step, m/s.
+    /// Linear speed during each step, m/s; empty when it is constant (the
+    /// sample's v): see [`Trajectory::speed`].
     pub speeds: Vec<f64>,
+    /// Fill `dirs` (the engine sets it when a critic needs every heading).
+    pub with_dirs: bool,
     /// Linear speed after the last step, m/s.
     pub final_speed: f64,
     /// Number of points within the rollout horizon (more may follow: a
@@ -62,13 +66,20 @@ impl Trajectory {
             .unwrap_or([f64::NAN; 2])
     }
 
+    /// The linear speed during step `i` (0-based), m/s.
+    #[inline(always)]
+    pub fn speed(&self, i: usize) -> f64 {
+        self.speeds.get(i).copied().unwrap_or(self.sample.cmd.v)
+    }
+
     /// The pose (x, y, θ) at the horizon's end.
     pub fn end_pose(&self) -> [f64; 3] {
         let e = self.end();
         [e[0], e[1], self.end_theta]
     }
 
-    fn clear(&mut self, sample: Sample, dt: f64) {
+    /// Empties the buffers for a rollout of `sample` at step `dt`.
+    pub fn clear(&mut self, sample: Sample, dt: f64) {
         self.sample = sample;
         self.dt = dt;
         self.points.clear();
@@ -121,8 +132,8 @@ pub trait TrajectoryGenerator: Send + fmt::Debug {
         req: &WindowRequest,
         out: &mut Vec<Sample>,
     ) -> Window;
-    /// Rolls `sample` out from the observed state over `steps` steps into
-    /// `traj` (its buffers are reused); `traj.horizon` is set to
+    /// Rolls `sample` out from the observed state over `steps` steps into `traj` (its buffers are reused,
+    /// `dirs` filled when `traj.with_dirs`); `traj.horizon` is set to
     /// `min(steps, horizon().0)`.
     fn rollout(&self, obs: &Observation<'_>, sample: Sample, steps: usize, traj: &mut Trajectory);
 }
@@ -192,6 +203,9 @@ pub struct DynamicWindow {
     dual: bool,
     vs: Vec<f64>,
     ws: Vec<f64>,
+    /// θ of the last start heading and its (sin, cos): one sin/cos a
+    /// cycle, not one a rollout.
+    start_dir: std::cell::Cell<(f64, f64, f64)>,
 }
 
 impl DynamicWindow {
@@ -217,6 +231,7 @@ impl DynamicWindow {
             dual,
             vs: Vec::new(),
             ws: Vec::new(),
+            start_dir: std::cell::Cell::new((0.0, 0.0, 1.0)),
         }
     }
 }
@@ -307,20 +322,39 @@ impl TrajectoryGenerator for DynamicWindow {
         // cos/sin of θ_k = θ_0 + kωh advance by an exact rotation (one
         // sin/cos per sample instead of per step; deterministic).
         let rot = (sin(w * h), cos(w * h));
-        let (mut sn, mut cs) = (sin(s.theta), cos(s.theta));
+        let (theta, s0, c0) = self.start_dir.get();
+        let (mut sn, mut cs) = if theta.to_bits() == s.theta.to_bits() {
+            (s0, c0)
+        } else {
+            let d = (sin(s.theta), cos(s.theta));
+            self.start_dir.set((s.theta, d.0, d.1));
+            d
+        };
         let mut p = [s.x, s.y];
         let mut vk = v;
-        for _ in 0..steps {
-            traj.speeds.push(vk);
-            arc_step(&mut p, (&mut sn, &mut cs), vk, rot, h);
-            if decel > 0.0 {
+        if decel > 0.0 {
+            for _ in 0..steps {
+                traj.speeds.push(vk);
+                arc_step(&mut p, (&mut sn, &mut cs), vk, rot, h);
                 vk = (vk - decel * h).max(0.0);
+                traj.points.push(p);
+                if traj.with_dirs {
+                    traj.dirs.push([sn, cs]);
+                }
+                if vk == 0.0 && traj.points.len() >= self.steps {
+                    // At rest past the horizon: nothing more moves.
+                    break;
+                }
             }
-            traj.points.push(p);
-            traj.dirs.push([sn, cs]);
-            if decel > 0.0 && vk == 0.0 && traj.points.len() >= self.steps {
-                // At rest past the horizon: nothing more moves.
-                break;
+        } else {
+            // Constant speed: `speeds` stays empty ([`Trajectory::speed`]).
+            traj.points.reserve(steps);
+            for _ in 0..steps {
+                arc_step(&mut p, (&mut sn, &mut cs), vk, rot, h);
+                traj.points.push(p);
+                if traj.with_dirs {
+                    traj.dirs.push([sn, cs]);
+                }
             }
         }
         traj.final_speed = vk;

@@ -121,6 +121,10 @@ impl<G: TrajectoryGenerator + ?Sized> Engine<G> {
         screen: Option<ScreenConfig>,
     ) -> Self {
         let screen = screen.map(|c| Screen::new(c, robot, generator.horizon()));
+        let traj = Trajectory {
+            with_dirs: critics.iter().any(|c| c.critic.needs_headings()),
+            ..Default::default()
+        };
         let debug = PlannerDebug {
             critics: critics
                 .iter()
@@ -142,7 +146,7 @@ impl<G: TrajectoryGenerator + ?Sized> Engine<G> {
             cands: Vec::new(),
             raws: Vec::new(),
             weights: Vec::new(),
-            traj: Trajectory::default(),
+            traj,
             debug,
         }
     }

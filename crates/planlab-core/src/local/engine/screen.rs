@@ -242,7 +242,7 @@ impl Screen {
         let mut shown = traj.horizon;
         for i in 0..traj.horizon {
             let p = traj.points[i];
-            let stat = probe.at(p, traj.speeds[i].abs() * h * (1.0 + 1e-9));
+            let stat = probe.at(p, traj.speed(i).abs() * h * (1.0 + 1e-9));
             let c = self.mover_clearance(stat, p[0], p[1], i + 1, horizon);
             min_c = min_c.min(c);
             if c <= limit {
@@ -309,7 +309,7 @@ impl Screen {
                     va_ok = false;
                     break;
                 };
-                let stat = probe.at(p, traj.speeds[k - 1].abs() * h * (1.0 + 1e-9));
+                let stat = probe.at(p, traj.speed(k - 1).abs() * h * (1.0 + 1e-9));
                 if self.mover_clearance(stat, p[0], p[1], k, horizon) <= limit {
                     va_ok = false;
                     break;
