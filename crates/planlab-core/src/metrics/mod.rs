@@ -481,7 +481,7 @@ mod tests {
     }
 
     #[test]
-    fn issue_14_resample_is_capped() {
+    fn resample_is_capped() {
         // 7.6·10⁸ m at 0.1 m would be 7.6·10⁹ points.
         let r = resample(&[[0.0, 0.0], [7.6e8, 0.0]], 0.1);
         assert!(r.len() <= MAX_RESAMPLE_POINTS + 2, "{}", r.len());
