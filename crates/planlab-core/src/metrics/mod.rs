@@ -242,8 +242,8 @@ pub fn temp_goal_switches(trace: &Trace) -> u32 {
     n
 }
 
-/// The most points [`resample`] returns (plus the first): issue 14's
-/// 7.6·10⁸ m step resampled every 0.1 m aborted on allocation.
+/// The most points [`resample`] returns (plus the first): a 7.6·10⁸ m
+/// step (`sim.dt=1e9`) resampled every 0.1 m aborted on allocation.
 pub const MAX_RESAMPLE_POINTS: usize = 1_000_000;
 
 /// Points every `ds` of arc length along the polyline, from its start
