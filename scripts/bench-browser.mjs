@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// The browser benchmark of issue 6, in headless Chromium:
+// The browser benchmark, in headless Chromium:
 //
 //  1. frame time on the robot page with 20 movers and DWA (preset
 //     dwa-crowd.json) at 1× for a few windows of --seconds each: the page's

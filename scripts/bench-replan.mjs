@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// The grid page's replan cost in headless Chromium (issue 16 §1): ms per
+// The grid page's replan cost in headless Chromium: ms per
 // A* query over the same Moving AI rows, planned four ways in one page —
 // the free `plan()` (rebuilds the passability grid every call, as the page
 // did before the session), `PlanSession.plan()` (grid kept, as the page

@@ -1,6 +1,8 @@
-// Issue 16 §2 ("fix what breaks in class") and §3 ("a beginner's layer")
-// in headless Chromium at 1440×900 (and 1366×768 for the compare page):
-// each test is named after its item and checks what failed before.
+// What a class sees on the pages, in headless Chromium at 1440×900 (and
+// 1366×768 for the compare page): generated maps that drive, notes that
+// say why, presentation mode, the gallery's relations, and the beginner's
+// help beside each paper. Each test checks what once failed in front of a
+// class.
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
@@ -52,7 +54,7 @@ function splitRoom(gap) {
   });
 }
 
-test('item1: a generated maze (defaults, seed 7) is driven to the goal by improved-dwa and safe-dual-dwa', async () => {
+test('a generated maze (defaults, seed 7) is driven to the goal by improved-dwa and safe-dual-dwa', async () => {
   const { page, problems } = await openRobotPage(session, 'robot.html');
   await page.click('#generate');
   await page.waitForFunction(() => document.body.dataset.generatedHash, null, { timeout: 10_000 });
@@ -67,7 +69,7 @@ test('item1: a generated maze (defaults, seed 7) is driven to the goal by improv
   await page.close();
 });
 
-test('item2: a path that exists only without inflation is said in the status line', async () => {
+test('a path that exists only without inflation is said in the status line', async () => {
   const { page, problems } = await openRobotPage(session, 'robot.html');
   await openFile(page, 'narrow.json', splitRoom(2));
   assert.equal(await errorText(page), null);
@@ -81,7 +83,7 @@ test('item2: a path that exists only without inflation is said in the status lin
   await page.close();
 });
 
-test('item3: presentation mode (P) makes the map larger at 1440×900, panels on demand', async () => {
+test('presentation mode (P) makes the map larger at 1440×900, panels on demand', async () => {
   const { page, problems } = await openRobotPage(session, 'robot.html');
   const box = () => page.locator('#sim-canvas').boundingBox();
   const normal = await box();
@@ -104,7 +106,7 @@ test('item3: presentation mode (P) makes the map larger at 1440×900, panels on 
   await page.close();
 });
 
-test('item4: after Replay the note does not squeeze the timeline (one line, slider ≥ 300 px)', async () => {
+test('after Replay the note does not squeeze the timeline (one line, slider ≥ 300 px)', async () => {
   const { page, problems } = await openRobotPage(session, 'robot.html?scenario=T-fig3-2.json&planner=improved-dwa');
   await playToEnd(page);
   await page.click('#tl-replay');
@@ -127,7 +129,7 @@ test('item4: after Replay the note does not squeeze the timeline (one line, slid
   await page.close();
 });
 
-test('item6: preliminary-fusion on T-fig3-2 ending stuck while driving is named circling, not "stuck (no progress)"', async () => {
+test('preliminary-fusion on T-fig3-2 ending stuck while driving is named circling, not "stuck (no progress)"', async () => {
   const { page, problems } = await openRobotPage(session, 'robot.html?scenario=T-fig3-2.json&planner=preliminary-fusion');
   const m = await playToEnd(page);
   const v = (await page.evaluate(() => window.planlabRobot.state()))[3];
@@ -140,7 +142,7 @@ test('item6: preliminary-fusion on T-fig3-2 ending stuck while driving is named 
   await page.close();
 });
 
-test('item7: digits enough to check the relations; the gallery run ends with the relation ✓/✗', async () => {
+test('digits enough to check the relations; the gallery run ends with the relation ✓/✗', async () => {
   // Tracking error: three decimals (0.012 vs 0.031, not 0.01 vs 0.03).
   const { page, problems } = await openRobotPage(session, 'robot.html?scenario=T-fig3-2.json&planner=improved-dwa&run=1&exp=T-fig3-2&as=improved');
   await page.waitForSelector('#gallery-note');
@@ -180,7 +182,7 @@ test('item7: digits enough to check the relations; the gallery run ends with the
   await arm.page.close();
 });
 
-test('item8: gallery runs at 4× with » To end; the note is whole; Run above the fold; shared link; NaN; garbage .map', async () => {
+test('gallery runs at 4× with » To end; the note is whole; Run above the fold; shared link; NaN; garbage .map', async () => {
   // A gallery link opens at 4× and has a To end button.
   const g = await openAt('robot.html?scenario=S-tab1.json&planner=preliminary-fusion&run=1&exp=S-tab1&as=preliminary');
   await g.page.waitForSelector('#gallery-note');
@@ -232,7 +234,7 @@ test('item8: gallery runs at 4× with » To end; the note is whole; Run above th
   await page.close();
 });
 
-test('s3: plain-language planner help beside the paper; "What am I looking at?" on robot, compare, gallery, apf and arm', async () => {
+test('plain-language planner help beside the paper; "What am I looking at?" on robot, compare, gallery, apf and arm', async () => {
   const { page, problems } = await openRobotPage(session, 'robot.html?scenario=T-fig3-2.json&planner=improved-dwa');
   await page.click('#help-button');
   const help = await page.evaluate(() => {

@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { DIST } from './harness.mjs';
 
-/** Issue 6: wasm + JS + CSS of a page's first load, bytes (1.5 MB). */
+/** A page's first-load budget: wasm + JS + CSS, bytes (1.5 MB). */
 export const FIRST_LOAD_LIMIT = 1_500_000;
 
 /** Every page of the built site: the .html files at the top of web/dist. */

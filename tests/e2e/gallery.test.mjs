@@ -401,7 +401,7 @@ test('robot page metric cards: every label and value whole (no "…") at 1366×7
     for (const run of runs) {
       await page.goto(`${session.base}robot.html?scenario=${run}&run=1`);
       await ready(page);
-      // Presentation mode folds the side panel (issue 16 §2.3): set the
+      // Presentation mode folds the side panel: set the
       // speed through its select without unfolding it.
       await page.evaluate(() => {
         const sp = document.getElementById('speed');

@@ -309,7 +309,7 @@ test('Drive: the robot follows the D* Lite path, a wall painted ahead of it is r
   await page.close();
 });
 
-test('inflation below one cell is said on the grid page (issue 16 §2.5)', async () => {
+test('inflation below one cell is said on the grid page', async () => {
   // The arena preset has 1 m cells: 0.8 m of inflation grows no wall.
   const { page, problems } = await openPage(session);
   await afterReplan(page, () => page.fill('#inflate', '0.8'));

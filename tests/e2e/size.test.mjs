@@ -1,5 +1,6 @@
 // First load of every built page (wasm + JS + CSS, uncompressed, as
-// transferred with an empty cache) stays within issue 6's 1.5 MB.
+// transferred with an empty cache) stays within the 1.5 MB budget
+// (FIRST_LOAD_LIMIT in firstload.mjs).
 // Deterministic: the bytes depend on the build only, not on the machine.
 
 import { test, before, after } from 'node:test';

@@ -1,4 +1,4 @@
-// End-to-end tests of the experiment families on the page (issue 13, item 8):
+// End-to-end tests of the experiment families on the pages:
 // - the gallery cards show the family results of
 //   assets/reproduce-results.jsonl: a verdict badge, each run's success
 //   rate with its interval, each clause's share and effect, the

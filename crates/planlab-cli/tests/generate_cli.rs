@@ -76,7 +76,7 @@ fn generated_rooms_scenario_joins_start_and_goal_and_runs() {
     // (inflated A* finds a path), and the scenario runs without contact.
     // Whether the local planner gets through the doors is its own result:
     // since DWA's V_a follows Fox et al. improved-dwa ends stuck in a
-    // doorway on this map (issue 13's note).
+    // doorway on this map.
     let plan = json_of(&planlab(&[
         "plan",
         out.to_str().unwrap(),

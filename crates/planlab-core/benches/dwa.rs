@@ -1,4 +1,4 @@
-//! Criterion benchmark of one DWA control step on the reference
+//! Criterion benchmark of one DWA control step on the fixed reference
 //! scene ([`planlab_core::bench::DwaStepBench`]: 20 × 40 (v, ω) samples,
 //! 3 s horizon at 0.1 s, a 200 × 200 map, 20 movers, seeded). The bound to
 //! meet is absolute (< 1 ms native), so there is no peer here; the chosen

@@ -135,8 +135,8 @@ pub fn run_variant(
 }
 
 /// The most variants one batch may ask for: each is an episode per planner,
-/// so this is hours of work already; more is a typo (issue 14:
-/// `--variants 4294967295` ran for minutes with no output).
+/// so this is hours of work already; more is a typo (`--variants
+/// 4294967295` once ran for minutes with no output).
 pub const MAX_VARIANTS: u32 = 10_000;
 
 /// Draws tried per variant before giving up: a draw is rejected when the

@@ -5,7 +5,7 @@
 //! `scripts/bench-browser.mjs`). Nothing here reads a clock; the callers
 //! time [`DwaStepBench::run`] and [`ScenBatch::solve_all`] themselves.
 //!
-//! - [`DwaStepBench`]: one DWA control step of the reference scene,
+//! - [`DwaStepBench`]: one DWA control step of a fixed reference scene,
 //!   20 × 40 (v, ω) samples, 3 s horizon at 0.1 s, a 200 × 200 map at
 //!   0.1 m with 60 seeded blocks, 20 seeded movers.
 //! - [`ScenBatch`]: every query of a Moving AI `.scen` planned once, with

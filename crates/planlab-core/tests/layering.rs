@@ -348,8 +348,8 @@ fn modules_use_only_lower_layers() {
     assert!(
         problems.is_empty(),
         "{} use(s) against the layering of ARCHITECTURE.md ({}):\n{}\n\
-         Move the used item down, or the using code up (e.g. the planner catalogue in \
-         src/local/registry.rs belongs in `crate::planners`, its helpers in `crate::params`).",
+         Move the used item down, or the using code up (as the planner catalogue went up \
+         from `local` to `crate::planners`, and its helpers down to `crate::params`).",
         problems.len(),
         pairs.into_iter().collect::<Vec<_>>().join(", "),
         problems.join("\n")

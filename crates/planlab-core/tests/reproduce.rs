@@ -1,12 +1,12 @@
 //! Every registered experiment of the papers runs on its presets and
-//! reports each clause of its relation; the ids the issue names are the
-//! ones registered. Whether a relation holds is a result (see `planlab
-//! reproduce --variants`), not a test.
+//! reports each clause of its relation; each of those experiments is one
+//! of the papers' figures and tables listed below. Whether a relation holds is a
+//! result (see `planlab reproduce --variants`), not a test.
 
 use planlab_core::reproduce;
 
 /// The ids `planlab reproduce` must know once every paper's file is filled.
-const ISSUE_IDS: [&str; 20] = [
+const EXPECTED_IDS: [&str; 20] = [
     "T-fig3-2",
     "T-fig3-11",
     "T-fig3-13a",
@@ -34,8 +34,8 @@ fn every_experiment_runs_and_reports_each_clause() {
     let all = reproduce::all();
     for exp in &all {
         assert!(
-            ISSUE_IDS.contains(&exp.id),
-            "{} is not one of the issue's ids",
+            EXPECTED_IDS.contains(&exp.id),
+            "{} is not one of the expected ids",
             exp.id
         );
         let r = reproduce::run(exp).unwrap_or_else(|e| panic!("{}: {e}", exp.id));

@@ -70,7 +70,7 @@ fn tab4_1_lengths_fall_and_spikes_vanish_with_prediction() {
 }
 
 #[test]
-fn the_issue_ids_are_registered() {
+fn the_apf_figures_and_table_are_registered() {
     let ids: Vec<&str> = reproduce::path_experiments().iter().map(|e| e.id).collect();
     for id in [
         "T-fig4-6",

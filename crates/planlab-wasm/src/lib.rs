@@ -1,7 +1,7 @@
 //! wasm-bindgen layer over planlab-core for the browser playground.
 //!
 //! Converts at the boundary and forwards; no planning happens here
-//! (DESIGN.md conventions 3–4):
+//! (ARCHITECTURE.md, "Crates"):
 //! - [`MapHandle`] owns one [`OccupancyGrid`]; maps are read by the core's
 //!   Moving AI, ROS and ASCII readers and edited cell by cell.
 //! - [`plan`] forwards to [`plan_on_map`] with a [`GridPlanOptions`] that

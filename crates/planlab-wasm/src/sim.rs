@@ -1,5 +1,5 @@
 //! The robot simulation for the page: a [`SimHandle`] wraps one core
-//! [`Episode`] and converts at the boundary (DESIGN.md conventions 4–5).
+//! [`Episode`] and converts at the boundary (ARCHITECTURE.md, "Crates").
 //!
 //! - What a frame shows leaves as one draw list (`draw`: the core's layers
 //!   of polylines, points, discs … as typed arrays), and the plot series

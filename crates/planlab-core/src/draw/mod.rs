@@ -6,7 +6,8 @@
 //! draw (a rollout, its score, whether it was admissible; a mover, its
 //! velocity, its class) and a renderer says *how* (colours, widths,
 //! markers). Everything that needs planning, sensing or geometry is done
-//! here, so a page only paints and toggles layers (DESIGN.md convention 5).
+//! here, so a page only paints and toggles layers (ARCHITECTURE.md: the
+//! pages compute no path, collision or distance).
 //!
 //! A [`DrawList`] keeps every number in one `f64` buffer and every grid
 //! cell in one byte buffer; its [`Item`]s say which layer and shape each

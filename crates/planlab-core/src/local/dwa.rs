@@ -568,7 +568,7 @@ mod tests {
 
     #[test]
     fn va_does_not_slow_a_robot_down_an_open_corridor() {
-        // Issue 13's corridor: 1.5 m wide, 18 m from start to goal, 3.9 m
+        // A long corridor: 1.5 m wide, 18 m from start to goal, 3.9 m
         // of corridor beyond it. With V_a measured to the nearest wall in
         // any direction (0.55 m away all along) dwa crawled at 0.42 m/s
         // (45 s); along the arc nothing is ahead, so V_a must not cost time.

@@ -242,8 +242,8 @@ pub fn temp_goal_switches(trace: &Trace) -> u32 {
     n
 }
 
-/// The most points [`resample`] returns (plus the first): issue 14's
-/// 7.6·10⁸ m step resampled every 0.1 m aborted on allocation.
+/// The most points [`resample`] returns (plus the first): a 7.6·10⁸ m
+/// step (`sim.dt=1e9`) resampled every 0.1 m aborted on allocation.
 pub const MAX_RESAMPLE_POINTS: usize = 1_000_000;
 
 /// Points every `ds` of arc length along the polyline, from its start
@@ -481,7 +481,7 @@ mod tests {
     }
 
     #[test]
-    fn issue_14_resample_is_capped() {
+    fn resample_is_capped() {
         // 7.6·10⁸ m at 0.1 m would be 7.6·10⁹ points.
         let r = resample(&[[0.0, 0.0], [7.6e8, 0.0]], 0.1);
         assert!(r.len() <= MAX_RESAMPLE_POINTS + 2, "{}", r.len());

@@ -10,9 +10,8 @@
 //! same (seed, k) gives the same scene on every target and thread.
 //!
 //! The ranges are fixed per experiment in its module, before any result
-//! was looked at; they follow the issue that asked for families ("start
-//! or goal moved 5–20 cm, a mover ±20 % speed, a block moved, another
-//! seed"), scaled to each scene's size.
+//! was looked at: start or goal moved 5–20 cm, a mover ±20 % speed, a
+//! block moved, another seed, scaled to each scene's size.
 
 use serde::Serialize;
 use serde_json::{json, Value};

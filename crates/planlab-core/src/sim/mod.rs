@@ -61,7 +61,7 @@ pub const MAX_STEPS: f64 = 1_000_000.0;
 
 /// The longest control period, s. A step integrates the command over `dt`
 /// and checks collisions only at its end, so a long period moves the robot
-/// through walls (issue 14: `sim.dt=1e9` moved it 7.6·10⁸ m in one step).
+/// through walls (`sim.dt=1e9` once moved it 7.6·10⁸ m in one step).
 pub const MAX_DT: f64 = 1.0;
 
 /// The trace's `mode` of a step driven by [`Episode::step_with`].

@@ -11,7 +11,7 @@
 //!
 //! # YAML subset
 //! map_server files are flat `key: value` maps, so this module reads that
-//! subset itself instead of pulling in a YAML crate (issue 14 measured
+//! subset itself instead of pulling in a YAML crate (measured for
 //! yaml-rust2, the maintained pure-Rust parser: +115 kB to the page's wasm
 //! after wasm-opt, over the page's size budget; its current release also
 //! needs a newer Rust than the workspace's 1.80, and its tree keeps no line
@@ -337,7 +337,7 @@ fn split_key(line: &str) -> Option<(&str, &str)> {
 /// The flat YAML subset: `(line, key, value)` in file order.
 fn parse_flat_yaml(text: &str) -> Result<Vec<(usize, String, Value)>, MapError> {
     let mut out: Vec<(usize, String, Value)> = Vec::new();
-    // Keys seen so far (a set: scanning `out` made the reader quadratic, issue 14:
+    // Keys seen so far (a set: scanning `out` made the reader quadratic;
     // 160 000 keys took 247 s).
     let mut seen = std::collections::BTreeSet::new();
     // A flow list still open: (line of its key, key, text so far).

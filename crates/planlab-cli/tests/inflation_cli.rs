@@ -1,12 +1,11 @@
-//! Issue 16 §2 in the CLI: an inflation below one cell is said, not
-//! silently ignored (§2.5); a generated maze drives (§2.1).
+//! `planlab plan --inflate` below one cell is said, not silently ignored.
 
 use std::process::Command;
 
 const REPO: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
 
 #[test]
-fn item5_inflation_below_one_cell_is_said() {
+fn inflation_below_one_cell_is_said() {
     let map = format!("{REPO}/tests/data/movingai/dao/arena.map");
     let run = |inflate: &str| {
         Command::new(env!("CARGO_BIN_EXE_planlab"))

@@ -1,6 +1,7 @@
-//! Issue 14 §2, core side: one regression test per defect found by
-//! fuzzing and hostile use (the CLI side is in planlab-cli's
-//! `tests/issue_14_cli.rs`).
+//! Hostile and malformed input, core side: one regression test per defect
+//! found by fuzzing and hostile use (huge or non-finite numbers, readers
+//! with quadratic time or unbounded allocation, errors that echo garbage or
+//! span lines). The CLI side is planlab-cli's `tests/hostile_input_cli.rs`.
 
 use planlab_core::map::io::ros;
 use planlab_core::metrics::{resample, MAX_RESAMPLE_POINTS};
@@ -27,7 +28,7 @@ fn edited(edits: &[(&str, &str)]) -> Result<(), String> {
 }
 
 #[test]
-fn issue_14_dt_1e9_is_refused() {
+fn dt_1e9_is_refused() {
     let e = edited(&[("sim.dt", "1e9")]).unwrap_err();
     assert!(e.contains("sim.dt = 1e9 s: must be at most 1 s"), "{e}");
     // The largest allowed period still builds, and the paper's 0.1 s too.
@@ -36,7 +37,7 @@ fn issue_14_dt_1e9_is_refused() {
 }
 
 #[test]
-fn issue_14_every_time_speed_and_size_has_an_upper_bound() {
+fn every_time_speed_and_size_has_an_upper_bound() {
     for (path, needle) in [
         (
             "sim.max_time",
@@ -63,7 +64,7 @@ fn issue_14_every_time_speed_and_size_has_an_upper_bound() {
 }
 
 #[test]
-fn issue_14_resample_is_bounded() {
+fn resample_is_bounded() {
     // One 7.6·10⁸ m step (what sim.dt = 1e9 produced) resampled every
     // 0.1 m asked for 7.6·10⁹ points and aborted.
     let r = resample(&[[0.0, 0.0], [7.6e8, 0.0]], 0.1);
@@ -73,7 +74,7 @@ fn issue_14_resample_is_bounded() {
 }
 
 #[test]
-fn issue_14_ros_yaml_reader_is_linear_in_the_keys() {
+fn ros_yaml_reader_is_linear_in_the_keys() {
     // 160 000 keys took 247 s with the quadratic duplicate check.
     let mut yaml = String::from("image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n");
     for i in 0..160_000 {
@@ -91,7 +92,7 @@ fn issue_14_ros_yaml_reader_is_linear_in_the_keys() {
 }
 
 #[test]
-fn issue_14_pgm_read_limit_comes_from_the_header() {
+fn pgm_read_limit_comes_from_the_header() {
     // P5 8-bit: header + 1 + w·h; 16-bit: 2 bytes a pixel; P2: a bound per
     // pixel; a lying header is refused before any pixel is read.
     let p5 = b"P5\n4 3\n255\n";
@@ -122,7 +123,7 @@ fn issue_14_pgm_read_limit_comes_from_the_header() {
 }
 
 #[test]
-fn issue_14_numbers_in_errors_are_compact() {
+fn numbers_in_errors_are_compact() {
     assert_eq!(fmt_num(1e308), "1e308");
     assert_eq!(fmt_num(-1e308), "-1e308");
     assert_eq!(fmt_num(0.1), "0.1");
@@ -133,7 +134,7 @@ fn issue_14_numbers_in_errors_are_compact() {
 }
 
 #[test]
-fn issue_14_fuzz_found_newline_in_a_json_key_stays_one_line() {
+fn a_newline_in_a_json_key_stays_one_line() {
     // cargo fuzz (scenario_sim) found a scenario whose key holds an escaped
     // newline: serde's "unknown field" message quoted it raw, two lines.
     let text = std::fs::read_to_string(
@@ -149,4 +150,36 @@ fn issue_14_fuzz_found_newline_in_a_json_key_stays_one_line() {
     );
     let e = edited(&[("local_planner.name", "dwa\nx")]).unwrap_err();
     assert!(e.contains("unknown planner `dwa\\nx`"), "{e}");
+}
+
+#[test]
+fn nan_in_scenario_json_is_named() {
+    let text = r#"{ "version": 1, "name": "n", "map": { "width": 3, "height": 1, "resolution": 1.0, "cells": ["..."] },
+  "start": { "col": 0, "row": 0 }, "goal": { "col": 2, "row": 0 },
+  "sim": { "dt": NaN } }"#;
+    let e = planlab_core::scenario::Scenario::from_json(text)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("NaN is not a number JSON allows"), "{e}");
+    assert!(e.contains("line 3"), "{e}");
+    let any = planlab_core::scenario::AnyScenario::from_json(&text.replace("NaN", "-Infinity"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        any.contains("-Infinity is not a number JSON allows"),
+        "{any}"
+    );
+}
+
+#[test]
+fn a_garbage_map_is_not_echoed() {
+    use planlab_core::map::io::movingai::parse_map;
+    let e = parse_map("\u{1}PNG\u{1a}\u{0}\u{0}garbage\nmore")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("not a Moving AI map: the first line should be `type octile`"),
+        "{e}"
+    );
+    assert!(!e.contains("\\u{") && !e.contains("PNG"), "{e}");
 }

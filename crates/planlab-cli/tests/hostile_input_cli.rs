@@ -1,5 +1,6 @@
-//! Issue 14 §2, CLI side: one regression test per defect found by fuzzing
-//! and hostile use. Scratch files live under this crate's
+//! Hostile and malformed input, CLI side: one regression test per defect
+//! found by fuzzing and hostile use (the core side is planlab-core's
+//! `tests/hostile_input.rs`). Scratch files live under this crate's
 //! `CARGO_TARGET_TMPDIR` (inside the repository's target/), never outside.
 
 mod common;
@@ -12,7 +13,7 @@ use std::time::Instant;
 
 /// A fresh scratch folder for one test.
 fn scratch(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("issue14-{name}"));
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("hostile-{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -29,7 +30,7 @@ fn error_line(o: &Output, code: i32) -> String {
 }
 
 #[test]
-fn issue_14_dt_1e9_is_refused() {
+fn dt_1e9_is_refused() {
     // Before: one step moved the robot 7.6·10⁸ m and resampling aborted
     // (exit 134).
     let demo = asset("scenarios/dwa-demo.json");
@@ -44,7 +45,7 @@ fn mkfifo(path: &std::path::Path) {
 }
 
 #[test]
-fn issue_14_non_regular_map_files_are_refused() {
+fn non_regular_map_files_are_refused() {
     // Before: `image: /dev/zero` read until memory ran out. A FIFO here
     // stands for any endless non-file (a read would block forever).
     let dir = scratch("fifo");
@@ -84,7 +85,7 @@ fn issue_14_non_regular_map_files_are_refused() {
 }
 
 #[test]
-fn issue_14_oversized_files_are_refused_before_reading() {
+fn oversized_files_are_refused_before_reading() {
     let dir = scratch("big");
     // Sparse files: huge on paper, no disk used, never read.
     let big = |name: &str, len: u64| {
@@ -134,7 +135,7 @@ fn issue_14_oversized_files_are_refused_before_reading() {
 }
 
 #[test]
-fn issue_14_train_predictor_checks_before_writing() {
+fn train_predictor_checks_before_writing() {
     let dir = scratch("train");
     let out = dir.join("rnn.json");
     let shipped = std::fs::read(asset("predictor/rnn.json")).unwrap();
@@ -193,7 +194,7 @@ fn issue_14_train_predictor_checks_before_writing() {
 }
 
 #[test]
-fn issue_14_batch_variants_are_bounded() {
+fn batch_variants_are_bounded() {
     // Before: built variants one by one for minutes with no output.
     let demo = asset("scenarios/pursuit-demo.json");
     let t = Instant::now();
@@ -206,7 +207,7 @@ fn issue_14_batch_variants_are_bounded() {
 }
 
 #[test]
-fn issue_14_batch_csv_rows_replay_with_run_variant() {
+fn batch_csv_rows_replay_with_run_variant() {
     // Before: the CSV's seed replayed variant 0 only (the jittered start,
     // goal and movers were lost).
     let dir = scratch("replay");
@@ -267,7 +268,7 @@ fn issue_14_batch_csv_rows_replay_with_run_variant() {
 }
 
 #[test]
-fn issue_14_usage_errors_are_one_line() {
+fn usage_errors_are_one_line() {
     // Before: clap printed 4–20 lines (usage, tips) for these.
     for args in [
         &["run"][..],
@@ -289,7 +290,7 @@ fn issue_14_usage_errors_are_one_line() {
 }
 
 #[test]
-fn issue_14_huge_numbers_print_compactly() {
+fn huge_numbers_print_compactly() {
     // Before: `--inflate 1e308` printed 309 digits.
     let demo = asset("scenarios/dwa-demo.json");
     let e = error_line(&planlab(&["plan", &demo, "--inflate", "1e308"]), 1);
@@ -305,7 +306,7 @@ fn issue_14_huge_numbers_print_compactly() {
 }
 
 #[test]
-fn issue_14_fuzz_found_spacious_p2_is_refused_not_cut() {
+fn a_spacious_p2_map_is_refused_not_cut() {
     // cargo fuzz (pgm) found that a valid P2 with long runs of whitespace
     // between pixels exceeded the per-pixel read bound and was cut short,
     // giving a misleading "truncated" error: it is refused by size instead.
