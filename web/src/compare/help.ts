@@ -3,7 +3,7 @@
 // page), the page's controls, its URL parameters and its keys.
 
 import type { HelpContent } from '../shell/help';
-import type { PlannerInfo } from '../robot/params';
+import type { PlannerInfo } from '../shell/planner-info';
 
 export function compareHelp(planners: PlannerInfo[], current: string | undefined): HelpContent {
   return {

@@ -4,7 +4,7 @@
 
 import type { SimHandle } from '../../pkg/planlab_wasm.js';
 import { emptyScene, type Scene } from '../scene/view';
-import type { Metrics } from './table';
+import type { Metrics } from '../shell/metrics';
 import { pullLive } from '../scene/pull';
 
 /** Planner colours, in the order the planners were picked: apart from the

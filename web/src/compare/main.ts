@@ -12,7 +12,7 @@ import init, { drawLayerNames, planners as plannerListJson, rosImageName } from 
 import { fillPresetSelect, showOpened } from '../shell/preset-select';
 import { mapOf, type RobotView } from '../scene/view';
 import { DrawList, Layer, checkLayers, mask } from '../scene/draw';
-import type { PlannerInfo } from '../robot/params';
+import type { PlannerInfo } from '../shell/planner-info';
 import { Race } from './race';
 import { OverlayView } from './overlay';
 import { compareHelp } from './help';
@@ -24,6 +24,8 @@ import { openFromUrl } from './open';
 import { el, messageOf, errorBanner } from '../shell/dom';
 import { SimClock } from '../shell/sim-clock';
 import { panZoom } from '../shell/canvas-input';
+import { installKeys } from '../shell/keys';
+import { bindSpeed } from '../shell/speed';
 import { summary } from '../shell/frame-meter';
 import { buildLanes, lanesCsv, renderHeads, renderTable } from './render';
 import { MIN_PLANNERS, PlannerPicks } from './picks';
@@ -300,10 +302,7 @@ ui.reset.addEventListener(
   }),
 );
 ui.instant.addEventListener('click', guard(() => runToEnd()));
-ui.speed.addEventListener('input', () => {
-  clock.speed = Number(ui.speed.value) || 1;
-  ui.speedOut.textContent = `${clock.speed}×`;
-});
+bindSpeed(ui.speed, ui.speedOut, clock);
 for (const b of ui.views) b.addEventListener('click', () => setView(b.dataset.view as ViewMode));
 ui.showFan.addEventListener(
   'change',
@@ -342,18 +341,14 @@ ui.copyCsv.addEventListener(
   }),
 );
 
-window.addEventListener('keydown', (ev) => {
-  const t = ev.target as HTMLElement | null;
-  if (t && (t.tagName === 'INPUT' || t.tagName === 'SELECT' || t.tagName === 'TEXTAREA')) return;
-  if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
-  const k = ev.key.toLowerCase();
-  if (k === ' ') {
-    ev.preventDefault();
+installKeys({
+  ' ': () => {
     if (!ui.play.disabled) ui.play.click();
-  } else if (k === '.') ui.step.click();
-  else if (k === 'r') ui.reset.click();
-  else if (k === 'e') ui.instant.click();
-  else if (k === 'v') setView(viewMode === 'side' ? 'overlay' : 'side');
+  },
+  '.': () => ui.step.click(),
+  r: () => ui.reset.click(),
+  e: () => ui.instant.click(),
+  v: () => setView(viewMode === 'side' ? 'overlay' : 'side'),
 });
 
 /** For the e2e tests: the metrics and hashes per planner, and the CSV. */
