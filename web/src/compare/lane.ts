@@ -20,6 +20,8 @@ export class Lane {
   metrics: Metrics | null = null;
   /** The trace hash (decimal) once the episode is over. */
   hash: string | null = null;
+  /** What colours its fan (fan-colour.ts): a critic's name or the total. */
+  fanColour = 'total score';
 
   constructor(name: string, colour: string, sim: SimHandle) {
     this.name = name;

@@ -29,7 +29,8 @@ import { bindSpeed } from '../shell/speed';
 import { summary } from '../shell/frame-meter';
 import { buildLanes, lanesCsv, renderHeads, renderTable } from './render';
 import { MIN_PLANNERS, PlannerPicks } from './picks';
-import { copyText } from './clipboard';
+import { wireCopyCsv } from './clipboard';
+import { FanColours } from './fan-colour';
 
 /** Most synchronised control steps (one per planner) in one frame. */
 const MAX_ROUNDS_PER_FRAME = 16;
@@ -75,6 +76,15 @@ let sideViews: RobotView[] = [];
 const overlay = new OverlayView(ui.overlayCanvas);
 let viewMode: ViewMode = 'side';
 const race = new Race();
+// What colours the fans: the total or a critic of the lanes' planners (fan-colour.ts).
+const fans = new FanColours(el<HTMLSelectElement>('fan-colour'), el('fan-scale'), {
+  lanes: () => race.lanes,
+  redraw: () => {
+    race.pull();
+    renderHeads(ui.lanes, ui.overlayLegend, race.lanes);
+    paintViews();
+  },
+});
 let lastSlow = 0;
 /** Per-frame work (all planners' steps + paint), ms, while playing. */
 const frameWork: number[] = [];
@@ -119,6 +129,7 @@ function rebuild(): void {
   if (map) ui.mapSize.textContent = `${map.width} × ${map.height} · ${map.resolution} m`;
   sideViews = buildLanes(ui.lanes, race.lanes, map, ui.showPath.checked);
   if (map) overlay.setMap(map);
+  fans.update();
   race.pull();
   overlay.setLanes(race.lanes);
   ui.body.dataset.state = race.lanes.length ? 'ready' : 'empty';
@@ -331,15 +342,7 @@ ui.stage.addEventListener('dblclick', (ev) => {
 
 const currentCsv = () => lanesCsv(race.lanes, allDone());
 
-ui.copyCsv.addEventListener(
-  'click',
-  guard(async () => {
-    const csv = currentCsv();
-    await copyText(csv);
-    ui.csvStatus.textContent = `Copied ${csv.trim().split('\n').length - 1} rows as CSV.`;
-    ui.body.dataset.copied = String(Number(ui.body.dataset.copied ?? 0) + 1);
-  }),
-);
+wireCopyCsv(ui.copyCsv, ui.csvStatus, currentCsv, guard);
 
 installKeys({
   ' ': () => {
