@@ -573,6 +573,10 @@ fn critics_carry_the_last_steps_weights_and_choose_the_fan_colour() {
     let e = message(sim.set_fan_colour(Some(3)).unwrap_err());
     assert!(e.contains("no critic 3") && e.contains(&names.join(", ")), "{e}");
     assert_eq!(values(&sim), of(&sim, &|r| r.normalised[1]));
+    // A restart (Reset, an editing tool) keeps the choice.
+    sim.restart().unwrap();
+    sim.step(2);
+    assert_eq!(values(&sim), of(&sim, &|r| r.normalised[1]));
     sim.set_fan_colour(None).unwrap();
     assert_eq!(values(&sim), of(&sim, &|r| r.score));
 }

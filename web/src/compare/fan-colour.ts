@@ -16,7 +16,7 @@ export interface FanColourHost {
 export class FanColours {
   constructor(
     private readonly select: HTMLSelectElement,
-    private readonly scale: HTMLElement,
+    scale: HTMLElement,
     private readonly host: FanColourHost,
   ) {
     scale.style.background = fanGradient();
