@@ -104,7 +104,7 @@ test('the Critics list shows the weights of the last step and follows a weight e
 
 test('colouring the fan by a critic repaints it with that critic’s normalised values', async () => {
   const { page, problems } = await openRobotPage(session, `robot.html?scenario=${DEMO}`);
-  await step(page, 12);
+  await step(page, 25);
   const weights = (await criticRows(page)).slice(1).map((r) => Number(r.weight));
   const names = (await criticRows(page)).slice(1).map((r) => r.name);
   assert.equal(await page.getAttribute('#critics', 'data-fan-colour'), 'total');
@@ -119,6 +119,7 @@ test('colouring the fan by a critic repaints it with that critic’s normalised 
     await page.check(`#critics .critic[data-critic="${name}"] input`);
     assert.equal(await page.getAttribute('#critics', 'data-fan-colour'), name);
     assert.match(await page.textContent('#critics .fan-scale-what'), new RegExp(`by ${name}: its normalised value`));
+    assert.equal(await page.textContent('#legend-fan'), `Rollouts (${name})`);
     await painted(page);
     const fan = await hooks(page, 'fan');
     assert.equal(fan.length, total.length);
@@ -152,6 +153,11 @@ test('colouring the fan by a critic repaints it with that critic’s normalised 
   // The picture for docs: the fan coloured by the clearance critic.
   await page.check(`#critics .critic[data-critic="${names[1]}"] input`);
   await page.$eval('#critics', (e) => e.scrollIntoView({ block: 'center' }));
+  // Zoomed in about the robot, so the fan's colours show.
+  const [x, y, theta] = await hooks(page, 'state');
+  const at = await hooks(page, 'toScreen', x + 1.2 * Math.cos(theta), y + 1.2 * Math.sin(theta));
+  await page.mouse.move(at.x, at.y);
+  for (let i = 0; i < 2; i++) await page.mouse.wheel(0, -300);
   await painted(page);
   await page.screenshot({ path: path.join(REPO, 'docs/robot-critics.png') });
   assert.deepEqual(problems, []);
@@ -162,7 +168,7 @@ test('the compare page colours each lane’s fan by a critic its planner has', a
   const { page, problems } = await watchedPage(session);
   await page.goto(`${session.base}compare.html?scenario=${DEMO}&planners=dwa,improved-dwa&view=side`);
   await page.waitForFunction(() => Number(document.body.dataset.buildSeq) > 0 && document.body.dataset.lanes === '2');
-  for (let i = 0; i < 5; i++) await page.click('#step');
+  for (let i = 0; i < 20; i++) await page.click('#step');
   // Total score, then every critic the lanes' planners report.
   const options = await page.$$eval('#fan-colour option', (os) => os.map((o) => o.value));
   assert.equal(options[0], '');
@@ -178,6 +184,7 @@ test('the compare page colours each lane’s fan by a critic its planner has', a
     assert.match(text, new RegExp(`fan: ${options[1]}$`));
   }
   const changed = changedPixels(before, await pixels(page, 'lane-canvas-0'));
+  await page.screenshot({ path: path.join(REPO, 'tests/e2e/screenshots/critics-compare.png') });
   assert.ok(changed > 200, `${changed} pixels of dwa's fan changed`);
   assert.deepEqual(problems, []);
   await page.close();

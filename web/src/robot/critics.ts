@@ -37,13 +37,16 @@ export class CriticsPanel {
   private readonly what = document.createElement('span');
   private readonly weights = new Map<string, HTMLElement>();
 
+  /** `legend`: the status bar's fan entry, which names the colouring too. */
   constructor(
     private readonly root: HTMLElement,
+    private readonly legend: HTMLElement,
     private readonly host: CriticsHost,
   ) {
     const head = document.createElement('div');
     head.className = 'param-group';
-    head.textContent = 'Critics · weight this step · colour the fan by';
+    head.textContent = 'Critics · weight this step';
+    head.title = 'Each critic of the planner with the weight it had in the last step; pick one to colour the fan by it';
     this.list.className = 'critic-list';
     this.list.setAttribute('role', 'radiogroup');
     this.list.setAttribute('aria-label', 'Colour the fan by');
@@ -140,6 +143,7 @@ export class CriticsPanel {
   private caption(): void {
     const c = this.chosen;
     this.root.dataset.fanColour = c ?? 'total';
+    this.legend.textContent = `Rollouts (${c ?? 'score'})`;
     this.what.textContent =
       c === null
         ? 'Fan coloured by the total score (grey: not allowed)'

@@ -14,7 +14,8 @@ export interface HookHost {
   view: RobotView;
   canvas: HTMLCanvasElement;
   meter: FrameMeter;
-  infos: Map<string, PlannerInfo>;
+  /** The registry's planners by name (filled at boot). */
+  infos(): Map<string, PlannerInfo>;
 }
 
 export function installRobotHooks(h: HookHost): void {
@@ -32,8 +33,8 @@ export function installRobotHooks(h: HookHost): void {
     },
     state: () => (sim() ? Array.from(sim()!.state()) : null),
     plannerChoice: () => parsed(sim()?.plannerChoice()),
-    plannerFields: (name: string) => h.infos.get(name)?.fields.map((f) => f.name) ?? null,
-    plannerDefaults: (name: string) => Object.fromEntries(h.infos.get(name)?.fields.map((f) => [f.name, f.default]) ?? []),
+    plannerFields: (name: string) => h.infos().get(name)?.fields.map((f) => f.name) ?? null,
+    plannerDefaults: (name: string) => Object.fromEntries(h.infos().get(name)?.fields.map((f) => [f.name, f.default]) ?? []),
     movers: () => {
       const s = sim();
       return s ? drawnFrame(s.draw(mask(Layer.Movers), 0), mask(Layer.Movers)).movers() : null;

@@ -153,7 +153,7 @@ const planner = new PlannerPicker({
 });
 
 // The critics of the planner in force and what colours the fan (critics.ts).
-const critics = new CriticsPanel(el('critics'), {
+const critics = new CriticsPanel(el('critics'), el('legend-fan'), {
   changed: (k) => {
     timeline.fanColour(k);
     pull();
@@ -371,7 +371,7 @@ installKeys({
   f: () => view.fit(),
 });
 
-installRobotHooks({ sim: () => sim, view, canvas: ui.canvas, meter, infos: planner.infos });
+installRobotHooks({ sim: () => sim, view, canvas: ui.canvas, meter, infos: () => planner.infos });
 
 // -------------------------------------------------------------------- boot
 async function boot(): Promise<void> {
