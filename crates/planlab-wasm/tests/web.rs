@@ -539,7 +539,12 @@ fn critics_carry_the_last_steps_weights_and_choose_the_fan_colour() {
     let critics = |h: &SimHandle| -> Vec<(String, Option<f64>)> {
         let v: Vec<serde_json::Value> = serde_json::from_str(&h.critics().unwrap()).unwrap();
         v.iter()
-            .map(|c| (c["name"].as_str().unwrap().to_string(), c["weight"].as_f64()))
+            .map(|c| {
+                (
+                    c["name"].as_str().unwrap().to_string(),
+                    c["weight"].as_f64(),
+                )
+            })
             .collect()
     };
     let names: Vec<String> = sim.episode().planner_debug().critics.clone();
@@ -571,7 +576,10 @@ fn critics_carry_the_last_steps_weights_and_choose_the_fan_colour() {
     assert_eq!(values(&scratch), of(&scratch, &|r| r.normalised[1]));
     // A critic the planner does not have is refused, the choice kept.
     let e = message(sim.set_fan_colour(Some(3)).unwrap_err());
-    assert!(e.contains("no critic 3") && e.contains(&names.join(", ")), "{e}");
+    assert!(
+        e.contains("no critic 3") && e.contains(&names.join(", ")),
+        "{e}"
+    );
     assert_eq!(values(&sim), of(&sim, &|r| r.normalised[1]));
     // A restart (Reset, an editing tool) keeps the choice.
     sim.restart().unwrap();
