@@ -2,7 +2,7 @@
 //! what the episode holds (the footprint's centre is the pose, the fan's
 //! polylines are the rollouts, the movers are where the world puts them …).
 
-use planlab_core::draw::{self, DrawList, Item, Layer, Layers, Request, Shape};
+use planlab_core::draw::{self, DrawList, FanColour, Item, Layer, Layers, Request, Shape};
 use planlab_core::lidar::fog::SeenCells;
 use planlab_core::local::GoalKind;
 use planlab_core::map::{OccupancyGrid, Pose2};
@@ -93,6 +93,7 @@ fn draw_of(ep: &Episode, seen: Option<&SeenCells>, layers: &[Layer]) -> DrawList
     let req = Request {
         layers: layers.iter().copied().collect(),
         trail_from: 0,
+        ..Request::default()
     };
     draw::episode(ep, seen, req, &mut out);
     for i in &out.items {
@@ -196,6 +197,48 @@ fn fan_items_are_the_rollouts_with_score_and_admissibility() {
 }
 
 #[test]
+fn fan_coloured_by_a_critic_carries_its_normalised_values() {
+    let ep = stepped("dwa", 3);
+    let dbg = ep.planner_debug();
+    assert_eq!(dbg.critics.len(), 3);
+    let fan_of = |fan| {
+        let mut d = DrawList::default();
+        let req = Request {
+            layers: Layers::NONE.with(Layer::Fan),
+            trail_from: 0,
+            fan,
+        };
+        draw::episode(&ep, None, req, &mut d);
+        items(&d, Layer::Fan)
+    };
+    let total = fan_of(FanColour::Total);
+    let per_critic: Vec<Vec<Item>> = (0..3).map(|k| fan_of(FanColour::Critic(k))).collect();
+    for (k, fan) in per_critic.iter().enumerate() {
+        assert_eq!(fan.len(), dbg.rollouts.len());
+        for (i, r) in fan.iter().zip(&dbg.rollouts) {
+            assert_eq!(i.value.to_bits(), r.normalised[k].to_bits(), "critic {k}");
+            assert_eq!(i.tag, f64::from(u8::from(r.admissible)));
+        }
+    }
+    // The total is the weighted sum of the values a critic colours by.
+    let admissible = total.iter().enumerate().filter(|(_, i)| i.tag == 1.0);
+    for (n, i) in admissible {
+        let sum: f64 = (0..3)
+            .map(|k| dbg.weights[k] * per_critic[k][n].value)
+            .sum();
+        assert!(
+            (sum - i.value).abs() < 1e-12,
+            "rollout {n}: {sum} vs {}",
+            i.value
+        );
+    }
+    // A critic the planner does not have: NaN, which a page greys out.
+    assert!(fan_of(FanColour::Critic(3))
+        .iter()
+        .all(|i| i.value.is_nan()));
+}
+
+#[test]
 fn chosen_item_is_the_chosen_rollout() {
     let ep = stepped("dwa", 3);
     let dbg = ep.planner_debug();
@@ -215,6 +258,7 @@ fn trail_is_the_driven_positions_from_the_row_asked() {
     let req = Request {
         layers: Layers::NONE.with(Layer::Trail),
         trail_from: 4,
+        ..Request::default()
     };
     draw::episode(&ep, None, req, &mut d);
     let [t] = items(&d, Layer::Trail)[..] else {
@@ -429,6 +473,7 @@ fn items_come_in_layer_order_and_only_for_the_layers_asked() {
     let all = Request {
         layers: Layers::ALL,
         trail_from: 0,
+        ..Request::default()
     };
     draw::episode(&ep, None, all, &mut d);
     let codes: Vec<u8> = d.items.iter().map(|i| i.layer as u8).collect();

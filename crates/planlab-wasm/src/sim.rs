@@ -10,7 +10,7 @@
 //! - The page draws; everything it draws (rollouts and their scores, goals,
 //!   obstacle classes, clearance, metrics) is computed by the core.
 
-use planlab_core::draw::{self, DrawList, Layer, Layers, Request};
+use planlab_core::draw::{self, DrawList, FanColour, Layer, Layers, Request};
 use planlab_core::lidar::fog::SeenCells;
 use planlab_core::metrics::{distance_to_polyline, EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
 use planlab_core::planners::{self as registry, PlannerChoice};
@@ -103,6 +103,8 @@ pub struct SimHandle {
     ep: Episode,
     /// Record the rollouts of the last step of each `step(n)` for drawing.
     draw_fan: bool,
+    /// What colours the fan in [`SimHandle::draw`].
+    fan: FanColour,
     /// Cells the robot's scans have swept (LiDAR planners only).
     seen: SeenCells,
     /// The setup and the edits since, for exact replays (the timeline).
@@ -124,6 +126,7 @@ impl SimHandle {
         SimHandle {
             ep,
             draw_fan: true,
+            fan: FanColour::Total,
             seen,
             rec,
             run: NEXT_RUN.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
@@ -189,6 +192,7 @@ impl SimHandle {
         let req = Request {
             layers: Layers::from_bits(layers),
             trail_from: trail_from as usize,
+            fan: self.fan,
         };
         draw::episode(&self.ep, Some(&self.seen), req, out);
     }
@@ -422,9 +426,46 @@ impl SimHandle {
         draw_arrays(&self.row_draw_list(k, layers))
     }
 
-    /// Critic names of the planner, JSON array.
+    /// The planner's critics as a JSON array of `{"name", "weight"}`, in
+    /// the order of the rollouts' critic values: the weight each had in
+    /// the last step (planners such as improved-dwa switch weight sets
+    /// from step to step), `null` before the first step or for a planner
+    /// without weights.
     pub fn critics(&self) -> Result<String, JsError> {
-        serde_json::to_string(&self.ep.planner_debug().critics).map_err(|e| json_err("critics", e))
+        let d = self.ep.planner_debug();
+        let list: Vec<_> = d
+            .critics
+            .iter()
+            .enumerate()
+            .map(|(k, name)| serde_json::json!({ "name": name, "weight": d.weights.get(k) }))
+            .collect();
+        serde_json::to_string(&list).map_err(|e| json_err("critics", e))
+    }
+
+    /// What colours the fan of [`SimHandle::draw`]: `undefined` the total
+    /// score (the default), `k` critic `k`'s normalised value (the order
+    /// of [`SimHandle::critics`]). A `k` the planner has no critic for is
+    /// an error.
+    #[wasm_bindgen(js_name = setFanColour)]
+    pub fn set_fan_colour(&mut self, critic: Option<u32>) -> Result<(), JsError> {
+        self.fan = match critic {
+            None => FanColour::Total,
+            Some(k) => {
+                let names = &self.ep.planner_debug().critics;
+                if k as usize >= names.len() {
+                    let has = match names.len() {
+                        0 => "no critics".to_string(),
+                        n => format!("{n} ({})", names.join(", ")),
+                    };
+                    let planner = &self.ep.planner_choice().name;
+                    return Err(JsError::new(&format!(
+                        "no critic {k} to colour the fan by: {planner} has {has}"
+                    )));
+                }
+                FanColour::Critic(k as usize)
+            }
+        };
+        Ok(())
     }
 
     /// [`planlab_core::sim::Episode::route_note`]: one line when every way
@@ -510,6 +551,7 @@ impl SimHandle {
             rec: Recording::of(&ep),
             ep,
             draw_fan: self.draw_fan,
+            fan: self.fan,
             run: self.run,
             drawn: RefCell::default(),
         };

@@ -531,6 +531,65 @@ fn timeline_replays_an_edited_run_exactly_and_reads_rows() {
 }
 
 #[wasm_bindgen_test]
+fn critics_carry_the_last_steps_weights_and_choose_the_fan_colour() {
+    use planlab_core::draw::Layer;
+    use planlab_wasm::SimHandle;
+    let mut sim = SimHandle::from_scenario(&room_json("dwa", ""), None).unwrap();
+    sim.set_planner("dwa", r#"{"beta": 0.3}"#).unwrap();
+    let critics = |h: &SimHandle| -> Vec<(String, Option<f64>)> {
+        let v: Vec<serde_json::Value> = serde_json::from_str(&h.critics().unwrap()).unwrap();
+        v.iter()
+            .map(|c| {
+                (
+                    c["name"].as_str().unwrap().to_string(),
+                    c["weight"].as_f64(),
+                )
+            })
+            .collect()
+    };
+    let names: Vec<String> = sim.episode().planner_debug().critics.clone();
+    assert_eq!(names.len(), 3);
+    // Before the first step: the names, no weights yet.
+    let before = critics(&sim);
+    assert!(before.iter().map(|c| &c.0).eq(names.iter()));
+    assert!(before.iter().all(|c| c.1.is_none()));
+    sim.step(3);
+    let weights: Vec<Option<f64>> = critics(&sim).into_iter().map(|c| c.1).collect();
+    assert_eq!(weights, vec![Some(0.05), Some(0.3), Some(0.1)]);
+    // The fan's values: the total score by default, then critic 1's
+    // normalised values, which a replay of the run keeps.
+    let fan = bits(&[Layer::Fan]);
+    let values = |h: &SimHandle| -> Vec<u64> {
+        let d = h.draw_list(fan, 0);
+        d.layer(Layer::Fan).map(|i| i.value.to_bits()).collect()
+    };
+    let of = |h: &SimHandle, f: &dyn Fn(&planlab_core::local::Rollout) -> f64| -> Vec<u64> {
+        let rs = &h.episode().planner_debug().rollouts;
+        rs.iter().map(|r| f(r).to_bits()).collect()
+    };
+    assert!(values(&sim).len() > 10);
+    assert_eq!(values(&sim), of(&sim, &|r| r.score));
+    sim.set_fan_colour(Some(1)).unwrap();
+    assert_eq!(values(&sim), of(&sim, &|r| r.normalised[1]));
+    assert_ne!(values(&sim), of(&sim, &|r| r.score));
+    let scratch = sim.replay_to(2.0).unwrap();
+    assert_eq!(values(&scratch), of(&scratch, &|r| r.normalised[1]));
+    // A critic the planner does not have is refused, the choice kept.
+    let e = message(sim.set_fan_colour(Some(3)).unwrap_err());
+    assert!(
+        e.contains("no critic 3") && e.contains(&names.join(", ")),
+        "{e}"
+    );
+    assert_eq!(values(&sim), of(&sim, &|r| r.normalised[1]));
+    // A restart (Reset, an editing tool) keeps the choice.
+    sim.restart().unwrap();
+    sim.step(2);
+    assert_eq!(values(&sim), of(&sim, &|r| r.normalised[1]));
+    sim.set_fan_colour(None).unwrap();
+    assert_eq!(values(&sim), of(&sim, &|r| r.score));
+}
+
+#[wasm_bindgen_test]
 fn wheel_loads_come_with_a_vehicle_model() {
     use planlab_wasm::SimHandle;
     let mut sim =

@@ -1,5 +1,21 @@
 // Copying text to the clipboard: the async API, or the old way where the
-// page has no clipboard permission (e.g. served over plain http).
+// page has no clipboard permission (e.g. served over plain http); the
+// compare page's Copy CSV button.
+
+import type { ErrorBanner } from '../shell/dom';
+
+/** The Copy CSV button: copies `csv()` and says how many rows went. */
+export function wireCopyCsv(button: HTMLButtonElement, status: HTMLElement, csv: () => string, guard: ErrorBanner['guard']): void {
+  button.addEventListener(
+    'click',
+    guard(async () => {
+      const text = csv();
+      await copyText(text);
+      status.textContent = `Copied ${text.trim().split('\n').length - 1} rows as CSV.`;
+      document.body.dataset.copied = String(Number(document.body.dataset.copied ?? 0) + 1);
+    }),
+  );
+}
 
 export async function copyText(text: string): Promise<void> {
   try {

@@ -3,7 +3,7 @@
 // page), the page's controls, its URL parameters and its keys.
 
 import type { HelpContent } from '../shell/help';
-import type { PlannerInfo } from '../robot/params';
+import type { PlannerInfo } from '../shell/planner-info';
 
 export function compareHelp(planners: PlannerInfo[], current: string | undefined): HelpContent {
   return {
@@ -22,6 +22,7 @@ export function compareHelp(planners: PlannerInfo[], current: string | undefined
       { name: 'Speed', unit: '×', default: '4×', doc: 'Simulated seconds per real second for all planners together; slower when the steps do not fit in a frame.' },
       { name: 'Run to end instantly', unit: '', doc: 'Runs every planner to the end of its episode without animating (rollouts not recorded); the result is the same episode.' },
       { name: 'Side by side / Overlaid', unit: '', default: 'side by side', doc: 'One canvas per planner with its rollout fan and global path, or one canvas with every planner’s trail, robot and global path (dashed) in its colour.' },
+      { name: 'Colour the fans by', unit: '', default: 'total score', doc: 'What colours each planner’s rollout fan, blue low to orange high: the total score it ranks rollouts by, or one critic (every critic any picked planner reports) by its normalised value, the number its weight multiplies. A planner without that critic keeps the total; each lane’s head says what its fan shows.' },
       { name: '★ best', unit: '', doc: 'Reached beats any other outcome; lower time, path length, turning, speed drops, temporary-goal switches and tracking error; higher clearance and wheel-load share. Time and path length: only planners that reached the goal; the other rows: only those when any did. Equal values at the shown precision are all marked.' },
       { name: 'Copy CSV', unit: '', doc: 'The table with full-precision values (as `planlab run --json`), a winner column, steps and trace hashes.' },
     ],

@@ -4,7 +4,7 @@
 
 import type { SimHandle } from '../../pkg/planlab_wasm.js';
 import { emptyScene, type Scene } from '../scene/view';
-import type { Metrics } from './table';
+import type { Metrics } from '../shell/metrics';
 import { pullLive } from '../scene/pull';
 
 /** Planner colours, in the order the planners were picked: apart from the
@@ -20,6 +20,8 @@ export class Lane {
   metrics: Metrics | null = null;
   /** The trace hash (decimal) once the episode is over. */
   hash: string | null = null;
+  /** What colours its fan (fan-colour.ts): a critic's name or the total. */
+  fanColour = 'total score';
 
   constructor(name: string, colour: string, sim: SimHandle) {
     this.name = name;

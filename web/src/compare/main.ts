@@ -12,7 +12,7 @@ import init, { drawLayerNames, planners as plannerListJson, rosImageName } from 
 import { fillPresetSelect, showOpened } from '../shell/preset-select';
 import { mapOf, type RobotView } from '../scene/view';
 import { DrawList, Layer, checkLayers, mask } from '../scene/draw';
-import type { PlannerInfo } from '../robot/params';
+import type { PlannerInfo } from '../shell/planner-info';
 import { Race } from './race';
 import { OverlayView } from './overlay';
 import { compareHelp } from './help';
@@ -24,10 +24,13 @@ import { openFromUrl } from './open';
 import { el, messageOf, errorBanner } from '../shell/dom';
 import { SimClock } from '../shell/sim-clock';
 import { panZoom } from '../shell/canvas-input';
+import { installKeys } from '../shell/keys';
+import { bindSpeed } from '../shell/speed';
 import { summary } from '../shell/frame-meter';
 import { buildLanes, lanesCsv, renderHeads, renderTable } from './render';
 import { MIN_PLANNERS, PlannerPicks } from './picks';
-import { copyText } from './clipboard';
+import { wireCopyCsv } from './clipboard';
+import { FanColours } from './fan-colour';
 
 /** Most synchronised control steps (one per planner) in one frame. */
 const MAX_ROUNDS_PER_FRAME = 16;
@@ -73,6 +76,15 @@ let sideViews: RobotView[] = [];
 const overlay = new OverlayView(ui.overlayCanvas);
 let viewMode: ViewMode = 'side';
 const race = new Race();
+// What colours the fans: the total or a critic of the lanes' planners (fan-colour.ts).
+const fans = new FanColours(el<HTMLSelectElement>('fan-colour'), el('fan-scale'), {
+  lanes: () => race.lanes,
+  redraw: () => {
+    race.pull();
+    renderHeads(ui.lanes, ui.overlayLegend, race.lanes);
+    paintViews();
+  },
+});
 let lastSlow = 0;
 /** Per-frame work (all planners' steps + paint), ms, while playing. */
 const frameWork: number[] = [];
@@ -117,6 +129,7 @@ function rebuild(): void {
   if (map) ui.mapSize.textContent = `${map.width} × ${map.height} · ${map.resolution} m`;
   sideViews = buildLanes(ui.lanes, race.lanes, map, ui.showPath.checked);
   if (map) overlay.setMap(map);
+  fans.update();
   race.pull();
   overlay.setLanes(race.lanes);
   ui.body.dataset.state = race.lanes.length ? 'ready' : 'empty';
@@ -300,10 +313,7 @@ ui.reset.addEventListener(
   }),
 );
 ui.instant.addEventListener('click', guard(() => runToEnd()));
-ui.speed.addEventListener('input', () => {
-  clock.speed = Number(ui.speed.value) || 1;
-  ui.speedOut.textContent = `${clock.speed}×`;
-});
+bindSpeed(ui.speed, ui.speedOut, clock);
 for (const b of ui.views) b.addEventListener('click', () => setView(b.dataset.view as ViewMode));
 ui.showFan.addEventListener(
   'change',
@@ -332,28 +342,16 @@ ui.stage.addEventListener('dblclick', (ev) => {
 
 const currentCsv = () => lanesCsv(race.lanes, allDone());
 
-ui.copyCsv.addEventListener(
-  'click',
-  guard(async () => {
-    const csv = currentCsv();
-    await copyText(csv);
-    ui.csvStatus.textContent = `Copied ${csv.trim().split('\n').length - 1} rows as CSV.`;
-    ui.body.dataset.copied = String(Number(ui.body.dataset.copied ?? 0) + 1);
-  }),
-);
+wireCopyCsv(ui.copyCsv, ui.csvStatus, currentCsv, guard);
 
-window.addEventListener('keydown', (ev) => {
-  const t = ev.target as HTMLElement | null;
-  if (t && (t.tagName === 'INPUT' || t.tagName === 'SELECT' || t.tagName === 'TEXTAREA')) return;
-  if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
-  const k = ev.key.toLowerCase();
-  if (k === ' ') {
-    ev.preventDefault();
+installKeys({
+  ' ': () => {
     if (!ui.play.disabled) ui.play.click();
-  } else if (k === '.') ui.step.click();
-  else if (k === 'r') ui.reset.click();
-  else if (k === 'e') ui.instant.click();
-  else if (k === 'v') setView(viewMode === 'side' ? 'overlay' : 'side');
+  },
+  '.': () => ui.step.click(),
+  r: () => ui.reset.click(),
+  e: () => ui.instant.click(),
+  v: () => setView(viewMode === 'side' ? 'overlay' : 'side'),
 });
 
 /** For the e2e tests: the metrics and hashes per planner, and the CSV. */

@@ -2,7 +2,7 @@
 // most MAX_PLANNERS ticked, in the order picked (which gives each its
 // colour and column), and the hint that says how many more to pick.
 
-import type { PlannerInfo } from '../robot/params';
+import type { PlannerInfo } from '../shell/planner-info';
 import { laneColour } from './render';
 
 /** Planners compared at once. */

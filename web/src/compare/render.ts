@@ -79,6 +79,8 @@ export function renderHeads(root: HTMLElement, legend: HTMLElement, lanes: Lane[
       head.textContent = l.running ? `t = ${l.sim.time.toFixed(1)} s` : `${shortOutcome(l.outcome, v)} · ${l.sim.time.toFixed(1)} s`;
       (head as HTMLElement).title = l.running ? 'running' : describe(l.outcome, v);
       (head as HTMLElement).dataset.outcome = l.outcome;
+      (head as HTMLElement).dataset.fanColour = l.fanColour;
+      if (l.fanColour !== 'total score') head.textContent += ` · fan: ${l.fanColour}`;
     }
   });
   const items = lanes.map((l) => {

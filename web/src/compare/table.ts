@@ -2,22 +2,7 @@
 // units and digits as its text table), one column per planner, and the
 // winner of each row. Pure functions, no DOM: main.ts renders them.
 
-/** What `SimHandle.metricsJson()` returns (the fields of `planlab run --json`). */
-export interface Metrics {
-  outcome: string;
-  time_s: number;
-  path_length_m: number;
-  min_clearance_m: number;
-  mean_clearance_m: number;
-  total_turn_rad: number;
-  max_turn_rad: number;
-  speed_drops: number;
-  temp_goal_switches: number;
-  mean_tracking_error_m: number | null;
-  max_tracking_error_m: number | null;
-  tracking_error_var_m2: number | null;
-  load_ok_share: number | null;
-}
+import type { Metrics } from '../shell/metrics';
 
 /** Which way a row is better. */
 export type Better = 'lower' | 'higher' | 'reached';

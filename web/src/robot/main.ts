@@ -8,10 +8,10 @@
 import init, { SimHandle, drawLayerNames, planners as plannerListJson } from '../../pkg/planlab_wasm.js';
 import { fillPresetSelect } from '../shell/preset-select';
 import { RobotView, emptyScene, mapOf } from '../scene/view';
-import { DrawList, Layer, checkLayers, drawnFrame, mask } from '../scene/draw';
+import { DrawList, Layer, checkLayers, mask } from '../scene/draw';
 import { pullLive } from '../scene/pull';
 import { SeriesPlots } from './plots';
-import type { PlannerInfo } from './params';
+import type { PlannerInfo } from '../shell/planner-info';
 import { PlannerPicker } from './planner';
 import { installShell } from '../shell/help';
 import { installLegend } from '../shell/legend';
@@ -24,9 +24,14 @@ import { el, messageOf, errorBanner } from '../shell/dom';
 import { SimClock } from '../shell/sim-clock';
 import { FrameMeter } from '../shell/frame-meter';
 import { panZoom } from '../shell/canvas-input';
+import { installKeys } from '../shell/keys';
+import { bindSpeed } from '../shell/speed';
 import { loadPreset, openFirst, type OpenHost } from './open';
-import { StatusPanel, describeOutcome, describeRobot } from './status';
+import { StatusPanel, describeOutcome } from './status';
 import { CanvasTools, type Tool } from './tools';
+import { CriticsPanel } from './critics';
+import { installToggles } from './toggles';
+import { installRobotHooks } from './hooks';
 
 /** Most control steps run in one animation frame (8× on a 0.1 s step is
  *  80 steps/s, about 1.3 a frame). */
@@ -41,20 +46,12 @@ const ui = {
   hint: el('hint'),
   preset: el<HTMLSelectElement>('preset'),
   description: el('scenario-description'),
-  mapSize: el('map-size'),
-  robotDesc: el('robot-desc'),
-  simDt: el('sim-dt'),
   play: el<HTMLButtonElement>('play'),
   step: el<HTMLButtonElement>('step'),
   reset: el<HTMLButtonElement>('reset'),
   toEnd: el<HTMLButtonElement>('to-end'),
   speed: el<HTMLSelectElement>('speed'),
   speedOut: el<HTMLOutputElement>('speed-out'),
-  showFan: el<HTMLInputElement>('show-fan'),
-  showPath: el<HTMLInputElement>('show-path'),
-  showTrail: el<HTMLInputElement>('show-trail'),
-  showLidar: el<HTMLInputElement>('show-lidar'),
-  showFog: el<HTMLInputElement>('show-fog'),
   lidarLegend: el('lidar-legend'),
   error: el('error'),
   canvas: el<HTMLCanvasElement>('sim-canvas'),
@@ -155,11 +152,21 @@ const planner = new PlannerPicker({
   guard,
 });
 
+// The critics of the planner in force and what colours the fan (critics.ts).
+const critics = new CriticsPanel(el('critics'), el('legend-fan'), {
+  changed: (k) => {
+    timeline.fanColour(k);
+    pull();
+    view.request();
+  },
+});
+
 // ------------------------------------------------------------- simulation
 /** Copies what the SimHandle draws into the scene (after steps/edits). */
 function pull(): void {
   if (!sim) return;
   const S = view.scene;
+  critics.refresh(sim);
   pullLive(sim, S, true);
   const lidar = S.frame.hasLidar();
   ui.lidarLegend.hidden = !lidar;
@@ -247,14 +254,8 @@ function install(next: SimHandle, keepView = false): void {
   clock.dt = sim.dt;
   view.scene = { ...emptyScene(), show: view.scene.show };
   const map = mapOf(new DrawList(sim.draw(mask(Layer.Map), 0)));
-  if (map) {
-    view.setMap(map, keepView);
-    ui.mapSize.textContent = `${map.width} × ${map.height} · ${map.resolution} m`;
-  }
-  const [desc, omni] = describeRobot(sim.robot());
-  ui.robotDesc.textContent = desc;
-  ui.robotDesc.title = desc;
-  ui.simDt.textContent = `${sim.dt} s`;
+  if (map) view.setMap(map, keepView);
+  const omni = status.showSetup(sim, map);
   planner.showChoiceOf(sim);
   plots.clear(omni, sim.hasVehicle);
   status.clear();
@@ -323,31 +324,16 @@ ui.step.addEventListener(
 );
 ui.reset.addEventListener('click', guard(() => resetEpisode()));
 ui.toEnd.addEventListener('click', guard(() => runToEnd()));
-ui.speed.addEventListener('input', () => {
-  clock.speed = Number(ui.speed.value) || 1;
-  ui.speedOut.textContent = `${clock.speed}×`;
+const setSpeed = bindSpeed(ui.speed, ui.speedOut, clock);
+installToggles({
+  sim: () => sim,
+  scene: () => view.scene,
+  refresh: () => {
+    pull();
+    view.request();
+  },
+  guard,
 });
-function setSpeed(x: number): void {
-  ui.speed.value = String(x);
-  ui.speed.dispatchEvent(new Event('input'));
-}
-for (const [box, key] of [
-  [ui.showFan, 'fan'],
-  [ui.showPath, 'path'],
-  [ui.showTrail, 'trail'],
-  [ui.showLidar, 'lidar'],
-  [ui.showFog, 'fog'],
-] as const) {
-  box.addEventListener(
-    'change',
-    guard(() => {
-      view.scene.show[key] = box.checked;
-      if (key === 'fan') sim?.setRecordRollouts(box.checked);
-      pull();
-      view.request();
-    }),
-  );
-}
 
 ui.preset.addEventListener(
   'change',
@@ -378,38 +364,14 @@ const opener: OpenHost = {
   showError,
 };
 
-window.addEventListener('keydown', (ev) => {
-  const t = ev.target as HTMLElement | null;
-  if (t && (t.tagName === 'INPUT' || t.tagName === 'SELECT' || t.tagName === 'TEXTAREA')) return;
-  if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
-  const k = ev.key.toLowerCase();
-  if (k === ' ') {
-    ev.preventDefault();
-    ui.play.click();
-  } else if (k === '.') ui.step.click();
-  else if (k === 'r') ui.reset.click();
-  else if (k === 'f') view.fit();
+installKeys({
+  ' ': () => ui.play.click(),
+  '.': () => ui.step.click(),
+  r: () => ui.reset.click(),
+  f: () => view.fit(),
 });
 
-// ------------------------------------------------------------ test hooks
-/** For the e2e tests and the curious: frame statistics and the trace. */
-(window as unknown as { planlabRobot: unknown }).planlabRobot = {
-  frameStats: () => meter.stats(),
-  resetMeter: () => meter.reset(),
-  traceHash: () => sim?.traceHash() ?? null,
-  traceCsv: () => sim?.traceCsv() ?? null,
-  metrics: () => (sim ? JSON.parse(sim.metricsJson()) : null),
-  toScreen: (x: number, y: number) => {
-    const r = ui.canvas.getBoundingClientRect();
-    const [sx, sy] = view.toScreen(x, y);
-    return { x: r.left + sx, y: r.top + sy };
-  },
-  state: () => (sim ? Array.from(sim.state()) : null),
-  plannerChoice: () => (sim ? JSON.parse(sim.plannerChoice()) : null),
-  plannerFields: (name: string) => planner.infos.get(name)?.fields.map((f) => f.name) ?? null,
-  movers: () => (sim ? drawnFrame(sim.draw(mask(Layer.Movers), 0), mask(Layer.Movers)).movers() : null),
-  rollouts: () => view.scene.frame.of(Layer.Fan).count(Layer.Fan),
-};
+installRobotHooks({ sim: () => sim, view, canvas: ui.canvas, meter, infos: () => planner.infos });
 
 // -------------------------------------------------------------------- boot
 async function boot(): Promise<void> {

@@ -4,23 +4,7 @@
 // whole config (nested again from the dotted names) to `onChange`; the core
 // validates it and names a bad field in its error.
 
-export interface FieldInfo {
-  name: string;
-  unit: string;
-  default: unknown;
-  doc: string;
-  /** Added by the wasm layer from the default's JSON type. */
-  kind?: 'int' | 'float' | 'bool' | 'string' | 'json';
-}
-
-export interface PlannerInfo {
-  name: string;
-  paper: string;
-  summary: string;
-  /** Plain words for a beginner (core `planners::plain_words`). */
-  plain?: string;
-  fields: FieldInfo[];
-}
+import type { FieldInfo, PlannerInfo } from '../shell/planner-info';
 
 type Value = unknown;
 

@@ -5,7 +5,8 @@
 // edits of the SimHandle, which the core validates.
 
 import type { SimHandle } from '../../pkg/planlab_wasm.js';
-import { ParamPanel, type PlannerInfo } from './params';
+import { ParamPanel } from './params';
+import type { PlannerInfo } from '../shell/planner-info';
 import { el, messageOf, type ErrorBanner } from '../shell/dom';
 
 type Choice = { name: string; config: Record<string, unknown> };

@@ -1,14 +1,14 @@
 // The robot page's read-outs: the metric cards (the `planlab run` metrics
-// of the episode so far), the status line, the mover list and the robot's
-// one-line description. All numbers come from the SimHandle and the
-// scene the core drew.
+// of the episode so far), the status line, the mover list, and the
+// scenario card's map size, robot description and control period. All
+// numbers come from the SimHandle and the scene the core drew.
 
 import type { SimHandle } from '../../pkg/planlab_wasm.js';
 import { Layer } from '../scene/draw';
-import { CLASS_NAMES, COLORS, type Scene } from '../scene/view';
+import { CLASS_NAMES, COLORS, type MapInfo, type Scene } from '../scene/view';
 import { el } from '../shell/dom';
 import { describeOutcome } from '../shell/outcome';
-import type { Metrics } from '../compare/table';
+import type { Metrics } from '../shell/metrics';
 
 interface MoverJson {
   id: number;
@@ -50,6 +50,7 @@ export class StatusPanel {
     mode: el('metric-mode'),
   };
   private readonly status = el('status');
+  private readonly setup = { mapSize: el('map-size'), robotDesc: el('robot-desc'), simDt: el('sim-dt') };
   private readonly moverList = el<HTMLUListElement>('mover-list');
   /** What the mover list shows, to rebuild it only when that changes (a
    *  rebuild under the pointer would swallow a click on ×). */
@@ -61,6 +62,17 @@ export class StatusPanel {
 
   /** `remove(id)`: the × of a mover's row. */
   constructor(private readonly remove: (id: number) => void) {}
+
+  /** The scenario card's read-outs of a new run (map size, robot, control
+   *  period); returns whether the robot drives omnidirectionally. */
+  showSetup(sim: SimHandle, map: MapInfo | null): boolean {
+    if (map) this.setup.mapSize.textContent = `${map.width} × ${map.height} · ${map.resolution} m`;
+    const [desc, omni] = describeRobot(sim.robot());
+    this.setup.robotDesc.textContent = desc;
+    this.setup.robotDesc.title = desc;
+    this.setup.simDt.textContent = `${sim.dt} s`;
+    return omni;
+  }
 
   clear(): void {
     for (const e of Object.values(this.metric)) setMetric(e, '—', null);

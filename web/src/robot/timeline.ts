@@ -223,6 +223,13 @@ export class Timeline {
     });
   }
 
+  /** The fan's colour changed to critic `k` (undefined: the total): a
+   *  past frame's fan is drawn again in it. */
+  fanColour(k: number | undefined): void {
+    this.scratch?.setFanColour(k);
+    if (this.frame !== null) this.showFrame(this.frame);
+  }
+
   private dropScratch(): void {
     clearTimeout(this.settle);
     this.scratch?.free();

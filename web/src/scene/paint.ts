@@ -25,6 +25,11 @@ function bucketColour(b: number): string {
   return `rgba(${c[0]}, ${c[1]}, ${c[2]}, 0.6)`;
 }
 const BUCKET_COLOURS = Array.from({ length: FAN_BUCKETS }, (_, b) => bucketColour(b));
+
+/** The fan's colour scale, worst to best, as a CSS gradient (for legends). */
+export function fanGradient(): string {
+  return `linear-gradient(90deg, ${BUCKET_COLOURS.join(', ')})`;
+}
 /** Inadmissible (bucket FAN_BUCKETS) underneath, then worst to best. */
 const BUCKET_ORDER = [FAN_BUCKETS, ...Array.from({ length: FAN_BUCKETS }, (_, b) => b)];
 /** Per-rollout bucket, reused between frames (grown when needed). */

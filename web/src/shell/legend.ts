@@ -18,7 +18,7 @@ const GOALS: Item[] = [
 ];
 
 const FAN: Item[] = [
-  ['linear-gradient(90deg,#3b82f6,#f59e0b)', 'line', 'DWA fan: every speed pair the planner tried this step, driven ahead for a second or two. Blue scored low, orange scored high.'],
+  ['linear-gradient(90deg,#3b82f6,#f59e0b)', 'line', 'DWA fan: every speed pair the planner tried this step, driven ahead for a second or two. Coloured by the total score, or by the one critic picked in the Critics list: blue low, orange high.'],
   [COLORS.chosen, 'line', 'Chosen rollout: the one the robot actually drives this step.'],
   [COLORS.inadmissible, 'line', 'Grey rollouts would hit something or could not stop in time: not allowed.'],
 ];

@@ -4,7 +4,7 @@
 use super::{DrawList, Layer, Layers, Shape};
 use crate::lidar::fog::SeenCells;
 use crate::lidar::TargetKind;
-use crate::local::{GoalKind, ObstacleClass};
+use crate::local::{GoalKind, ObstacleClass, Rollout};
 use crate::map::OccupancyGrid;
 use crate::sim::{Episode, TraceStep};
 use crate::world::{Footprint, MoverSpec, RobotState};
@@ -17,6 +17,38 @@ pub struct Request {
     /// First trace row of the [`Layer::Trail`] (a page keeps the trail and
     /// asks only for the rows since its last frame).
     pub trail_from: usize,
+    /// What the `value` of each [`Layer::Fan`] item is.
+    pub fan: FanColour,
+}
+
+/// What colours the fan: the number each [`Layer::Fan`] item carries as
+/// its `value`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FanColour {
+    /// The rollout's total score (higher is better).
+    #[default]
+    Total,
+    /// Critic `k`'s normalised value, `k` indexing
+    /// [`PlannerDebug::critics`](crate::local::PlannerDebug::critics); NaN
+    /// for a rollout without one (a planner with fewer critics).
+    ///
+    /// Normalised rather than raw because the normalised value is what the
+    /// critic's weight multiplies: the total is the weighted sum of them,
+    /// so one critic's colours show its share in the choice on the same
+    /// footing as the total's. Raw values are in each critic's own unit
+    /// and scale (rad, m, m/s, a cost) and are not comparable across
+    /// critics or with the score.
+    Critic(usize),
+}
+
+impl FanColour {
+    /// The number of `r` this choice colours by.
+    pub fn of(self, r: &Rollout) -> f64 {
+        match self {
+            FanColour::Total => r.score,
+            FanColour::Critic(k) => r.normalised.get(k).copied().unwrap_or(f64::NAN),
+        }
+    }
 }
 
 fn class_code(c: ObstacleClass) -> f64 {
@@ -130,7 +162,7 @@ pub fn episode(ep: &Episode, seen: Option<&SeenCells>, req: Request, out: &mut D
     if want(Layer::Fan) {
         for r in &d.rollouts {
             let tag = f64::from(u8::from(r.admissible));
-            out.points(Layer::Fan, Shape::Polyline, &r.points, tag, r.score);
+            out.points(Layer::Fan, Shape::Polyline, &r.points, tag, req.fan.of(r));
         }
     }
     if want(Layer::Chosen) {

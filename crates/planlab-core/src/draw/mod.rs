@@ -19,7 +19,7 @@
 
 mod episode;
 
-pub use episode::{episode, trace_frame, Request};
+pub use episode::{episode, trace_frame, FanColour, Request};
 
 /// A named group of items a renderer can show or hide as one.
 ///
@@ -39,7 +39,9 @@ pub enum Layer {
     /// Key points / feature nodes: one [`Shape::Points`] item.
     KeyPoints,
     /// The last step's rollouts: a [`Shape::Polyline`] each; `tag` 1
-    /// admissible, 0 rejected; `value` the total score (higher is better).
+    /// admissible, 0 rejected; `value` what [`Request::fan`] asks for: the
+    /// total score (higher is better, the default) or one critic's
+    /// normalised value ([`FanColour`]).
     Fan,
     /// The chosen rollout: one [`Shape::Polyline`]; `tag` its index in the
     /// fan.

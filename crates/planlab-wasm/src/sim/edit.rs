@@ -40,9 +40,11 @@ struct EditState {
 impl SimHandle {
     /// Swaps in an edited episode, keeping the page's drawing settings.
     fn replace(&mut self, ep: Episode) {
-        let draw_fan = self.draw_fan;
+        let (draw_fan, fan) = (self.draw_fan, self.fan);
         *self = SimHandle::wrap(ep);
         self.draw_fan = draw_fan;
+        // The planner is the same: its critic k is still there.
+        self.fan = fan;
         self.ep.set_record_rollouts(draw_fan);
     }
 }
