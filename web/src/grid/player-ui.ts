@@ -8,7 +8,7 @@
 import { el } from '../shell/dom';
 import { FrameMeter } from '../shell/frame-meter';
 import type { SearchPlayback } from '../scene/search-player';
-import type { MapView } from './render';
+import type { MapView } from '../scene/grid-view';
 
 const ui = {
   play: el<HTMLButtonElement>('play'),
@@ -64,6 +64,7 @@ export class SearchPlayer {
   /** A new recording (null: none), shown played out unless `fromStart`. */
   load(p: SearchPlayback | null, fromStart = false): void {
     this.pause();
+    if (this.p !== p) this.p?.free();
     this.p = p;
     if (p) p.seek(fromStart ? 0 : p.n);
     this.view.setSearch(p);

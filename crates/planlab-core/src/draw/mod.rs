@@ -24,7 +24,7 @@ mod arm;
 mod episode;
 mod grid;
 
-pub use apf::{apf_run, ApfDraw};
+pub use apf::{apf_run, from_plane_xy, plane_xy, ApfDraw};
 pub use arm::arm_episode;
 pub use episode::{episode, trace_frame, Request};
 pub use grid::{grid_plan, CellInfo, CellState, GridPlanDraw, SearchCounters, SearchReplay};
@@ -392,9 +392,7 @@ impl DrawList {
         value: f64,
     ) {
         debug_assert!(
-            self.items
-                .last()
-                .is_none_or(|i| i.layer as u8 <= layer as u8),
+            !matches!(self.items.last(), Some(i) if i.layer as u8 > layer as u8),
             "items must come in layer order ({} after a later layer)",
             layer.name()
         );
