@@ -32,6 +32,8 @@ const ui = {
 };
 
 let handle: ApfHandle | null = null;
+/** The draw list last painted (the e2e hooks read it). */
+let lastDraw: DrawList | null = null;
 let playing = false;
 const FIELD_NX = 64;
 const FIELD_NY = 48;
@@ -76,6 +78,7 @@ function draw(): void {
   // A run opened from a gallery card: the ✓/✗ of its relation when it ends.
   if (m.outcome !== 'running') galleryRunEnded(m.outcome);
   document.body.dataset.pathPoints = String(pathPoints);
+  lastDraw = d;
 }
 
 function tick(): void {
@@ -187,6 +190,18 @@ async function main(): Promise<void> {
     dragging = false;
   });
   ui.hint.textContent = 'Play, step, or drag the goal.';
+  // Hooks for the end-to-end tests: a point of the last draw list and
+  // where the page paints a world point (canvas pixels).
+  (window as unknown as { planlabApf: unknown }).planlabApf = {
+    goal: (tag: number) => {
+      const i = lastDraw?.find(Layer.Goals, tag) ?? -1;
+      return i < 0 || !lastDraw ? null : Array.from(lastDraw.numbers(i));
+    },
+    toCanvas: (x: number, y: number) => {
+      const f = fitFrame(ui.canvas, handle ? handle.bounds() : [0, 0, 1, 1]);
+      return [f.x(x), f.y(y)];
+    },
+  };
   document.body.dataset.state = 'ready';
   requestAnimationFrame(tick);
 }

@@ -389,7 +389,7 @@ async function boot(): Promise<void> {
 let corePlanners: CorePlanner[] = [];
 installShell(() => gridHelp(corePlanners));
 
-exposeForTests(player, () => session.rebuilds);
+exposeForTests(player, () => session.rebuilds, view);
 
 boot().catch((e) => {
   showError(`Could not start the playground: ${messageOf(e)}`);

@@ -267,8 +267,14 @@ export class MapView {
     return [ox + ((x - fx) / res) * scale, oy + (h - (y - fy) / res) * scale];
   }
 
-  /** The points of the first item of layer `l` (x, y flat), or null. */
-  private pointsOf(l: LayerCode): Float64Array | null {
+  /** The map's frame: width, height, resolution, origin x, y. */
+  get mapFrame(): GridFrame {
+    return this.grid;
+  }
+
+  /** The points of the first item of layer `l` shown (x, y flat, m), or
+   *  null. */
+  pointsOf(l: LayerCode): Float64Array | null {
     const d = this.frame.of(l);
     const i = d.first(l);
     return i < d.end(l) ? d.numbers(i) : null;

@@ -238,13 +238,21 @@ impl SearchReplay {
         r * self.w + c
     }
 
-    fn apply(&mut self, i: usize) {
+    /// Whether event `i` opens (true) or closes (false) a cell, and the
+    /// cell's map index; `None` for a line check.
+    fn cell_event(&self, i: usize) -> Option<(bool, usize)> {
         let open = match self.events[i] {
             SearchEvent::Open { .. } => true,
             SearchEvent::Close { .. } => false,
-            SearchEvent::Line { .. } => return,
+            SearchEvent::Line { .. } => return None,
         };
-        let k = self.index(i);
+        Some((open, self.index(i)))
+    }
+
+    fn apply(&mut self, i: usize) {
+        let Some((open, k)) = self.cell_event(i) else {
+            return;
+        };
         self.prev_state[i] = self.state[k];
         if open {
             self.prev_index[i] = self.last_open[k];
@@ -262,12 +270,9 @@ impl SearchReplay {
     }
 
     fn undo(&mut self, i: usize) {
-        let open = match self.events[i] {
-            SearchEvent::Open { .. } => true,
-            SearchEvent::Close { .. } => false,
-            SearchEvent::Line { .. } => return,
+        let Some((open, k)) = self.cell_event(i) else {
+            return;
         };
-        let k = self.index(i);
         self.state[k] = self.prev_state[i];
         if open {
             self.last_open[k] = self.prev_index[i];
