@@ -108,6 +108,7 @@ impl ArmHandle {
     /// The core's draw list of the episode (`layers`, a bit per layer
     /// code; the hand's scripted motion at `script` instants, none below
     /// 2) as `{data, items, cells}`, in space (m, z up).
+    #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
     pub fn draw(&self, layers: u32, script: u32) -> Result<js_sys::Object, JsError> {
         let mut out = draw::DrawList::default();
         let layers = draw::Layers::from_bits(layers);

@@ -374,6 +374,7 @@ impl ApfHandle {
     /// The core's draw list of the run (`layers`, a bit per layer code;
     /// the field on an `nx` × `ny` lattice over [`ApfHandle::bounds`]) as
     /// `{data, items, cells}`.
+    #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
     pub fn draw(&self, layers: u32, nx: u32, ny: u32) -> Result<js_sys::Object, JsError> {
         let mut out = draw::DrawList::default();
         let layers = draw::Layers::from_bits(layers);

@@ -289,6 +289,7 @@ impl MapHandle {
     /// the map, the `inflation` mask given (from `inflationMask`) and the
     /// `start` and `goal` cells (`[col, row]`) given, as
     /// `{data, items, cells}`.
+    #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
     pub fn draw(
         &self,
         layers: u32,
@@ -467,6 +468,7 @@ impl PlanResult {
     /// The core's draw list of the plan on `map` (`layers`, a bit per
     /// layer code): its path, key points and feature nodes, as
     /// `{data, items, cells}`.
+    #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
     pub fn draw(&self, map: &MapHandle, layers: u32) -> Result<js_sys::Object, JsError> {
         let plan = draw::GridPlanDraw {
             grid: &map.grid,

@@ -496,6 +496,7 @@ impl SearchReplay {
     /// The search layers in `layers` at the current step as `{data, items,
     /// cells}`: every cell on the first draw and after a reset, then only
     /// those changed since the last draw.
+    #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
     pub fn draw(&mut self, layers: u32) -> Result<js_sys::Object, JsError> {
         let mut out = draw::DrawList::default();
         self.inner.draw(draw::Layers::from_bits(layers), &mut out);

@@ -13,7 +13,7 @@ import { installLegend } from '../shell/legend';
 import { apfHelp } from '../shell/help-content';
 import { galleryRunEnded, showGalleryNote } from '../shell/gallery-note';
 import { el, messageOf } from '../shell/dom';
-import { DrawList, Layer, mask, type DrawArrays } from '../scene/draw';
+import { DrawList, Layer, mask } from '../scene/draw';
 import { fitFrame, paintApf } from './paint';
 
 const ui = {
@@ -61,7 +61,7 @@ function draw(): void {
   if (ui.showField.checked) layers |= mask(Layer.Field);
   if (ui.showPred.checked) layers |= mask(Layer.Predicted);
   if (ui.showCand.checked) layers |= mask(Layer.Candidates);
-  const d = new DrawList(h.draw(layers, FIELD_NX, FIELD_NY) as DrawArrays);
+  const d = new DrawList(h.draw(layers, FIELD_NX, FIELD_NY));
   paintApf(ui.canvas, h.bounds(), d);
   const t = d.first(Layer.Trail);
   const pathPoints = t < d.end(Layer.Trail) ? d.points(t) : 0;

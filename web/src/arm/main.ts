@@ -14,7 +14,7 @@ import { armHelp } from '../shell/help-content';
 import { galleryRunEnded, showGalleryNote } from '../shell/gallery-note';
 import init, { ArmHandle, armChoices } from '../../pkg-arm/planlab_wasm_arm.js';
 import { ArmView } from './view';
-import { DrawList, Layer, mask, type DrawArrays } from '../scene/draw';
+import { DrawList, Layer, mask } from '../scene/draw';
 import { DistancePlot } from './distplot';
 import { el, messageOf } from '../shell/dom';
 
@@ -146,7 +146,7 @@ let distPlot: DistancePlot | null = null;
 function refresh(): void {
   const h = handle;
   if (!h || !view) return;
-  const d = new DrawList(h.draw(ARM_LAYERS, ui.showScript.checked ? SCRIPT_SAMPLES : 0) as DrawArrays);
+  const d = new DrawList(h.draw(ARM_LAYERS, ui.showScript.checked ? SCRIPT_SAMPLES : 0));
   view.update(d);
   distPlot?.pull(h);
   const m = JSON.parse(h.metricsJson());

@@ -5,7 +5,7 @@
 // not the map size. This wrapper only reshapes its answers.
 
 import type { SearchReplay } from '../../pkg-grid/planlab_wasm.js';
-import { DrawList, type DrawArrays } from './draw';
+import { DrawList } from './draw';
 
 /** What hovering a cell shows. */
 export interface CellInfo {
@@ -57,7 +57,7 @@ export class SearchPlayback {
   /** The search layers of `layers` at the current step (cells changed
    *  since the last draw only, every cell on the first). */
   draw(layers: number): DrawList {
-    return new DrawList(this.r.draw(layers) as DrawArrays);
+    return new DrawList(this.r.draw(layers));
   }
 
   /** The cell being expanded, or null. */
