@@ -14,7 +14,7 @@
 #[path = "../../planlab-wasm/src/draw_js.rs"]
 mod draw_js;
 
-use planlab_core::arm::{ArmEpisode, ArmPredictor, HandPreset};
+use planlab_core::arm::{ArmEpisode, ArmPredictor, HandPreset, Obstacle3};
 use planlab_core::draw;
 use planlab_core::scenario::ArmScenario;
 use serde::Serialize;
@@ -48,6 +48,10 @@ pub fn arm_choices() -> String {
         predictors: ArmPredictor::ALL.iter().map(|p| p.name()).collect(),
     })
     .unwrap_or_default()
+}
+
+fn push3(out: &mut Vec<f32>, p: [f64; 3]) {
+    out.extend(p.iter().map(|&x| x as f32));
 }
 
 impl ArmHandle {
@@ -194,6 +198,114 @@ impl ArmHandle {
                 [lo, hi]
             })
             .collect()
+    }
+
+    /// Link capsules now: `ax, ay, az, bx, by, bz, radius` per link.
+    pub fn links(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        for l in self.ep.links() {
+            push3(&mut out, l.a.to_array());
+            push3(&mut out, l.b.to_array());
+            out.push(l.radius as f32);
+        }
+        out
+    }
+
+    /// The tool's path at the planning instants, `x, y, z` per point.
+    #[wasm_bindgen(js_name = toolPath)]
+    pub fn tool_path(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        for p in self.ep.tool_path() {
+            push3(&mut out, p.to_array());
+        }
+        out
+    }
+
+    /// The hand centre at every sample so far, `x, y, z` per point.
+    #[wasm_bindgen(js_name = handPath)]
+    pub fn hand_path(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        for p in self.ep.hand_path() {
+            push3(&mut out, p.to_array());
+        }
+        out
+    }
+
+    /// The scripted hand path from 0 to the end of its motion (or 10 s),
+    /// `n` points, `x, y, z` each.
+    #[wasm_bindgen(js_name = handScript)]
+    pub fn hand_script(&self, n: u32) -> Vec<f32> {
+        let h = self.ep.hand();
+        let end = if h.end_time().is_finite() {
+            h.end_time().max(0.1)
+        } else {
+            10.0
+        };
+        let n = n.clamp(2, 2000);
+        let mut out = Vec::new();
+        for i in 0..n {
+            push3(
+                &mut out,
+                h.hand_at(end * i as f64 / (n - 1) as f64).to_array(),
+            );
+        }
+        out
+    }
+
+    /// The hand and forearm now: `cx, cy, cz, r` (hand sphere) then `ax,
+    /// ay, az, bx, by, bz, r` (forearm capsule).
+    pub fn hand(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        for o in self.ep.hand_obstacles() {
+            match o {
+                Obstacle3::Sphere { centre, radius } => {
+                    push3(&mut out, centre);
+                    out.push(radius as f32);
+                }
+                Obstacle3::Capsule { a, b, radius } => {
+                    push3(&mut out, a);
+                    push3(&mut out, b);
+                    out.push(radius as f32);
+                }
+            }
+        }
+        out
+    }
+
+    /// Predicted obstacle positions of the last planning step: `x, y, z,
+    /// range, k` per virtual obstacle (k = 1 for t+1, 2 for t+2; id 0 is
+    /// the hand, 1–3 the forearm).
+    pub fn predictions(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        if let Some(s) = self.ep.last_step() {
+            for v in &s.predicted {
+                push3(&mut out, v.centre.to_array());
+                out.push(v.range as f32);
+                out.push(v.k as f32);
+            }
+        }
+        out
+    }
+
+    /// The sampled candidate points of the last step, `x, y, z` each (the
+    /// chosen one is [`ArmHandle::chosen`]).
+    pub fn candidates(&self) -> Vec<f32> {
+        let mut out = Vec::new();
+        if let Some(s) = self.ep.last_step() {
+            for c in &s.candidates {
+                push3(&mut out, c.point.to_array());
+            }
+        }
+        out
+    }
+
+    /// Index of the chosen candidate, −1 for a resultant step.
+    #[wasm_bindgen(getter)]
+    pub fn chosen(&self) -> i32 {
+        self.ep
+            .last_step()
+            .and_then(|s| s.chosen)
+            .map_or(-1, |i| i as i32)
     }
 
     /// Goal `x, y, z`, m.

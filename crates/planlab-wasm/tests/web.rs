@@ -772,7 +772,11 @@ fn a_recorded_plan_replays_to_its_expanded_count() {
     replay.seek(f64::from(rec.length()));
     assert!(replay.done());
     let end = replay.counters_at(replay.step());
-    assert_eq!(end[2], f64::from(rec.plan().expanded_count()), "expanded at the end");
+    assert_eq!(
+        end[2],
+        f64::from(rec.plan().expanded_count()),
+        "expanded at the end"
+    );
     assert_eq!(replay.info(0, 0).unwrap()[0], 2.0, "the start is closed");
     replay.seek(0.0);
     assert_eq!(replay.info(0, 0).unwrap()[0], 0.0, "unseen at step 0");
