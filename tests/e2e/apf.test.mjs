@@ -47,6 +47,20 @@ test('T-fig4-6: sampling APF reaches the goal, basic APF is stuck', async () => 
   assert.ok(length > 1.0 && length < 1.4, `path length ${length}`);
   assert.ok(Number(await metric(page, 'min')) > 0, 'kept off the disc');
   await page.screenshot({ path: path.join(REPO, 'docs/apf-screenshot.png') });
+  // The canvas shows the draw list's start (sky) and goal (red) markers
+  // where the list puts them.
+  for (const [tag, want] of [
+    [0, [56, 189, 248]],
+    [1, [239, 68, 68]],
+  ]) {
+    const px = await page.evaluate((t) => {
+      const a = window.planlabApf;
+      const [x, y] = a.goal(t);
+      const [cx, cy] = a.toCanvas(x, y);
+      return Array.from(document.getElementById('view').getContext('2d').getImageData(Math.round(cx), Math.round(cy), 1, 1).data);
+    }, tag);
+    assert.ok(want.every((v, i) => Math.abs(px[i] - v) < 40), `marker ${tag}: pixel ${px}, want ${want}`);
+  }
 
   await page.selectOption('#mode', 'basic');
   assert.equal(await runToEnd(page), 'stuck');

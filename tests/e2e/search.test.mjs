@@ -207,6 +207,30 @@ test('the A* search plays through open and closed states and ends with the CLI�
   await page.close();
 });
 
+test('the path in the core’s draw list is at the plan’s cell centres, in metres, and painted there', async () => {
+  const { page, problems } = await openPage(session);
+  await afterReplan(page, () => page.setInputFiles('#file-input', ARENA));
+  await setEndpoints(page, ROW.start, ROW.goal);
+  assert.equal(await errorText(page), null);
+  await page.waitForFunction(() => document.getElementById('map-canvas').dataset.pathDrawn === 'true');
+  const cells = (await page.getAttribute('#map-canvas', 'data-path')).split(',').map(Number);
+  const drawn = await grid(page, 'drawnPath');
+  const [, h, res, ox, oy] = await grid(page, 'mapFrame');
+  assert.equal(drawn.length, cells.length, 'a point per path cell');
+  for (let i = 0; i < cells.length; i += 2) {
+    const [c, r] = [cells[i], cells[i + 1]];
+    near(drawn[i], ox + (c + 0.5) * res, 1e-9, `x of path cell ${i / 2}`);
+    near(drawn[i + 1], oy + (h - r - 0.5) * res, 1e-9, `y of path cell ${i / 2}`);
+  }
+  // The middle of the path, away from the S and G markers, is path red.
+  const k = 2 * Math.floor(cells.length / 4);
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const px = await pixelAt(page, cells[k], cells[k + 1]);
+  assert.ok(px[0] > 180 && px[1] < 90 && px[2] < 120, `path cell (${cells[k]}, ${cells[k + 1]}): pixel ${px}`);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 test('dragging the start and goal markers replans', async () => {
   const { page, problems } = await openPage(session);
   await setEndpoints(page, ROW.start, ROW.goal);

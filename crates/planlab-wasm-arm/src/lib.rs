@@ -1,6 +1,7 @@
 //! [`ArmHandle`]: one arm episode (core `arm::ArmEpisode`) for the arm
 //! page. Steps, live edits (goal, predictor; hand motion and speed restart
-//! the episode) and everything drawn as typed arrays. No kinematics or
+//! the episode) and everything drawn as the core's draw list
+//! ([`ArmHandle::draw`]). No kinematics or
 //! distances are computed here.
 //!
 //! A crate of its own so the arm page loads a wasm module with only the arm
@@ -8,7 +9,13 @@
 //! module would not fit the page's 1.5 MB first-load budget. `planlab-wasm`
 //! re-exports it (feature `arm`, on by default) as `planlab_wasm::arm`.
 
+// The draw list's JS shape, shared with planlab-wasm (one file, two
+// modules).
+#[path = "../../planlab-wasm/src/draw_js.rs"]
+mod draw_js;
+
 use planlab_core::arm::{ArmEpisode, ArmPredictor, HandPreset, Obstacle3};
+use planlab_core::draw;
 use planlab_core::scenario::ArmScenario;
 use serde::Serialize;
 use wasm_bindgen::prelude::*;
@@ -102,6 +109,17 @@ impl ArmHandle {
     }
 
     /// `running`, `reached`, `collision`, `timeout` or `stuck`.
+    /// The core's draw list of the episode (`layers`, a bit per layer
+    /// code; the hand's scripted motion at `script` instants, none below
+    /// 2) as `{data, items, cells}`, in space (m, z up).
+    #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
+    pub fn draw(&self, layers: u32, script: u32) -> Result<js_sys::Object, JsError> {
+        let mut out = draw::DrawList::default();
+        let layers = draw::Layers::from_bits(layers);
+        draw::arm_episode(&self.ep, script as usize, layers, &mut out);
+        draw_js::draw_arrays(&out)
+    }
+
     #[wasm_bindgen(getter)]
     pub fn outcome(&self) -> String {
         self.ep.outcome().to_string()

@@ -9,9 +9,7 @@
 //! number comes from the core.
 
 use glam::{DVec2, DVec3};
-use planlab_core::apf::{
-    ApfMode, ApfRun, ApfScene, ApfVector, ObstacleObs, PredictorKind, StepKind,
-};
+use planlab_core::apf::{ApfMode, ApfRun, ApfScene, ApfVector, PredictorKind, StepKind};
 use planlab_core::scenario::Scenario;
 use wasm_bindgen::prelude::*;
 
@@ -27,23 +25,7 @@ struct Core<V: ApfVector> {
 }
 
 /// The page's (x, y) of a point: the side view (x, z) of a 3D one.
-fn xy<V: ApfVector>(v: V) -> [f64; 2] {
-    let p = v.to_xyz();
-    if V::DIM == 3 {
-        [p.x, p.z]
-    } else {
-        [p.x, p.y]
-    }
-}
-
-/// `like` moved to the page's (x, y) (a 3D point keeps its y).
-fn at_xy<V: ApfVector>(like: V, x: f64, y: f64) -> V {
-    if V::DIM == 3 {
-        V::from_xyz(DVec3::new(x, like.to_xyz().y, y))
-    } else {
-        V::from_xyz(DVec3::new(x, y, 0.0))
-    }
-}
+use planlab_core::draw::{self, from_plane_xy as at_xy, plane_xy as xy};
 
 impl<V: ApfVector> Core<V> {
     fn new(scene: &ApfScene, start: V, goal: V) -> Result<Self, JsError> {
@@ -138,28 +120,29 @@ impl<V: ApfVector> Core<V> {
 
     /// The field on the lattice, in the plane of the robot's height (3D).
     fn field(&self, bounds: [f64; 4], nx: u32, ny: u32) -> Vec<f64> {
-        let [x0, y0, x1, y1] = bounds;
-        let obs: Vec<ObstacleObs<V>> = self.run.obstacles_at(self.run.time());
-        let virtuals = self
-            .run
-            .last_step()
-            .map(|s| s.predicted.clone())
-            .unwrap_or_default();
-        let apf = self.run.planner();
-        let here = self.run.position();
-        let mut out = Vec::with_capacity((2 * nx * ny) as usize);
-        for j in 0..ny {
-            for i in 0..nx {
-                let p = at_xy(
-                    here,
-                    x0 + (i as f64 + 0.5) * (x1 - x0) / nx as f64,
-                    y0 + (j as f64 + 0.5) * (y1 - y0) / ny as f64,
-                );
-                let (a, r) = apf.forces_at(p, self.goal, &obs, &virtuals);
-                out.extend(xy(a + r));
-            }
-        }
-        out
+        let mut out = draw::DrawList::default();
+        self.draw(
+            bounds,
+            [nx, ny],
+            draw::Layers::NONE.with(draw::Layer::Field),
+            &mut out,
+        );
+        // The vectors of the lattice's `x, y, fx, fy` samples.
+        out.data.chunks(4).flat_map(|s| [s[2], s[3]]).collect()
+    }
+
+    fn draw(
+        &self,
+        bounds: [f64; 4],
+        lattice: [u32; 2],
+        layers: draw::Layers,
+        out: &mut draw::DrawList,
+    ) {
+        let d = draw::ApfDraw {
+            bounds,
+            lattice: lattice.map(|n| n as usize),
+        };
+        draw::apf_run(&self.run, d, layers, out);
     }
 
     fn forces(&self) -> Vec<f64> {
@@ -386,6 +369,17 @@ impl ApfHandle {
     pub fn field(&self, nx: u32, ny: u32) -> Vec<f64> {
         let (nx, ny) = (nx.clamp(1, 400), ny.clamp(1, 400));
         on!(&self.core, c => c.field(self.bounds, nx, ny))
+    }
+
+    /// The core's draw list of the run (`layers`, a bit per layer code;
+    /// the field on an `nx` × `ny` lattice over [`ApfHandle::bounds`]) as
+    /// `{data, items, cells}`.
+    #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
+    pub fn draw(&self, layers: u32, nx: u32, ny: u32) -> Result<js_sys::Object, JsError> {
+        let mut out = draw::DrawList::default();
+        let layers = draw::Layers::from_bits(layers);
+        on!(&self.core, c => c.draw(self.bounds, [nx, ny], layers, &mut out));
+        crate::draw_js::draw_arrays(&out)
     }
 
     /// Attraction, repulsion and resultant at the robot (6 numbers: x, y

@@ -42,6 +42,7 @@
 #[cfg(feature = "robot")]
 pub mod apf;
 pub mod batch;
+mod draw_js;
 #[cfg(feature = "grid-search")]
 pub mod dstar;
 #[cfg(feature = "robot")]
@@ -68,10 +69,11 @@ pub use planlab_wasm_arm::{arm_choices, ArmHandle};
 #[cfg(feature = "reproduce")]
 pub use planlab_wasm_reproduce::{reproduce_variant, reproduce_variant_info};
 #[cfg(feature = "grid-search")]
-pub use session::{PlanSession, RecordedPlan};
+pub use session::{PlanSession, RecordedPlan, SearchReplay};
 #[cfg(feature = "robot")]
 pub use sim::{generated_grid_hash, planners, SimHandle};
 
+use planlab_core::draw;
 use planlab_core::global::plan::{plan_grid_for, GridPlan, GridPlanOptions};
 #[cfg(feature = "grid-search")]
 use planlab_core::global::plan::{plan_on_map, plan_on_map_recording};
@@ -81,6 +83,16 @@ use planlab_core::map::{Cell, OccupancyGrid};
 use planlab_core::scenario::{MapSpec, Scenario};
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
+
+/// The draw layers' names, by code (`Layer as u8`): the page checks its
+/// own table against them.
+#[wasm_bindgen(js_name = drawLayerNames)]
+pub fn draw_layer_names() -> Vec<String> {
+    planlab_core::draw::Layer::ALL
+        .iter()
+        .map(|l| l.name().to_string())
+        .collect()
+}
 
 /// Installs the panic hook once, when the module is instantiated, so a bug
 /// shows up as a readable console message instead of `unreachable`.
@@ -272,6 +284,45 @@ impl MapHandle {
     pub fn duplicate(&self) -> MapHandle {
         self.clone()
     }
+
+    /// The core's draw list of the map (`layers`, a bit per layer code):
+    /// the map, the `inflation` mask given (from `inflationMask`) and the
+    /// `start` and `goal` cells (`[col, row]`) given, as
+    /// `{data, items, cells}`.
+    #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
+    pub fn draw(
+        &self,
+        layers: u32,
+        inflation: Option<Vec<u8>>,
+        start: Option<Vec<u32>>,
+        goal: Option<Vec<u32>>,
+    ) -> Result<js_sys::Object, JsError> {
+        let cell = |v: Option<Vec<u32>>| match v.as_deref() {
+            None => Ok(None),
+            Some(&[col, row]) => Ok(Some(GridPos { col, row })),
+            Some(other) => Err(JsError::new(&format!(
+                "a cell is [col, row], got {other:?}"
+            ))),
+        };
+        let plan = draw::GridPlanDraw {
+            grid: &self.grid,
+            inflation: inflation.as_deref(),
+            path: &[],
+            key_points: &[],
+            feature_nodes: &[],
+            start: cell(start)?,
+            goal: cell(goal)?,
+        };
+        if plan
+            .inflation
+            .is_some_and(|m| m.len() != self.grid.cells().len())
+        {
+            return Err(JsError::new("the inflation mask is not this map's size"));
+        }
+        let mut out = draw::DrawList::default();
+        draw::grid_plan(&plan, draw::Layers::from_bits(layers), &mut out);
+        draw_js::draw_arrays(&out)
+    }
 }
 
 impl MapHandle {
@@ -412,6 +463,34 @@ impl PlanResult {
     #[wasm_bindgen(js_name = featureNodes)]
     pub fn feature_nodes(&self) -> Vec<u32> {
         flat(&self.plan.feature_nodes)
+    }
+
+    /// The core's draw list of the plan on `map` (`layers`, a bit per
+    /// layer code): its path, key points and feature nodes, as
+    /// `{data, items, cells}`.
+    #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
+    pub fn draw(&self, map: &MapHandle, layers: u32) -> Result<js_sys::Object, JsError> {
+        let plan = draw::GridPlanDraw {
+            grid: &map.grid,
+            inflation: None,
+            path: &self.plan.path.cells,
+            key_points: &self.plan.keypoints,
+            feature_nodes: &self.plan.feature_nodes,
+            start: None,
+            goal: None,
+        };
+        let keep = draw::Layers::from_bits(layers).bits()
+            & [
+                draw::Layer::GlobalPath,
+                draw::Layer::KeyPoints,
+                draw::Layer::FeatureNodes,
+            ]
+            .into_iter()
+            .collect::<draw::Layers>()
+            .bits();
+        let mut out = draw::DrawList::default();
+        draw::grid_plan(&plan, draw::Layers::from_bits(keep), &mut out);
+        draw_js::draw_arrays(&out)
     }
 
     /// Safety index per path node (safe A* only, else empty).

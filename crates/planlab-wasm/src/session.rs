@@ -9,6 +9,7 @@
 //! page's player ([`RecordedPlan`]).
 
 use crate::{cell_of, options_from_js, paint_grid, MapHandle, PlanResult};
+use planlab_core::draw;
 use planlab_core::global::plan::{
     build_observed_planner, plan_grid_for, plan_on_grid_observed, GridPlan, GridPlanError,
     GridPlanOptions,
@@ -377,5 +378,128 @@ impl RecordedPlan {
     /// h per event.
     pub fn h(&self) -> Vec<f64> {
         self.events.h.clone()
+    }
+}
+
+impl EventColumns {
+    /// Event `i` as the core's [`SearchEvent`].
+    fn event(&self, i: usize) -> SearchEvent {
+        let at = |v: &[u32]| GridPos::new(v[2 * i], v[2 * i + 1]);
+        let (cell, other) = (at(&self.cells), at(&self.others));
+        match self.kinds[i] {
+            kind::OPEN => SearchEvent::Open {
+                cell,
+                parent: (other.col != NO_CELL).then_some(other),
+                g: self.g[i],
+                h: self.h[i],
+            },
+            kind::CLOSE => SearchEvent::Close { cell },
+            k => SearchEvent::Line {
+                from: cell,
+                to: other,
+                clear: k == kind::LINE_CLEAR,
+            },
+        }
+    }
+}
+
+#[wasm_bindgen]
+impl RecordedPlan {
+    /// The search played back on `map` (the map searched), at step 0; f =
+    /// g + `weight`·h (weighted A*'s weight, else 1).
+    pub fn replay(&self, map: &MapHandle, weight: f64) -> SearchReplay {
+        let events = (0..self.events.len())
+            .map(|i| self.events.event(i))
+            .collect();
+        SearchReplay {
+            inner: draw::SearchReplay::new(map.grid(), events, weight),
+        }
+    }
+}
+
+/// A recorded search played back for the page's player (the core's
+/// [`draw::SearchReplay`]): seek, counters, what a cell holds, and the
+/// search layers of the draw list, which carry only the cells changed since
+/// the last draw.
+#[wasm_bindgen]
+pub struct SearchReplay {
+    inner: draw::SearchReplay,
+}
+
+/// Where a count is missing, as a number.
+fn or_nan(v: Option<usize>) -> f64 {
+    v.map_or(f64::NAN, |x| x as f64)
+}
+
+#[wasm_bindgen]
+impl SearchReplay {
+    /// Events in the recording.
+    #[wasm_bindgen(getter)]
+    pub fn length(&self) -> u32 {
+        self.inner.len() as u32
+    }
+
+    /// Events applied.
+    #[wasm_bindgen(getter)]
+    pub fn step(&self) -> u32 {
+        self.inner.step() as u32
+    }
+
+    /// Whether every event is applied.
+    #[wasm_bindgen(getter)]
+    pub fn done(&self) -> bool {
+        self.inner.done()
+    }
+
+    /// Moves to `step` (clamped), forward or back.
+    pub fn seek(&mut self, step: f64) {
+        self.inner.seek(if step > 0.0 { step as usize } else { 0 });
+    }
+
+    /// The counters at `step` (clamped): step, events, expanded, open, f
+    /// (NaN before the first expansion), lines.
+    #[wasm_bindgen(js_name = countersAt)]
+    pub fn counters_at(&self, step: u32) -> Vec<f64> {
+        let c = self.inner.counters_at(step as usize);
+        [c.step, c.events, c.expanded, c.open]
+            .map(|x| x as f64)
+            .into_iter()
+            .chain([c.f, c.lines as f64])
+            .collect()
+    }
+
+    /// The cell being expanded as `[col, row]`, or `undefined`.
+    pub fn expanding(&self) -> Option<Vec<u32>> {
+        self.inner.expanding().map(|p| vec![p.col, p.row])
+    }
+
+    /// What cell (`col`, `row`) holds now: state (0 unseen, 1 open, 2
+    /// closed), g, h, f, parent col, parent row, opened at, closed at
+    /// (NaN where none); `undefined` off the map.
+    pub fn info(&self, col: u32, row: u32) -> Option<Vec<f64>> {
+        let i = self.inner.info(col as usize, row as usize)?;
+        let (pc, pr) = i.parent.map_or((f64::NAN, f64::NAN), |p| {
+            (f64::from(p.col), f64::from(p.row))
+        });
+        Some(vec![
+            f64::from(i.state as u8),
+            i.g,
+            i.h,
+            i.f,
+            pc,
+            pr,
+            or_nan(i.opened_at),
+            or_nan(i.closed_at),
+        ])
+    }
+
+    /// The search layers in `layers` at the current step as `{data, items,
+    /// cells}`: every cell on the first draw and after a reset, then only
+    /// those changed since the last draw.
+    #[wasm_bindgen(unchecked_return_type = "DrawArrays")]
+    pub fn draw(&mut self, layers: u32) -> Result<js_sys::Object, JsError> {
+        let mut out = draw::DrawList::default();
+        self.inner.draw(draw::Layers::from_bits(layers), &mut out);
+        crate::draw_js::draw_arrays(&out)
     }
 }

@@ -10,7 +10,8 @@
 //! - The page draws; everything it draws (rollouts and their scores, goals,
 //!   obstacle classes, clearance, metrics) is computed by the core.
 
-use planlab_core::draw::{self, DrawList, FanColour, Layer, Layers, Request};
+use crate::draw_js::draw_arrays;
+use planlab_core::draw::{self, DrawList, FanColour, Layers, Request};
 use planlab_core::lidar::fog::SeenCells;
 use planlab_core::metrics::{distance_to_polyline, EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
 use planlab_core::planners::{self as registry, PlannerChoice};
@@ -61,40 +62,6 @@ static NEXT_RUN: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::ne
 
 fn json_err(what: &str, e: serde_json::Error) -> JsError {
     JsError::new(&format!("{what}: {e}"))
-}
-
-#[wasm_bindgen(typescript_custom_section)]
-const DRAW_ARRAYS: &str = r#"
-/** A draw list as typed arrays (planlab_core::draw). */
-export interface DrawArrays {
-  data: Float64Array;
-  items: Float64Array;
-  cells: Uint8Array;
-}
-"#;
-
-/// A draw list as `{data, items, cells}` typed arrays.
-fn draw_arrays(d: &DrawList) -> Result<js_sys::Object, JsError> {
-    let o = js_sys::Object::new();
-    let set = |k: &str, v: &JsValue| {
-        js_sys::Reflect::set(&o, &JsValue::from_str(k), v)
-            .map(|_| ())
-            .map_err(|_| JsError::new("cannot build the draw list object"))
-    };
-    set("data", &js_sys::Float64Array::from(&d.data[..]).into())?;
-    set(
-        "items",
-        &js_sys::Float64Array::from(&d.items_flat()[..]).into(),
-    )?;
-    set("cells", &js_sys::Uint8Array::from(&d.cells[..]).into())?;
-    Ok(o)
-}
-
-/// The draw layers' names, by code (`Layer as u8`): the page checks its
-/// own table against them.
-#[wasm_bindgen(js_name = drawLayerNames)]
-pub fn draw_layer_names() -> Vec<String> {
-    Layer::ALL.iter().map(|l| l.name().to_string()).collect()
 }
 
 /// One running episode, owned on the wasm side.

@@ -818,6 +818,30 @@ fn recorded_plan_events_are_typed_columns() {
     assert!(!rec.truncated());
 }
 
+/// The replay of a recorded plan counts what the columns hold, and a cell
+/// it expanded reads closed at the end and unseen at step 0.
+#[wasm_bindgen_test]
+fn a_recorded_plan_replays_to_its_expanded_count() {
+    use planlab_wasm::PlanSession;
+    let map = MapHandle::from_ascii(MAP).unwrap();
+    let mut session = PlanSession::new(&map, options(r#"{"algorithm":"astar"}"#)).unwrap();
+    let rec = session.plan_recorded(0, 0, 0, 4).unwrap();
+    let mut replay = rec.replay(&map, 1.0);
+    assert_eq!(replay.length(), rec.length());
+    replay.seek(f64::from(rec.length()));
+    assert!(replay.done());
+    let end = replay.counters_at(replay.step());
+    assert_eq!(
+        end[2],
+        f64::from(rec.plan().expanded_count()),
+        "expanded at the end"
+    );
+    assert_eq!(replay.info(0, 0).unwrap()[0], 2.0, "the start is closed");
+    replay.seek(0.0);
+    assert_eq!(replay.info(0, 0).unwrap()[0], 0.0, "unseen at step 0");
+    assert!(replay.info(99, 0).is_none(), "off the map");
+}
+
 fn plan_fn(map: &MapHandle) -> planlab_wasm::PlanResult {
     plan(map, 0, 0, 0, 4, options(r#"{"algorithm":"astar"}"#), true).unwrap()
 }

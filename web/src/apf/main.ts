@@ -1,9 +1,9 @@
 // APF page: loads a 2D potential-field preset into a wasm ApfHandle, steps
-// it and paints what it reports — the force field as a heat map with
-// arrows, obstacles with their repulsion ranges, the predicted obstacles
-// with their virtual ranges, the 13 sampled directions and the chosen one,
-// and the path. Goal drags, variant and predictor go to the handle as
-// edits; this file computes no forces.
+// it and paints the core's draw list of the run (paint.ts) — the force
+// field as a heat map with arrows, obstacles with their repulsion ranges,
+// the predicted obstacles with their virtual ranges, the 13 sampled
+// directions and the chosen one, and the path. Goal drags, variant and
+// predictor go to the handle as edits; this file computes no forces.
 
 import init, { ApfHandle } from '../../pkg/planlab_wasm.js';
 import { applyRun, runParams, variantParams } from '../shell/runlink';
@@ -13,6 +13,8 @@ import { installLegend } from '../shell/legend';
 import { apfHelp } from '../shell/help-content';
 import { galleryRunEnded, showGalleryNote } from '../shell/gallery-note';
 import { el, messageOf } from '../shell/dom';
+import { DrawList, Layer, mask } from '../scene/draw';
+import { fitFrame, paintApf } from './paint';
 
 const ui = {
   hint: el('hint'),
@@ -30,6 +32,8 @@ const ui = {
 };
 
 let handle: ApfHandle | null = null;
+/** The draw list last painted (the e2e hooks read it). */
+let lastDraw: DrawList | null = null;
 let playing = false;
 const FIELD_NX = 64;
 const FIELD_NY = 48;
@@ -44,25 +48,6 @@ function setPlaying(on: boolean): void {
   ui.play.textContent = on ? '❚❚ Pause' : '▶ Play';
 }
 
-/** World → canvas transform for the handle's bounds. */
-function frame(h: ApfHandle) {
-  const [x0, y0, x1, y1] = h.bounds();
-  const c = ui.canvas;
-  const s = Math.min(c.width / (x1 - x0), c.height / (y1 - y0));
-  const ox = (c.width - s * (x1 - x0)) / 2;
-  const oy = (c.height - s * (y1 - y0)) / 2;
-  return {
-    s,
-    x: (x: number) => ox + (x - x0) * s,
-    y: (y: number) => c.height - oy - (y - y0) * s,
-    inv: (px: number, py: number): [number, number] => [x0 + (px - ox) / s, y0 + (c.height - oy - py) / s],
-    x0,
-    y0,
-    x1,
-    y1,
-  };
-}
-
 function setMetric(id: string, value: string, raw: string | number): void {
   const e = el(id);
   e.textContent = value;
@@ -72,124 +57,14 @@ function setMetric(id: string, value: string, raw: string | number): void {
 function draw(): void {
   const h = handle;
   if (!h) return;
-  const ctx = ui.canvas.getContext('2d');
-  if (!ctx) return;
-  const f = frame(h);
-  ctx.fillStyle = '#0b1020';
-  ctx.fillRect(0, 0, ui.canvas.width, ui.canvas.height);
-  if (ui.showField.checked) {
-    const field = h.field(FIELD_NX, FIELD_NY);
-    const cw = (f.x1 - f.x0) / FIELD_NX;
-    const ch = (f.y1 - f.y0) / FIELD_NY;
-    for (let j = 0; j < FIELD_NY; j++) {
-      for (let i = 0; i < FIELD_NX; i++) {
-        const k = 2 * (j * FIELD_NX + i);
-        const m = Math.hypot(field[k], field[k + 1]);
-        const t = Math.max(0, Math.min(1, Math.log10(1 + m) / 2));
-        // Opaque (pre-blended over the background) so cell seams do not show.
-        const mix = (c: number, bg: number) => Math.round(0.55 * c + 0.45 * bg);
-        ctx.fillStyle = `rgb(${mix(40 + 215 * t, 11)}, ${mix(60 + 60 * t, 16)}, ${mix(140 - 100 * t, 32)})`;
-        const px = f.x(f.x0 + i * cw);
-        const py = f.y(f.y0 + (j + 1) * ch);
-        ctx.fillRect(px, py, cw * f.s + 1, ch * f.s + 1);
-      }
-    }
-    // Arrows on every 4th lattice point: the resultant's direction.
-    ctx.strokeStyle = 'rgba(226, 232, 240, 0.55)';
-    ctx.lineWidth = 1;
-    for (let j = 2; j < FIELD_NY; j += 4) {
-      for (let i = 2; i < FIELD_NX; i += 4) {
-        const k = 2 * (j * FIELD_NX + i);
-        const m = Math.hypot(field[k], field[k + 1]);
-        if (!(m > 0)) continue;
-        const cx = f.x(f.x0 + (i + 0.5) * cw);
-        const cy = f.y(f.y0 + (j + 0.5) * ch);
-        const len = 0.8 * Math.min(cw, ch) * f.s * 2;
-        const dx = (field[k] / m) * len;
-        const dy = (-field[k + 1] / m) * len;
-        ctx.beginPath();
-        ctx.moveTo(cx, cy);
-        ctx.lineTo(cx + dx, cy + dy);
-        ctx.lineTo(cx + dx * 0.7 - dy * 0.2, cy + dy * 0.7 + dx * 0.2);
-        ctx.stroke();
-      }
-    }
-  }
-  // Obstacles and their repulsion ranges.
-  const obs = h.obstacles();
-  for (let i = 0; i < obs.length; i += 4) {
-    const [x, y, r, range] = [obs[i], obs[i + 1], obs[i + 2], obs[i + 3]];
-    ctx.setLineDash([4, 4]);
-    ctx.strokeStyle = '#60a5fa';
-    ctx.beginPath();
-    ctx.arc(f.x(x), f.y(y), range * f.s, 0, 2 * Math.PI);
-    ctx.stroke();
-    ctx.setLineDash([]);
-    ctx.fillStyle = '#94a3b8';
-    ctx.beginPath();
-    ctx.arc(f.x(x), f.y(y), Math.max(2, r * f.s), 0, 2 * Math.PI);
-    ctx.fill();
-  }
-  if (ui.showPred.checked) {
-    const pred = h.predicted();
-    for (let i = 0; i < pred.length; i += 4) {
-      const [x, y, range, k] = [pred[i], pred[i + 1], pred[i + 2], pred[i + 3]];
-      ctx.setLineDash([2, 3]);
-      ctx.strokeStyle = k === 1 ? '#a78bfa' : '#f472b6';
-      ctx.beginPath();
-      ctx.arc(f.x(x), f.y(y), range * f.s, 0, 2 * Math.PI);
-      ctx.stroke();
-      ctx.setLineDash([]);
-      ctx.fillStyle = ctx.strokeStyle;
-      ctx.beginPath();
-      ctx.arc(f.x(x), f.y(y), 3, 0, 2 * Math.PI);
-      ctx.fill();
-    }
-  }
-  // Path.
-  const path = h.path();
-  ctx.strokeStyle = '#fbbf24';
-  ctx.lineWidth = 2;
-  ctx.beginPath();
-  for (let i = 0; i < path.length; i += 2) {
-    const px = f.x(path[i]);
-    const py = f.y(path[i + 1]);
-    if (i === 0) ctx.moveTo(px, py);
-    else ctx.lineTo(px, py);
-  }
-  ctx.stroke();
-  ctx.fillStyle = '#fbbf24';
-  for (let i = 0; i < path.length; i += 2) {
-    ctx.beginPath();
-    ctx.arc(f.x(path[i]), f.y(path[i + 1]), 2, 0, 2 * Math.PI);
-    ctx.fill();
-  }
-  // Sampled directions from the previous point, the chosen one bold.
-  if (ui.showCand.checked && path.length >= 4) {
-    const cand = h.candidates();
-    const chosen = h.chosen();
-    const bx = path[path.length - 4];
-    const by = path[path.length - 3];
-    for (let i = 0; i < cand.length; i += 3) {
-      const best = i / 3 === chosen;
-      ctx.strokeStyle = best ? '#22c55e' : 'rgba(148, 163, 184, 0.8)';
-      ctx.lineWidth = best ? 3 : 1;
-      ctx.beginPath();
-      ctx.moveTo(f.x(bx), f.y(by));
-      ctx.lineTo(f.x(cand[i]), f.y(cand[i + 1]));
-      ctx.stroke();
-    }
-    ctx.lineWidth = 1;
-  }
-  const [sx, sy, gx, gy] = h.endpoints();
-  ctx.fillStyle = '#38bdf8';
-  ctx.beginPath();
-  ctx.arc(f.x(sx), f.y(sy), 6, 0, 2 * Math.PI);
-  ctx.fill();
-  ctx.fillStyle = '#ef4444';
-  ctx.beginPath();
-  ctx.arc(f.x(gx), f.y(gy), 7, 0, 2 * Math.PI);
-  ctx.fill();
+  let layers = mask(Layer.Trail, Layer.Goals, Layer.Obstacles);
+  if (ui.showField.checked) layers |= mask(Layer.Field);
+  if (ui.showPred.checked) layers |= mask(Layer.Predicted);
+  if (ui.showCand.checked) layers |= mask(Layer.Candidates);
+  const d = new DrawList(h.draw(layers, FIELD_NX, FIELD_NY));
+  paintApf(ui.canvas, h.bounds(), d);
+  const t = d.first(Layer.Trail);
+  const pathPoints = t < d.end(Layer.Trail) ? d.points(t) : 0;
   // Metrics from the core.
   const m = JSON.parse(h.metrics());
   setMetric('metric-outcome', m.outcome, m.outcome);
@@ -202,7 +77,8 @@ function draw(): void {
   document.body.dataset.outcome = m.outcome;
   // A run opened from a gallery card: the ✓/✗ of its relation when it ends.
   if (m.outcome !== 'running') galleryRunEnded(m.outcome);
-  document.body.dataset.pathPoints = String(path.length / 2);
+  document.body.dataset.pathPoints = String(pathPoints);
+  lastDraw = d;
 }
 
 function tick(): void {
@@ -300,7 +176,7 @@ async function main(): Promise<void> {
     const r = ui.canvas.getBoundingClientRect();
     const px = ((ev.clientX - r.left) / r.width) * ui.canvas.width;
     const py = ((ev.clientY - r.top) / r.height) * ui.canvas.height;
-    const [x, y] = frame(handle).inv(px, py);
+    const [x, y] = fitFrame(ui.canvas, handle.bounds()).inv(px, py);
     guard(() => handle?.setGoal(x, y));
   };
   ui.canvas.addEventListener('pointerdown', (ev) => {
@@ -314,6 +190,18 @@ async function main(): Promise<void> {
     dragging = false;
   });
   ui.hint.textContent = 'Play, step, or drag the goal.';
+  // Hooks for the end-to-end tests: a point of the last draw list and
+  // where the page paints a world point (canvas pixels).
+  (window as unknown as { planlabApf: unknown }).planlabApf = {
+    goal: (tag: number) => {
+      const i = lastDraw?.find(Layer.Goals, tag) ?? -1;
+      return i < 0 || !lastDraw ? null : Array.from(lastDraw.numbers(i));
+    },
+    toCanvas: (x: number, y: number) => {
+      const f = fitFrame(ui.canvas, handle ? handle.bounds() : [0, 0, 1, 1]);
+      return [f.x(x), f.y(y)];
+    },
+  };
   document.body.dataset.state = 'ready';
   requestAnimationFrame(tick);
 }

@@ -1,6 +1,7 @@
 // Arm page wiring: loads an arm scenario into a wasm ArmHandle, steps it
-// from the animation frame at the chosen speed and paints what it reports
-// (links, target, tool and hand paths, predictions, sampled steps) plus
+// from the animation frame at the chosen speed and shows the core's draw
+// list of it in the 3D view (links, target, tool and hand paths,
+// predictions, sampled steps) plus
 // the joint readout and the metrics. The target sliders, the hand's motion
 // and the predictor go to the handle as edits; this file computes no
 // kinematics, distances or plans.
@@ -12,7 +13,8 @@ import { installLegend } from '../shell/legend';
 import { armHelp } from '../shell/help-content';
 import { galleryRunEnded, showGalleryNote } from '../shell/gallery-note';
 import init, { ArmHandle, armChoices } from '../../pkg-arm/planlab_wasm_arm.js';
-import { ArmView, type Frame } from './view';
+import { ArmView } from './view';
+import { DrawList, Layer, mask } from '../scene/draw';
 import { DistancePlot } from './distplot';
 import { el, messageOf } from '../shell/dom';
 
@@ -62,7 +64,6 @@ let view: ArmView | null = null;
 let playing = false;
 let carry = 0;
 let lastFrame = 0;
-let script: Float32Array = new Float32Array(0);
 const sliders: { input: HTMLInputElement; out: HTMLOutputElement }[] = [];
 let jointCells: { val: HTMLElement; mark: HTMLElement }[] = [];
 
@@ -79,19 +80,10 @@ function setPlaying(on: boolean): void {
   carry = 0;
 }
 
-function frame(h: ArmHandle): Frame {
-  return {
-    links: h.links(),
-    hand: h.hand(),
-    toolPath: h.toolPath(),
-    handPath: h.handPath(),
-    predictions: h.predictions(),
-    candidates: h.candidates(),
-    chosen: h.chosen,
-    goal: Array.from(h.goal()),
-    start: Array.from(h.start()),
-  };
-}
+/** Every layer of the arm's draw list. */
+const ARM_LAYERS = mask(Layer.Trail, Layer.Goals, Layer.Predicted, Layer.Candidates, Layer.Links, Layer.Hand, Layer.HandPath);
+/** Instants of the hand's scripted motion drawn. */
+const SCRIPT_SAMPLES = 120;
 
 function buildJoints(h: ArmHandle): void {
   const names: string[] = JSON.parse(h.jointNames());
@@ -154,7 +146,8 @@ let distPlot: DistancePlot | null = null;
 function refresh(): void {
   const h = handle;
   if (!h || !view) return;
-  view.update(frame(h), ui.showScript.checked, script);
+  const d = new DrawList(h.draw(ARM_LAYERS, ui.showScript.checked ? SCRIPT_SAMPLES : 0));
+  view.update(d);
   distPlot?.pull(h);
   const m = JSON.parse(h.metricsJson());
   const out: string = m.outcome;
@@ -174,7 +167,7 @@ function refresh(): void {
   ui.body.dataset.time = h.time.toFixed(2);
   ui.body.dataset.minDistance = String(m.min_obstacle_distance_m);
   ui.body.dataset.goal = Array.from(h.goal()).join(',');
-  ui.body.dataset.predictions = String(h.predictions().length / 5);
+  ui.body.dataset.predictions = String(d.count(Layer.Predicted));
   const q = h.jointAngles();
   const lim = h.jointLimits();
   jointCells.forEach((c, i) => {
@@ -236,7 +229,6 @@ async function load(file: string, edit: (text: string) => string = (t) => t): Pr
   ui.handPreset.value = handle.handPreset;
   ui.handSpeed.value = String(handle.handSpeed);
   ui.handSeed.value = String(handle.seed);
-  script = handle.handScript(120);
   buildJoints(handle);
   buildTarget(handle);
   showError(null);
@@ -248,8 +240,7 @@ function applyHand(): void {
   if (!handle) return;
   try {
     handle.setHand(ui.handPreset.value, Number(ui.handSpeed.value), Number(ui.handSeed.value));
-    script = handle.handScript(120);
-    showError(null);
+      showError(null);
   } catch (e) {
     showError(`hand motion refused: ${messageOf(e)}`);
   }

@@ -1,8 +1,9 @@
-// The arm page's 3D view (three.js, z up): link capsules, the target, the
-// tool path, the hand and forearm with their path, script and predicted
-// positions, and the sampled step candidates. It only paints the arrays the
-// wasm handle hands out; only the named three.js classes are imported so
-// the bundle keeps what it uses.
+// The arm page's 3D view (three.js, z up), fed from the core's draw list of
+// the episode: link capsules, the target, the tool path, the hand and
+// forearm with their path, script and predicted positions, and the sampled
+// step candidates. It only poses three.js objects from the list's numbers;
+// only the named three.js classes are imported so the bundle keeps what it
+// uses.
 
 import {
   AmbientLight,
@@ -31,18 +32,7 @@ import {
   WebGLRenderer,
 } from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-
-export interface Frame {
-  links: Float32Array; // ax ay az bx by bz r per link
-  hand: Float32Array; // sphere cx cy cz r, capsule ax ay az bx by bz r
-  toolPath: Float32Array;
-  handPath: Float32Array;
-  predictions: Float32Array; // x y z range k
-  candidates: Float32Array;
-  chosen: number;
-  goal: number[];
-  start: number[];
-}
+import { Layer, Shape, type DrawList, type LayerCode } from '../scene/draw';
 
 const UP = new Vector3(0, 1, 0);
 
@@ -57,6 +47,9 @@ class CapsuleMesh {
     this.capA = new Mesh(sph, mat);
     this.capB = new Mesh(sph, mat);
     this.group.add(this.body, this.capA, this.capB);
+  }
+  setMaterial(m: MeshStandardMaterial): void {
+    for (const part of [this.body, this.capA, this.capB]) part.material = m;
   }
   set(a: Vector3, b: Vector3, r: number): void {
     const d = new Vector3().subVectors(b, a);
@@ -85,7 +78,15 @@ function polyline(color: number, dashed = false): Line {
   return l;
 }
 
-function setLine(l: Line, pts: Float32Array): void {
+const NONE = new Float64Array(0);
+
+/** The numbers of the first item of layer `l` with `tag`, or none. */
+function itemOf(d: DrawList, l: LayerCode, tag = 0): Float64Array {
+  const i = d.find(l, tag);
+  return i < 0 ? NONE : d.numbers(i);
+}
+
+function setLine(l: Line, pts: ArrayLike<number>): void {
   l.geometry.setAttribute('position', new Float32BufferAttribute(pts, 3));
   l.geometry.setDrawRange(0, pts.length / 3);
   if (l.material instanceof LineDashedMaterial) l.computeLineDistances();
@@ -217,10 +218,12 @@ export class ArmView {
     el.addEventListener('pointercancel', end);
   }
 
-  update(f: Frame, showScript: boolean, script: Float32Array): void {
-    const n = f.links.length / 7;
+  /** Poses the scene from draw list `d` (the HandPath layer's script,
+   *  `tag` 1, shows when the list has it). */
+  update(d: DrawList): void {
+    const n = d.count(Layer.Links);
     while (this.links.length < n) {
-      const c = new CapsuleMesh(this.cyl, this.sph, this.links.length === n - 1 ? this.toolMat : this.linkMat);
+      const c = new CapsuleMesh(this.cyl, this.sph, this.linkMat);
       this.links.push(c);
       this.scene.add(c.group);
     }
@@ -228,23 +231,32 @@ export class ArmView {
       const c = this.links[i];
       c.group.visible = i < n;
       if (i >= n) continue;
-      const o = i * 7;
-      const L = f.links;
-      c.set(new Vector3(L[o], L[o + 1], L[o + 2]), new Vector3(L[o + 3], L[o + 4], L[o + 5]), L[o + 6]);
+      const k = d.first(Layer.Links) + i;
+      const L = d.numbers(k);
+      // The tool (value 1) is darker.
+      c.setMaterial(d.value(k) === 1 ? this.toolMat : this.linkMat);
+      c.set(new Vector3(L[0], L[1], L[2]), new Vector3(L[3], L[4], L[5]), L[6]);
     }
-    const H = f.hand;
-    this.handBall.position.set(H[0], H[1], H[2]);
-    this.handBall.scale.setScalar(H[3]);
-    this.forearm.set(new Vector3(H[4], H[5], H[6]), new Vector3(H[7], H[8], H[9]), H[10]);
-    this.goal.position.set(f.goal[0], f.goal[1], f.goal[2]);
-    this.start.position.set(f.start[0], f.start[1], f.start[2]);
-    setLine(this.tool, f.toolPath);
-    this.toolPts.geometry.setAttribute('position', new Float32BufferAttribute(f.toolPath, 3));
-    setLine(this.handPath, f.handPath);
-    this.handScript.visible = showScript;
-    if (showScript) setLine(this.handScript, script);
+    for (let i = d.first(Layer.Hand); i < d.end(Layer.Hand); i++) {
+      const H = d.numbers(i);
+      if (d.shape(i) === Shape.Spheres) {
+        this.handBall.position.set(H[0], H[1], H[2]);
+        this.handBall.scale.setScalar(H[3]);
+      } else this.forearm.set(new Vector3(H[0], H[1], H[2]), new Vector3(H[3], H[4], H[5]), H[6]);
+    }
+    const start = itemOf(d, Layer.Goals, 0);
+    const goal = itemOf(d, Layer.Goals, 1);
+    if (goal.length === 3) this.goal.position.set(goal[0], goal[1], goal[2]);
+    if (start.length === 3) this.start.position.set(start[0], start[1], start[2]);
+    const tool = itemOf(d, Layer.Trail);
+    setLine(this.tool, tool);
+    this.toolPts.geometry.setAttribute('position', new Float32BufferAttribute(tool, 3));
+    setLine(this.handPath, itemOf(d, Layer.HandPath, 0));
+    const script = itemOf(d, Layer.HandPath, 1);
+    this.handScript.visible = script.length > 0;
+    if (script.length) setLine(this.handScript, script);
 
-    const np = this.showPredictions ? f.predictions.length / 5 : 0;
+    const np = this.showPredictions ? d.count(Layer.Predicted) : 0;
     while (this.preds.length < np) {
       const m = new Mesh(this.sph, this.predMats[0]);
       m.renderOrder = 2;
@@ -255,20 +267,25 @@ export class ArmView {
       const m = this.preds[i];
       m.visible = i < np;
       if (i >= np) continue;
-      const P = f.predictions;
-      const o = i * 5;
-      m.position.set(P[o], P[o + 1], P[o + 2]);
-      m.scale.setScalar(P[o + 3]);
-      m.material = this.predMats[P[o + 4] > 1.5 ? 1 : 0];
+      const k = d.first(Layer.Predicted) + i;
+      const P = d.numbers(k);
+      m.position.set(P[0], P[1], P[2]);
+      m.scale.setScalar(P[3]);
+      m.material = this.predMats[d.tag(k) > 1.5 ? 1 : 0];
     }
-    const showC = this.showCandidates && f.candidates.length > 0;
+    const nc = d.count(Layer.Candidates);
+    const showC = this.showCandidates && nc > 0;
+    const chosen = d.find(Layer.Candidates, 1);
     this.cands.visible = showC;
-    this.chosen.visible = showC && f.chosen >= 0;
+    this.chosen.visible = showC && chosen >= 0;
     if (showC) {
-      this.cands.geometry.setAttribute('position', new Float32BufferAttribute(f.candidates, 3));
-      if (f.chosen >= 0) {
-        const o = f.chosen * 3;
-        this.chosen.position.set(f.candidates[o], f.candidates[o + 1], f.candidates[o + 2]);
+      const c0 = d.first(Layer.Candidates);
+      // One point per item, back to back in the data.
+      const pts = d.data.subarray(d.start(c0), d.stop(c0 + nc - 1));
+      this.cands.geometry.setAttribute('position', new Float32BufferAttribute(pts, 3));
+      if (chosen >= 0) {
+        const p = d.numbers(chosen);
+        this.chosen.position.set(p[0], p[1], p[2]);
       }
     }
     this.dirty = true;

@@ -4,7 +4,7 @@
 // only what it affects, and the status compares that with a fresh A*);
 // every other planner searches afresh from the new start.
 
-import type { Cell } from './render';
+import type { Cell } from '../shell/cells';
 
 export interface DriveHost {
   /** The current path's cells (start first), or null when there is none. */

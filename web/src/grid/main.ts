@@ -6,8 +6,10 @@
 // GridPlanOptions and paints what comes back.
 
 import init, { MapHandle, ScenarioHandle, defaultPlanOptions, gridAlgorithms, inflationMask, inflationNote, rosImageName } from '../../pkg-grid/planlab_wasm.js';
-import { MapView, type Cell } from './render';
-import { GridSession } from './planning';
+import { MAP_LAYERS, MapView, PLAN_LAYERS } from '../scene/grid-view';
+import { DrawList, EMPTY, Layer, mask } from '../scene/draw';
+import type { Cell } from '../shell/cells';
+import { GridSession } from '../scene/grid-session';
 import { SearchPlayer, exposeForTests } from './player-ui';
 import { installShell } from '../shell/help';
 import { gridHelp, type CorePlanner } from '../shell/help-content';
@@ -16,12 +18,11 @@ import { loadPresetFiles } from '../shell/scenario-files';
 import { el, errorBanner, messageOf } from '../shell/dom';
 import { panZoom } from '../shell/canvas-input';
 import { applyOptions, getDefaults, onOptionInput, readOptions, setDefaults, showExpanded, syncControls } from './options';
-import { installScenario, loadFiles, loadPreset, type MapHost } from './maps';
+import { installScenario, loadFiles, loadPreset, type MapHost } from '../shell/grid-maps';
 import { describeSearch } from './inspect';
 import { clearMetrics, showMetrics } from './metrics';
 import { Driver } from './drive';
-
-type Tool = 'start' | 'goal' | 'wall' | 'erase';
+import { TOOL_HINTS, type Tool } from './tools';
 
 const CELL_NAMES = ['free', 'occupied', 'unknown'];
 
@@ -41,7 +42,6 @@ const ui = {
   canvas: el<HTMLCanvasElement>('map-canvas'),
   hover: el('hover'),
   status: el('status'),
-
 };
 
 // ------------------------------------------------------------------ errors
@@ -67,23 +67,10 @@ let replanQueued = false;
 /** The plan's cells, for the driving robot. */
 let currentPath: Cell[] | null = null;
 
-function hintForTool(): string {
-  switch (tool) {
-    case 'start':
-      return 'Click a free cell to place the start.';
-    case 'goal':
-      return 'Click a free cell to place the goal.';
-    case 'wall':
-      return 'Drag on the map to paint walls.';
-    case 'erase':
-      return 'Drag on the map to erase walls.';
-  }
-}
-
 function setTool(t: Tool): void {
   tool = t;
   for (const b of ui.tools) b.setAttribute('aria-checked', String(b.dataset.tool === t));
-  ui.hint.textContent = hintForTool();
+  ui.hint.textContent = TOOL_HINTS[tool];
 }
 
 // ---------------------------------------------------------------- planning
@@ -95,7 +82,7 @@ function scheduleReplan(): void {
     try {
       if (cellsDirty && map) {
         cellsDirty = false;
-        view.updateCells(map.cells());
+        showMap(mask(Layer.Map));
       }
       replan();
     } catch (e) {
@@ -104,11 +91,20 @@ function scheduleReplan(): void {
   });
 }
 
-function updateInflation(opts: Record<string, unknown>): void {
+/** The map's draw list (its layers `layers`: map, inflation, endpoints)
+ *  to the view. */
+function showMap(layers: number): void {
   if (!map) return;
+  const d = map.draw(layers, inflation ?? undefined, start ?? undefined, goal ?? undefined);
+  view.show(new DrawList(d), layers);
+}
+
+/** Recomputes the inflation mask when its inputs changed; says whether. */
+function updateInflation(opts: Record<string, unknown>): boolean {
+  if (!map) return false;
   const r = opts.inflate_m as number;
   const key = `${mapVersion}|${r}|${opts.allow_unknown}`;
-  if (key === inflationKey) return;
+  if (key === inflationKey) return false;
   inflationKey = key;
   inflation = null;
   if (Number.isFinite(r) && r > 0) {
@@ -119,21 +115,20 @@ function updateInflation(opts: Record<string, unknown>): void {
       inflation = null;
     }
   }
+  return true;
 }
 
 function replan(): void {
   if (!map) return;
   const opts = readOptions();
-  updateInflation(opts);
-  view.setEndpoints(start, goal);
-  const empty = { path: null, keyPoints: null, featureNodes: null, inflation };
+  showMap(updateInflation(opts) ? mask(Layer.Goals, Layer.Inflation) : mask(Layer.Goals));
   ui.canvas.dataset.start = start ? start.join(',') : '';
   ui.canvas.dataset.goal = goal ? goal.join(',') : '';
   planSeq += 1;
   ui.body.dataset.planSeq = String(planSeq);
   currentPath = null;
   if (!start || !goal) {
-    view.setLayers(empty);
+    view.show(EMPTY, PLAN_LAYERS);
     player.load(null);
     clearMetrics();
     clearError();
@@ -146,7 +141,7 @@ function replan(): void {
   try {
     planned = session.plan(start, goal, opts, showExpanded(), map);
   } catch (e) {
-    view.setLayers(empty);
+    view.show(EMPTY, PLAN_LAYERS);
     player.load(null);
     clearMetrics();
     ui.canvas.dataset.pathLen = '0';
@@ -160,7 +155,7 @@ function replan(): void {
     const keyPoints = res.keyPoints();
     const featureNodes = res.featureNodes();
     const safety = res.safety();
-    view.setLayers({ path, keyPoints, featureNodes, inflation });
+    view.show(new DrawList(res.draw(map, PLAN_LAYERS)), PLAN_LAYERS);
     player.load(playback);
     clearError();
     ui.body.dataset.state = 'ok';
@@ -198,7 +193,8 @@ function installMap(m: MapHandle, name: string, s: Cell | null, g: Cell | null):
   ui.mapRes.textContent = `${m.resolution} m / cell`;
   ui.body.dataset.mapWidth = String(m.width);
   ui.body.dataset.mapHeight = String(m.height);
-  view.setMap(m.width, m.height, m.cells());
+  inflation = null;
+  view.setMap(new DrawList(m.draw(MAP_LAYERS, undefined, s ?? undefined, g ?? undefined)));
   setTool(s && g ? tool : 'start');
   replan();
 }
@@ -365,7 +361,7 @@ async function boot(): Promise<void> {
   setDefaults(defaultPlanOptions() as Record<string, unknown>);
   applyOptions(getDefaults());
   syncControls();
-  ui.hint.textContent = hintForTool();
+  ui.hint.textContent = TOOL_HINTS[tool];
   // `?scenario=FILE` (+ planner options): a site scenario as a global plan.
   const url = gridUrl();
   if (url.scenario) {
@@ -393,7 +389,7 @@ async function boot(): Promise<void> {
 let corePlanners: CorePlanner[] = [];
 installShell(() => gridHelp(corePlanners));
 
-exposeForTests(player, () => session.rebuilds);
+exposeForTests(player, () => session.rebuilds, view);
 
 boot().catch((e) => {
   showError(`Could not start the playground: ${messageOf(e)}`);

@@ -8,7 +8,8 @@
 import { el } from '../shell/dom';
 import { FrameMeter } from '../shell/frame-meter';
 import type { SearchPlayback } from '../scene/search-player';
-import type { MapView } from './render';
+import type { MapView } from '../scene/grid-view';
+import { Layer } from '../scene/draw';
 
 const ui = {
   play: el<HTMLButtonElement>('play'),
@@ -64,6 +65,7 @@ export class SearchPlayer {
   /** A new recording (null: none), shown played out unless `fromStart`. */
   load(p: SearchPlayback | null, fromStart = false): void {
     this.pause();
+    if (this.p !== p) this.p?.free();
     this.p = p;
     if (p) p.seek(fromStart ? 0 : p.n);
     this.view.setSearch(p);
@@ -153,7 +155,7 @@ export class SearchPlayer {
 
 /** `window.planlabGrid`: the player's state and its frame meter, for the
  *  e2e tests and the README's figures. */
-export function exposeForTests(player: SearchPlayer, rebuilds: () => number): void {
+export function exposeForTests(player: SearchPlayer, rebuilds: () => number, view: MapView): void {
   (window as unknown as Record<string, unknown>).planlabGrid = {
     seek: (k: number) => player.seek(k),
     play: () => player.play(),
@@ -163,5 +165,9 @@ export function exposeForTests(player: SearchPlayer, rebuilds: () => number): vo
     counters: () => player.playback?.counters() ?? null,
     frameStats: () => player.meter.stats(),
     rebuilds,
+    /** The path as the view got it from the core's draw list (m), and
+     *  the map frame it is drawn in. */
+    drawnPath: () => Array.from(view.pointsOf(Layer.GlobalPath) ?? []),
+    mapFrame: () => view.mapFrame,
   };
 }

@@ -6,9 +6,11 @@
 // cells and the lowest path cost. Nothing here plans.
 
 import init, { MapHandle, defaultPlanOptions, gridAlgorithms } from '../../pkg-grid/planlab_wasm.js';
-import { MapView, type Cell } from '../grid/render';
-import { GridSession } from '../grid/planning';
-import { loadPreset, type MapHost } from '../grid/maps';
+import { MAP_LAYERS, MapView, PLAN_LAYERS } from '../scene/grid-view';
+import { DrawList, Layer, mask } from '../scene/draw';
+import type { Cell } from '../shell/cells';
+import { GridSession } from '../scene/grid-session';
+import { loadPreset, type MapHost } from '../shell/grid-maps';
 import type { SearchPlayback } from '../scene/search-player';
 import { GRID_PLANNERS, plannerLabel } from '../shell/grid-planners';
 import { el, errorBanner, messageOf } from '../shell/dom';
@@ -74,7 +76,10 @@ function options(algorithm: string): Record<string, unknown> {
 
 /** Builds the lanes for the chosen planners on the current map. */
 function buildLanes(): void {
-  for (const l of lanes) l.view.setSearch(null);
+  for (const l of lanes) {
+    l.view.setSearch(null);
+    l.playback?.free();
+  }
   lanes = [];
   ui.lanes.replaceChildren();
   if (!map) return;
@@ -85,7 +90,7 @@ function buildLanes(): void {
     root.innerHTML = `<header><b>${plannerLabel(algorithm)}</b><span class="lane-counts">—</span></header><div class="lane-error" hidden></div><div class="lane-canvas"><canvas></canvas></div>`;
     ui.lanes.append(root);
     const view = new MapView(root.querySelector('canvas')!);
-    view.setMap(map.width, map.height, map.cells());
+    view.setMap(new DrawList(map.draw(MAP_LAYERS, undefined, undefined, undefined)));
     const session = new GridSession();
     session.attach(map);
     lanes.push({ algorithm, root, view, session, playback: null, cost: NaN, pathLen: 0, error: null, doneAt: null });
@@ -99,7 +104,9 @@ function replan(): void {
   racing = false;
   frame = 0;
   for (const l of lanes) {
-    l.view.setEndpoints(start, goal);
+    if (map) l.view.show(new DrawList(map.draw(mask(Layer.Goals), undefined, start ?? undefined, goal ?? undefined)), mask(Layer.Goals));
+    l.view.setSearch(null);
+    l.playback?.free();
     l.playback = null;
     l.error = null;
     l.doneAt = null;
@@ -111,7 +118,7 @@ function replan(): void {
         try {
           l.cost = result.cost;
           l.pathLen = result.pathLen;
-          l.view.setLayers({ path: result.path(), keyPoints: null, featureNodes: null, inflation: null });
+          l.view.show(new DrawList(result.draw(map!, PLAN_LAYERS)), PLAN_LAYERS);
         } finally {
           result.free();
         }
@@ -197,14 +204,14 @@ function showTable(): void {
   body.replaceChildren();
   const finished = ui.body.dataset.raceState === 'finished';
   const ok = lanes.filter((l) => l.playback && !l.error);
-  const fewest = Math.min(...ok.map((l) => l.playback!.expandedAt[l.playback!.n]));
+  const fewest = Math.min(...ok.map((l) => l.playback!.counters(l.playback!.n).expanded));
   const cheapest = Math.min(...ok.map((l) => l.cost));
   for (const l of lanes) {
     const tr = body.insertRow();
     tr.dataset.algorithm = l.algorithm;
     const p = l.playback;
     const end = p ? p.counters() : null;
-    const expandedEnd = p ? p.expandedAt[p.n] : NaN;
+    const expandedEnd = p ? p.counters(p.n).expanded : NaN;
     const cells: [string, boolean][] = [
       [plannerLabel(l.algorithm), false],
       [end ? String(end.expanded) : '—', finished && expandedEnd === fewest],
@@ -225,7 +232,7 @@ function showTable(): void {
     return;
   }
   const names = (xs: Lane[]) => xs.map((l) => plannerLabel(l.algorithm)).join(', ');
-  const byExpanded = ok.filter((l) => l.playback!.expandedAt[l.playback!.n] === fewest);
+  const byExpanded = ok.filter((l) => l.playback!.counters(l.playback!.n).expanded === fewest);
   const byCost = ok.filter((l) => Math.abs(l.cost - cheapest) < 1e-9);
   ui.winner.textContent = `Fewest expanded: ${names(byExpanded)} (${fewest}) · Lowest cost: ${names(byCost)} (${cheapest.toFixed(4)})`;
   ui.winner.dataset.expanded = byExpanded.map((l) => l.algorithm).join(',');

@@ -22,12 +22,38 @@ export const Layer = {
   LidarOps: 13,
   LidarCandidates: 14,
   LidarTarget: 15,
+  Inflation: 16,
+  FeatureNodes: 17,
+  SearchCells: 18,
+  SearchLines: 19,
+  SearchCurrent: 20,
+  Field: 21,
+  Obstacles: 22,
+  Predicted: 23,
+  Candidates: 24,
+  Links: 25,
+  Hand: 26,
+  HandPath: 27,
 } as const;
 export type LayerCode = (typeof Layer)[keyof typeof Layer];
-const LAYER_COUNT = 16;
+const LAYER_COUNT = 28;
 
 /** Shape codes (`planlab_core::draw::Shape`). */
-export const Shape = { Polyline: 0, Polygon: 1, Points: 2, Discs: 3, Segments: 4, Cells: 5, Timer: 6 } as const;
+export const Shape = {
+  Polyline: 0,
+  Polygon: 1,
+  Points: 2,
+  Discs: 3,
+  Segments: 4,
+  Cells: 5,
+  Timer: 6,
+  CellPatch: 7,
+  Vectors: 8,
+  Polyline3: 9,
+  Points3: 10,
+  Spheres: 11,
+  Capsules: 12,
+} as const;
 
 /** Numbers per item in `items`: layer, shape, start, end, tag, value. */
 const STRIDE = 6;
@@ -114,10 +140,12 @@ export class DrawList {
   points(i: number): number {
     return (this.stop(i) - this.start(i)) / 2;
   }
-  /** The bytes of a cells item. */
+  /** The bytes of a cells item (one per cell) or a cell patch (one per
+   *  listed index, the indexes being `numbers(i)` from 6 on). */
   cellBytes(i: number): Uint8Array {
     const h = this.numbers(i);
-    return this.cells.subarray(h[5], h[5] + h[0] * h[1]);
+    const n = this.shape(i) === Shape.CellPatch ? h.length - 6 : h[0] * h[1];
+    return this.cells.subarray(h[5], h[5] + n);
   }
   /** The first item of layer `l` with `tag`, or -1. */
   find(l: LayerCode, tag: number): number {

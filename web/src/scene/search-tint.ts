@@ -1,15 +1,17 @@
 // The search layer of a grid view: one pixel per cell in an offscreen
-// canvas, coloured by the playback's cell states. Each frame repaints only
-// the cells the played events touched and uploads only their bounding box,
-// so animating a 512 × 512 search costs the events played, not the map.
+// canvas, coloured by the cell states of the core's SearchCells layer.
+// After the first frame that layer holds only the cells the played events
+// touched, so each frame repaints and uploads only their bounding box:
+// animating a 512 × 512 search costs the events played, not the map.
 
 import { offscreen } from '../shell/cells';
-import { ST, type SearchPlayback } from './search-player';
+import { Layer, Shape, type DrawList } from './draw';
 
-/** Open (green-400) and closed (sky-300) as RGBA; see the legend. */
+/** Open (green-400) and closed (sky-300) as RGBA, by state byte; see the
+ *  legend. */
 export const SEARCH_RGBA: Record<number, [number, number, number, number]> = {
-  [ST.open]: [74, 222, 128, 190],
-  [ST.closed]: [125, 180, 252, 150],
+  1: [74, 222, 128, 190],
+  2: [125, 180, 252, 150],
 };
 
 /** CSS colours of the search overlay (legend, markers, lines). */
@@ -49,28 +51,35 @@ export class SearchTint {
     px[o + 3] = c[3];
   }
 
-  /** Brings the image up to the playback's step; returns the cells painted. */
-  paint(p: SearchPlayback): number {
-    const dirty = p.takeDirty();
-    if (dirty === null) {
-      for (let k = 0; k < this.w * this.h; k++) this.set(k, p.state[k]);
-      this.ctx.putImageData(this.img, 0, 0);
-      return this.w * this.h;
+  /** Paints the SearchCells items of `d`; returns the cells painted. */
+  paint(d: DrawList): number {
+    let n = 0;
+    for (let i = d.first(Layer.SearchCells); i < d.end(Layer.SearchCells); i++) {
+      const bytes = d.cellBytes(i);
+      if (d.shape(i) === Shape.Cells) {
+        for (let k = 0; k < this.w * this.h; k++) this.set(k, bytes[k]);
+        this.ctx.putImageData(this.img, 0, 0);
+        n += bytes.length;
+        continue;
+      }
+      if (!bytes.length) continue;
+      const idx = d.numbers(i);
+      let [c0, r0, c1, r1] = [this.w, this.h, -1, -1];
+      for (let j = 0; j < bytes.length; j++) {
+        const k = idx[6 + j];
+        this.set(k, bytes[j]);
+        const c = k % this.w;
+        const r = (k - c) / this.w;
+        if (c < c0) c0 = c;
+        if (c > c1) c1 = c;
+        if (r < r0) r0 = r;
+        if (r > r1) r1 = r;
+      }
+      // Only the touched box crosses to the canvas.
+      this.ctx.putImageData(this.img, 0, 0, c0, r0, c1 - c0 + 1, r1 - r0 + 1);
+      n += bytes.length;
     }
-    if (!dirty.length) return 0;
-    let [c0, r0, c1, r1] = [this.w, this.h, -1, -1];
-    for (const k of dirty) {
-      this.set(k, p.state[k]);
-      const c = k % this.w;
-      const r = (k - c) / this.w;
-      if (c < c0) c0 = c;
-      if (c > c1) c1 = c;
-      if (r < r0) r0 = r;
-      if (r > r1) r1 = r;
-    }
-    // Only the touched box crosses to the canvas.
-    this.ctx.putImageData(this.img, 0, 0, c0, r0, c1 - c0 + 1, r1 - r0 + 1);
-    return dirty.length;
+    return n;
   }
 
   /** Clears the image (no search shown). */

@@ -40,3 +40,6 @@ export function sizeToBox(canvas: HTMLCanvasElement): [number, number] {
   canvas.height = Math.max(1, Math.round(rect.height * dpr));
   return [rect.width, rect.height];
 }
+
+/** A grid cell as `[col, row]` (row 0 at the top). */
+export type Cell = [number, number];

@@ -1,11 +1,10 @@
 //! The draw list of an episode: its live end ([`episode`]) or a past trace
 //! row ([`trace_frame`]).
 
-use super::{DrawList, Layer, Layers, Shape};
+use super::{grid_frame, DrawList, Layer, Layers, Shape};
 use crate::lidar::fog::SeenCells;
 use crate::lidar::TargetKind;
 use crate::local::{GoalKind, ObstacleClass, Rollout};
-use crate::map::OccupancyGrid;
 use crate::sim::{Episode, TraceStep};
 use crate::world::{Footprint, MoverSpec, RobotState};
 
@@ -74,17 +73,6 @@ fn class_of(classes: &[(u32, ObstacleClass)], id: u32) -> f64 {
         .iter()
         .find(|(i, _)| *i == id)
         .map_or(f64::NAN, |(_, c)| class_code(*c))
-}
-
-fn grid_frame(g: &OccupancyGrid) -> [f64; 5] {
-    let o = g.origin();
-    [
-        g.width() as f64,
-        g.height() as f64,
-        g.resolution(),
-        o.x,
-        o.y,
-    ]
 }
 
 /// The footprint at `s` and its heading line.

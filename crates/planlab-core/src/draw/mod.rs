@@ -15,11 +15,20 @@
 //! each [`Layer`] documents. That crosses the wasm boundary as three typed
 //! arrays ([`DrawList::items_flat`]) whatever the number of rollouts.
 //! [`episode`] builds the list of a running [`crate::sim::Episode`],
-//! [`trace_frame`] the pose, movers and goals of a past trace row.
+//! [`trace_frame`] the pose, movers and goals of a past trace row,
+//! [`grid_plan`] and [`SearchReplay`] a grid plan and its recorded search,
+//! [`apf_run`] a potential-field run and [`arm_episode`] the 7-DOF arm's
+//! episode (in 3D shapes).
 
+mod apf;
+mod arm;
 mod episode;
+mod grid;
 
+pub use apf::{apf_run, from_plane_xy, plane_xy, ApfDraw};
+pub use arm::arm_episode;
 pub use episode::{episode, trace_frame, FanColour, Request};
+pub use grid::{grid_plan, CellInfo, CellState, GridPlanDraw, SearchCounters, SearchReplay};
 
 /// A named group of items a renderer can show or hide as one.
 ///
@@ -34,9 +43,10 @@ pub enum Layer {
     /// Cells the robot's scans have swept (fog of war): one
     /// [`Shape::Cells`] item, bytes 1 seen, 0 not; `value` = seen count.
     Seen,
-    /// The planner's global path: one [`Shape::Polyline`].
+    /// The planner's global path (a grid plan's path): one
+    /// [`Shape::Polyline`], cell centres.
     GlobalPath,
-    /// Key points / feature nodes: one [`Shape::Points`] item.
+    /// Key points: one [`Shape::Points`] item.
     KeyPoints,
     /// The last step's rollouts: a [`Shape::Polyline`] each; `tag` 1
     /// admissible, 0 rejected; `value` what [`Request::fan`] asks for: the
@@ -47,7 +57,8 @@ pub enum Layer {
     /// fan.
     Chosen,
     /// The driven positions from [`Request::trail_from`] on: one
-    /// [`Shape::Polyline`] (a single point when one row is new).
+    /// [`Shape::Polyline`] (a single point when one row is new); an APF
+    /// run's path; the arm's tool path (a [`Shape::Polyline3`]).
     Trail,
     /// Movers now: a [`Shape::Discs`] item each (centre, radius,
     /// velocity); `tag` the mover id, `value` the class the planner gave
@@ -57,9 +68,10 @@ pub enum Layer {
     /// [`Shape::Polygon`], `tag` 0) and its heading (one
     /// [`Shape::Segments`] from the centre to the front edge, `tag` 1).
     Robot,
-    /// Goals, a one-point [`Shape::Points`] item each: `tag` 0 the start,
-    /// 1 the final goal, 2 the goal the last step steered to with `value`
-    /// its kind (0 final, 1 intermediate, 2 virtual, 3 temporary).
+    /// Goals, a one-point [`Shape::Points`] item each (a
+    /// [`Shape::Points3`] for the arm): `tag` 0 the start, 1 the final
+    /// goal, 2 the goal the last step steered to with `value` its kind (0
+    /// final, 1 intermediate, 2 virtual, 3 temporary).
     Goals,
     /// The last scan's beams, sensor to end point (the hit, or the range
     /// limit): [`Shape::Segments`] items, `tag` 0 for beams without a
@@ -81,11 +93,48 @@ pub enum Layer {
     /// `tag` its kind (0 the goal, 1 temporary, 2 held); while a hold runs,
     /// a [`Shape::Timer`] at the robot too.
     LidarTarget,
+    /// Cells free on the map but blocked after inflation: one
+    /// [`Shape::Cells`] item, bytes 1 blocked, 0 not.
+    Inflation,
+    /// Bottom-Up feature nodes: one [`Shape::Points`] item.
+    FeatureNodes,
+    /// A recorded grid search's cell states (bytes 0 unseen, 1 open, 2
+    /// closed): one [`Shape::Cells`] item with them all, or one
+    /// [`Shape::CellPatch`] with the cells changed since the last draw.
+    SearchCells,
+    /// The line checks among the search's last events: a
+    /// [`Shape::Segments`] item each, `tag` 1 clear, 0 blocked.
+    SearchLines,
+    /// The cell the search is expanding: one one-point [`Shape::Points`].
+    SearchCurrent,
+    /// A force field: one [`Shape::Vectors`] item over a lattice, `tag`
+    /// its columns and `value` its rows (row 0 at the bottom).
+    Field,
+    /// Obstacles of a potential field: a [`Shape::Discs`] item each,
+    /// `tag` the id, `value` the range where repulsion ends (m).
+    Obstacles,
+    /// Predicted (virtual) obstacles: a [`Shape::Discs`] item each (a
+    /// [`Shape::Spheres`] in 3D) whose radius is the virtual range; `tag`
+    /// the steps ahead (1, 2).
+    Predicted,
+    /// The last step's sampled candidates: a [`Shape::Segments`] item each
+    /// from the point stepped from (a one-point [`Shape::Points3`] in 3D);
+    /// `tag` 1 for the chosen one, `value` its cost.
+    Candidates,
+    /// The arm's links: a [`Shape::Capsules`] item each, `tag` the link
+    /// index, `value` 1 for the tool (the last).
+    Links,
+    /// The moving hand: its ball ([`Shape::Spheres`]) and forearm
+    /// ([`Shape::Capsules`]).
+    Hand,
+    /// The hand's path: [`Shape::Polyline3`] items, `tag` 0 where it went,
+    /// 1 its scripted motion.
+    HandPath,
 }
 
 impl Layer {
     /// Every layer, in item order.
-    pub const ALL: [Layer; 16] = [
+    pub const ALL: [Layer; 28] = [
         Layer::Map,
         Layer::Seen,
         Layer::GlobalPath,
@@ -102,6 +151,18 @@ impl Layer {
         Layer::LidarOps,
         Layer::LidarCandidates,
         Layer::LidarTarget,
+        Layer::Inflation,
+        Layer::FeatureNodes,
+        Layer::SearchCells,
+        Layer::SearchLines,
+        Layer::SearchCurrent,
+        Layer::Field,
+        Layer::Obstacles,
+        Layer::Predicted,
+        Layer::Candidates,
+        Layer::Links,
+        Layer::Hand,
+        Layer::HandPath,
     ];
 
     /// Kebab-case name (what the page's layer table lists).
@@ -123,8 +184,33 @@ impl Layer {
             Layer::LidarOps => "lidar-ops",
             Layer::LidarCandidates => "lidar-candidates",
             Layer::LidarTarget => "lidar-target",
+            Layer::Inflation => "inflation",
+            Layer::FeatureNodes => "feature-nodes",
+            Layer::SearchCells => "search-cells",
+            Layer::SearchLines => "search-lines",
+            Layer::SearchCurrent => "search-current",
+            Layer::Field => "field",
+            Layer::Obstacles => "obstacles",
+            Layer::Predicted => "predicted",
+            Layer::Candidates => "candidates",
+            Layer::Links => "links",
+            Layer::Hand => "hand",
+            Layer::HandPath => "hand-path",
         }
     }
+}
+
+/// The frame of a [`Shape::Cells`] item of `g`: width, height,
+/// resolution, origin x, origin y (the map's yaw is not drawn).
+pub(crate) fn grid_frame(g: &crate::map::OccupancyGrid) -> [f64; 5] {
+    let o = g.origin();
+    [
+        g.width() as f64,
+        g.height() as f64,
+        g.resolution(),
+        o.x,
+        o.y,
+    ]
 }
 
 /// A set of layers, one bit per [`Layer`] code (`1 << layer as u8`).
@@ -186,6 +272,21 @@ pub enum Shape {
     Cells,
     /// A countdown at a point: `x, y, left (s), period (s)`.
     Timer,
+    /// Some cells of a grid: the [`Shape::Cells`] header, then the
+    /// row-major index of each listed cell; their bytes in
+    /// [`DrawList::cells`] from `first byte` on, one per index.
+    CellPatch,
+    /// Vectors at points: `x, y, vx, vy` each.
+    Vectors,
+    /// An open polyline in space: `x, y, z` per vertex.
+    Polyline3,
+    /// Points in space: `x, y, z` each.
+    Points3,
+    /// Balls: `x, y, z, radius` each.
+    Spheres,
+    /// Capsules (a segment swept by a ball): `ax, ay, az, bx, by, bz,
+    /// radius` each.
+    Capsules,
 }
 
 impl Shape {
@@ -194,9 +295,11 @@ impl Shape {
     pub fn stride(self) -> usize {
         match self {
             Shape::Polyline | Shape::Polygon | Shape::Points => 2,
+            Shape::Polyline3 | Shape::Points3 => 3,
             Shape::Discs => 5,
-            Shape::Segments | Shape::Timer => 4,
-            Shape::Cells => 6,
+            Shape::Segments | Shape::Timer | Shape::Vectors | Shape::Spheres => 4,
+            Shape::Cells | Shape::CellPatch => 6,
+            Shape::Capsules => 7,
         }
     }
 }
@@ -252,14 +355,16 @@ impl DrawList {
         &self.data[item.start..item.end]
     }
 
-    /// A [`Shape::Cells`] item's bytes (empty for other shapes).
+    /// A [`Shape::Cells`] or [`Shape::CellPatch`] item's bytes (empty for
+    /// other shapes).
     pub fn cell_bytes(&self, item: &Item) -> &[u8] {
-        if item.shape != Shape::Cells {
-            return &[];
-        }
         let h = self.numbers(item);
+        let n = match item.shape {
+            Shape::Cells => h[0] as usize * h[1] as usize,
+            Shape::CellPatch => h.len() - 6,
+            _ => return &[],
+        };
         let first = h[5] as usize;
-        let n = h[0] as usize * h[1] as usize;
         &self.cells[first..first + n]
     }
 
@@ -289,6 +394,11 @@ impl DrawList {
         tag: f64,
         value: f64,
     ) {
+        debug_assert!(
+            !matches!(self.items.last(), Some(i) if i.layer as u8 > layer as u8),
+            "items must come in layer order ({} after a later layer)",
+            layer.name()
+        );
         let start = self.data.len();
         self.data.extend(numbers);
         self.items.push(Item {
@@ -321,6 +431,23 @@ impl DrawList {
         let [w, h, res, x, y] = frame;
         self.push(layer, Shape::Cells, [w, h, res, x, y, first], tag, value);
     }
+
+    /// Adds some cells of a grid framed like [`DrawList::grid`]: `patch`
+    /// holds (row-major index, byte) pairs.
+    pub fn patch(&mut self, layer: Layer, frame: [f64; 5], patch: &[(usize, u8)], tag: f64) {
+        let first = self.cells.len() as f64;
+        self.cells.extend(patch.iter().map(|&(_, b)| b));
+        let [w, h, res, x, y] = frame;
+        let head = [w, h, res, x, y, first];
+        let indexes = patch.iter().map(|&(k, _)| k as f64);
+        self.push(
+            layer,
+            Shape::CellPatch,
+            head.into_iter().chain(indexes),
+            tag,
+            0.0,
+        );
+    }
 }
 
 #[cfg(test)]
@@ -343,6 +470,7 @@ mod tests {
     #[test]
     fn items_flatten_with_their_ranges() {
         let mut d = DrawList::default();
+        d.grid(Layer::Map, [2.0, 1.0, 0.5, -1.0, -2.0], &[1, 2], 0.0, 7.0);
         d.points(
             Layer::GlobalPath,
             Shape::Polyline,
@@ -350,15 +478,37 @@ mod tests {
             0.0,
             0.0,
         );
-        d.grid(Layer::Map, [2.0, 1.0, 0.5, -1.0, -2.0], &[1, 2], 0.0, 7.0);
+        d.patch(
+            Layer::SearchCells,
+            [2.0, 1.0, 0.5, -1.0, -2.0],
+            &[(1, 2)],
+            0.0,
+        );
         let flat = d.items_flat();
-        assert_eq!(flat.len(), 2 * ITEM_STRIDE);
-        assert_eq!(&flat[..ITEM_STRIDE], &[2.0, 0.0, 0.0, 4.0, 0.0, 0.0]);
-        assert_eq!(&flat[ITEM_STRIDE..], &[0.0, 5.0, 4.0, 10.0, 0.0, 7.0]);
-        assert_eq!(d.cell_bytes(&d.items[1]), &[1, 2]);
-        assert!(d.cell_bytes(&d.items[0]).is_empty());
-        assert_eq!(d.numbers(&d.items[0]), &[0.0, 1.0, 2.0, 3.0]);
+        assert_eq!(flat.len(), 3 * ITEM_STRIDE);
+        assert_eq!(&flat[..ITEM_STRIDE], &[0.0, 5.0, 0.0, 6.0, 0.0, 7.0]);
+        assert_eq!(
+            &flat[ITEM_STRIDE..2 * ITEM_STRIDE],
+            &[2.0, 0.0, 6.0, 10.0, 0.0, 0.0]
+        );
+        assert_eq!(d.cell_bytes(&d.items[0]), &[1, 2]);
+        assert!(d.cell_bytes(&d.items[1]).is_empty());
+        assert_eq!(d.numbers(&d.items[1]), &[0.0, 1.0, 2.0, 3.0]);
+        // A patch: the header with its first byte, then the indexes.
+        assert_eq!(
+            d.numbers(&d.items[2]),
+            &[2.0, 1.0, 0.5, -1.0, -2.0, 2.0, 1.0]
+        );
+        assert_eq!(d.cell_bytes(&d.items[2]), &[2]);
         d.clear();
         assert!(d.items.is_empty() && d.data.is_empty() && d.cells.is_empty());
+    }
+
+    #[test]
+    #[should_panic(expected = "layer order")]
+    fn an_item_of_an_earlier_layer_after_a_later_one_is_refused() {
+        let mut d = DrawList::default();
+        d.points(Layer::Goals, Shape::Points, &[[0.0, 0.0]], 0.0, 0.0);
+        d.points(Layer::Map, Shape::Points, &[[0.0, 0.0]], 0.0, 0.0);
     }
 }

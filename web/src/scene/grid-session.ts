@@ -10,8 +10,8 @@
 // edited map (through the PlanSession, which has the same edits).
 
 import { DStarSession, PlanSession, type MapHandle, type PlanResult, type RecordedPlan } from '../../pkg-grid/planlab_wasm.js';
-import { SearchPlayback } from '../scene/search-player';
-import type { Cell } from './render';
+import { SearchPlayback } from './search-player';
+import type { Cell } from '../shell/cells';
 
 export interface Planned {
   result: PlanResult;
@@ -37,8 +37,8 @@ const same = (a: Cell, b: Cell) => a[0] === b[0] && a[1] === b[1];
 export class GridSession {
   private s: PlanSession | null = null;
   private d: DStar | null = null;
-  private w = 0;
-  private h = 0;
+  /** The map the session plans on (the page's handle). */
+  private map: MapHandle | null = null;
 
   private dropDStar(): void {
     this.d?.s.free();
@@ -51,13 +51,13 @@ export class GridSession {
     this.s?.free();
     this.dropDStar();
     this.s = new PlanSession(map, undefined);
-    this.w = map.width;
-    this.h = map.height;
+    this.map = map;
   }
 
   /** The map was replaced wholesale (reset edits). */
   reload(map: MapHandle): void {
     this.s?.setMap(map);
+    this.map = map;
     this.dropDStar();
   }
 
@@ -137,7 +137,8 @@ export class GridSession {
     }
     try {
       const weight = opts.algorithm === 'astar' && typeof opts.weight === 'number' ? opts.weight : 1;
-      const playback = new SearchPlayback(this.w, this.h, { kinds: rec.kinds(), cells: rec.cells(), others: rec.others(), g: rec.g(), h: rec.h() }, weight);
+      if (!this.map) throw new Error('no map loaded');
+      const playback = new SearchPlayback(rec.replay(this.map, weight));
       return { result: rec.plan, playback, ms, truncated: rec.truncated };
     } finally {
       rec.free();

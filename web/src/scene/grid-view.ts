@@ -1,24 +1,21 @@
-// Canvas painter for the playground: the map is drawn into an offscreen
-// canvas (one pixel per cell) once per edit, the search into a second one
-// as it plays (only the cells an event touched; scene/search-tint.ts); each
-// frame only scales those two images and strokes the line checks, the
-// current cell and the path on top, so 512×512 maps pan, zoom and animate
-// smoothly. Nothing here plans.
+// Canvas painter of the grid pages, from the core's draw lists: the map
+// (and inflation) is drawn into an offscreen canvas (one pixel per cell)
+// once per edit, the search into a second one as it plays (only the cells
+// the played events touched; search-tint.ts); each frame only scales those
+// two images and strokes the line checks, the current cell, the path, key
+// points, feature nodes and the start and goal on top, all in world metres
+// mapped through the map item's frame, so 512×512 maps pan, zoom and
+// animate smoothly. Nothing here plans.
 
-import { knownBox, offscreen, sizeToBox } from '../shell/cells';
-import type { SearchPlayback } from '../scene/search-player';
-import { SEARCH_CSS, SearchTint } from '../scene/search-tint';
+import { knownBox, offscreen, sizeToBox, type Cell } from '../shell/cells';
+import type { SearchPlayback } from './search-player';
+import { SEARCH_CSS, SearchTint } from './search-tint';
+import { EMPTY, Frame, Layer, mask, type DrawList, type LayerCode } from './draw';
 
-export type Cell = [number, number];
-
-export interface Layers {
-  /** Path cells as col,row pairs. */
-  path: Uint32Array | null;
-  keyPoints: Uint32Array | null;
-  featureNodes: Uint32Array | null;
-  /** 1 = free on the map but blocked after inflation. */
-  inflation: Uint8Array | null;
-}
+/** The layers a grid view shows from the map's and the plan's lists. */
+export const MAP_LAYERS = mask(Layer.Map, Layer.Inflation, Layer.Goals);
+export const PLAN_LAYERS = mask(Layer.GlobalPath, Layer.KeyPoints, Layer.FeatureNodes);
+const SEARCH_LAYERS = mask(Layer.SearchCells, Layer.SearchLines, Layer.SearchCurrent);
 
 export const COLORS = {
   free: [248, 250, 252],
@@ -40,19 +37,24 @@ interface View {
   oy: number;
 }
 
+/** Map frame of a cells item: width, height, resolution, origin x, y. */
+type GridFrame = [number, number, number, number, number];
+
 export class MapView {
   readonly canvas: HTMLCanvasElement;
   private ctx: CanvasRenderingContext2D;
   private w = 0;
   private h = 0;
+  private grid: GridFrame = [0, 0, 1, 0, 0];
   private base: HTMLCanvasElement | null = null;
   private baseCtx: CanvasRenderingContext2D | null = null;
   private tint: SearchTint | null = null;
   private search: SearchPlayback | null = null;
-  private layers: Layers = { path: null, keyPoints: null, featureNodes: null, inflation: null };
+  /** The search layers of the last frame (lines, current cell). */
+  private searchDraw: DrawList = EMPTY;
+  /** Each layer from the draw list that last brought it. */
+  private frame = new Frame();
   private cells: Uint8Array | null = null;
-  private start: Cell | null = null;
-  private goal: Cell | null = null;
   private view: View = { scale: 1, ox: 0, oy: 0 };
   /** The view is the fitted one (no zoom or pan since): refit on resize. */
   private fitted = true;
@@ -79,43 +81,41 @@ export class MapView {
     return this.h;
   }
 
-  /** A new map: rebuild the images and fit it into the view. */
-  setMap(w: number, h: number, cells: Uint8Array): void {
-    this.w = w;
-    this.h = h;
-    [this.base, this.baseCtx] = offscreen(w, h);
-    this.tint = new SearchTint(w, h);
+  /** A new map (a draw list with its Map layer, and any of MAP_LAYERS):
+   *  rebuild the images and fit it into the view. */
+  setMap(d: DrawList): void {
+    const i = d.first(Layer.Map);
+    if (i >= d.end(Layer.Map)) throw new Error('the draw list has no map');
+    const n = d.numbers(i);
+    this.grid = [n[0], n[1], n[2], n[3], n[4]];
+    [this.w, this.h] = [n[0], n[1]];
+    [this.base, this.baseCtx] = offscreen(this.w, this.h);
+    this.tint = new SearchTint(this.w, this.h);
     this.search = null;
-    this.layers = { path: null, keyPoints: null, featureNodes: null, inflation: null };
-    this.start = this.goal = null;
-    this.updateCells(cells);
-    this.known = knownBox(w, h, cells);
+    this.searchDraw = EMPTY;
+    this.frame = new Frame();
+    this.show(d, MAP_LAYERS);
+    this.known = knownBox(this.w, this.h, this.cells!);
     this.fit();
   }
 
-  /** Repaints the map image after an edit. */
-  updateCells(cells: Uint8Array): void {
-    this.cells = cells;
-    this.paintBase();
-    this.request();
-  }
-
-  setEndpoints(start: Cell | null, goal: Cell | null): void {
-    this.start = start;
-    this.goal = goal;
-    this.request();
-  }
-
-  setLayers(layers: Layers): void {
-    const inflationChanged = layers.inflation !== this.layers.inflation;
-    this.layers = layers;
-    if (inflationChanged) this.paintBase();
+  /** Shows the layers `layers` of `d` (the map's: MAP_LAYERS, the plan's:
+   *  PLAN_LAYERS); the map image is repainted when the map or the
+   *  inflation come. */
+  show(d: DrawList, layers: number): void {
+    this.frame.put(d, layers);
+    if (layers & mask(Layer.Map)) {
+      const i = d.first(Layer.Map);
+      this.cells = i < d.end(Layer.Map) ? d.cellBytes(i) : null;
+    }
+    if (layers & mask(Layer.Map, Layer.Inflation)) this.paintBase();
     this.request();
   }
 
   /** The search to show (null: none); the path is drawn once it is played out. */
   setSearch(p: SearchPlayback | null): void {
     this.search = p;
+    this.searchDraw = EMPTY;
     if (!p) this.tint?.clear();
     this.request();
   }
@@ -124,7 +124,11 @@ export class MapView {
    *  animation loop calls this inside its own frame); returns the cells
    *  repainted. */
   drawNow(): number {
-    const n = this.search && this.tint ? this.tint.paint(this.search) : 0;
+    let n = 0;
+    if (this.search && this.tint) {
+      this.searchDraw = this.search.draw(SEARCH_LAYERS);
+      n = this.tint.paint(this.searchDraw);
+    }
     this.draw();
     return n;
   }
@@ -227,7 +231,9 @@ export class MapView {
     const img = this.baseCtx.createImageData(this.w, this.h);
     const px = img.data;
     const cells = this.cells;
-    const infl = this.layers.inflation;
+    const inf = this.frame.of(Layer.Inflation);
+    const ii = inf.first(Layer.Inflation);
+    const infl = ii < inf.end(Layer.Inflation) ? inf.cellBytes(ii) : null;
     const palette = [COLORS.free, COLORS.occupied, COLORS.unknown];
     for (let i = 0; i < cells.length; i++) {
       const col = infl && infl[i] ? COLORS.inflated : palette[cells[i]] ?? COLORS.unknown;
@@ -254,12 +260,32 @@ export class MapView {
     return [this.view.ox + (c + 0.5) * this.view.scale, this.view.oy + (r + 0.5) * this.view.scale];
   }
 
-  private polyline(pairs: Uint32Array, color: string, width: number, dash: number[] = []): void {
-    if (pairs.length < 4) return;
+  /** Canvas (CSS px) point of a world point (m) in the map's frame. */
+  private toScreen(x: number, y: number): [number, number] {
+    const [, h, res, fx, fy] = this.grid;
+    const { scale, ox, oy } = this.view;
+    return [ox + ((x - fx) / res) * scale, oy + (h - (y - fy) / res) * scale];
+  }
+
+  /** The map's frame: width, height, resolution, origin x, y. */
+  get mapFrame(): GridFrame {
+    return this.grid;
+  }
+
+  /** The points of the first item of layer `l` shown (x, y flat, m), or
+   *  null. */
+  pointsOf(l: LayerCode): Float64Array | null {
+    const d = this.frame.of(l);
+    const i = d.first(l);
+    return i < d.end(l) ? d.numbers(i) : null;
+  }
+
+  private polyline(xy: Float64Array, color: string, width: number, dash: number[] = []): void {
+    if (xy.length < 4) return;
     const ctx = this.ctx;
     ctx.beginPath();
-    for (let k = 0; k < pairs.length; k += 2) {
-      const [x, y] = this.centre(pairs[k], pairs[k + 1]);
+    for (let k = 0; k < xy.length; k += 2) {
+      const [x, y] = this.toScreen(xy[k], xy[k + 1]);
       if (k === 0) ctx.moveTo(x, y);
       else ctx.lineTo(x, y);
     }
@@ -294,25 +320,27 @@ export class MapView {
     if (scale >= 9) this.gridLines();
 
     const lw = Math.min(7, Math.max(2.5, scale * 0.4));
-    const L = this.layers;
+    const path = this.pointsOf(Layer.GlobalPath);
+    const keyPoints = this.pointsOf(Layer.KeyPoints);
+    const features = this.pointsOf(Layer.FeatureNodes);
     // Simplified polylines go under the path: where they leave it (the
     // shortcuts) they show; markers are drawn on top afterwards.
     const thin = Math.max(1.5, lw * 0.5);
-    if (L.featureNodes && L.featureNodes.length >= 4) this.polyline(L.featureNodes, COLORS.feature, thin, [6, 4]);
-    if (L.keyPoints && L.keyPoints.length >= 4) this.polyline(L.keyPoints, COLORS.keypoint, thin, [4, 4]);
+    if (features) this.polyline(features, COLORS.feature, thin, [6, 4]);
+    if (keyPoints) this.polyline(keyPoints, COLORS.keypoint, thin, [4, 4]);
     const playing = this.search !== null && !this.search.done;
-    if (playing) this.searchOverlay(this.search!);
-    const pathDrawn = String(L.path !== null && !playing);
+    if (playing) this.searchOverlay();
+    const pathDrawn = String(path !== null && !playing);
     if (this.canvas.dataset.pathDrawn !== pathDrawn) this.canvas.dataset.pathDrawn = pathDrawn;
-    if (L.path && !playing) {
+    if (path && !playing) {
       // White casing keeps the path readable over dark walls and tints.
-      this.polyline(L.path, 'rgba(255,255,255,0.85)', lw + 2.5);
-      this.polyline(L.path, COLORS.path, lw);
+      this.polyline(path, 'rgba(255,255,255,0.85)', lw + 2.5);
+      this.polyline(path, COLORS.path, lw);
     }
-    if (L.featureNodes && L.featureNodes.length >= 4) {
+    if (features && features.length >= 4) {
       const s = Math.min(11, Math.max(7, scale * 0.6));
-      for (let k = 0; k < L.featureNodes.length; k += 2) {
-        const [x, y] = this.centre(L.featureNodes[k], L.featureNodes[k + 1]);
+      for (let k = 0; k < features.length; k += 2) {
+        const [x, y] = this.toScreen(features[k], features[k + 1]);
         ctx.save();
         ctx.translate(x, y);
         ctx.rotate(Math.PI / 4);
@@ -324,10 +352,10 @@ export class MapView {
         ctx.restore();
       }
     }
-    if (L.keyPoints && L.keyPoints.length >= 4) {
+    if (keyPoints && keyPoints.length >= 4) {
       const rad = Math.min(9, Math.max(5, scale * 0.55));
-      for (let k = 0; k < L.keyPoints.length; k += 2) {
-        const [x, y] = this.centre(L.keyPoints[k], L.keyPoints[k + 1]);
+      for (let k = 0; k < keyPoints.length; k += 2) {
+        const [x, y] = this.toScreen(keyPoints[k], keyPoints[k + 1]);
         ctx.beginPath();
         ctx.arc(x, y, rad, 0, Math.PI * 2);
         ctx.fillStyle = '#fff';
@@ -337,28 +365,33 @@ export class MapView {
         ctx.stroke();
       }
     }
-    this.marker(this.start, COLORS.start, 'S');
-    this.marker(this.goal, COLORS.goal, 'G');
+    const goals = this.frame.of(Layer.Goals);
+    for (let i = goals.first(Layer.Goals); i < goals.end(Layer.Goals); i++) {
+      const [x, y] = this.toScreen(goals.data[goals.start(i)], goals.data[goals.start(i) + 1]);
+      const start = goals.tag(i) === 0;
+      this.marker(x, y, start ? COLORS.start : COLORS.goal, start ? 'S' : 'G');
+    }
   }
 
   /** Line checks of the last events (blocked ones red) and the cell being
    *  expanded, while the search plays. */
-  private searchOverlay(p: SearchPlayback): void {
+  private searchOverlay(): void {
     const ctx = this.ctx;
-    const lines = p.recentLines(48);
+    const d = this.searchDraw;
     ctx.lineWidth = Math.min(3, Math.max(1, this.view.scale * 0.15));
-    for (const [c0, r0, c1, r1, clear] of lines) {
-      const [x0, y0] = this.centre(c0, r0);
-      const [x1, y1] = this.centre(c1, r1);
+    for (let i = d.first(Layer.SearchLines); i < d.end(Layer.SearchLines); i++) {
+      const s = d.numbers(i);
       ctx.beginPath();
-      ctx.moveTo(x0, y0);
-      ctx.lineTo(x1, y1);
-      ctx.strokeStyle = clear ? SEARCH_CSS.lineClear : SEARCH_CSS.lineBlocked;
+      for (let j = 0; j + 3 < s.length; j += 4) {
+        ctx.moveTo(...this.toScreen(s[j], s[j + 1]));
+        ctx.lineTo(...this.toScreen(s[j + 2], s[j + 3]));
+      }
+      ctx.strokeStyle = d.tag(i) ? SEARCH_CSS.lineClear : SEARCH_CSS.lineBlocked;
       ctx.stroke();
     }
-    const cur = p.expanding();
-    if (cur) {
-      const [x, y] = this.centre(cur[0], cur[1]);
+    const c = d.first(Layer.SearchCurrent);
+    if (c < d.end(Layer.SearchCurrent)) {
+      const [x, y] = this.toScreen(d.data[d.start(c)], d.data[d.start(c) + 1]);
       const s = Math.max(7, this.view.scale);
       ctx.fillStyle = SEARCH_CSS.current;
       ctx.fillRect(x - s / 2, y - s / 2, s, s);
@@ -388,10 +421,8 @@ export class MapView {
     ctx.stroke();
   }
 
-  private marker(cell: Cell | null, color: string, label: string): void {
-    if (!cell) return;
+  private marker(x: number, y: number, color: string, label: string): void {
     const ctx = this.ctx;
-    const [x, y] = this.centre(cell[0], cell[1]);
     const rad = this.markerRadius();
     ctx.beginPath();
     ctx.arc(x, y, rad, 0, Math.PI * 2);

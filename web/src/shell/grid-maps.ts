@@ -7,7 +7,7 @@
 import { MapHandle, ScenarioHandle, rosImageName } from '../../pkg-grid/planlab_wasm.js';
 import { checkSizes, fetchBytes, fetchText } from '../shell/scenario-files';
 import { messageOf } from '../shell/dom';
-import type { Cell } from './render';
+import type { Cell } from './cells';
 
 interface Preset {
   name: string;
