@@ -265,3 +265,274 @@ fn set_predictor(tree: &mut Value, p: ArmPredictor) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::ArmScenario;
+
+    const ROBOT: &str = include_str!("../../../assets/scenarios/T-fig3-2.json");
+    const ARM: &str = include_str!("../../../assets/scenarios/T-tab5-3.json");
+
+    fn no_files(_: &str) -> Result<Vec<u8>, String> {
+        Err("inline maps only".into())
+    }
+
+    fn edits(set: &[(&str, &str)]) -> Vec<(String, String)> {
+        set.iter()
+            .map(|(p, v)| (p.to_string(), v.to_string()))
+            .collect()
+    }
+
+    fn tree(text: &str) -> Value {
+        serde_json::from_str(text).unwrap()
+    }
+
+    fn robot(r: &Recipe, text: &str) -> crate::scenario::Scenario {
+        match r.apply(text, &mut no_files).unwrap().scenario {
+            AnyScenario::Robot(s) => s,
+            other => panic!("not a robot scenario: {other:?}"),
+        }
+    }
+
+    fn arm(r: &Recipe, text: &str) -> ArmScenario {
+        match r.apply(text, &mut no_files).unwrap().scenario {
+            AnyScenario::Arm(s) => s,
+            other => panic!("not an arm scenario: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_planner_comes_first_then_the_seed_then_the_set_edits() {
+        // A `set` of the new planner's config survives the planner swap
+        // (which resets the config), and a `set` of the seed beats `seed`.
+        let r = Recipe {
+            planner: Some("dwa".into()),
+            seed: Some(5),
+            set: edits(&[
+                ("local_planner.config.alpha", "0.3"),
+                (" seed ", "9"),
+                ("sim.dt", "0.05"),
+                ("sim.dt", "0.08"),
+            ]),
+            variant: None,
+        };
+        let s = robot(&r, ROBOT);
+        let lp = s.local_planner.unwrap();
+        assert_eq!(lp.name, "dwa");
+        assert_eq!(lp.config, serde_json::json!({"alpha": 0.3}));
+        assert_eq!(s.seed, Some(9));
+        assert_eq!(s.sim.unwrap().dt, 0.08);
+        // The planner the scenario already has keeps its tuning.
+        let mut own = tree(ROBOT);
+        set_json_path(&mut own, "local_planner.config", r#"{"alpha": 0.2}"#).unwrap();
+        let r = Recipe {
+            planner: Some("improved-dwa".into()),
+            ..Recipe::default()
+        };
+        r.edit_tree(&mut own).unwrap();
+        assert_eq!(
+            own["local_planner"],
+            serde_json::json!({"name": "improved-dwa", "config": {"alpha": 0.2}})
+        );
+    }
+
+    #[test]
+    fn an_empty_recipe_leaves_the_document_as_written() {
+        let r = Recipe::from_json("{}").unwrap();
+        assert!(r.is_empty());
+        assert_eq!(r.edit_text(ROBOT).unwrap(), ROBOT);
+        assert_eq!(
+            r.apply(ROBOT, &mut no_files).unwrap().scenario,
+            AnyScenario::from_json(ROBOT).unwrap()
+        );
+        let r = Recipe::from_json(r#"{"planner": null, "set": [["seed", "3"]]}"#).unwrap();
+        let edited = r.edit_text(ROBOT).unwrap();
+        assert_eq!(tree(&edited)["seed"], 3);
+    }
+
+    #[test]
+    fn bad_edits_are_typed_one_line_errors() {
+        let r = Recipe {
+            set: edits(&[("movers.99.radius", "0.5")]),
+            ..Recipe::default()
+        };
+        let e = r.apply(ROBOT, &mut no_files).unwrap_err();
+        assert!(
+            matches!(e, RecipeError::Edit(ScenarioError::Invalid(_))),
+            "{e:?}"
+        );
+        let msg = e.to_string();
+        assert!(
+            msg.ends_with("--set movers.99.radius: `movers` has 0 entries: no index 99"),
+            "{msg}"
+        );
+        assert!(!msg.contains('\n'), "{msg}");
+        // A value the document refuses is the document's error, after edits.
+        let r = Recipe {
+            set: edits(&[("sim.dt", "-1")]),
+            ..Recipe::default()
+        };
+        let e = r.apply(ROBOT, &mut no_files).unwrap_err();
+        assert!(matches!(e, RecipeError::Document(_)), "{e:?}");
+        assert!(!e.to_string().contains('\n'), "{e}");
+        // An unknown predictor, a malformed recipe.
+        let r = Recipe {
+            planner: Some("psychic".into()),
+            ..Recipe::default()
+        };
+        let e = r.apply(ARM, &mut no_files).unwrap_err();
+        assert!(matches!(e, RecipeError::Predictor(_)), "{e:?}");
+        assert!(e.to_string().contains("unknown predictor `psychic`"), "{e}");
+        let e = Recipe::from_json(r#"{"planer": "dwa"}"#).unwrap_err();
+        assert!(
+            e.to_string().starts_with("edits: unknown field `planer`"),
+            "{e}"
+        );
+    }
+
+    /// The arm scenario parsed from `text`, then `p` applied to the parsed
+    /// config: what `planlab run --planner` and Python did before the
+    /// recipe.
+    fn struct_way(text: &str, p: ArmPredictor) -> ArmScenario {
+        let mut s = ArmScenario::from_value(&tree(text)).unwrap();
+        p.apply(&mut s.arm.apf);
+        s
+    }
+
+    #[test]
+    fn the_arm_predictor_in_the_tree_parses_as_the_struct_edit_gives() {
+        // The preset (mode and predictor written), a section without a
+        // mode, another mode, and no `apf` section at all (the arm's own
+        // default, whose robot radius a bare APF config lacks).
+        let mut variants = vec![ARM.to_string()];
+        for (path, value) in [
+            ("arm.apf", r#"{"robot_radius": 0.05}"#),
+            ("arm.apf.mode", "sampling"),
+            ("arm.apf.mode", "basic"),
+        ] {
+            let mut t = tree(ARM);
+            set_json_path(&mut t, path, value).unwrap();
+            variants.push(t.to_string());
+        }
+        let mut t = tree(ARM);
+        t["arm"].as_object_mut().unwrap().remove("apf");
+        variants.push(t.to_string());
+        for text in &variants {
+            for p in ArmPredictor::ALL {
+                let r = Recipe {
+                    planner: Some(p.name().into()),
+                    ..Recipe::default()
+                };
+                assert_eq!(arm(&r, text), struct_way(text, p), "{} on {text}", p.name());
+            }
+        }
+    }
+
+    #[test]
+    fn the_arm_predictor_writes_what_reproduce_wrote() {
+        // The edits the reproductions applied to the preset's tree before
+        // the recipe (its `apf` section names mode and predictor).
+        let cases = [
+            ("none", "sampling", "constant-velocity"),
+            (
+                "constant-velocity",
+                "sampling-prediction",
+                "constant-velocity",
+            ),
+            ("cv", "sampling-prediction", "constant-velocity"),
+            ("rnn", "sampling-prediction", "rnn"),
+        ];
+        for (name, mode, predictor) in cases {
+            let mut t = tree(ARM);
+            Recipe {
+                planner: Some(name.into()),
+                ..Recipe::default()
+            }
+            .edit_tree(&mut t)
+            .unwrap();
+            assert_eq!(t["arm"]["apf"]["mode"], mode, "{name}");
+            assert_eq!(t["arm"]["apf"]["predictor"], predictor, "{name}");
+            assert_eq!(t["arm"]["apf"]["robot_radius"], 0.04, "{name}");
+        }
+        // The predictor is applied after the `set` edits, so it wins.
+        let r = Recipe {
+            planner: Some("rnn".into()),
+            set: edits(&[("arm.apf.mode", "basic"), ("arm.hand.speed", "2")]),
+            ..Recipe::default()
+        };
+        let s = arm(&r, ARM);
+        assert_eq!(ArmPredictor::of(&s.arm.apf), ArmPredictor::Rnn);
+        assert_eq!(
+            serde_json::to_value(&s.arm.hand).unwrap()["speed"],
+            serde_json::json!(2.0)
+        );
+        // It never touches a local planner.
+        let mut t = tree(ARM);
+        r.edit_tree(&mut t).unwrap();
+        assert!(t.get("local_planner").is_none());
+    }
+
+    #[test]
+    fn a_variant_is_the_batch_row_with_the_planner_swapped_in() {
+        let set = edits(&[("sim.max_time", "30")]);
+        let r = Recipe {
+            planner: Some("dwa".into()),
+            seed: Some(7),
+            set: set.clone(),
+            variant: Some(VariantPick {
+                index: 3,
+                jitter: 0.3,
+            }),
+        };
+        let done = r.apply(ROBOT, &mut no_files).unwrap();
+        let AnyScenario::Robot(got) = &done.scenario else {
+            panic!("{:?}", done.scenario.kind())
+        };
+        // By hand: the `set` edits, the batch's variant 3 of seed 7, then
+        // the planner as `planlab batch` runs it.
+        let mut t = tree(ROBOT);
+        set_json_path(&mut t, "sim.max_time", "30").unwrap();
+        let base = crate::scenario::Scenario::from_value(&t).unwrap();
+        let grid = base.inline_grid().unwrap().unwrap();
+        let mut want = batch::variant(&base, &grid, 3, 7, 0.3).unwrap();
+        want.local_planner = Some(batch::choice_for(
+            base.local_planner.as_ref().unwrap(),
+            "dwa",
+        ));
+        assert_eq!(got, &want);
+        assert_eq!(got.seed, Some(batch::variant_seed(7, 3)));
+        assert_ne!(got.start, base.start);
+        assert_eq!(done.grid, Some(grid));
+
+        let far = Recipe {
+            variant: Some(VariantPick {
+                index: MAX_VARIANTS,
+                jitter: 0.0,
+            }),
+            ..Recipe::default()
+        };
+        assert_eq!(
+            far.apply(ROBOT, &mut no_files).unwrap_err(),
+            RecipeError::VariantTooLarge(MAX_VARIANTS)
+        );
+        let zero = Recipe {
+            variant: Some(VariantPick {
+                index: 0,
+                jitter: 0.0,
+            }),
+            ..Recipe::default()
+        };
+        let e = zero.apply(ARM, &mut no_files).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "--variant: arm scenarios have no batch variants"
+        );
+        let mut t = tree(ROBOT);
+        assert_eq!(
+            zero.edit_tree(&mut t).unwrap_err(),
+            RecipeError::VariantOnTree
+        );
+        assert_eq!(t, tree(ROBOT));
+    }
+}

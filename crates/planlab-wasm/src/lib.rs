@@ -148,6 +148,15 @@ pub fn ros_image_name(yaml: &str) -> Result<String, JsError> {
     Ok(ros::parse_yaml(yaml)?.image)
 }
 
+/// The scenario JSON `text` with a run link's edits applied by the core's
+/// `Recipe` (`recipe` is its JSON form, `{"planner": "dwa", "set":
+/// [["sim.dt", "0.05"]]}`), as `planlab run` applies them; `text` itself
+/// when there are none.
+#[wasm_bindgen(js_name = editScenario)]
+pub fn edit_scenario(text: &str, recipe: &str) -> Result<String, JsError> {
+    Ok(planlab_core::recipe::Recipe::from_json(recipe)?.edit_text(text)?)
+}
+
 /// One occupancy grid, owned on the wasm side.
 #[wasm_bindgen]
 #[derive(Clone, Debug)]
