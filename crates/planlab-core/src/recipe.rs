@@ -240,7 +240,7 @@ fn set_predictor(tree: &mut Value, p: ArmPredictor) {
     let Some(apf) = arm.get("apf") else {
         let mut cfg = arm_apf_default();
         p.apply(&mut cfg);
-        if let Ok(v) = serde_json::to_value(&cfg) {
+        if let Ok(v) = serde_json::to_value(cfg) {
             arm.insert("apf".into(), v);
         }
         return;
@@ -248,7 +248,7 @@ fn set_predictor(tree: &mut Value, p: ArmPredictor) {
     let Ok(before) = ApfConfig::deserialize(apf) else {
         return;
     };
-    let mut after = before.clone();
+    let mut after = before;
     p.apply(&mut after);
     let Some(apf) = arm.get_mut("apf").and_then(Value::as_object_mut) else {
         return;
