@@ -4,13 +4,11 @@
 use std::path::Path;
 
 use planlab_core::apf::{AnyApfRun, ApfMetrics};
-use planlab_core::arm::ArmPredictor;
 use planlab_core::map::OccupancyGrid;
 use planlab_core::metrics::EpisodeMetrics;
 use planlab_core::planners;
-use planlab_core::scenario::{
-    set_json_path, set_planner_name, AnyRun, AnyScenario, FinishedRun, ScenarioError, ScenarioKind,
-};
+use planlab_core::recipe::{Recipe, RecipeError, VariantPick};
+use planlab_core::scenario::{AnyRun, AnyScenario, FinishedRun, ScenarioKind};
 use planlab_core::sim::Episode;
 use serde::Serialize;
 
@@ -59,96 +57,52 @@ struct RunReport<'a> {
     metrics: &'a EpisodeMetrics,
 }
 
-/// Reads the scenario at `path` (text `text`) with the planner, seed and
-/// `--set` edits applied to its JSON tree, and its map (none for an arm
-/// scenario). An arm scenario's `--planner` is its hand predictor, set on
-/// the parsed scenario.
+/// Reads the scenario at `path` (text `text`) with the run's edits applied
+/// by the core's [`Recipe`] (planner, seed, `--set`, `--variant`, an arm
+/// scenario's predictor), and its map (none for an arm scenario).
 fn edited_scenario(
     path: &Path,
     text: &str,
     args: &RunArgs<'_>,
 ) -> Result<(AnyScenario, Option<OccupancyGrid>), String> {
     let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-    let mut tree: serde_json::Value =
-        serde_json::from_str(text).map_err(|e| at(&ScenarioError::from(e)))?;
-    let arm = ScenarioKind::of(&tree) == ScenarioKind::Arm;
-    if let (Some(p), false) = (args.planner, arm) {
-        set_planner_name(&mut tree, p).map_err(|e| at(&e))?;
-    }
-    if let Some(seed) = args.seed {
-        set_json_path(&mut tree, "seed", &seed.to_string()).map_err(|e| at(&e))?;
-    }
-    let like = if arm {
+    let kind = serde_json::from_str::<serde_json::Value>(text)
+        .map_or(ScenarioKind::Robot, |tree| ScenarioKind::of(&tree));
+    let like = if kind == ScenarioKind::Arm {
         "arm.hand.speed=2"
     } else {
         "sim.dt=0.05"
     };
+    let mut set = Vec::with_capacity(args.set.len());
     for edit in args.set {
         let Some((key, value)) = edit.split_once('=') else {
             return Err(format!("--set {edit}: expected PATH=VALUE, like {like}"));
         };
-        set_json_path(&mut tree, key.trim(), value).map_err(|e| at(&e))?;
+        set.push((key.to_string(), value.to_string()));
     }
+    let recipe = Recipe {
+        planner: args.planner.map(str::to_string),
+        seed: args.seed,
+        set,
+        variant: args
+            .variant
+            .map(|(index, jitter)| VariantPick { index, jitter }),
+    };
     // Errors in an edited tree point at lines of the re-written text, so
-    // say so when edits were made (an arm file is always read as a tree).
-    let edited = args.planner.is_some() || args.seed.is_some() || !args.set.is_empty();
-    let mut scenario = if edited {
-        AnyScenario::from_value(&tree)
-    } else {
-        AnyScenario::from_json(text)
-    }
-    .map_err(|e| {
-        if arm || !edited {
-            at(&e)
-        } else {
-            format!("{} (after --planner/--seed/--set): {e}", path.display())
-        }
-    })?;
-    if let (Some(p), AnyScenario::Arm(s)) = (args.planner, &mut scenario) {
-        let p = ArmPredictor::parse(p).map_err(|e| at(&e))?;
-        p.apply(&mut s.arm.apf);
-    }
-    let grid = scenario
-        .load_grid(&mut load::map_reader(path))
-        .map_err(|e| at(&e))?;
-    Ok((scenario, grid))
-}
-
-/// Variant `k` of `planlab batch SCENARIO --seed S --jitter J`, built the
-/// way the batch builds it (from the scenario with the `--set` edits, the
-/// planner swapped in afterwards), so a CSV row's trace is reproduced.
-fn batch_variant(
-    path: &Path,
-    text: &str,
-    args: &RunArgs<'_>,
-    k: u32,
-    jitter: f64,
-) -> Result<(AnyScenario, Option<OccupancyGrid>), String> {
-    if k >= planlab_core::batch::MAX_VARIANTS {
-        return Err(format!(
-            "--variant {k}: must be below {}",
-            planlab_core::batch::MAX_VARIANTS
-        ));
-    }
-    let base_args = RunArgs {
-        planner: None,
-        seed: None,
-        ..*args
-    };
-    let (base, grid) = edited_scenario(path, text, &base_args)?;
-    let (AnyScenario::Robot(base), Some(grid)) = (&base, grid) else {
-        return Err(format!(
-            "--variant: {} scenarios have no batch variants",
-            base.kind().name()
-        ));
-    };
-    let mut s = planlab_core::batch::variant(base, &grid, k, args.seed.unwrap_or(0), jitter)
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    if let Some(name) = args.planner {
-        let own = base.local_planner.clone().unwrap_or_default();
-        s.local_planner = Some(planlab_core::batch::choice_for(&own, name));
-    }
-    Ok((AnyScenario::Robot(s), Some(grid)))
+    // say so when edits were made (an arm file is always read as a tree;
+    // a variant is drawn from the file with the `--set` edits only).
+    let edited = !args.set.is_empty()
+        || (args.variant.is_none() && (args.planner.is_some() || args.seed.is_some()));
+    let done = recipe
+        .apply(text, &mut load::map_reader(path))
+        .map_err(|e| match e {
+            RecipeError::NoVariants(_) | RecipeError::VariantTooLarge(_) => e.to_string(),
+            RecipeError::Document(_) if edited && kind != ScenarioKind::Arm => {
+                format!("{} (after --planner/--seed/--set): {e}", path.display())
+            }
+            e => at(&e),
+        })?;
+    Ok((done.scenario, done.grid))
 }
 
 /// What `planlab run --json` prints for a scenario with an `apf` section.
@@ -238,15 +192,7 @@ pub fn apf_metrics_table(m: &ApfMetrics) -> String {
 pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
     let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
     let text = load::read_text(path)?;
-    let kind = serde_json::from_str::<serde_json::Value>(&text)
-        .map_or(ScenarioKind::Robot, |tree| ScenarioKind::of(&tree));
-    let (scenario, grid) = match args.variant {
-        None => edited_scenario(path, &text, args)?,
-        Some(_) if kind == ScenarioKind::Arm => {
-            return Err("--variant: arm scenarios have no batch variants".into())
-        }
-        Some((k, jitter)) => batch_variant(path, &text, args, k, jitter)?,
-    };
+    let (scenario, grid) = edited_scenario(path, &text, args)?;
     let done = scenario
         .start(grid)
         .and_then(AnyRun::run)

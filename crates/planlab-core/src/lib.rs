@@ -44,6 +44,8 @@
 //! - [`scenario`]: the scenario files of every kind and the one way from a
 //!   file to a finished run.
 //! - [`batch`]: seeded variants of a scenario and per-planner statistics.
+//! - [`recipe`]: the one edit recipe (planner, seed, `--set` edits, batch
+//!   variant, arm predictor) every front end applies to a scenario.
 //! - [`reproduce`]: the papers' experiments: presets, clauses, families,
 //!   verdicts (§reproduce).
 //! - [`bench`](mod@bench): the benchmark scenes shared by the CLI and the page.
@@ -63,6 +65,7 @@ pub mod metrics;
 pub mod num;
 pub mod params;
 pub mod planners;
+pub mod recipe;
 pub mod reproduce;
 pub mod scenario;
 pub mod sim;

@@ -29,6 +29,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("metrics, draw", &["metrics", "draw"]),
     ("scenario", &["scenario"]),
     ("batch", &["batch"]),
+    ("recipe", &["recipe"]),
     ("reproduce, bench", &["reproduce", "bench"]),
 ];
 

@@ -16,7 +16,6 @@ use std::sync::{Mutex, MutexGuard, OnceLock};
 
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
-use planlab_core::arm::ArmPredictor;
 use planlab_core::batch;
 use planlab_core::global::plan::{
     plan_on_map, plan_on_plan_grid, Algorithm, GridPlanError, GridPlanOptions, GridPlanOverrides,
@@ -26,11 +25,9 @@ use planlab_core::lidar::{Lidar, LidarConfig};
 use planlab_core::map::{Cell, OccupancyGrid, Pose2, MAX_CELLS};
 use planlab_core::metrics::EpisodeMetrics;
 use planlab_core::planners;
+use planlab_core::recipe::Recipe;
 use planlab_core::reproduce::{self, Experiment, RunMetrics};
-use planlab_core::scenario::{
-    set_json_path, set_planner_name, AnyRun, AnyScenario, FinishedRun, Scenario as CoreScenario,
-    ScenarioKind,
-};
+use planlab_core::scenario::{AnyRun, AnyScenario, FinishedRun, Scenario as CoreScenario};
 use planlab_core::sim::{Column, Episode as CoreEpisode, Outcome, Trace};
 use planlab_core::text::one_line;
 use planlab_core::world::Command;
@@ -437,18 +434,6 @@ struct Scenario {
 
 /// Options of a run or an episode: `planlab run`'s `--planner`, `--seed`,
 /// `--set`.
-struct Edits<'a> {
-    planner: Option<&'a str>,
-    seed: Option<u64>,
-    set: Vec<(String, String)>,
-}
-
-impl Edits<'_> {
-    fn none(&self) -> bool {
-        self.planner.is_none() && self.seed.is_none() && self.set.is_empty()
-    }
-}
-
 fn set_edits(set: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, String)>> {
     let mut out = Vec::new();
     if let Some(d) = set {
@@ -484,34 +469,16 @@ impl Scenario {
         Ok(Scenario { tree, dir, parsed })
     }
 
-    /// The scenario with the edits applied (as `planlab run` applies them)
-    /// and its loaded map.
-    fn edited(&self, e: &Edits<'_>) -> PyResult<(AnyScenario, Option<OccupancyGrid>)> {
-        let scenario = if e.none() {
-            self.parsed.clone()
-        } else {
-            let mut tree = self.tree.clone();
-            let arm = ScenarioKind::of(&tree) == ScenarioKind::Arm;
-            if let (Some(p), false) = (e.planner, arm) {
-                set_planner_name(&mut tree, p).map_err(err::<ScenarioError>)?;
-            }
-            if let Some(seed) = e.seed {
-                set_json_path(&mut tree, "seed", &seed.to_string())
-                    .map_err(err::<ScenarioError>)?;
-            }
-            for (k, v) in &e.set {
-                set_json_path(&mut tree, k.trim(), v).map_err(err::<ScenarioError>)?;
-            }
-            let mut s = AnyScenario::from_value(&tree).map_err(err::<ScenarioError>)?;
-            if let (Some(p), AnyScenario::Arm(a)) = (e.planner, &mut s) {
-                ArmPredictor::parse(p)
-                    .map_err(err::<ScenarioError>)?
-                    .apply(&mut a.arm.apf);
-            }
-            s
-        };
-        let grid = self.load_grid(&scenario)?;
-        Ok((scenario, grid))
+    /// The scenario with `recipe` applied (the core's, as `planlab run`
+    /// applies it) and its loaded map.
+    fn edited(&self, recipe: &Recipe) -> PyResult<(AnyScenario, Option<OccupancyGrid>)> {
+        let dir = &self.dir;
+        let done = recipe
+            .apply_tree(&self.tree, &mut |rel: &str| {
+                planlab_files::read_map_file(&dir.join(rel))
+            })
+            .map_err(err::<ScenarioError>)?;
+        Ok((done.scenario, done.grid))
     }
 
     fn load_grid(&self, s: &AnyScenario) -> PyResult<Option<OccupancyGrid>> {
@@ -624,12 +591,13 @@ impl Scenario {
         seed: Option<u64>,
         set: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let edits = Edits {
-            planner,
+        let recipe = Recipe {
+            planner: planner.map(str::to_string),
             seed,
             set: set_edits(set)?,
+            variant: None,
         };
-        let (scenario, grid) = self.edited(&edits)?;
+        let (scenario, grid) = self.edited(&recipe)?;
         // Other Python threads run meanwhile.
         let done = py
             .detach(|| scenario.start(grid).and_then(AnyRun::run))
@@ -674,12 +642,13 @@ impl Scenario {
         set: Option<&Bound<'_, PyDict>>,
         lidar: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Episode> {
-        let edits = Edits {
-            planner,
+        let recipe = Recipe {
+            planner: planner.map(str::to_string),
             seed,
             set: set_edits(set)?,
+            variant: None,
         };
-        let (scenario, grid) = self.edited(&edits)?;
+        let (scenario, grid) = self.edited(&recipe)?;
         let AnyScenario::Robot(s) = &scenario else {
             return Err(err::<ScenarioError>(format!(
                 "{} scenarios run whole (Scenario.run); only robot episodes step",

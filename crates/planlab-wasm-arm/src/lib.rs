@@ -50,6 +50,15 @@ pub fn arm_choices() -> String {
     .unwrap_or_default()
 }
 
+/// The scenario JSON `text` with a run link's edits applied by the core's
+/// `Recipe` (`recipe` is its JSON form, `{"planner": "dwa", "set":
+/// [["sim.dt", "0.05"]]}`), as `planlab run` applies them; `text` itself
+/// when there are none.
+#[wasm_bindgen(js_name = editScenario)]
+pub fn edit_scenario(text: &str, recipe: &str) -> Result<String, JsError> {
+    Ok(planlab_core::recipe::Recipe::from_json(recipe)?.edit_text(text)?)
+}
+
 fn push3(out: &mut Vec<f32>, p: [f64; 3]) {
     out.extend(p.iter().map(|&x| x as f32));
 }

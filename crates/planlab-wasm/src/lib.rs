@@ -62,7 +62,7 @@ pub use dstar::{grid_algorithms, DStarSession};
 #[cfg(feature = "arm")]
 pub use planlab_wasm_arm as arm;
 #[cfg(feature = "arm")]
-pub use planlab_wasm_arm::{arm_choices, ArmHandle};
+pub use planlab_wasm_arm::{arm_choices, edit_scenario, ArmHandle};
 /// The reproduce registry's variants, from their own crate (the pages load
 /// that crate's module only for a variant link; the playground pages build
 /// this crate without the feature).
@@ -158,6 +158,17 @@ pub fn default_plan_options() -> Result<JsValue, JsError> {
 #[wasm_bindgen(js_name = rosImageName)]
 pub fn ros_image_name(yaml: &str) -> Result<String, JsError> {
     Ok(ros::parse_yaml(yaml)?.image)
+}
+
+/// The scenario JSON `text` with a run link's edits applied by the core's
+/// `Recipe` (`recipe` is its JSON form, `{"planner": "dwa", "set":
+/// [["sim.dt", "0.05"]]}`), as `planlab run` applies them; `text` itself
+/// when there are none. With the `arm` feature it is the arm crate's (one
+/// export of the name per module).
+#[cfg(all(feature = "robot", not(feature = "arm")))]
+#[wasm_bindgen(js_name = editScenario)]
+pub fn edit_scenario(text: &str, recipe: &str) -> Result<String, JsError> {
+    Ok(planlab_core::recipe::Recipe::from_json(recipe)?.edit_text(text)?)
 }
 
 /// One occupancy grid, owned on the wasm side.

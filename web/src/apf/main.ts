@@ -5,8 +5,8 @@
 // directions and the chosen one, and the path. Goal drags, variant and
 // predictor go to the handle as edits; this file computes no forces.
 
-import init, { ApfHandle } from '../../pkg/planlab_wasm.js';
-import { applyRun, runParams, variantParams } from '../shell/runlink';
+import init, { ApfHandle, editScenario } from '../../pkg/planlab_wasm.js';
+import { recipeJson, runParams, variantParams } from '../shell/runlink';
 import { loadVariant } from '../shell/variant';
 import { installShell } from '../shell/help';
 import { installLegend } from '../shell/legend';
@@ -160,7 +160,7 @@ async function main(): Promise<void> {
   } catch (e) {
     variantError = e;
   }
-  if (!variant) await load(ui.preset.value, sc ? (t) => applyRun(t, null, link.set) : undefined);
+  if (!variant) await load(ui.preset.value, sc ? (t) => editScenario(t, recipeJson(null, link.set)) : undefined);
   if (variantError !== null) showError(`Could not open the variant: ${messageOf(variantError)}`);
   else if (sc && link.run) setPlaying(true);
   ui.preset.addEventListener('change', () => void load(ui.preset.value).catch((e) => showError(messageOf(e))));

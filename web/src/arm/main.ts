@@ -6,13 +6,13 @@
 // and the predictor go to the handle as edits; this file computes no
 // kinematics, distances or plans.
 
-import { applyRun, runParams, variantParams } from '../shell/runlink';
+import { recipeJson, runParams, variantParams } from '../shell/runlink';
 import { loadVariant } from '../shell/variant';
 import { installShell } from '../shell/help';
 import { installLegend } from '../shell/legend';
 import { armHelp } from '../shell/help-content';
 import { galleryRunEnded, showGalleryNote } from '../shell/gallery-note';
-import init, { ArmHandle, armChoices } from '../../pkg-arm/planlab_wasm_arm.js';
+import init, { ArmHandle, armChoices, editScenario } from '../../pkg-arm/planlab_wasm_arm.js';
 import { ArmView } from './view';
 import { DrawList, Layer, mask } from '../scene/draw';
 import { DistancePlot } from './distplot';
@@ -324,7 +324,7 @@ async function main(): Promise<void> {
     const text = variantText;
     await load(ui.preset.value, () => text);
   } else {
-    await load(ui.preset.value, q ? (t) => applyRun(t, null, link.set) : undefined);
+    await load(ui.preset.value, q ? (t) => editScenario(t, recipeJson(null, link.set)) : undefined);
     if (q && link.planner) {
       ui.predictor.value = link.planner;
       ui.predictor.dispatchEvent(new Event('change'));

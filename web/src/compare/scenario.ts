@@ -2,8 +2,8 @@
 // and the `set=path=value` edits from the URL (as `planlab run --set`),
 // checked by building it once, and its card (description, seed, edits).
 
-import { SimHandle } from '../../pkg/planlab_wasm.js';
-import { applyRun } from '../shell/runlink';
+import { SimHandle, editScenario } from '../../pkg/planlab_wasm.js';
+import { recipeJson } from '../shell/runlink';
 import { el, messageOf } from '../shell/dom';
 import type { MapFiles } from '../shell/scenario-files';
 
@@ -24,7 +24,7 @@ export class ComparedScenario {
     let kept = newEdits;
     if (kept.length) {
       try {
-        SimHandle.fromScenario(applyRun(text, null, kept), files).free();
+        SimHandle.fromScenario(editScenario(text, recipeJson(null, kept)), files).free();
       } catch (e) {
         problems.push(`edits ${kept.map(([p, v]) => `${p}=${v}`).join(', ')} not applied: ${messageOf(e)}`);
         kept = [];
@@ -62,6 +62,6 @@ export class ComparedScenario {
   /** A SimHandle of the scenario with `planner` swapped in and the edits
    *  applied (the CLI's `--planner NAME`, then every `--set`). */
   build(planner: string): SimHandle {
-    return SimHandle.fromScenario(applyRun(this.text, planner, this.edits), this.files);
+    return SimHandle.fromScenario(editScenario(this.text, recipeJson(planner, this.edits)), this.files);
   }
 }

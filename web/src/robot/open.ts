@@ -4,9 +4,9 @@
 // edits and `run=1`) or else the first preset.
 
 import presets from 'virtual:robot-presets';
-import { applyRun, runParams, variantParams } from '../shell/runlink';
+import { recipeJson, runParams, variantParams } from '../shell/runlink';
 import { loadVariant } from '../shell/variant';
-import { rosImageName } from '../../pkg/planlab_wasm.js';
+import { editScenario, rosImageName } from '../../pkg/planlab_wasm.js';
 import { loadPresetFiles, mapFilesOf, type MapFiles } from '../shell/scenario-files';
 import { messageOf } from '../shell/dom';
 
@@ -63,7 +63,7 @@ export async function openFirst(host: OpenHost): Promise<void> {
   } catch (e) {
     variantError = e;
   }
-  await loadPreset(host, first, first === q ? (t) => applyRun(t, link.planner, link.set) : undefined);
+  await loadPreset(host, first, first === q ? (t) => editScenario(t, recipeJson(link.planner, link.set)) : undefined);
   if (variantError !== null) host.showError(`Could not open the variant: ${messageOf(variantError)}`);
   else if (first === q && link.run) host.play();
   if (shared !== null) host.showError(`Could not open the shared link: ${messageOf(shared)}`);

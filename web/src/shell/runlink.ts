@@ -2,8 +2,8 @@
 // &planner=dwa&set=movers%3D%5B%5D&run=1`) and what a page does with it.
 // A run is the reproduce registry's RunSpec (preset, planner, `--set`
 // edits), so the page runs exactly what `planlab reproduce` runs; the edits
-// are applied to the scenario JSON with the CLI's rules (mirrors core
-// `set_json_path` / `set_planner_name`).
+// are applied to the scenario JSON by the core's recipe through wasm
+// (`editScenario(text, recipeJson(planner, set))`), as `planlab run` applies them.
 
 /** One run of a gallery entry (assets/gallery.json). */
 export interface GalleryRun {
@@ -111,58 +111,8 @@ export function withVariant(k: number, search: string = location.search): string
   return `${location.pathname}?${q.toString()}`;
 }
 
-type Json = null | boolean | number | string | Json[] | { [k: string]: Json };
-
-/** `--set path=value`: the value parsed as JSON, else taken as a string. */
-export function setJsonPath(root: Json, path: string, value: string): void {
-  const parts = path.split('.');
-  if (!path || parts.some((p) => !p)) throw new Error(`set ${path}: the path needs names separated by single dots`);
-  if (/^[+-]?(nan|inf|infinity)$/i.test(value.trim())) throw new Error(`set ${path}: ${value} is not a finite number`);
-  let v: Json;
-  try {
-    v = JSON.parse(value) as Json;
-  } catch {
-    v = value;
-  }
-  let here: Json = root;
-  parts.forEach((part, i) => {
-    const last = i + 1 === parts.length;
-    if (Array.isArray(here)) {
-      const idx = Number(part);
-      if (!Number.isInteger(idx) || idx < 0 || idx >= here.length) throw new Error(`set ${path}: no element ${part}`);
-      if (last) here[idx] = v;
-      else here = here[idx];
-    } else if (here !== null && typeof here === 'object') {
-      const o: { [k: string]: Json } = here;
-      if (last) o[part] = v;
-      else {
-        if (o[part] === undefined) o[part] = {};
-        here = o[part];
-      }
-    } else {
-      throw new Error(`set ${path}: ${parts.slice(0, i).join('.')} is not an object`);
-    }
-  });
-}
-
-/** `--planner NAME`: the local planner's name; its config reset to `{}`
- *  when the name changes. */
-export function setPlannerName(root: Json, name: string): void {
-  if (root === null || typeof root !== 'object' || Array.isArray(root)) throw new Error('a scenario is a JSON object');
-  const lp = (root.local_planner ??= {});
-  if (lp === null || typeof lp !== 'object' || Array.isArray(lp)) throw new Error('local_planner must be an object');
-  if (lp.name !== name) {
-    lp.name = name;
-    lp.config = {};
-  }
-}
-
-/** The scenario text with the planner (robot pages) and edits applied;
- *  the text unchanged when there are none. */
-export function applyRun(text: string, planner: string | null, set: [string, string][]): string {
-  if (!planner && !set.length) return text;
-  const tree = JSON.parse(text) as Json;
-  if (planner) setPlannerName(tree, planner);
-  for (const [p, v] of set) setJsonPath(tree, p, v);
-  return JSON.stringify(tree);
+/** A run link's planner and edits as the core's recipe (its JSON form),
+ *  for the page's wasm `editScenario(text, recipe)`. */
+export function recipeJson(planner: string | null, set: [string, string][]): string {
+  return JSON.stringify({ planner, set });
 }

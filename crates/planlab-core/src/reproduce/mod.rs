@@ -45,9 +45,9 @@ pub use stats::{EffectKind, MedianCi, Share};
 use crate::apf::ApfMetrics;
 use crate::map::OccupancyGrid;
 use crate::metrics::EpisodeMetrics;
+use crate::recipe::{Recipe, RecipeError};
 use crate::scenario::{
-    set_json_path, set_planner_name, AnyRun, AnyScenario, AnyScenarioError, FinishedRun, Scenario,
-    ScenarioError, ScenarioKind,
+    AnyRun, AnyScenario, AnyScenarioError, FinishedRun, Scenario, ScenarioError, ScenarioKind,
 };
 use crate::sim::{Episode, Outcome, SimError};
 
@@ -309,56 +309,26 @@ pub fn ids() -> Vec<&'static str> {
         .collect()
 }
 
-/// Applies `planner` to an arm tree as JSON edits (so a written-out arm
-/// variant needs no `--planner`): what [`crate::arm::ArmPredictor::apply`]
-/// does to the parsed config.
-fn set_arm_predictor(tree: &mut Value, name: &str) -> Result<(), SimError> {
-    use crate::arm::ArmPredictor;
-    let p = ArmPredictor::parse(name).map_err(|e| SimError::InvalidConfig(e.to_string()))?;
-    let mode = tree
-        .pointer("/arm/apf/mode")
-        .and_then(Value::as_str)
-        .unwrap_or("sampling-prediction")
-        .to_string();
-    let edits: &[(&str, &str)] = match p {
-        ArmPredictor::None if mode == "sampling-prediction" => &[("arm.apf.mode", "sampling")],
-        ArmPredictor::None => &[],
-        ArmPredictor::ConstantVelocity => &[
-            ("arm.apf.mode", "sampling-prediction"),
-            ("arm.apf.predictor", "constant-velocity"),
-        ],
-        ArmPredictor::Rnn => &[
-            ("arm.apf.mode", "sampling-prediction"),
-            ("arm.apf.predictor", "rnn"),
-        ],
-    };
-    for (k, v) in edits {
-        set_json_path(tree, k, v)?;
-    }
-    Ok(())
-}
-
-/// The tree of one run on (a variant of) its preset: the planner, then
-/// the run's own edits, then `extra` (a sweep value).
+/// The tree of one run on (a variant of) its preset: the run's planner
+/// and `--set` edits, then `extra` (a sweep value), applied by its
+/// [`Recipe`] (an arm run's predictor last, so a written-out arm variant
+/// needs no `--planner`).
 pub fn run_tree(
     spec: &RunSpec,
     preset: &Value,
     extra: &[(String, String)],
 ) -> Result<Value, SimError> {
+    let own = spec.set.iter().map(|(p, v)| (p.to_string(), v.to_string()));
+    let recipe = Recipe {
+        planner: spec.planner.map(str::to_string),
+        set: own.chain(extra.iter().cloned()).collect(),
+        ..Recipe::default()
+    };
     let mut tree = preset.clone();
-    let arm = ScenarioKind::of(&tree) == ScenarioKind::Arm;
-    if let (Some(p), false) = (spec.planner, arm) {
-        set_planner_name(&mut tree, p)?;
-    }
-    for (path, value) in &spec.set {
-        set_json_path(&mut tree, path, value)?;
-    }
-    if let (Some(p), true) = (spec.planner, arm) {
-        set_arm_predictor(&mut tree, p)?;
-    }
-    for (path, value) in extra {
-        set_json_path(&mut tree, path, value)?;
-    }
+    recipe.edit_tree(&mut tree).map_err(|e| match e {
+        RecipeError::Edit(e) => SimError::Scenario(e),
+        e => SimError::InvalidConfig(e.to_string()),
+    })?;
     Ok(tree)
 }
 
