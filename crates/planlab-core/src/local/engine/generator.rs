@@ -348,14 +348,17 @@ impl TrajectoryGenerator for DynamicWindow {
             }
         } else {
             // Constant speed: `speeds` stays empty ([`Trajectory::speed`]).
-            traj.points.reserve(steps);
-            for _ in 0..steps {
+            // (`extend` over an exact-size range: one reservation, no
+            // capacity check a step.)
+            let with_dirs = traj.with_dirs;
+            let dirs = &mut traj.dirs;
+            traj.points.extend((0..steps).map(|_| {
                 arc_step(&mut p, (&mut sn, &mut cs), vk, rot, h);
-                traj.points.push(p);
-                if traj.with_dirs {
-                    traj.dirs.push([sn, cs]);
+                if with_dirs {
+                    dirs.push([sn, cs]);
                 }
-            }
+                p
+            }));
         }
         traj.final_speed = vk;
         traj.horizon = self.steps.min(traj.points.len());

@@ -218,7 +218,7 @@ impl Screen {
     pub fn steps_for(&self, sample: &Sample) -> usize {
         if sample.decel > 0.0 {
             self.steps.max(self.brake_steps)
-        } else if self.cfg.admissible_window {
+        } else if self.cfg.admissible_window && self.va_steps > self.steps {
             let t = va_time(sample.cmd.v.abs(), sample.cmd.w.abs(), &self.limits) / self.h;
             let need = (t.ceil().min(MAX_ROLLOUT_STEPS as f64) as usize + 1).min(self.va_steps);
             self.steps.max(need)
@@ -240,9 +240,12 @@ impl Screen {
         let mut min_c = f64::INFINITY;
         let mut collided = false;
         let mut shown = traj.horizon;
-        for i in 0..traj.horizon {
-            let p = traj.points[i];
-            let stat = probe.at(p, traj.speed(i).abs() * h * (1.0 + 1e-9));
+        // Each step's length bound (constant for a constant speed).
+        let (speeds, v0) = (&traj.speeds, traj.sample.cmd.v);
+        let step_len = |i: usize| speeds.get(i).copied().unwrap_or(v0).abs() * h * (1.0 + 1e-9);
+        let const_len = speeds.is_empty().then(|| step_len(0));
+        for (i, &p) in traj.points[..traj.horizon].iter().enumerate() {
+            let stat = probe.at(p, const_len.unwrap_or_else(|| step_len(i)));
             let c = self.mover_clearance(stat, p[0], p[1], i + 1, horizon);
             min_c = min_c.min(c);
             if c <= limit {
@@ -309,7 +312,7 @@ impl Screen {
                     va_ok = false;
                     break;
                 };
-                let stat = probe.at(p, traj.speed(k - 1).abs() * h * (1.0 + 1e-9));
+                let stat = probe.at(p, step_len(k - 1));
                 if self.mover_clearance(stat, p[0], p[1], k, horizon) <= limit {
                     va_ok = false;
                     break;
