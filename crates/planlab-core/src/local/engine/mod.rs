@@ -547,7 +547,7 @@ mod tests {
     }
 
     fn plan(e: &mut Engine, weights: Option<&[f64]>) -> StepResult {
-        let map = testkit::map(&".".repeat(40).repeat(1), 0.1);
+        let map = testkit::map(&".".repeat(40), 0.1);
         let s = RobotState {
             x: 1.0,
             y: 0.05,
