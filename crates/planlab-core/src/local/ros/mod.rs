@@ -33,6 +33,8 @@ pub mod critics;
 pub mod dwb;
 pub mod generators;
 pub mod move_base;
+#[cfg(test)]
+mod tests;
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
