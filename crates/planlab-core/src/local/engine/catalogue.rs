@@ -98,7 +98,8 @@ critic_params!(
 critic_params!(
     /// RotateToGoal (scale: nav2_params.yaml's 32).
     RotateToGoalParams { scale = 32.0;
-        xy_goal_tolerance: f64 = 0.25, "m" [>= 0.0] "the critic acts within this distance of the goal";
+        xy_goal_tolerance: f64 = 0.2, "m" [>= 0.0]
+            "the critic acts within this distance of the goal (Nav2 shares it with its goal checker: planlab's default goal tolerance 0.2, Nav2's 0.25)";
         trans_stopped_velocity: f64 = 0.25, "m/s" [>= 0.0] "below this speed the robot counts as stopped";
         slowing_factor: f64 = 5.0, "s²/m²" [>= 0.0] "weight of the squared speed while slowing";
         lookahead_time: f64 = -1.0, "s" [>= -1.0, <= 100.0] "time the heading is read at (negative: the last pose)";

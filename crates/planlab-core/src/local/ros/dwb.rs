@@ -54,7 +54,7 @@ crate::params::params! {
         pub angular_granularity: f64 = 0.025, "rad" [> 0.0, <= 10.0]
             "angular_granularity: angular step between rollout poses";
         pub include_last_point: bool = true, "bool" []
-            "include_last_point: the rollout ends with the pose after its last step";
+            "include_last_point: the final pose is appended once more (as the source does)";
         pub forward_prune_distance: f64 = 2.0, "m" [> 0.0, <= 1000.0]
             "forward_prune_distance: the plan the critics see ends this far from the robot";
         pub replan_period: f64 = 1.0, "s" [>= 0.0, <= 1000.0]

@@ -224,17 +224,20 @@ pub struct StandardSettings {
     pub linear_granularity: f64,
     /// Angular step of a rollout, rad.
     pub angular_granularity: f64,
-    /// Append the pose after the last step.
+    /// Append the final pose once more (the source's `include_last_point`).
     pub include_last_point: bool,
 }
 
 /// Nav2 DWB's `StandardTrajectoryGenerator` with its `XYThetaIterator`:
-/// each axis's window is what the robot reaches in one control period
+/// each axis's window is what the robot reaches within `sim_time` (the
+/// source's iterator is started with `sim_time`, not the control period)
 /// from its current velocity (v in `[v_min, v_max]`, ω in `±ω_max`),
 /// `vx_samples` × `vtheta_samples` evenly spread samples (0 added on an
 /// axis whose window straddles it), speed outer, turn rate inner; a
 /// rollout lasts `sim_time` in `⌈max(|v|·T/linear_granularity,
-/// |ω|·T/angular_granularity)⌉` equal steps.
+/// |ω|·T/angular_granularity)⌉` equal steps; the poses are the start and
+/// the pose after each step (with `include_last_point` the last twice, as
+/// the source appends it again).
 #[derive(Debug, Clone)]
 pub struct StandardGenerator {
     limits: RobotLimits,
@@ -274,8 +277,12 @@ impl TrajectoryGenerator for StandardGenerator {
     ) -> Window {
         let s = obs.state;
         let l = &self.limits;
-        let (v_lo, v_hi) = reachable(s.v, l.acc_v, l.v_min, l.v_max, req.dt);
-        let (w_lo, w_hi) = reachable(s.w, l.acc_w, -l.w_max, l.w_max, req.dt);
+        // DWB's iterator projects the velocity over sim_time, not over one
+        // control period (`startNewIteration(current_velocity, sim_time_)`).
+        let _ = req;
+        let t = self.set.sim_time;
+        let (v_lo, v_hi) = reachable(s.v, l.acc_v, l.v_min, l.v_max, t);
+        let (w_lo, w_hi) = reachable(s.w, l.acc_w, -l.w_max, l.w_max, t);
         axis(&mut self.vs, v_lo, v_hi, 0.0, self.set.vx_samples.max(1));
         axis(&mut self.ws, w_lo, w_hi, 0.0, self.set.vtheta_samples.max(1));
         out.clear();
@@ -308,15 +315,13 @@ impl TrajectoryGenerator for StandardGenerator {
             (n, set.sim_time / n as f64, true),
             traj,
         );
-        if !set.include_last_point && traj.points.len() > 1 {
-            // The pose after the last step left out: the rollout ends one
-            // step short.
-            traj.points.pop();
-            traj.dirs.pop();
-            traj.speeds.pop();
-            traj.horizon = traj.points.len();
-            if let Some(&[sn, cs]) = traj.dirs.last() {
-                traj.end_theta = atan2(sn, cs);
+        if set.include_last_point {
+            // The source appends the final pose a second time.
+            if let (Some(&p), Some(&d)) = (traj.points.last(), traj.dirs.last()) {
+                traj.points.push(p);
+                traj.dirs.push(d);
+                traj.speeds.push(traj.final_speed);
+                traj.horizon = traj.points.len();
             }
         }
     }

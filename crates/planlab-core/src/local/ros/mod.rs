@@ -57,6 +57,8 @@ crate::params::params! {
             "inflation_radius: costs decay out to this distance from an obstacle (at least the robot's inscribed radius)";
         pub cost_scaling_factor: f64 = 10.0, "1/m" [>= 0.0, <= 1000.0]
             "cost_scaling_factor: decay rate of the inflated cost, 252·exp(−k·(d − r_inscribed))";
+        pub footprint_padding: f64 = 0.01, "m" [>= 0.0, <= 10.0]
+            "footprint_padding: the footprint is grown by this much (a disc becomes a 16-gon of radius r + padding)";
     }
 }
 
@@ -69,6 +71,7 @@ pub struct Layers {
     inscribed: f64,
     inflation: f64,
     scaling: f64,
+    padding: f64,
     /// Whether `cur` holds movers (else it equals `stat`).
     dirty: bool,
 }
@@ -92,7 +95,12 @@ impl Layers {
         let solid = OccupancyGrid::from_cells(w, h, cells)
             .and_then(|g| g.with_frame(grid.resolution(), grid.origin()))
             .map_err(bad)?;
-        let inscribed = robot.footprint.inscribed_radius();
+        let inscribed = padded(&robot.footprint, p.footprint_padding).inscribed_radius();
+        let inscribed = match robot.footprint {
+            // The padded disc's 16-gon.
+            Footprint::Circle { .. } => inscribed * cos(std::f64::consts::PI / 16.0),
+            Footprint::Rectangle { .. } => inscribed,
+        };
         let inflation = p.inflation_radius.max(inscribed);
         let stat = Costmap::ros(&solid, inscribed, inflation, p.cost_scaling_factor).map_err(bad)?;
         Ok(Self {
@@ -102,6 +110,7 @@ impl Layers {
             inscribed,
             inflation,
             scaling: p.cost_scaling_factor,
+            padding: p.footprint_padding,
             dirty: false,
         })
     }
@@ -167,13 +176,14 @@ impl Layers {
         self.cur.get(c, r)
     }
 
-    /// The highest cost under the outline of `footprint` at pose
-    /// `(x, y, θ)` (base_local_planner's `CostmapModel::footprintCost`: a
-    /// disc is its 16-gon, as ROS makes a footprint from `robot_radius`;
-    /// each edge is walked every half cell); `None` when the outline
-    /// leaves the map or touches a lethal or unknown cell.
+    /// The highest cost under the outline of `footprint`, padded by
+    /// `footprint_padding`, at pose `(x, y, θ)` (base_local_planner's
+    /// `CostmapModel::footprintCost`: a disc is its 16-gon, as ROS makes a
+    /// footprint from `robot_radius`; each edge is walked every half
+    /// cell); `None` when the outline leaves the map or touches a lethal or
+    /// unknown cell.
     pub fn footprint_cost(&self, footprint: &Footprint, [x, y, th]: [f64; 3]) -> Option<f64> {
-        let corners: Vec<[f64; 2]> = match *footprint {
+        let corners: Vec<[f64; 2]> = match padded(footprint, self.padding) {
             Footprint::Circle { radius } => (0..16)
                 .map(|i| {
                     let a = i as f64 * std::f64::consts::PI / 8.0;
@@ -206,6 +216,20 @@ impl Layers {
             }
         }
         Some(f64::from(worst))
+    }
+}
+
+/// `footprint` grown by `padding` on every side (costmap_2d's
+/// `padFootprint`).
+fn padded(footprint: &Footprint, padding: f64) -> Footprint {
+    match *footprint {
+        Footprint::Circle { radius } => Footprint::Circle {
+            radius: radius + padding,
+        },
+        Footprint::Rectangle { length, width } => Footprint::Rectangle {
+            length: length + 2.0 * padding,
+            width: width + 2.0 * padding,
+        },
     }
 }
 

@@ -273,9 +273,11 @@ fn base_obstacle_is_illegal_on_a_lethal_or_inscribed_cell() {
     assert_eq!(crit.score(&c, &into), None, "lethal");
     let beside = traj(cmd(0.5, 0.0), &[[0.35, 0.55, 0.0], [0.85, 0.55, 0.0]]);
     assert_eq!(crit.score(&c, &beside), None, "within the 0.2 m inscribed radius");
-    // 0.5 m from the wall's cell centres: 252·exp(−10·(0.5 − 0.2)) = 12.5 → 12.
+    // 0.5 m from the wall's cell centres, the inscribed radius that of
+    // the 16-gon of radius 0.2 + 0.01 padding (0.206 m):
+    // 252·exp(−10·(0.5 − 0.206)) = 13.3 → 13.
     let far = traj(cmd(0.5, 0.0), &[[0.55, 0.55, 0.0]]);
-    assert_eq!(crit.score(&c, &far), Some(12.0));
+    assert_eq!(crit.score(&c, &far), Some(13.0));
 }
 
 #[test]
@@ -286,10 +288,11 @@ fn move_base_occupancy_is_the_highest_cost_under_the_footprint() {
     let c = ctx(&o, &[], &r, &w);
     let mut crit = Occupancy::new(layers(&map), r.footprint);
     crit.prepare(&c);
-    // Centre at x = 0.55: the outline reaches x = 0.75, 0.25 m from the
-    // wall's first cell centre (1.05): cost 252·exp(−10·(0.3 − 0.2)) = 92.7 → 92.
+    // Centre at x = 0.55: the padded outline reaches x = 0.76 (cell 7),
+    // 0.3 m from the wall's first cell centre (1.05): cost
+    // 252·exp(−10·(0.3 − 0.206)) = 98.4 → 98.
     let t = traj(cmd(0.2, 0.0), &[[0.35, 0.55, 0.0], [0.55, 0.55, 0.0]]);
-    assert_eq!(crit.score(&c, &t), Some(92.0));
+    assert_eq!(crit.score(&c, &t), Some(98.0));
     // The outline on the wall: illegal.
     let hit = traj(cmd(0.2, 0.0), &[[0.35, 0.55, 0.0], [0.9, 0.55, 0.0]]);
     assert_eq!(crit.score(&c, &hit), None);
@@ -380,16 +383,19 @@ fn standard_generator_window_and_samples() {
     let o = obs(&map, &s, [3.0, 1.0]);
     let mut out = Vec::new();
     let win = g.samples(&o, &WindowRequest { dt: 0.1, hold_v: None, braking: false }, &mut out);
-    let dw = 100f64.to_radians() * 0.1;
-    assert!((win.v.0 - 0.46).abs() < 1e-12 && (win.v.1 - 0.54).abs() < 1e-12);
-    assert!((win.w.0 + dw).abs() < 1e-12 && (win.w.1 - dw).abs() < 1e-12);
+    // Projected over sim_time 1.7 s: v 0.5 ± 0.4·1.7 within [0, 1],
+    // ω ± 1.745·1.7 within ±ω_max.
+    let wm = 40f64.to_radians();
+    assert_eq!(win.v, (0.0, 1.0));
+    assert!((win.w.0 + wm).abs() < 1e-12 && (win.w.1 - wm).abs() < 1e-12);
     // 20 speeds × (20 turn rates + 0, which the window straddles).
     assert_eq!(out.len(), 20 * 21);
-    // A 0.5 m/s straight rollout: ⌈0.5·1.7/0.05⌉ = 17 steps, 18 poses
-    // with the last, ramping from 0.5 so it ends 0.85 m ahead.
+    // A 0.5 m/s straight rollout: ⌈0.5·1.7/0.05⌉ = 17 steps; the start,
+    // 17 poses and the last again; it ends 0.85 m ahead.
     let mut t = Trajectory::default();
     g.rollout(&o, Sample { cmd: cmd(0.5, 0.0), decel: 0.0 }, 0, &mut t);
-    assert_eq!(t.points.len(), 18);
+    assert_eq!(t.points.len(), 19);
+    assert_eq!(t.points[17], t.points[18]);
     assert!((t.end()[0] - 1.85).abs() < 1e-9, "{:?}", t.end());
 }
 
@@ -460,23 +466,83 @@ fn navfn_goes_round_the_wall_and_the_tracker_prunes_behind() {
 }
 
 #[test]
-fn both_planners_drive_round_a_wall_to_the_goal() {
-    let mut rows = vec![".".repeat(60); 40];
+fn both_planners_drive_round_a_pillar_to_the_goal() {
+    // A 0.5 × 1 m pillar between start and goal in a walled 6 × 4 m room.
+    let mut rows = vec![format!("#{}#", ".".repeat(58)); 40];
+    rows[0] = "#".repeat(60);
+    rows[39] = "#".repeat(60);
     for (r, row) in rows.iter_mut().enumerate() {
-        if (12..40).contains(&r) {
-            row.replace_range(30..32, "##");
+        if (15..25).contains(&r) {
+            row.replace_range(28..33, "#####");
         }
     }
     let map = testkit::map(&(rows.join("\n") + "\n"), 0.1);
-    let r = robot();
-    let start = state(1.0, 1.0, 0.0, 0.0);
-    let goal = [5.0, 1.0];
-    let mut mb = super::move_base::build(&Default::default(), &r, &map, [1.0, 1.0], goal).unwrap();
-    let run = testkit::run(&mut mb, &map, &r, start, goal, &[], 60.0, 0.2);
-    assert_eq!(run.end, End::Reached, "move-base-dwa: {:?}", run.modes.last());
+    // base_local_planner's default limits (max_vel_x 0.5, max_vel_theta 1,
+    // acc_lim_x 2.5, acc_lim_theta 3.2), which its defaults are tuned for,
+    // and a base that can back up at its escape_vel.
+    let r = RobotSpec {
+        limits: RobotLimits {
+            v_max: 0.5,
+            v_min: -0.1,
+            w_max: 1.0,
+            acc_v: 2.5,
+            acc_w: 3.2,
+            ..Default::default()
+        },
+        ..robot()
+    };
+    let start = state(1.0, 2.0, 0.0, 0.0);
+    let goal = [5.0, 2.0];
     let cat = crate::local::engine::catalogue::CriticCatalogue::standard();
-    let mut d = super::dwb::build(&Default::default(), &cat, &r, &map, [1.0, 1.0], goal).unwrap();
-    let run = testkit::run(&mut d, &map, &r, start, goal, &[], 60.0, 0.2);
-    assert_eq!(run.end, End::Reached, "dwb: {:?}", run.modes.last());
+    let mut d = super::dwb::build(&Default::default(), &cat, &r, &map, [1.0, 2.0], goal).unwrap();
+    let run = testkit::run(&mut d, &map, &r, start, goal, &[], 120.0, 0.2);
+    assert_eq!(run.end, End::Reached, "dwb: {:?} {:?}", run.modes.last(), run.states.last());
+    assert!(run.min_clearance > 0.0);
+    // move_base, facing away from a goal in the open beside the pillar:
+    // it turns in place, then drives there.
+    let start = state(1.0, 0.6, std::f64::consts::PI, 0.0);
+    let goal = [5.0, 0.6];
+    let mut mb = super::move_base::build(&Default::default(), &r, &map, [1.0, 0.6], goal).unwrap();
+    let run = testkit::run(&mut mb, &map, &r, start, goal, &[], 120.0, 0.2);
+    assert_eq!(run.end, End::Reached, "move-base-dwa: {:?} {:?}", run.modes.last(), run.states.last());
+    let first = &run.states[..10];
+    assert!(first.iter().all(|s| s.x == 1.0 && s.y == 0.6), "turns on the spot first");
+    assert!(crate::num::wrap_angle(first[9].theta - std::f64::consts::PI).abs() > 0.2);
     assert_eq!(d.name(), "dwb");
+}
+
+#[test]
+fn bad_settings_are_one_line_errors_naming_the_field() {
+    use crate::planners::{build, PlannerChoice};
+    use serde_json::json;
+    let map = open(40, 20);
+    let s = state(0.5, 1.0, 0.0, 0.0);
+    let err = |name: &str, config: serde_json::Value| {
+        let choice = PlannerChoice {
+            name: name.into(),
+            config,
+        };
+        let e = build(&choice, &robot(), &map, &s, [3.5, 1.0]).err().expect("refused");
+        let text = e.to_string();
+        assert!(!text.contains('\n'), "{text}");
+        text
+    };
+    assert!(err("move-base-dwa", json!({"sim_time": 1e9})).contains("move-base-dwa.sim_time"));
+    assert!(err("move-base-dwa", json!({"vx_samples": 0})).contains("move-base-dwa.vx_samples"));
+    assert!(err("move-base-dwa", json!({"costmap": {"inflation_radius": -1.0}})).contains("costmap.inflation_radius"));
+    assert!(err("dwb", json!({"linear_granularity": 0.0})).contains("dwb.linear_granularity"));
+    assert!(err("dwb", json!({"vtheta_samples": 100000})).contains("dwb.vtheta_samples"));
+    assert!(err("dwb", json!({"critic_config": {"PathAlign": {"scale": 1e300}}}))
+        .contains("dwb.critic_config.PathAlign.scale"));
+    assert!(err("dwb", json!({"critic_config": {"PathAlign": {"forward_point_distance": "x"}}}))
+        .contains("forward_point_distance"));
+    assert!(err("dwb", json!({"critics": ["PathDist", "Nope"]})).contains("unknown critic `Nope`"));
+    assert!(err("dwb", json!({"critic_config": {"Twirling": {"scale": 1.0}}})).contains("not in dwb.critics"));
+    // NaN cannot be written in JSON; through the API it is refused too.
+    let cfg = super::move_base::MoveBaseConfig {
+        pdist_scale: f64::NAN,
+        ..Default::default()
+    };
+    let e = super::move_base::build(&cfg, &robot(), &map, [0.5, 1.0], [3.5, 1.0]).err().unwrap();
+    assert!(e.to_string().contains("move-base-dwa.pdist_scale"), "{e}");
 }
