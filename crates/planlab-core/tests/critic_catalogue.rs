@@ -14,7 +14,8 @@ use planlab_core::params::{check_param, Bound};
 use planlab_core::world::{RobotSpec, RobotState, StaticMap};
 use serde_json::json;
 
-/// Prefers turning left: the cost falls as ω rises.
+/// Prefers turning left: the cost falls as ω rises (default scale 1e5,
+/// enough to outweigh the path critics).
 #[derive(Debug)]
 struct PreferLeft;
 
@@ -66,7 +67,7 @@ fn a_registered_critic_changes_the_dwb_choice() {
     cat.register(
         "PreferLeft",
         Arc::new(|_env, prefix, config| {
-            let scale = config.get("scale").and_then(|v| v.as_f64()).unwrap_or(100.0);
+            let scale = config.get("scale").and_then(|v| v.as_f64()).unwrap_or(1e5);
             check_param(&format!("{prefix}.scale"), scale, Bound::at_least(0.0))?;
             Ok(CriticSlot::new(PreferLeft, scale))
         }),
@@ -76,9 +77,11 @@ fn a_registered_critic_changes_the_dwb_choice() {
     let mut with = DwbConfig::default();
     with.critics.push("PreferLeft".into());
     let w_left = first_command(&with, &cat).unwrap();
-    // Straight ahead is best without it; with it the top turn rate wins.
-    assert!(w_plain.abs() < 1e-9, "without PreferLeft ω = {w_plain}");
-    assert!(w_left > 0.05, "with PreferLeft ω = {w_left}");
+    // Without it DWB keeps close to straight ahead; with it the top turn
+    // rate of the window (the robot's ω_max, 40°/s) wins.
+    let w_max = RobotSpec::default().limits.w_max;
+    assert!(w_plain.abs() < 0.1, "without PreferLeft ω = {w_plain}");
+    assert!((w_left - w_max).abs() < 1e-9, "with PreferLeft ω = {w_left}");
     // Its config is read and checked like any other critic's.
     with.critic_config = json!({"PreferLeft": {"scale": f64::MAX}});
     let e = first_command(&with, &cat).unwrap_err().to_string();
