@@ -22,7 +22,9 @@ use crate::local::cleaning;
 use crate::local::dual::{DualConfig, PreliminaryConfig, SafeDualDwa};
 use crate::local::dwa::{Dwa, DwaConfig};
 use crate::local::improved::{Fusion53Config, ImprovedConfig, ImprovedDwa};
+use crate::local::engine::catalogue::CriticCatalogue;
 use crate::local::pursuit::{Pursuit, PursuitConfig};
+use crate::local::ros::{dwb, move_base};
 use crate::local::{LocalError, LocalPlanner};
 use crate::params::{field_infos, parse_config, FieldInfo, Params};
 use crate::world::{RobotSpec, RobotState, StaticMap};
@@ -111,6 +113,8 @@ pub fn plain_words(name: &str) -> &'static str {
         "tangent-bug" => "A classic bug algorithm: drive straight at the goal; when the scan shows an obstacle in the way, head for the edge of it that promises the shortest way round, and follow the wall until the goal is in reach again. Complete on simple maps but long-winded. Watch it switch between going to the goal and wall-following.",
         "rs-apf" => "Plans a short virtual path with a potential field on the points the laser has seen, shortens it, and drives along it with a DWA; if the virtual path stalls it follows the obstacle. Watch the purple virtual path redraw as more of the map is seen.",
         "rrt-shortcut" => "Grows a random tree (RRT) over the map the laser has revealed so far, shortcuts the path it finds, and follows it; replans when new walls appear. Random but seeded: the same seed gives the same run. Watch the path change as the fog clears.",
+        "move-base-dwa" => "The classic ROS 1 navigation stack: a global path is planned once on a costmap that grows every wall by the robot's size plus a fading band (the red line), and every step the robot tries a few forward speeds and many turn rates for a second, scoring each by how far its end lands from the path and from a point of the path a few metres ahead, plus how close it came to walls. If it faces the wrong way it turns on the spot first; if nothing is safe it backs up a little. It can hesitate in doorways narrower than the grown walls and stops short of movers that block the corridor. Watch the fan bend toward the path.",
+        "dwb" => "The ROS 2 (Nav2) successor of the ROS 1 planner: the same idea of trying speeds and turns along a planned path, but scored by a list of critics you can change: stay on the path, point along it, head for its end, keep off walls, do not wobble, slow down and turn at the goal. The global path is replanned every second, so moving people are routed around. It stops when every trajectory is ruled out. Watch the fan: each rollout's colour is its total cost.",
         _ => "",
     }
 }
@@ -199,6 +203,31 @@ fn entries() -> Vec<PlannerInfo> {
                       limit and without odometry compensation."
                 .into(),
             fields: cleaning::field_list(true),
+        },
+        PlannerInfo {
+            plain: String::new(),
+            name: "move-base-dwa".into(),
+            paper: "ROS 1 move_base + base_local_planner TrajectoryPlannerROS (dwa: true), \
+                    NavFn-style global path; docs/algorithms.md §move-base-dwa"
+                .into(),
+            summary: "ROS baseline: window over one control period, vx × vtheta samples plus \
+                      in-place rotations, cost 0.6·path + 0.8·goal distance (cells, MapGrid) \
+                      + 0.01·footprint cost, oscillation flags and escape; plan on the \
+                      inflated costmap."
+                .into(),
+            fields: field_infos::<move_base::MoveBaseConfig>(),
+        },
+        PlannerInfo {
+            plain: String::new(),
+            name: "dwb".into(),
+            paper: "Nav2 DWB controller (dwb_core, dwb_critics, StandardTrajectoryGenerator), \
+                    NavFn-style global path; docs/algorithms.md §dwb"
+                .into(),
+            summary: "ROS 2 baseline: 20 × 20 samples over one control period, rollouts of \
+                      1.7 s, critics by name (BaseObstacle, GoalAlign, PathAlign, PathDist, \
+                      GoalDist, RotateToGoal, Oscillation) with Nav2's scales, lowest cost wins."
+                .into(),
+            fields: field_infos::<dwb::DwbConfig>(),
         },
         PlannerInfo {
             plain: String::new(),
@@ -344,6 +373,12 @@ pub fn build(
             let planner = cleaning::CleaningDwa::new(name, cfg, robot, map, start, goal)?;
             Ok(Box::new(planner))
         }
+        "move-base-dwa" => configured(choice, |c| {
+            move_base::build(&c, robot, map, [start.x, start.y], goal)
+        }),
+        "dwb" => configured(choice, |c| {
+            dwb::build(&c, &CriticCatalogue::standard(), robot, map, [start.x, start.y], goal)
+        }),
         name @ ("apf" | "sampling-apf") => {
             configured(choice, |c| ApfLocal::new(name == "apf", c, robot, goal))
         }

@@ -12,6 +12,7 @@ pub mod dwa;
 pub mod engine;
 pub mod improved;
 pub mod pursuit;
+pub mod ros;
 pub mod route;
 pub mod scan_debug;
 #[cfg(test)]

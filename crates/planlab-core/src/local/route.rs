@@ -34,7 +34,7 @@ pub struct Route {
 
 /// Nearest cell to `p` that `grid` has free, searching rings of growing
 /// size up to `max_ring` cells; `p` itself when it is free.
-fn snap(grid: &PlanGrid, p: GridPos, max_ring: i64) -> Option<GridPos> {
+pub(crate) fn snap(grid: &PlanGrid, p: GridPos, max_ring: i64) -> Option<GridPos> {
     if grid.is_free(p.col as i64, p.row as i64) {
         return Some(p);
     }

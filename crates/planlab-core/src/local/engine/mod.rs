@@ -21,6 +21,7 @@
 //! Nothing here panics or returns NaN; the engine allocates nothing per
 //! cycle once warmed up unless rollouts are recorded.
 
+pub mod catalogue;
 pub mod critic;
 pub mod generator;
 pub mod screen;
