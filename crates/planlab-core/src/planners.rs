@@ -21,8 +21,8 @@ use crate::lidar::LidarPlanner;
 use crate::local::cleaning;
 use crate::local::dual::{DualConfig, PreliminaryConfig, SafeDualDwa};
 use crate::local::dwa::{Dwa, DwaConfig};
-use crate::local::improved::{Fusion53Config, ImprovedConfig, ImprovedDwa};
 use crate::local::engine::catalogue::CriticCatalogue;
+use crate::local::improved::{Fusion53Config, ImprovedConfig, ImprovedDwa};
 use crate::local::pursuit::{Pursuit, PursuitConfig};
 use crate::local::ros::{dwb, move_base};
 use crate::local::{LocalError, LocalPlanner};
@@ -377,7 +377,14 @@ pub fn build(
             move_base::build(&c, robot, map, [start.x, start.y], goal)
         }),
         "dwb" => configured(choice, |c| {
-            dwb::build(&c, &CriticCatalogue::standard(), robot, map, [start.x, start.y], goal)
+            dwb::build(
+                &c,
+                &CriticCatalogue::standard(),
+                robot,
+                map,
+                [start.x, start.y],
+                goal,
+            )
         }),
         name @ ("apf" | "sampling-apf") => {
             configured(choice, |c| ApfLocal::new(name == "apf", c, robot, goal))

@@ -81,12 +81,20 @@ fn a_registered_critic_changes_the_dwb_choice() {
     // rate of the window (the robot's ω_max, 40°/s) wins.
     let w_max = RobotSpec::default().limits.w_max;
     assert!(w_plain.abs() < 0.1, "without PreferLeft ω = {w_plain}");
-    assert!((w_left - w_max).abs() < 1e-9, "with PreferLeft ω = {w_left}");
+    assert!(
+        (w_left - w_max).abs() < 1e-9,
+        "with PreferLeft ω = {w_left}"
+    );
     // Its config is read and checked like any other critic's.
     with.critic_config = json!({"PreferLeft": {"scale": f64::MAX}});
     let e = first_command(&with, &cat).unwrap_err().to_string();
     assert!(e.contains("PreferLeft.scale"), "{e}");
     // Not registered: the name is refused with the known ones listed.
-    let e = first_command(&with, &CriticCatalogue::standard()).unwrap_err().to_string();
-    assert!(e.contains("unknown critic `PreferLeft`") && e.contains("PathAlign"), "{e}");
+    let e = first_command(&with, &CriticCatalogue::standard())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("unknown critic `PreferLeft`") && e.contains("PathAlign"),
+        "{e}"
+    );
 }

@@ -341,6 +341,10 @@ impl Critic for CostmapObstacle {
         "obstacle_cost"
     }
 
+    fn needs_headings(&self) -> bool {
+        false
+    }
+
     fn prepare(&mut self, ctx: &CriticContext<'_>) {
         // Far from every wall and mover no rollout can collide or enter the
         // cost band: skip the per-point checks (same result, much faster in
@@ -396,6 +400,10 @@ impl Critic for GoalDistanceL1 {
     fn name(&self) -> &str {
         "goal_distance_m"
     }
+    fn needs_headings(&self) -> bool {
+        false
+    }
+
     fn score(&self, ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
         let [x, y] = traj.end();
         Some((x - ctx.goal[0]).abs() + (y - ctx.goal[1]).abs())
@@ -411,6 +419,10 @@ impl Critic for PathDistanceL1 {
     fn name(&self) -> &str {
         "path_distance_m"
     }
+    fn needs_headings(&self) -> bool {
+        false
+    }
+
     fn score(&self, ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
         let [x, y] = traj.end();
         let d_p = ctx

@@ -40,8 +40,11 @@ impl CriticEnv<'_> {
 
 /// Builds a critic with its scale from its config (`null`: the defaults);
 /// errors name `prefix.field`.
-pub type CriticCtor =
-    Arc<dyn Fn(&CriticEnv<'_>, &str, &serde_json::Value) -> Result<CriticSlot, LocalError> + Send + Sync>;
+pub type CriticCtor = Arc<
+    dyn Fn(&CriticEnv<'_>, &str, &serde_json::Value) -> Result<CriticSlot, LocalError>
+        + Send
+        + Sync,
+>;
 
 /// Critic names and their constructors, in registration order.
 #[derive(Clone, Default)]
@@ -135,7 +138,10 @@ critic_params!(
 
 /// A constructor from a closure over the config type `P`.
 fn ctor<P: Params + 'static>(
-    build: impl Fn(&CriticEnv<'_>, &P) -> Result<Box<dyn super::Critic>, LocalError> + Send + Sync + 'static,
+    build: impl Fn(&CriticEnv<'_>, &P) -> Result<Box<dyn super::Critic>, LocalError>
+        + Send
+        + Sync
+        + 'static,
     scale: impl Fn(&P) -> f64 + Send + Sync + 'static,
 ) -> CriticCtor {
     Arc::new(move |env, prefix, value| {
@@ -158,22 +164,148 @@ impl CriticCatalogue {
     pub fn standard() -> Self {
         let mut c = Self::new();
         let radius = |env: &CriticEnv<'_>| env.robot.footprint.circumscribed_radius();
-        c.register("heading", ctor(|_, _| Ok(Box::new(Heading)), |p: &ScaleOnly| p.scale));
-        c.register("dist", ctor(|_, p: &DistParams| Ok(Box::new(Clearance { cap: p.cap })), |p| p.scale));
-        c.register("velocity", ctor(|_, _| Ok(Box::new(Velocity)), |p: &ScaleOnly| p.scale));
-        c.register("Twirling", ctor(|_, _| Ok(Box::new(Twirling::named("Twirling"))), |p: &ScaleOnly| p.scale));
-        c.register("BaseObstacle", ctor(|e, p: &BaseObstacleParams| Ok(Box::new(BaseObstacle::new(e.layers()?, p.sum_scores))), |p| p.scale));
-        c.register("PathDist", ctor(|_, _: &PathParams| Ok(Box::new(PathDist::default())), |p| p.scale));
-        c.register("GoalDist", ctor(|_, _: &GoalParams| Ok(Box::new(GoalDist::default())), |p| p.scale));
-        c.register("PathAlign", ctor(|_, p: &PathParams| Ok(Box::new(PathAlign::new(p.forward_point_distance))), |p| p.scale));
-        c.register("GoalAlign", ctor(|_, p: &GoalParams| Ok(Box::new(GoalAlign::new(p.forward_point_distance))), |p| p.scale));
-        c.register("RotateToGoal", ctor(|_, p: &RotateToGoalParams| Ok(Box::new(RotateToGoal::new(RotateToGoalSettings { xy_goal_tolerance: p.xy_goal_tolerance, trans_stopped_velocity: p.trans_stopped_velocity, slowing_factor: p.slowing_factor, lookahead_time: p.lookahead_time, path_length_tolerance: p.path_length_tolerance }))), |p| p.scale));
-        c.register("Oscillation", ctor(|_, p: &OscillationParams| Ok(Box::new(Oscillation::new(OscillationSettings { oscillation_reset_dist: p.oscillation_reset_dist, oscillation_reset_angle: p.oscillation_reset_angle, x_only_threshold: p.x_only_threshold }))), |p| p.scale));
-        c.register("move_base.path_dist", ctor(move |e, _: &MbPathParams| Ok(Box::new(GridDistance::new(e.layers()?, Target::Path, radius(e)))), |p| p.scale));
-        c.register("move_base.goal_dist", ctor(move |e, _: &MbGoalParams| Ok(Box::new(GridDistance::new(e.layers()?, Target::Goal, radius(e)))), |p| p.scale));
-        c.register("move_base.occ_cost", ctor(|e, _: &MbOccParams| Ok(Box::new(Occupancy::new(e.layers()?, e.robot.footprint))), |p| p.scale));
-        c.register("move_base.heading_lookahead", ctor(move |e, p: &MbHeadingParams| Ok(Box::new(HeadingLookahead::new(e.layers()?, p.heading_lookahead, radius(e)))), |p| p.scale));
-        c.register("move_base.oscillation", ctor(|_, p: &MbOscillationParams| Ok(Box::new(InPlaceOscillation::new(p.oscillation_reset_dist))), |p| p.scale));
+        c.register(
+            "heading",
+            ctor(|_, _| Ok(Box::new(Heading)), |p: &ScaleOnly| p.scale),
+        );
+        c.register(
+            "dist",
+            ctor(
+                |_, p: &DistParams| Ok(Box::new(Clearance { cap: p.cap })),
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "velocity",
+            ctor(|_, _| Ok(Box::new(Velocity)), |p: &ScaleOnly| p.scale),
+        );
+        c.register(
+            "Twirling",
+            ctor(
+                |_, _| Ok(Box::new(Twirling::named("Twirling"))),
+                |p: &ScaleOnly| p.scale,
+            ),
+        );
+        c.register(
+            "BaseObstacle",
+            ctor(
+                |e, p: &BaseObstacleParams| {
+                    Ok(Box::new(BaseObstacle::new(e.layers()?, p.sum_scores)))
+                },
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "PathDist",
+            ctor(
+                |_, _: &PathParams| Ok(Box::new(PathDist::default())),
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "GoalDist",
+            ctor(
+                |_, _: &GoalParams| Ok(Box::new(GoalDist::default())),
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "PathAlign",
+            ctor(
+                |_, p: &PathParams| Ok(Box::new(PathAlign::new(p.forward_point_distance))),
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "GoalAlign",
+            ctor(
+                |_, p: &GoalParams| Ok(Box::new(GoalAlign::new(p.forward_point_distance))),
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "RotateToGoal",
+            ctor(
+                |_, p: &RotateToGoalParams| {
+                    Ok(Box::new(RotateToGoal::new(RotateToGoalSettings {
+                        xy_goal_tolerance: p.xy_goal_tolerance,
+                        trans_stopped_velocity: p.trans_stopped_velocity,
+                        slowing_factor: p.slowing_factor,
+                        lookahead_time: p.lookahead_time,
+                        path_length_tolerance: p.path_length_tolerance,
+                    })))
+                },
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "Oscillation",
+            ctor(
+                |_, p: &OscillationParams| {
+                    Ok(Box::new(Oscillation::new(OscillationSettings {
+                        oscillation_reset_dist: p.oscillation_reset_dist,
+                        oscillation_reset_angle: p.oscillation_reset_angle,
+                        x_only_threshold: p.x_only_threshold,
+                    })))
+                },
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "move_base.path_dist",
+            ctor(
+                move |e, _: &MbPathParams| {
+                    Ok(Box::new(GridDistance::new(
+                        e.layers()?,
+                        Target::Path,
+                        radius(e),
+                    )))
+                },
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "move_base.goal_dist",
+            ctor(
+                move |e, _: &MbGoalParams| {
+                    Ok(Box::new(GridDistance::new(
+                        e.layers()?,
+                        Target::Goal,
+                        radius(e),
+                    )))
+                },
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "move_base.occ_cost",
+            ctor(
+                |e, _: &MbOccParams| Ok(Box::new(Occupancy::new(e.layers()?, e.robot.footprint))),
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "move_base.heading_lookahead",
+            ctor(
+                move |e, p: &MbHeadingParams| {
+                    Ok(Box::new(HeadingLookahead::new(
+                        e.layers()?,
+                        p.heading_lookahead,
+                        radius(e),
+                    )))
+                },
+                |p| p.scale,
+            ),
+        );
+        c.register(
+            "move_base.oscillation",
+            ctor(
+                |_, p: &MbOscillationParams| {
+                    Ok(Box::new(InPlaceOscillation::new(p.oscillation_reset_dist)))
+                },
+                |p| p.scale,
+            ),
+        );
         c
     }
 

@@ -39,10 +39,12 @@ pub trait Critic: Send + fmt::Debug {
     /// The raw score of `traj`; `None` declares it illegal (it is then not
     /// chosen, whatever the other critics say).
     fn score(&self, ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64>;
-    /// Whether it reads every heading of a rollout (`Trajectory::dirs`;
-    /// e.g. a rectangular footprint's cost); most read only the end pose.
+    /// Whether it reads the headings of a rollout (`Trajectory::dirs`).
+    /// True unless a critic says otherwise, so a new critic always finds
+    /// them; critics that read only positions, the end pose or the command
+    /// say false, and a rollout then skips storing them.
     fn needs_headings(&self) -> bool {
-        false
+        true
     }
     /// Called after the choice with the command driven (`None`: the
     /// fallback drove).
@@ -89,6 +91,9 @@ impl Critic for Heading {
     fn name(&self) -> &str {
         "heading"
     }
+    fn needs_headings(&self) -> bool {
+        false
+    }
     fn score(&self, ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
         let [x, y, theta] = traj.end_pose();
         let bearing = atan2(ctx.goal[1] - y, ctx.goal[0] - x);
@@ -108,6 +113,9 @@ impl Critic for Clearance {
     fn name(&self) -> &str {
         "dist"
     }
+    fn needs_headings(&self) -> bool {
+        false
+    }
     fn score(&self, _ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
         Some(traj.min_clearance.max(0.0).min(self.cap))
     }
@@ -120,6 +128,9 @@ pub struct Velocity;
 impl Critic for Velocity {
     fn name(&self) -> &str {
         "velocity"
+    }
+    fn needs_headings(&self) -> bool {
+        false
     }
     fn score(&self, _ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
         Some(traj.sample.cmd.v.max(0.0))
@@ -143,6 +154,9 @@ impl Twirling {
 impl Critic for Twirling {
     fn name(&self) -> &str {
         self.name
+    }
+    fn needs_headings(&self) -> bool {
+        false
     }
     fn score(&self, _ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
         Some(traj.sample.cmd.w.abs())

@@ -190,7 +190,8 @@ impl Critic for PathAlign {
     }
     fn prepare(&mut self, ctx: &CriticContext<'_>) {
         let s = ctx.obs.state;
-        self.zero = hypot(s.x - ctx.obs.goal[0], s.y - ctx.obs.goal[1]) <= self.forward_point_distance;
+        self.zero =
+            hypot(s.x - ctx.obs.goal[0], s.y - ctx.obs.goal[1]) <= self.forward_point_distance;
         if !self.zero {
             self.targets = path_targets(ctx.obs.map.grid(), ctx.path);
         }
@@ -202,7 +203,9 @@ impl Critic for PathAlign {
         if self.zero {
             return Some(0.0);
         }
-        let v = self.targets.at(g, forward(end, self.forward_point_distance))?;
+        let v = self
+            .targets
+            .at(g, forward(end, self.forward_point_distance))?;
         Some(v * 0.5 * g.resolution())
     }
 }
@@ -243,7 +246,8 @@ impl Critic for GoalAlign {
         let g = ctx.obs.map.grid();
         let end = last_pose(traj)?;
         g.world_to_cell(end[0], end[1])?;
-        self.targets.at(g, forward(end, self.forward_point_distance))
+        self.targets
+            .at(g, forward(end, self.forward_point_distance))
     }
 }
 
@@ -290,7 +294,8 @@ impl RotateToGoal {
 
     fn rotation(&self, traj: &Trajectory) -> Option<f64> {
         let yaw = if self.set.lookahead_time >= 0.0 && traj.dt > 0.0 {
-            let i = ((self.set.lookahead_time / traj.dt).round() as usize).min(traj.dirs.len().checked_sub(1)?);
+            let i = ((self.set.lookahead_time / traj.dt).round() as usize)
+                .min(traj.dirs.len().checked_sub(1)?);
             let [sn, cs] = traj.dirs[i];
             atan2(sn, cs)
         } else {
@@ -471,7 +476,13 @@ pub struct MapGrid {
 impl MapGrid {
     /// Distances from `targets` on `layers`' costmap, the robot at `pos`
     /// with circumscribed radius `radius`.
-    pub fn compute(&mut self, layers: &Layers, targets: &[(usize, usize)], pos: [f64; 2], radius: f64) {
+    pub fn compute(
+        &mut self,
+        layers: &Layers,
+        targets: &[(usize, usize)],
+        pos: [f64; 2],
+        radius: f64,
+    ) {
         let cm = layers.costmap();
         let (w, h) = (cm.width, cm.height);
         let grid = layers.frame();
@@ -581,7 +592,8 @@ impl Critic for GridDistance {
             cells = cells.last().map(|&c| vec![c]).unwrap_or_default();
         }
         let s = ctx.obs.state;
-        self.grid.compute(&self.layers, &cells, [s.x, s.y], self.radius);
+        self.grid
+            .compute(&self.layers, &cells, [s.x, s.y], self.radius);
     }
     fn score(&self, _ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
         let mut v = None;
@@ -667,7 +679,8 @@ impl Critic for HeadingLookahead {
         let cells = plan_cells(self.layers.frame(), ctx.path);
         let goal: Vec<_> = cells.last().copied().into_iter().collect();
         let s = ctx.obs.state;
-        self.grid.compute(&self.layers, &goal, [s.x, s.y], self.radius);
+        self.grid
+            .compute(&self.layers, &goal, [s.x, s.y], self.radius);
     }
     fn score(&self, _ctx: &CriticContext<'_>, traj: &Trajectory) -> Option<f64> {
         if traj.sample.cmd.v != 0.0 {

@@ -121,7 +121,10 @@ pub fn build(
     let at = format!("{prefix}.critic_config");
     let mut critics = Vec::with_capacity(cfg.critics.len());
     for name in &cfg.critics {
-        let own = cfg.critic_config.get(name).unwrap_or(&serde_json::Value::Null);
+        let own = cfg
+            .critic_config
+            .get(name)
+            .unwrap_or(&serde_json::Value::Null);
         critics.push(catalogue.build(name, &env, &at, own)?);
     }
     if let Some(obj) = cfg.critic_config.as_object() {
@@ -143,8 +146,14 @@ pub fn build(
             include_last_point: cfg.include_last_point,
         },
     );
-    let engine = Engine::new(robot, Box::new(generator), critics, Scoring::WeightedCost, None)
-        .keep_chosen(true);
+    let engine = Engine::new(
+        robot,
+        Box::new(generator),
+        critics,
+        Scoring::WeightedCost,
+        None,
+    )
+    .keep_chosen(true);
     let follow = Following {
         reach: cfg.forward_prune_distance,
         replan_period: cfg.replan_period,

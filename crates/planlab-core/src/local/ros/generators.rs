@@ -59,10 +59,7 @@ fn ramp_rollout(
     }
     traj.final_speed = v;
     traj.horizon = traj.points.len();
-    traj.end_theta = traj
-        .dirs
-        .last()
-        .map_or(s.theta, |&[sn, cs]| atan2(sn, cs));
+    traj.end_theta = traj.dirs.last().map_or(s.theta, |&[sn, cs]| atan2(sn, cs));
 }
 
 /// Settings of [`TrajectoryPlannerWindow`] (validated by the planner).
@@ -165,7 +162,11 @@ impl TrajectoryGenerator for TrajectoryPlannerWindow {
         out.clear();
         if !self.escaping {
             for i in 0..set.vx_samples {
-                let vx = if i == 0 { lo_x } else { lo_x + dvx * f64::from(i) };
+                let vx = if i == 0 {
+                    lo_x
+                } else {
+                    lo_x + dvx * f64::from(i)
+                };
                 out.push(cmd(vx, 0.0));
                 for j in 0..set.vtheta_samples.saturating_sub(1) {
                     out.push(cmd(vx, min_th + dvth * f64::from(j)));
@@ -173,7 +174,11 @@ impl TrajectoryGenerator for TrajectoryPlannerWindow {
             }
         }
         for i in 0..set.vtheta_samples {
-            let w = if i == 0 { min_th } else { min_th + dvth * f64::from(i) };
+            let w = if i == 0 {
+                min_th
+            } else {
+                min_th + dvth * f64::from(i)
+            };
             if w > dvth || w < -dvth {
                 let lifted = if w > 0.0 {
                     w.max(set.min_in_place_vel_theta)
@@ -284,7 +289,13 @@ impl TrajectoryGenerator for StandardGenerator {
         let (v_lo, v_hi) = reachable(s.v, l.acc_v, l.v_min, l.v_max, t);
         let (w_lo, w_hi) = reachable(s.w, l.acc_w, -l.w_max, l.w_max, t);
         axis(&mut self.vs, v_lo, v_hi, 0.0, self.set.vx_samples.max(1));
-        axis(&mut self.ws, w_lo, w_hi, 0.0, self.set.vtheta_samples.max(1));
+        axis(
+            &mut self.ws,
+            w_lo,
+            w_hi,
+            0.0,
+            self.set.vtheta_samples.max(1),
+        );
         out.clear();
         for &v in &self.vs {
             for &w in &self.ws {

@@ -102,7 +102,8 @@ impl Layers {
             Footprint::Rectangle { .. } => inscribed,
         };
         let inflation = p.inflation_radius.max(inscribed);
-        let stat = Costmap::ros(&solid, inscribed, inflation, p.cost_scaling_factor).map_err(bad)?;
+        let stat =
+            Costmap::ros(&solid, inscribed, inflation, p.cost_scaling_factor).map_err(bad)?;
         Ok(Self {
             cur: stat.clone(),
             solid,
@@ -264,7 +265,11 @@ fn navfn_cost(c: u8) -> Option<f64> {
 /// The global path from `start` to `goal` (world metres) on the layers'
 /// costmap: Dijkstra over NavFn's cell costs (module doc), through cell
 /// centres, ending on the exact goal. Errors: [`LocalError::NoGlobalPath`].
-pub fn navfn(layers: &Layers, start: [f64; 2], goal: [f64; 2]) -> Result<Vec<[f64; 2]>, LocalError> {
+pub fn navfn(
+    layers: &Layers,
+    start: [f64; 2],
+    goal: [f64; 2],
+) -> Result<Vec<[f64; 2]>, LocalError> {
     let grid = layers.frame();
     let cm = layers.costmap();
     let (w, h) = (cm.width, cm.height);
@@ -315,7 +320,11 @@ pub fn navfn(layers: &Layers, start: [f64; 2], goal: [f64; 2]) -> Result<Vec<[f6
             let Some(step) = cm.costs.get(j).copied().and_then(navfn_cost) else {
                 continue;
             };
-            let len = if dc != 0 && dr != 0 { std::f64::consts::SQRT_2 } else { 1.0 };
+            let len = if dc != 0 && dr != 0 {
+                std::f64::consts::SQRT_2
+            } else {
+                1.0
+            };
             let nd = d + step * len;
             if nd < dist[j] {
                 dist[j] = nd;
@@ -420,7 +429,10 @@ pub fn plan_cells(grid: &OccupancyGrid, plan: &[[f64; 2]]) -> Vec<(usize, usize)
         let n = ((hypot(b[0] - a[0], b[1] - a[1]) / step).ceil() as usize).max(1);
         for k in 0..n {
             let t = k as f64 / n as f64;
-            if !push([a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t], &mut out) {
+            if !push(
+                [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t],
+                &mut out,
+            ) {
                 return out;
             }
         }
@@ -580,7 +592,9 @@ impl<G: RosGenerator> LocalPlanner for RosPlanner<G> {
             }
         }
         if let (Some([x, y, th]), Some(e)) = (self.escaping, self.follow.escape) {
-            if hypot(s.x - x, s.y - y) > e.reset_dist || wrap_angle(s.theta - th).abs() > e.reset_theta {
+            if hypot(s.x - x, s.y - y) > e.reset_dist
+                || wrap_angle(s.theta - th).abs() > e.reset_theta
+            {
                 self.escaping = None;
             }
         }

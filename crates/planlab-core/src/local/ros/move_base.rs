@@ -83,7 +83,13 @@ impl MoveBaseConfig {
     pub fn validate(&self, prefix: &str) -> Result<(), LocalError> {
         self.check_bounds(prefix)?;
         self.costmap.check_bounds(&format!("{prefix}.costmap"))?;
-        samples_in_range(prefix, [("vx_samples", self.vx_samples), ("vtheta_samples", self.vtheta_samples)])
+        samples_in_range(
+            prefix,
+            [
+                ("vx_samples", self.vx_samples),
+                ("vtheta_samples", self.vtheta_samples),
+            ],
+        )
     }
 }
 
@@ -179,8 +185,14 @@ pub fn build(
             min_in_place_vel_theta: cfg.min_in_place_vel_theta,
         },
     );
-    let engine = Engine::new(robot, Box::new(generator), critics, Scoring::WeightedCost, None)
-        .keep_chosen(true);
+    let engine = Engine::new(
+        robot,
+        Box::new(generator),
+        critics,
+        Scoring::WeightedCost,
+        None,
+    )
+    .keep_chosen(true);
     let follow = Following {
         reach: cfg.plan_window,
         replan_period: if cfg.planner_frequency > 0.0 {

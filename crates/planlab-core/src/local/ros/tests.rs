@@ -5,7 +5,9 @@ use super::critics::*;
 use super::generators::*;
 use super::{navfn, CostmapParams, Layers, PlanTracker};
 use crate::local::engine::critic::{Critic, CriticContext};
-use crate::local::engine::generator::{Sample, Trajectory, TrajectoryGenerator, Window, WindowRequest};
+use crate::local::engine::generator::{
+    Sample, Trajectory, TrajectoryGenerator, Window, WindowRequest,
+};
 use crate::local::testkit::{self, End};
 use crate::local::{LocalPlanner, Observation};
 use crate::num::{cos, sin};
@@ -82,6 +84,7 @@ fn traj(cmd: Command, poses: &[[f64; 3]]) -> Trajectory {
         horizon: poses.len(),
         end_theta: poses.last().map_or(0.0, |p| p[2]),
         min_clearance: f64::INFINITY,
+        with_dirs: true,
     }
 }
 
@@ -196,16 +199,26 @@ fn rotate_to_goal_is_silent_far_slows_near_and_turns_when_stopped() {
     let mut crit = rotate_to_goal();
     let c = ctx(&o, &plan, &r, &w);
     crit.prepare(&c);
-    assert_eq!(crit.score(&c, &traj(cmd(0.5, 0.0), &[[3.45, 1.05, 0.0]])), None);
-    let slow = crit.score(&c, &traj(cmd(0.2, 0.3), &[[3.45, 1.05, 0.3]])).unwrap();
+    assert_eq!(
+        crit.score(&c, &traj(cmd(0.5, 0.0), &[[3.45, 1.05, 0.0]])),
+        None
+    );
+    let slow = crit
+        .score(&c, &traj(cmd(0.2, 0.3), &[[3.45, 1.05, 0.3]]))
+        .unwrap();
     assert!((slow - (5.0 * 0.04 + 0.3)).abs() < 1e-12, "{slow}");
     // Stopped there: only rotations are legal, scored by the yaw error.
     let stopped = state(3.40, 1.05, 0.0, 0.1);
     let o = obs(&map, &stopped, [3.55, 1.05]);
     let c = ctx(&o, &plan, &r, &w);
     crit.prepare(&c);
-    assert_eq!(crit.score(&c, &traj(cmd(0.05, 0.0), &[[3.42, 1.05, 0.0]])), None);
-    let turn = crit.score(&c, &traj(cmd(0.0, -0.2), &[[3.40, 1.05, -0.25]])).unwrap();
+    assert_eq!(
+        crit.score(&c, &traj(cmd(0.05, 0.0), &[[3.42, 1.05, 0.0]])),
+        None
+    );
+    let turn = crit
+        .score(&c, &traj(cmd(0.0, -0.2), &[[3.40, 1.05, -0.25]]))
+        .unwrap();
     assert!((turn - 0.25).abs() < 1e-12, "{turn}");
 }
 
@@ -250,7 +263,11 @@ fn walled() -> StaticMap {
     for r in 0..10 {
         let mut row = String::new();
         for c in 0..20 {
-            row.push(if (10..12).contains(&c) && r <= 6 { '#' } else { '.' });
+            row.push(if (10..12).contains(&c) && r <= 6 {
+                '#'
+            } else {
+                '.'
+            });
         }
         rows.push(row);
     }
@@ -272,7 +289,11 @@ fn base_obstacle_is_illegal_on_a_lethal_or_inscribed_cell() {
     let into = traj(cmd(0.5, 0.0), &[[0.35, 0.55, 0.0], [1.05, 0.55, 0.0]]);
     assert_eq!(crit.score(&c, &into), None, "lethal");
     let beside = traj(cmd(0.5, 0.0), &[[0.35, 0.55, 0.0], [0.85, 0.55, 0.0]]);
-    assert_eq!(crit.score(&c, &beside), None, "within the 0.2 m inscribed radius");
+    assert_eq!(
+        crit.score(&c, &beside),
+        None,
+        "within the 0.2 m inscribed radius"
+    );
     // 0.5 m from the wall's cell centres, the inscribed radius that of
     // the 16-gon of radius 0.2 + 0.01 padding (0.206 m):
     // 252·exp(−10·(0.5 − 0.206)) = 13.3 → 13.
@@ -340,7 +361,11 @@ fn move_base_oscillation_blocks_the_other_rotation_after_two_and_resets() {
     // Two right turns in place set stuck_right, which guards +ω.
     assert_eq!(crit.score(&c, &pos), None);
     let fwd = traj(cmd(0.3, 0.4), &[[1.0, 1.0, 0.0]]);
-    assert_eq!(crit.score(&c, &fwd), Some(0.0), "forward samples unaffected");
+    assert_eq!(
+        crit.score(&c, &fwd),
+        Some(0.0),
+        "forward samples unaffected"
+    );
     let s1 = state(1.06, 1.0, 0.0, 0.0);
     let o1 = obs(&map, &s1, [3.0, 1.0]);
     crit.prepare(&ctx(&o1, &[], &r, &w));
@@ -357,11 +382,21 @@ fn heading_lookahead_prefers_the_rotation_facing_the_goal() {
     let c = ctx(&o, &plan, &r, &w);
     let mut crit = HeadingLookahead::new(layers(&map), 0.3, 0.2);
     crit.prepare(&c);
-    let facing = crit.score(&c, &traj(cmd(0.0, 0.4), &[[1.05, 1.05, 0.0]])).unwrap();
-    let away = crit.score(&c, &traj(cmd(0.0, 0.4), &[[1.05, 1.05, std::f64::consts::PI]])).unwrap();
+    let facing = crit
+        .score(&c, &traj(cmd(0.0, 0.4), &[[1.05, 1.05, 0.0]]))
+        .unwrap();
+    let away = crit
+        .score(
+            &c,
+            &traj(cmd(0.0, 0.4), &[[1.05, 1.05, std::f64::consts::PI]]),
+        )
+        .unwrap();
     // Forward point (1.35, 1.05) is 17 cells from the goal; (0.75, 1.05) 23.
     assert_eq!((facing, away), (17.0, 23.0));
-    assert_eq!(crit.score(&c, &traj(cmd(0.3, 0.0), &[[1.05, 1.05, 0.0]])), Some(0.0));
+    assert_eq!(
+        crit.score(&c, &traj(cmd(0.3, 0.0), &[[1.05, 1.05, 0.0]])),
+        Some(0.0)
+    );
 }
 
 #[test]
@@ -382,7 +417,15 @@ fn standard_generator_window_and_samples() {
     let s = state(1.0, 1.0, 0.0, 0.5);
     let o = obs(&map, &s, [3.0, 1.0]);
     let mut out = Vec::new();
-    let win = g.samples(&o, &WindowRequest { dt: 0.1, hold_v: None, braking: false }, &mut out);
+    let win = g.samples(
+        &o,
+        &WindowRequest {
+            dt: 0.1,
+            hold_v: None,
+            braking: false,
+        },
+        &mut out,
+    );
     // Projected over sim_time 1.7 s: v 0.5 ± 0.4·1.7 within [0, 1],
     // ω ± 1.745·1.7 within ±ω_max.
     let wm = 40f64.to_radians();
@@ -393,7 +436,15 @@ fn standard_generator_window_and_samples() {
     // A 0.5 m/s straight rollout: ⌈0.5·1.7/0.05⌉ = 17 steps; the start,
     // 17 poses and the last again; it ends 0.85 m ahead.
     let mut t = Trajectory::default();
-    g.rollout(&o, Sample { cmd: cmd(0.5, 0.0), decel: 0.0 }, 0, &mut t);
+    g.rollout(
+        &o,
+        Sample {
+            cmd: cmd(0.5, 0.0),
+            decel: 0.0,
+        },
+        0,
+        &mut t,
+    );
     assert_eq!(t.points.len(), 19);
     assert_eq!(t.points[17], t.points[18]);
     assert!((t.end()[0] - 1.85).abs() < 1e-9, "{:?}", t.end());
@@ -418,7 +469,11 @@ fn trajectory_planner_window_and_samples() {
     let s = state(1.0, 1.0, 0.0, 0.5);
     let o = obs(&map, &s, [3.0, 1.0]);
     let mut out = Vec::new();
-    let req = WindowRequest { dt: 0.1, hold_v: None, braking: false };
+    let req = WindowRequest {
+        dt: 0.1,
+        hold_v: None,
+        braking: false,
+    };
     let win = g.samples(&o, &req, &mut out);
     assert!((win.v.0 - 0.46).abs() < 1e-12 && (win.v.1 - 0.54).abs() < 1e-12);
     // 3 speeds × (straight + 19 turn rates) and the 18 rotations whose
@@ -441,7 +496,15 @@ fn trajectory_planner_window_and_samples() {
     // Step count: max(0.5·1.0/0.025, 0.4/0.025) + 0.5 → 20 points, the
     // first the current pose.
     let mut t = Trajectory::default();
-    g.rollout(&o, Sample { cmd: cmd(0.5, 0.4), decel: 0.0 }, 0, &mut t);
+    g.rollout(
+        &o,
+        Sample {
+            cmd: cmd(0.5, 0.4),
+            decel: 0.0,
+        },
+        0,
+        &mut t,
+    );
     assert_eq!(t.points.len(), 20);
     assert_eq!(t.points[0], [1.0, 1.0]);
 }
@@ -454,12 +517,16 @@ fn navfn_goes_round_the_wall_and_the_tracker_prunes_behind() {
     assert_eq!(*p.last().unwrap(), [1.85, 0.55]);
     // Every point off the grown wall, and the path passes under it
     // (the wall spans y 0.3–1.0, grown by 0.2 m).
-    assert!(p.iter().all(|q| l.cost_at(q[0], q[1]).is_some_and(super::passable)));
+    assert!(p
+        .iter()
+        .all(|q| l.cost_at(q[0], q[1]).is_some_and(super::passable)));
     assert!(p.iter().any(|q| q[1] < 0.15));
     let mut t = PlanTracker::default();
     t.set(p.clone());
     let far = t.window([0.35, 0.55], 0.3).to_vec();
-    assert!(far.iter().all(|q| (q[0] - 0.35).hypot(q[1] - 0.55) <= 0.3 + 1e-9));
+    assert!(far
+        .iter()
+        .all(|q| (q[0] - 0.35).hypot(q[1] - 0.55) <= 0.3 + 1e-9));
     let mid = p[p.len() / 2];
     let w = t.window(mid, 0.3).to_vec();
     assert_eq!(w[0], mid, "pruned to the point nearest the robot");
@@ -496,7 +563,13 @@ fn both_planners_drive_round_a_pillar_to_the_goal() {
     let cat = crate::local::engine::catalogue::CriticCatalogue::standard();
     let mut d = super::dwb::build(&Default::default(), &cat, &r, &map, [1.0, 2.0], goal).unwrap();
     let run = testkit::run(&mut d, &map, &r, start, goal, &[], 120.0, 0.2);
-    assert_eq!(run.end, End::Reached, "dwb: {:?} {:?}", run.modes.last(), run.states.last());
+    assert_eq!(
+        run.end,
+        End::Reached,
+        "dwb: {:?} {:?}",
+        run.modes.last(),
+        run.states.last()
+    );
     assert!(run.min_clearance > 0.0);
     // move_base, facing away from a goal in the open beside the pillar:
     // it turns in place, then drives there.
@@ -504,9 +577,18 @@ fn both_planners_drive_round_a_pillar_to_the_goal() {
     let goal = [5.0, 0.6];
     let mut mb = super::move_base::build(&Default::default(), &r, &map, [1.0, 0.6], goal).unwrap();
     let run = testkit::run(&mut mb, &map, &r, start, goal, &[], 120.0, 0.2);
-    assert_eq!(run.end, End::Reached, "move-base-dwa: {:?} {:?}", run.modes.last(), run.states.last());
+    assert_eq!(
+        run.end,
+        End::Reached,
+        "move-base-dwa: {:?} {:?}",
+        run.modes.last(),
+        run.states.last()
+    );
     let first = &run.states[..10];
-    assert!(first.iter().all(|s| s.x == 1.0 && s.y == 0.6), "turns on the spot first");
+    assert!(
+        first.iter().all(|s| s.x == 1.0 && s.y == 0.6),
+        "turns on the spot first"
+    );
     assert!(crate::num::wrap_angle(first[9].theta - std::f64::consts::PI).abs() > 0.2);
     assert_eq!(d.name(), "dwb");
 }
@@ -522,27 +604,45 @@ fn bad_settings_are_one_line_errors_naming_the_field() {
             name: name.into(),
             config,
         };
-        let e = build(&choice, &robot(), &map, &s, [3.5, 1.0]).err().expect("refused");
+        let e = build(&choice, &robot(), &map, &s, [3.5, 1.0])
+            .err()
+            .expect("refused");
         let text = e.to_string();
         assert!(!text.contains('\n'), "{text}");
         text
     };
     assert!(err("move-base-dwa", json!({"sim_time": 1e9})).contains("move-base-dwa.sim_time"));
     assert!(err("move-base-dwa", json!({"vx_samples": 0})).contains("move-base-dwa.vx_samples"));
-    assert!(err("move-base-dwa", json!({"costmap": {"inflation_radius": -1.0}})).contains("costmap.inflation_radius"));
+    assert!(err(
+        "move-base-dwa",
+        json!({"costmap": {"inflation_radius": -1.0}})
+    )
+    .contains("costmap.inflation_radius"));
     assert!(err("dwb", json!({"linear_granularity": 0.0})).contains("dwb.linear_granularity"));
     assert!(err("dwb", json!({"vtheta_samples": 100000})).contains("dwb.vtheta_samples"));
-    assert!(err("dwb", json!({"critic_config": {"PathAlign": {"scale": 1e300}}}))
-        .contains("dwb.critic_config.PathAlign.scale"));
-    assert!(err("dwb", json!({"critic_config": {"PathAlign": {"forward_point_distance": "x"}}}))
-        .contains("forward_point_distance"));
+    assert!(err(
+        "dwb",
+        json!({"critic_config": {"PathAlign": {"scale": 1e300}}})
+    )
+    .contains("dwb.critic_config.PathAlign.scale"));
+    assert!(err(
+        "dwb",
+        json!({"critic_config": {"PathAlign": {"forward_point_distance": "x"}}})
+    )
+    .contains("forward_point_distance"));
     assert!(err("dwb", json!({"critics": ["PathDist", "Nope"]})).contains("unknown critic `Nope`"));
-    assert!(err("dwb", json!({"critic_config": {"Twirling": {"scale": 1.0}}})).contains("not in dwb.critics"));
+    assert!(err(
+        "dwb",
+        json!({"critic_config": {"Twirling": {"scale": 1.0}}})
+    )
+    .contains("not in dwb.critics"));
     // NaN cannot be written in JSON; through the API it is refused too.
     let cfg = super::move_base::MoveBaseConfig {
         pdist_scale: f64::NAN,
         ..Default::default()
     };
-    let e = super::move_base::build(&cfg, &robot(), &map, [0.5, 1.0], [3.5, 1.0]).err().unwrap();
+    let e = super::move_base::build(&cfg, &robot(), &map, [0.5, 1.0], [3.5, 1.0])
+        .err()
+        .unwrap();
     assert!(e.to_string().contains("move-base-dwa.pdist_scale"), "{e}");
 }
