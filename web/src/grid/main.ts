@@ -1,7 +1,7 @@
 // Playground wiring: loads maps through the wasm readers, turns clicks and
 // drags into map edits and endpoint moves (the S and G markers can be
 // dragged with any tool), and re-plans through the page's wasm PlanSession
-// after every edit (planning.ts); the search plays in player-ui.ts. No
+// after every edit (scene/grid-session.ts); the search plays in player-ui.ts. No
 // planning happens in this file: it converts control values into the core's
 // GridPlanOptions and paints what comes back.
 
