@@ -371,8 +371,8 @@ fn goals_are_start_final_and_the_goal_steered_to() {
 
 #[test]
 fn lidar_layers_are_the_scan_and_what_the_navigator_made_of_it() {
-    // The LiDAR layers are the last six.
-    let lidar = &Layer::ALL[Layer::LidarRays as usize..];
+    // The six LiDAR layers, LidarRays to LidarTarget.
+    let lidar = &Layer::ALL[Layer::LidarRays as usize..=Layer::LidarTarget as usize];
     assert_eq!(lidar.len(), 6);
     // Nothing before the first step, nor for a planner without a LiDAR.
     let ep = episode("lidar-dwa", Footprint::default());
