@@ -72,13 +72,17 @@ async function dwaWeights(page) {
 test('the Critics list shows the weights of the last step and follows a weight edit', async () => {
   const { page, problems } = await openRobotPage(session, `robot.html?scenario=${DEMO}`);
   const weights = await dwaWeights(page);
-  // Before the first step: the critics, no weights yet.
+  // Before the first step: the critics with the weights they were built
+  // with (the engine's configured weights).
   let rows = await criticRows(page);
   assert.equal(rows[0].name, 'total');
   const names = rows.slice(1).map((r) => r.name);
   assert.equal(names.length, 3, `dwa's three critics: ${names}`);
   assert.equal(new Set(names).size, 3);
-  assert.ok(rows.slice(1).every((r) => r.text === '—' && r.weight === undefined));
+  assert.deepEqual(
+    rows.slice(1).map((r) => Number(r.weight)),
+    weights,
+  );
   await step(page, 1);
   rows = await criticRows(page);
   assert.deepEqual(
