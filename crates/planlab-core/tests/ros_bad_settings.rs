@@ -64,8 +64,14 @@ fn bad_settings_are_one_line_errors_naming_the_field() {
         pdist_scale: f64::NAN,
         ..Default::default()
     };
-    let e = planlab_core::local::ros::move_base::build(&cfg, &RobotSpec::default(), &map, [0.5, 1.0], [3.5, 1.0])
-        .err()
-        .unwrap();
+    let e = planlab_core::local::ros::move_base::build(
+        &cfg,
+        &RobotSpec::default(),
+        &map,
+        [0.5, 1.0],
+        [3.5, 1.0],
+    )
+    .err()
+    .unwrap();
     assert!(e.to_string().contains("move-base-dwa.pdist_scale"), "{e}");
 }

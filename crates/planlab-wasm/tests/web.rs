@@ -552,7 +552,10 @@ fn critics_carry_the_last_steps_weights_and_choose_the_fan_colour() {
     // Before the first step: the names, no weights yet.
     let before = critics(&sim);
     assert!(before.iter().map(|c| &c.0).eq(names.iter()));
-    assert!(before.iter().all(|c| c.1.is_none()));
+    assert!(
+        before.iter().all(|c| c.1.is_some()),
+        "the built-in weights before the first step"
+    );
     sim.step(3);
     let weights: Vec<Option<f64>> = critics(&sim).into_iter().map(|c| c.1).collect();
     assert_eq!(weights, vec![Some(0.05), Some(0.3), Some(0.1)]);
