@@ -381,7 +381,13 @@ impl SearchReplay {
         {
             (g, h, parent) = (eg, eh, p);
         }
-        let at = |i: u32| (i != NONE).then(|| i as usize + 1);
+        let at = |i: u32| {
+            if i == NONE {
+                None
+            } else {
+                Some(i as usize + 1)
+            }
+        };
         Some(CellInfo {
             state: match self.state[k] {
                 1 => CellState::Open,
