@@ -52,6 +52,7 @@ fn setup() -> EpisodeSetup {
         config: SimConfig::default(),
         terrain: Default::default(),
         seed: 1,
+        perception: None,
     }
 }
 

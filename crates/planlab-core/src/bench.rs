@@ -146,6 +146,8 @@ impl DwaStepBench {
             state: &self.state,
             goal: self.goal,
             map: &self.map,
+            map_revision: 0,
+            scan: None,
             movers: &self.movers,
             odometry: None,
             accel_z: 0.0,

@@ -54,6 +54,8 @@ fn first_command(cfg: &DwbConfig, cat: &CriticCatalogue) -> Result<f64, LocalErr
         state: &state,
         goal,
         map: &map,
+        map_revision: 0,
+        scan: None,
         movers: &[],
         odometry: None,
         accel_z: 0.0,

@@ -74,6 +74,7 @@ fn episode(planner: &str, footprint: Footprint) -> Episode {
         config: SimConfig::default(),
         terrain: Default::default(),
         seed: 11,
+        perception: None,
     })
     .unwrap()
 }

@@ -35,6 +35,7 @@ fn split_room(gap_cells: usize) -> Episode {
         config: SimConfig::default(),
         terrain: Default::default(),
         seed: 0,
+        perception: None,
     })
     .unwrap()
 }

@@ -44,6 +44,7 @@ fn setup(map: StaticMap, start: [f64; 3], goal: [f64; 2]) -> EpisodeSetup {
         config: SimConfig::default(),
         terrain: Default::default(),
         seed: 7,
+        perception: None,
     }
 }
 

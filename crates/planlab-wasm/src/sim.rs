@@ -224,6 +224,7 @@ impl SimHandle {
             config: s.sim,
             terrain: s.terrain,
             seed: s.seed,
+            perception: None,
         })?;
         Ok(SimHandle::wrap(ep))
     }

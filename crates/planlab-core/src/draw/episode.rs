@@ -190,6 +190,46 @@ pub fn episode(ep: &Episode, seen: Option<&SeenCells>, req: Request, out: &mut D
     }
     if let (true, Some(l)) = (stepped, d.lidar.as_ref()) {
         lidar(out, l, ep.state(), req.layers);
+    } else if let (true, Some(p)) = (want(Layer::LidarRays), ep.perception()) {
+        laser(out, p.scan());
+    }
+    if let (true, Some(p)) = (want(Layer::Costmap), ep.perception()) {
+        let inscribed = ep.robot().footprint.inscribed_radius();
+        if let Ok(cm) = p.costmap(inscribed) {
+            let frame = grid_frame(p.frame());
+            out.grid(Layer::Costmap, frame, &cm.costs, 0.0, p.revision() as f64);
+        }
+    }
+}
+
+/// The episode's simulated laser scan as [`Layer::LidarRays`] (a robot
+/// whose planner keeps no LiDAR debug of its own).
+fn laser(out: &mut DrawList, scan: &crate::world::LaserScan) {
+    let [sx, sy, yaw] = scan.pose;
+    if !(sx.is_finite() && sy.is_finite() && yaw.is_finite()) {
+        return;
+    }
+    for hit in [false, true] {
+        let rays: Vec<f64> = scan
+            .ranges
+            .iter()
+            .enumerate()
+            .filter(|&(_, r)| r.is_finite() == hit)
+            .flat_map(|(i, &r)| {
+                let a = yaw + scan.angle(i);
+                let r = if hit { r } else { scan.max_range };
+                [sx, sy, sx + r * a.cos(), sy + r * a.sin()]
+            })
+            .collect();
+        if !rays.is_empty() {
+            out.push(
+                Layer::LidarRays,
+                Shape::Segments,
+                rays,
+                f64::from(u8::from(hit)),
+                0.0,
+            );
+        }
     }
 }
 

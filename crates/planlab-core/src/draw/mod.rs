@@ -130,11 +130,17 @@ pub enum Layer {
     /// The hand's path: [`Shape::Polyline3`] items, `tag` 0 where it went,
     /// 1 its scripted motion.
     HandPath,
+    /// The costmap a laser-only robot has built so far
+    /// ([`crate::sim::perception`]): one [`Shape::Cells`] item over the
+    /// perceived map's frame, bytes the `costmap_2d` costs (0 free, 1–252
+    /// the inflation's decay, 253 inscribed, 254 a laser mark, 255 never
+    /// seen); `value` the perceived map's revision.
+    Costmap,
 }
 
 impl Layer {
     /// Every layer, in item order.
-    pub const ALL: [Layer; 28] = [
+    pub const ALL: [Layer; 29] = [
         Layer::Map,
         Layer::Seen,
         Layer::GlobalPath,
@@ -163,6 +169,7 @@ impl Layer {
         Layer::Links,
         Layer::Hand,
         Layer::HandPath,
+        Layer::Costmap,
     ];
 
     /// Kebab-case name (what the page's layer table lists).
@@ -196,6 +203,7 @@ impl Layer {
             Layer::Links => "links",
             Layer::Hand => "hand",
             Layer::HandPath => "hand-path",
+            Layer::Costmap => "costmap",
         }
     }
 }

@@ -17,7 +17,7 @@
 
 use super::edges::Edge;
 use super::nav::{LidarNavConfig, NavInput, Navigator, TargetKind, Velocity};
-use super::scan::{beam_angle, polar, Disc, Lidar, LidarConfig, Scan};
+use super::scan::{beam_angle, polar, Lidar, LidarConfig, Scan};
 use super::LidarError;
 /// The debug data lives in `local` (carried by [`PlannerDebug`]).
 pub use crate::local::scan_debug::{CandidateMark, EdgeMark, LidarDebug};
@@ -237,6 +237,8 @@ pub(crate) fn drive_on_scan(
         state: &state,
         goal,
         map: &map,
+        map_revision: 0,
+        scan: None,
         movers: &[],
         odometry: None,
         accel_z: 0.0,
@@ -522,15 +524,7 @@ impl LocalPlanner for LidarPlanner {
     fn step(&mut self, obs: &Observation<'_>) -> Command {
         let s = obs.state;
         let pose = [s.x, s.y, s.theta];
-        let discs: Vec<Disc> = obs
-            .movers
-            .iter()
-            .map(|m| Disc {
-                centre: m.pos,
-                radius: m.radius,
-            })
-            .collect();
-        let scan = self.lidar.scan(obs.map, pose, &discs);
+        let scan = self.lidar.observe(obs);
         // Assumption 2: the goal in the robot frame.
         let (c, sn) = (cos(s.theta), sin(s.theta));
         let (dx, dy) = (obs.goal[0] - s.x, obs.goal[1] - s.y);

@@ -3,6 +3,7 @@
 //! moving discs, with optional seeded Gaussian range noise.
 
 use super::LidarError;
+use crate::local::Observation;
 use crate::num::{cos, hypot, sin, Rng};
 use crate::world::StaticMap;
 
@@ -151,6 +152,36 @@ impl Lidar {
     /// The config.
     pub fn config(&self) -> &LidarConfig {
         &self.cfg
+    }
+
+    /// This step's scan from the robot's pose: the observation's laser scan
+    /// resampled to this sensor's beams and range when the episode
+    /// simulates one (nearest beam; a direction outside the laser's field
+    /// of view reads "no return"), else cast on the observation's map and
+    /// movers as [`Lidar::scan`] does.
+    pub fn observe(&mut self, obs: &Observation<'_>) -> Scan {
+        let s = obs.state;
+        let pose = [s.x, s.y, s.theta];
+        if let Some(laser) = obs.scan {
+            let r = self.cfg.range;
+            let n = self.dirs.len();
+            let ranges = (0..n)
+                .map(|i| match laser.at_angle(beam_angle(i, n)) {
+                    Some(d) if d <= r => d,
+                    _ => f64::INFINITY,
+                })
+                .collect();
+            return Scan::new(ranges, r);
+        }
+        let discs: Vec<Disc> = obs
+            .movers
+            .iter()
+            .map(|m| Disc {
+                centre: m.pos,
+                radius: m.radius,
+            })
+            .collect();
+        self.scan(obs.map, pose, &discs)
     }
 
     /// Scans from pose (x, y, θ) against the map and the discs. Exact

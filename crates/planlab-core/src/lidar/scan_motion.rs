@@ -12,7 +12,7 @@
 
 use super::nav::Velocity;
 use super::planner::{drive_on_scan, lidar_err, LocalMapConfig, MOTION_GOAL};
-use super::scan::{beam_angle, polar, Disc, Lidar, LidarConfig, Scan};
+use super::scan::{beam_angle, polar, Lidar, LidarConfig, Scan};
 use super::TargetKind;
 use crate::local::dwa::{Dwa, DwaConfig};
 use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
@@ -79,17 +79,7 @@ impl ScanMotion {
     /// Scans from the robot's pose: (pose (x, y, θ), scan).
     pub fn sense(&mut self, obs: &Observation<'_>) -> ([f64; 3], Scan) {
         let s = obs.state;
-        let pose = [s.x, s.y, s.theta];
-        let discs: Vec<Disc> = obs
-            .movers
-            .iter()
-            .map(|m| Disc {
-                centre: m.pos,
-                radius: m.radius,
-            })
-            .collect();
-        let scan = self.lidar.scan(obs.map, pose, &discs);
-        (pose, scan)
+        ([s.x, s.y, s.theta], self.lidar.observe(obs))
     }
 
     /// One command of the motion planner steering to `steer` (world m) on

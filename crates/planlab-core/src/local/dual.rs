@@ -336,6 +336,10 @@ impl GoalProvider for DualGuide {
         self.replan(map, [state.x, state.y], goal)
     }
 
+    fn route(&self) -> &[[f64; 2]] {
+        &self.route.path
+    }
+
     fn annotate(&self, debug: &mut PlannerDebug) {
         debug.global_path.clone_from(&self.route.path);
         // Feature nodes (or path nodes) with the start, as [S] Fig 6 draws
@@ -478,6 +482,8 @@ mod tests {
             state: s,
             goal: GOAL,
             map,
+            map_revision: 0,
+            scan: None,
             movers: &[],
             odometry: None,
             accel_z: 0.0,

@@ -203,6 +203,18 @@ pub trait GoalProvider {
     fn path(&self) -> &[[f64; 2]] {
         &[]
     }
+    /// The global route the provider steers along (empty: none); when the
+    /// known map changes and the route now runs through an obstacle, the
+    /// planner replans ([`GoalProvider::retarget`]).
+    fn route(&self) -> &[[f64; 2]] {
+        &[]
+    }
+}
+
+/// Whether a point of `route` lies closer than `room` m to an obstacle of
+/// `map` (or off it): the route no longer fits what is known.
+pub fn route_blocked(map: &StaticMap, route: &[[f64; 2]], room: f64) -> bool {
+    route.iter().any(|p| map.clearance(p[0], p[1]) < room)
 }
 
 /// The baseline's goal provider: always the final goal, fixed weights.
@@ -258,6 +270,8 @@ pub struct DwaPlanner<G> {
     engine: Engine,
     base: Weights,
     guide: G,
+    /// The map revision the route was last checked against.
+    revision: u64,
 }
 
 /// The baseline DWA (registry name `dwa`).
@@ -283,6 +297,7 @@ impl<G: GoalProvider> DwaPlanner<G> {
             engine,
             base,
             guide,
+            revision: 0,
         }
     }
 
@@ -303,6 +318,15 @@ impl<G: GoalProvider + Send> LocalPlanner for DwaPlanner<G> {
     }
 
     fn step(&mut self, obs: &Observation<'_>) -> Command {
+        if obs.map_revision != self.revision {
+            self.revision = obs.map_revision;
+            // The route was planned with at least this much room.
+            let r = self.engine.robot().footprint.circumscribed_radius();
+            if route_blocked(obs.map, self.guide.route(), r) {
+                // A failed replan keeps the old route.
+                let _ = self.guide.retarget(obs.map, obs.state, obs.goal);
+            }
+        }
         let g = self.guide.guide(obs, self.base);
         let rho = if g.rho.is_finite() && g.rho >= 0.0 {
             g.rho
@@ -435,6 +459,8 @@ mod tests {
                 state: &s,
                 goal: [19.0, 19.0],
                 map: &map,
+                map_revision: 0,
+                scan: None,
                 movers: &[],
                 odometry: None,
                 accel_z: 0.0,
@@ -480,6 +506,8 @@ mod tests {
             state: &s,
             goal: [0.35, 5.0],
             map: &map,
+            map_revision: 0,
+            scan: None,
             movers: &[],
             odometry: None,
             accel_z: 0.0,
@@ -679,6 +707,8 @@ mod tests {
                 state: &s,
                 goal: [15.0, 5.0],
                 map: &map,
+                map_revision: 0,
+                scan: None,
                 movers: &movers,
                 odometry: None,
                 accel_z: 0.0,
@@ -721,6 +751,8 @@ mod tests {
             state: &s,
             goal: [5.0, 3.0],
             map: &map,
+            map_revision: 0,
+            scan: None,
             movers: &movers,
             odometry: None,
             accel_z: 0.0,

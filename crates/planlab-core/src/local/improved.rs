@@ -516,6 +516,10 @@ impl GoalProvider for FusionGuide {
         self.replan(map, [state.x, state.y], goal)
     }
 
+    fn route(&self) -> &[[f64; 2]] {
+        &self.route.path
+    }
+
     fn annotate(&self, debug: &mut PlannerDebug) {
         debug.global_path.clone_from(&self.route.path);
         debug.keypoints.clone_from(&self.route.waypoints);
@@ -603,6 +607,8 @@ mod tests {
             state: s,
             goal: [9.0, 3.0],
             map,
+            map_revision: 0,
+            scan: None,
             movers,
             odometry: None,
             accel_z: 0.0,

@@ -24,7 +24,7 @@ use thiserror::Error;
 /// Sensor samples are world data (the terrain model makes them); named
 /// here too because planners read them in their [`Observation`].
 pub use crate::world::OdometrySample;
-use crate::world::{Command, RobotState, StaticMap};
+use crate::world::{Command, LaserScan, RobotState, StaticMap};
 
 /// A mover as the robot perceives it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -50,8 +50,17 @@ pub struct Observation<'a> {
     pub state: &'a RobotState,
     /// The final goal, metres.
     pub goal: [f64; 2],
-    /// The static map (grid, clearance field, exact collision).
+    /// The map the planner knows (grid, clearance field, exact collision):
+    /// the true static map, or, when the episode has a perception section,
+    /// what the laser has shown so far (`sim::perception`).
     pub map: &'a StaticMap,
+    /// Changes whenever `map` changed since an earlier step (0 for a map
+    /// that never changes): planners that keep a global path replan on it.
+    pub map_revision: u64,
+    /// The laser scan of this step, when the episode simulates one for the
+    /// planner (`sim::perception`); planners that read a LiDAR use it
+    /// instead of casting rays on `map`.
+    pub scan: Option<&'a LaserScan>,
     /// Movers within sensing range.
     pub movers: &'a [ObservedMover],
     /// Odometry of the last period, when the simulator models slip.

@@ -79,6 +79,8 @@ pub fn run(
             state: &s,
             goal,
             map,
+            map_revision: 0,
+            scan: None,
             movers: &obs_movers,
             odometry: None,
             accel_z: 0.0,

@@ -96,6 +96,7 @@ impl Scenario {
         });
         scenario.terrain = Some(setup.terrain.clone());
         scenario.seed = Some(setup.seed);
+        scenario.perception = setup.perception;
         scenario.validate()?;
         Ok(scenario)
     }
@@ -168,6 +169,7 @@ impl Episode {
             config,
             terrain: scenario.terrain.clone().unwrap_or_default(),
             seed: scenario.seed.unwrap_or(0),
+            perception: scenario.perception,
         })
     }
 

@@ -129,6 +129,11 @@ pub struct Scenario {
     /// [`crate::apf::scene`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub apf: Option<crate::apf::ApfScene>,
+    /// The planner knows only what a laser shows: a costmap built from its
+    /// scans replaces the true map in every observation (see
+    /// [`crate::sim::perception`]; default: the planner gets the map).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub perception: Option<crate::sim::PerceptionSpec>,
 }
 
 /// Sets the value at dotted `path` (`sim.dt`, `movers.0.radius`) in a
@@ -399,6 +404,7 @@ impl Scenario {
             terrain: None,
             seed: None,
             apf: None,
+            perception: None,
         }
     }
 

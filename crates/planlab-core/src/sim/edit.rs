@@ -179,6 +179,7 @@ mod tests {
             config: SimConfig::default(),
             terrain: Default::default(),
             seed: 0,
+            perception: None,
         })
         .unwrap()
     }

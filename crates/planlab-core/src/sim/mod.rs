@@ -20,6 +20,7 @@
 
 mod edit;
 mod live;
+pub mod perception;
 mod replay;
 mod trace;
 
@@ -29,6 +30,7 @@ pub use crate::world::Outcome;
 pub use edit::{
     generated_sim_config, is_start_collision, SetupEdit, GENERATED_MAX_TIME, GENERATED_STUCK_TIME,
 };
+pub use perception::{Perception, PerceptionSpec};
 pub use replay::{Edit, Recording};
 pub use trace::{Column, Trace, TraceStep};
 
@@ -215,6 +217,9 @@ pub struct EpisodeSetup {
     pub terrain: TerrainSpec,
     /// Seed of every random stream of the episode.
     pub seed: u64,
+    /// When present the planner does not get the true map: it gets what
+    /// this laser has shown ([`perception`]).
+    pub perception: Option<PerceptionSpec>,
 }
 
 /// Exact distance (m) from a footprint at `pose` to a disc; ≤ 0 when they
@@ -280,6 +285,9 @@ pub struct Episode {
     accel_z: f64,
     /// Best distance to the goal that counted as progress, and when.
     progress: (f64, f64),
+    /// The laser and the map built from it, when the planner does not get
+    /// the true map.
+    perception: Option<Perception>,
 }
 
 impl std::fmt::Debug for Episode {
@@ -383,6 +391,24 @@ fn check_state(s: &RobotState) -> Result<(), SimError> {
     Ok(())
 }
 
+/// Mover states at time `t` on `map`.
+fn movers_at(movers: &[MoverSpec], map: &StaticMap, t: f64) -> Vec<MoverState> {
+    let b = map.bounds();
+    movers.iter().map(|m| m.state_at(t, b)).collect()
+}
+
+/// The movers as discs a laser sees.
+fn discs_of(movers: &[MoverSpec], now: &[MoverState]) -> Vec<Disc> {
+    movers
+        .iter()
+        .zip(now)
+        .map(|(m, ms)| Disc {
+            centre: ms.pos,
+            radius: m.radius,
+        })
+        .collect()
+}
+
 impl Episode {
     /// Validates the setup and builds the planner. Errors: invalid numbers
     /// (naming the field), a start pose overlapping a wall, the map edge or
@@ -401,6 +427,7 @@ impl Episode {
             config,
             terrain: terrain_spec,
             seed,
+            perception: perception_spec,
         } = setup;
         config.validate()?;
         robot.validate()?;
@@ -451,7 +478,19 @@ impl Episode {
         }
         check_reachable(&map, [start.x, start.y], goal)?;
         let terrain = Terrain::new(terrain_spec.clone(), seed)?;
-        let mut planner = planners::build(&choice, &robot, &map, &start, goal)?;
+        let perception = match perception_spec {
+            Some(spec) => {
+                let mut p = Perception::new(spec, &map, seed)?;
+                let discs = discs_of(&movers, &movers_at(&movers, &map, 0.0));
+                p.sense(&map, [start.x, start.y, start.theta], &discs, 0.0);
+                Some(p)
+            }
+            None => None,
+        };
+        // The planner is built on what it knows: the perceived map when
+        // there is one.
+        let known = perception.as_ref().map_or(&map, |p| p.map());
+        let mut planner = planners::build(&choice, &robot, known, &start, goal)?;
         planner.set_record_rollouts(config.record_rollouts);
         planner.set_seed(seed);
         let mut ep = Episode {
@@ -474,6 +513,7 @@ impl Episode {
             trace: Trace::default(),
             odometry: None,
             accel_z: 0.0,
+            perception,
         };
         let first = ep.trace_row(Default::default(), None, &ep.movers_at(0.0));
         ep.trace.steps.push(first);
@@ -494,13 +534,19 @@ impl Episode {
             config: self.config,
             terrain: self.terrain_spec.clone(),
             seed: self.seed,
+            perception: self.perception.as_ref().map(|p| *p.spec()),
         }
     }
 
     /// Mover positions and velocities at time `t`.
     fn movers_at(&self, t: f64) -> Vec<MoverState> {
-        let b = self.map.bounds();
-        self.movers.iter().map(|m| m.state_at(t, b)).collect()
+        movers_at(&self.movers, &self.map, t)
+    }
+
+    /// The laser and the map built from it, when the episode has a
+    /// perception section.
+    pub fn perception(&self) -> Option<&Perception> {
+        self.perception.as_ref()
     }
 
     /// Exact clearance of the robot at its current pose (capped).
@@ -638,12 +684,18 @@ impl Episode {
             Some(cmd) => cmd,
             None => {
                 let observed = self.observed_movers();
+                let (map, map_revision, scan) = match &self.perception {
+                    Some(p) => (p.map(), p.revision(), Some(p.scan())),
+                    None => (&self.map, 0, None),
+                };
                 let obs = crate::local::Observation {
                     time: t,
                     dt,
                     state: &self.state,
                     goal: self.goal,
-                    map: &self.map,
+                    map,
+                    map_revision,
+                    scan,
                     movers: &observed,
                     odometry: self.odometry,
                     accel_z: self.accel_z,
@@ -659,6 +711,15 @@ impl Episode {
         self.steps += 1;
         let t1 = self.time();
         let next = self.movers_at(t1);
+        if let Some(p) = &mut self.perception {
+            let s = &self.state;
+            p.sense(
+                &self.map,
+                [s.x, s.y, s.theta],
+                &discs_of(&self.movers, &next),
+                t1,
+            );
+        }
         let fp = self.robot.footprint;
         let hit_wall = self.map.footprint_collides(&fp, &self.state);
         let hit_mover = self
@@ -865,6 +926,7 @@ pub(crate) fn walled_room(
         config: SimConfig::default(),
         terrain: TerrainSpec::default(),
         seed,
+        perception: None,
     })
     .expect("the room episode starts")
 }

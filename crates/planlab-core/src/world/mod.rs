@@ -16,7 +16,7 @@ pub mod terrain;
 pub use movers::{MotionModel, MoverSpec, MoverState, Placement, ScriptSample};
 pub use outcome::Outcome;
 pub use robot::{Command, Drive, Footprint, RobotLimits, RobotSpec, RobotState};
-pub use sensors::OdometrySample;
+pub use sensors::{LaserScan, OdometrySample};
 pub use static_map::StaticMap;
 pub use terrain::{Road, SlipSpec, Terrain, TerrainSpec, TerrainStep, VehicleSpec};
 

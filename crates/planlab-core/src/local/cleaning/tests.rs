@@ -76,6 +76,8 @@ fn obs<'a>(state: &'a RobotState, map: &'a StaticMap, accel_z: f64) -> Observati
         state,
         goal: [8.0, 3.0],
         map,
+        map_revision: 0,
+        scan: None,
         movers: &[],
         odometry: None,
         accel_z,

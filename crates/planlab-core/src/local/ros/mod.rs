@@ -62,6 +62,30 @@ crate::params::params! {
     }
 }
 
+fn costmap_err(e: crate::map::MapError) -> LocalError {
+    LocalError::InvalidParameter(format!("costmap: {e}"))
+}
+
+/// The static layer of `map`: its blocked cells (unknown ones included
+/// when the map counts them as obstacles) as occupied.
+fn solid_of(map: &StaticMap) -> Result<OccupancyGrid, LocalError> {
+    let grid = map.grid();
+    let (w, h) = (grid.width(), grid.height());
+    let cells = (0..h)
+        .flat_map(|r| (0..w).map(move |c| (c, r)))
+        .map(|(c, r)| {
+            if map.is_blocked(c as i64, r as i64) {
+                Cell::Occupied
+            } else {
+                Cell::Free
+            }
+        })
+        .collect();
+    OccupancyGrid::from_cells(w, h, cells)
+        .and_then(|g| g.with_frame(grid.resolution(), grid.origin()))
+        .map_err(costmap_err)
+}
+
 /// The costmap of one cycle: the static layer and the movers, inflated.
 #[derive(Debug, Clone)]
 pub struct Layers {
@@ -79,22 +103,7 @@ pub struct Layers {
 impl Layers {
     /// The layers of `map` for `robot` (inscribed radius = the footprint's).
     pub fn new(map: &StaticMap, robot: &RobotSpec, p: &CostmapParams) -> Result<Self, LocalError> {
-        let grid = map.grid();
-        let (w, h) = (grid.width(), grid.height());
-        let cells = (0..h)
-            .flat_map(|r| (0..w).map(move |c| (c, r)))
-            .map(|(c, r)| {
-                if map.is_blocked(c as i64, r as i64) {
-                    Cell::Occupied
-                } else {
-                    Cell::Free
-                }
-            })
-            .collect();
-        let bad = |e: crate::map::MapError| LocalError::InvalidParameter(format!("costmap: {e}"));
-        let solid = OccupancyGrid::from_cells(w, h, cells)
-            .and_then(|g| g.with_frame(grid.resolution(), grid.origin()))
-            .map_err(bad)?;
+        let solid = solid_of(map)?;
         let inscribed = padded(&robot.footprint, p.footprint_padding).inscribed_radius();
         let inscribed = match robot.footprint {
             // The padded disc's 16-gon.
@@ -102,8 +111,8 @@ impl Layers {
             Footprint::Rectangle { .. } => inscribed,
         };
         let inflation = p.inflation_radius.max(inscribed);
-        let stat =
-            Costmap::ros(&solid, inscribed, inflation, p.cost_scaling_factor).map_err(bad)?;
+        let stat = Costmap::ros(&solid, inscribed, inflation, p.cost_scaling_factor)
+            .map_err(costmap_err)?;
         Ok(Self {
             cur: stat.clone(),
             solid,
@@ -114,6 +123,17 @@ impl Layers {
             padding: p.footprint_padding,
             dirty: false,
         })
+    }
+
+    /// Replaces the static layer by `map` (the known map changed).
+    pub fn set_static(&mut self, map: &StaticMap) -> Result<(), LocalError> {
+        let solid = solid_of(map)?;
+        self.stat = Costmap::ros(&solid, self.inscribed, self.inflation, self.scaling)
+            .map_err(costmap_err)?;
+        self.solid = solid;
+        self.cur.clone_from(&self.stat);
+        self.dirty = false;
+        Ok(())
     }
 
     /// Marks the movers of `obs` at their current positions (cells whose
@@ -499,6 +519,8 @@ pub struct RosPlanner<G: RosGenerator> {
     failed: bool,
     /// Where the escape began (x, y, θ), while escaping.
     escaping: Option<[f64; 3]>,
+    /// The map revision the static layer was built from.
+    revision: u64,
 }
 
 impl<G: RosGenerator> RosPlanner<G> {
@@ -524,6 +546,7 @@ impl<G: RosGenerator> RosPlanner<G> {
             next_replan: 0.0,
             failed: false,
             escaping: None,
+            revision: 0,
         };
         me.replan(start, goal)?;
         Ok(me)
@@ -555,7 +578,19 @@ impl<G: RosGenerator> LocalPlanner for RosPlanner<G> {
     fn step(&mut self, obs: &Observation<'_>) -> Command {
         let s = *obs.state;
         let pos = [s.x, s.y];
-        let due = self.follow.replan_period > 0.0 && obs.time >= self.next_replan;
+        let mut due = self.follow.replan_period > 0.0 && obs.time >= self.next_replan;
+        if obs.map_revision != self.revision {
+            self.revision = obs.map_revision;
+            // The known map changed (a perceived map): new static layer, and
+            // a new plan when the old one now crosses an inscribed cell.
+            if self.layers.set_static(obs.map).is_ok() {
+                due |= self.plan.path().iter().any(|p| {
+                    self.layers
+                        .cost_at(p[0], p[1])
+                        .is_none_or(|c| c >= INSCRIBED)
+                });
+            }
+        }
         if due || self.failed {
             self.layers.update(obs);
             // A failed replan keeps the old plan.

@@ -70,6 +70,14 @@ crate::params::params! {
             "escape_reset_dist: backing up ends this far from where it began";
         pub escape_reset_theta: f64 = std::f64::consts::FRAC_PI_4, "rad" [>= 0.0, <= 10.0]
             "escape_reset_theta: backing up ends after turning this far";
+        pub max_vel_x: f64 = 0.0, "m/s" [>= 0.0, <= 100.0]
+            "max_vel_x: fastest forward sample (0: the robot's v_max; at most the robot's v_max)";
+        pub max_vel_theta: f64 = 0.0, "rad/s" [>= 0.0, <= 100.0]
+            "max_vel_theta: fastest turn sample (0: the robot's ω_max; at most the robot's)";
+        pub acc_lim_x: f64 = 0.0, "m/s²" [>= 0.0, <= 1000.0]
+            "acc_lim_x: the window's linear acceleration (0: the robot's a_v; at most the robot's)";
+        pub acc_lim_theta: f64 = 0.0, "rad/s²" [>= 0.0, <= 1000.0]
+            "acc_lim_theta: the window's angular acceleration (0: the robot's a_ω; at most the robot's)";
         pub planner_frequency: f64 = 0.0, "Hz" [>= 0.0, <= 100.0]
             "planner_frequency: global replanning rate (0: once, and after a failure)";
         pub plan_window: f64 = 5.0, "m" [> 0.0, <= 1000.0]
@@ -90,6 +98,22 @@ impl MoveBaseConfig {
                 ("vtheta_samples", self.vtheta_samples),
             ],
         )
+    }
+}
+
+impl MoveBaseConfig {
+    /// The robot's limits with the planner's own caps (a cap of 0 keeps
+    /// the robot's value; a cap never raises it).
+    pub fn limits(&self, robot: &RobotSpec) -> crate::world::RobotLimits {
+        let cap = |own: f64, robot: f64| if own > 0.0 { own.min(robot) } else { robot };
+        let l = robot.limits;
+        crate::world::RobotLimits {
+            v_max: cap(self.max_vel_x, l.v_max),
+            w_max: cap(self.max_vel_theta, l.w_max),
+            acc_v: cap(self.acc_lim_x, l.acc_v),
+            acc_w: cap(self.acc_lim_theta, l.acc_w),
+            ..l
+        }
     }
 }
 
@@ -174,7 +198,7 @@ pub fn build(
         cat.build("move_base.oscillation", &env, prefix, &osc)?,
     ];
     let generator = TrajectoryPlannerWindow::new(
-        robot.limits,
+        cfg.limits(robot),
         TrajectoryPlannerSettings {
             vx_samples: cfg.vx_samples,
             vtheta_samples: cfg.vtheta_samples,

@@ -50,6 +50,8 @@ fn obs<'a>(map: &'a StaticMap, s: &'a RobotState, goal: [f64; 2]) -> Observation
         state: s,
         goal,
         map,
+        map_revision: 0,
+        scan: None,
         movers: &[],
         odometry: None,
         accel_z: 0.0,
