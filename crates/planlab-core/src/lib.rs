@@ -49,10 +49,13 @@
 //! - [`reproduce`]: the papers' experiments: presets, clauses, families,
 //!   verdicts (§reproduce).
 //! - [`bench`](mod@bench): the benchmark scenes shared by the CLI and the page.
+//! - [`barn`]: the BARN benchmark's worlds (SDF, reference paths, a compact
+//!   text form), their occupancy grids and the BARN score.
 #![warn(missing_docs)]
 
 pub mod apf;
 pub mod arm;
+pub mod barn;
 pub mod batch;
 pub mod bench;
 pub mod draw;

@@ -31,6 +31,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("batch", &["batch"]),
     ("recipe", &["recipe"]),
     ("reproduce, bench", &["reproduce", "bench"]),
+    ("barn", &["barn"]),
 ];
 
 /// The layer index of top-level module `m`.
