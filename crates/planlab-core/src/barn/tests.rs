@@ -249,13 +249,18 @@ fn conservative_grid_collides_exactly_when_the_robot_touches_a_cylinder() {
     let res = TRUTH_RESOLUTION;
     let map = StaticMap::new(w.grid(res).unwrap(), false).unwrap();
     let b = map.bounds();
-    // The margin: start, goal and every disc lie ≥ 1.5 m inside the map.
-    for p in w.cylinders().iter().chain([&[START.x, START.y], &GOAL]) {
+    // The margin: every disc, the start and the goal lie ≥ 1.5 m inside the map.
+    let discs = w.cylinders().into_iter().map(|p| (p, RADIUS));
+    for (p, r) in discs.chain([([START.x, START.y], 0.0), (GOAL, 0.0)]) {
+        let room = [
+            p[0] - r - b[0],
+            p[1] - r - b[1],
+            b[2] - p[0] - r,
+            b[3] - p[1] - r,
+        ];
         assert!(
-            p[0] - RADIUS - b[0] >= MAP_MARGIN - 1e-9 && b[2] - p[0] - RADIUS >= MAP_MARGIN - 1e-9
-        );
-        assert!(
-            p[1] - RADIUS - b[1] >= MAP_MARGIN - 1e-9 && b[3] - p[1] - RADIUS >= MAP_MARGIN - 1e-9
+            room.iter().all(|&m| m >= MAP_MARGIN - 1e-9),
+            "{p:?}: {room:?}"
         );
     }
     let cyl = w.cylinders();
