@@ -174,7 +174,7 @@ fn compact_asset_holds_the_250_public_worlds_as_measured() {
     assert!((len(243) - 13.735_306_943_273_075).abs() < 1e-9);
     let lengths: Vec<f64> = worlds.iter().map(BarnWorld::path_length).collect();
     assert!(lengths.iter().all(|&l| (10.053..=13.736).contains(&l)));
-    assert!((lengths.iter().sum::<f64>() - 2847.440_020_007_472).abs() < 1e-6);
+    assert!((lengths.iter().sum::<f64>() - 2_847.440_020_007_472).abs() < 1e-6);
     // The difficulty terciles split the public worlds 84 / 83 / 83.
     let count = |d: Difficulty| worlds.iter().filter(|w| w.difficulty() == d).count();
     assert_eq!(

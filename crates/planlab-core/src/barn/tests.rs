@@ -56,20 +56,19 @@ fn sdf_import_fills_the_left_out_centre_and_splits_off_the_wall() {
 
 #[test]
 fn fill_interiors_fills_enclosed_groups_only() {
-    let mut cells = [[false; GRID]; GRID];
     // A ring of 16 cells (rows/cols 2..=6) around a free 3 × 3 pocket, and
-    // a U open to the border at column 0.
-    for r in 2..=6 {
-        for c in 2..=6 {
-            cells[r][c] = r == 2 || r == 6 || c == 2 || c == 6;
+    // a U (rows 10 and 14, columns 0..=3, closed at column 3) open to the
+    // border at column 0.
+    let ring = |r: usize, c: usize| {
+        (2..=6).contains(&r) && (2..=6).contains(&c) && (r == 2 || r == 6 || c == 2 || c == 6)
+    };
+    let u =
+        |r: usize, c: usize| ((r == 10 || r == 14) && c <= 3) || ((10..=14).contains(&r) && c == 3);
+    let mut cells = [[false; GRID]; GRID];
+    for (r, row) in cells.iter_mut().enumerate() {
+        for (c, cell) in row.iter_mut().enumerate() {
+            *cell = ring(r, c) || u(r, c);
         }
-    }
-    for c in 0..4 {
-        cells[10][c] = true;
-        cells[14][c] = true;
-    }
-    for r in 10..=14 {
-        cells[r][3] = true;
     }
     let before = cells;
     fill_interiors(&mut cells);
