@@ -262,6 +262,24 @@ fn conservative_grid_collides_exactly_when_the_robot_touches_a_cylinder() {
             "{p:?}: {room:?}"
         );
     }
+    // Conservative: every point of every disc (sampled on its rim, where
+    // a cell is most easily lost) lies in an occupied cell.
+    let grid = map.grid();
+    for c in w.cylinders() {
+        for k in 0..720 {
+            let a = k as f64 * std::f64::consts::TAU / 720.0;
+            let (x, y) = (
+                c[0] + RADIUS * (1.0 - 1e-6) * a.cos(),
+                c[1] + RADIUS * (1.0 - 1e-6) * a.sin(),
+            );
+            let (col, row) = grid.world_to_cell(x, y).unwrap();
+            assert_eq!(
+                grid.get(col, row),
+                Some(crate::map::Cell::Occupied),
+                "rim of {c:?} at {a} rad"
+            );
+        }
+    }
     let cyl = w.cylinders();
     let diag = res * std::f64::consts::SQRT_2;
     let footprints = [Footprint::Circle { radius: 0.05 }, JACKAL_FOOTPRINT];
@@ -361,5 +379,48 @@ fn compact_form_round_trips_and_rejects_malformed_lines() {
             }
             other => panic!("{text:?}: expected a Compact error, got {other:?}"),
         }
+    }
+}
+
+#[test]
+fn grid_covers_every_disc_and_reaches_at_most_a_diagonal_beyond_at_any_resolution() {
+    let m = block_world();
+    let w = BarnWorld::from_sdf(1, sdf(&m, &[]).as_bytes()).unwrap();
+    let cyl = w.cylinders();
+    for res in [0.04, 0.05, 0.07, 0.1] {
+        let g = w.grid(res).unwrap();
+        for c in &cyl {
+            for k in 0..360 {
+                let a = k as f64 * std::f64::consts::TAU / 360.0;
+                let r = RADIUS * (1.0 - 1e-6);
+                let (col, row) = g
+                    .world_to_cell(c[0] + r * a.cos(), c[1] + r * a.sin())
+                    .unwrap();
+                assert_eq!(
+                    g.get(col, row),
+                    Some(Cell::Occupied),
+                    "res {res}: rim of {c:?}"
+                );
+            }
+        }
+        let mut occupied = 0;
+        for row in 0..g.height() {
+            for col in 0..g.width() {
+                if g.get(col, row) == Some(Cell::Occupied) {
+                    occupied += 1;
+                    let (x, y) = g.cell_to_world(col, row);
+                    // The cell's centre lies within radius + half a diagonal.
+                    let near = cyl
+                        .iter()
+                        .map(|c| (c[0] - x).hypot(c[1] - y))
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(
+                        near <= RADIUS + res * std::f64::consts::FRAC_1_SQRT_2 + 1e-9,
+                        "res {res}: ({col}, {row})"
+                    );
+                }
+            }
+        }
+        assert!(occupied >= cyl.len(), "res {res}");
     }
 }
