@@ -210,3 +210,29 @@ fn fixture_grid_covers_start_goal_and_every_cylinder() {
         assert_eq!(occupied, is_cylinder, "{p:?}");
     }
 }
+
+#[test]
+fn truncated_or_corrupted_files_give_errors_not_panics() {
+    let sdf: &[u8] = include_bytes!("data/barn/world_93.world");
+    let npy: &[u8] = include_bytes!("data/barn/path_93.npy");
+    // Every cut of the SDF leaves unclosed elements: bad XML.
+    for k in 1..60 {
+        let cut = &sdf[..sdf.len() * k / 60];
+        let e = BarnWorld::from_sdf(93, cut).unwrap_err();
+        assert!(e.to_string().starts_with("BARN world 93"), "{e}");
+    }
+    // Every cut of the path file is refused; so is every single-byte
+    // corruption of its magic, major version and header length (byte 7,
+    // the minor version, is not checked: numpy has only ever written 0).
+    for n in 0..npy.len() {
+        assert!(BarnWorld::path_from_npy(&npy[..n]).is_err(), "cut at {n}");
+    }
+    for i in (0..10).filter(|&i| i != 7) {
+        let mut bad = npy.to_vec();
+        bad[i] ^= 0x5a;
+        assert!(
+            BarnWorld::path_from_npy(&bad).is_err(),
+            "byte {i} corrupted"
+        );
+    }
+}

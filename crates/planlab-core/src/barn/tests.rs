@@ -159,7 +159,7 @@ fn score_matches_hand_computed_cases() {
 }
 
 #[test]
-fn reference_path_maps_cells_by_run_py_formula() {
+fn reference_path_maps_cells_by_the_run_script_formula() {
     let w = BarnWorld {
         id: 0,
         cells: [[false; GRID]; GRID],
