@@ -10,19 +10,23 @@
 //! reference path per world as a numpy array ([`BarnWorld::path_from_npy`]);
 //! planlab keeps them in a compact text form ([`parse_compact`],
 //! [`to_compact`]; the repository's `assets/barn/worlds.txt` holds the
-//! 250 public worlds and says where they come from). This module reads no
+//! 250 public worlds and says where they come from). [`Summary`] gives the
+//! challenge's figures over a set of runs. This module reads no
 //! file: callers pass bytes or text.
 //!
 //! The facts below come from the challenge repository
-//! (`Daffan/the-barn-challenge`: `run.py`, the Jackal description and
-//! move_base configuration) and the world generator
-//! (`dperille/jackal-map-creation`: `world_writer.py`, `generator.py`).
+//! (`Daffan/the-barn-challenge`: its evaluation script, called "the run
+//! script" below, and the Jackal's description and move_base
+//! configuration) and from the world generator
+//! (`dperille/jackal-map-creation`: its world writer and dataset script).
 
 mod compact;
 mod npy;
 mod sdf;
+mod summary;
 
 pub use compact::{parse_compact, to_compact};
+pub use summary::{RunRecord, Summary};
 
 use thiserror::Error;
 
@@ -36,35 +40,34 @@ pub const CELL: f64 = 0.15;
 /// Radius of every cylinder, metres.
 pub const RADIUS: f64 = 0.075;
 /// World x of grid row 0 (row r sits at `GRID_X0 + CELL·r`;
-/// `world_writer.py`).
+/// the generator's world writer).
 pub const GRID_X0: f64 = -4.425;
 /// World y of grid column 0 (column c sits at `GRID_Y0 + CELL·c`).
 pub const GRID_Y0: f64 = 5.175;
 /// Cylinders below this y form the containment wall, not the grid.
 pub const WALL_Y_MAX: f64 = 5.1;
-/// World x of a reference-path cell's row 0 (`run.py`,
-/// `path_coord_to_gazebo_coord`: x = 0.15·row − 4.575). The path's frame
-/// is the grid's shifted by (−0.15, −0.1) m; `run.py` measures the path
-/// length in it, so planlab does too.
+/// World x of a reference-path cell's row 0 (the run script:
+/// x = 0.15·row − 4.575). The path's frame is the grid's shifted by
+/// (−0.15, −0.1) m; the run script measures the path length in it, so
+/// planlab does too.
 pub const PATH_X0: f64 = -4.575;
 /// World y of a reference-path cell's column 0 (y = 0.15·col + 5.075).
 pub const PATH_Y0: f64 = 5.075;
 
-/// Start pose (x, y, yaw) of every world (`run.py`: `INIT_POSITION`).
+/// Start pose (x, y, yaw) of every world (the run script).
 pub const START: Pose2 = Pose2 {
     x: -2.25,
     y: 3.0,
     yaw: 1.57,
 };
-/// Goal of every world: the start moved 10 m along y (`run.py`:
-/// `GOAL_POSITION` relative to `INIT_POSITION`).
+/// Goal of every world: the start moved 10 m along y (the run script).
 pub const GOAL: [f64; 2] = [-2.25, 13.0];
-/// A run succeeds within this distance of [`GOAL`], metres (`run.py`).
+/// A run succeeds within this distance of [`GOAL`], metres (the run script).
 pub const GOAL_TOLERANCE: f64 = 1.0;
-/// A run times out after this much simulated time, seconds (`run.py`).
+/// A run times out after this much simulated time, seconds (the run script).
 pub const TIMEOUT: f64 = 100.0;
 /// The speed that turns a reference path length into the optimal time
-/// OT, m/s (`run.py`: OT = path length / 2).
+/// OT, m/s (the run script: OT = path length / 2).
 pub const OT_SPEED: f64 = 2.0;
 
 /// Length of the Clearpath Jackal's footprint rectangle, metres (the
@@ -180,10 +183,13 @@ pub struct BarnWorld {
 
 /// A world's difficulty class, from how much of its grid is occupied.
 ///
-/// The generator drew each world from one of 12 parameter sets (initial
-/// fill 0.15–0.30, 2–4 smoothing iterations, `generator.py`), but the
-/// files do not record which, so the class is defined from what the files
-/// measure: the number of occupied grid cells after filling interiors
+/// The generator's dataset script drew each world from one of 12
+/// parameter sets (initial fill 0.15–0.30, 2–4 smoothing iterations), but
+/// the files do not record which. (The mean fill of the public worlds
+/// rises with N / 75 — 0.146, 0.188, 0.226, 0.235 — as if the ids kept the
+/// script's order, but the spread within a block is wide and the order is
+/// documented nowhere, so the id is not used.) The class is defined from
+/// what the files measure: the number of occupied grid cells after filling interiors
 /// ([`BarnWorld::occupied_cells`], the two always-full side rows
 /// included), cut at the terciles of the 250 public worlds: `Easy` up to
 /// [`EASY_MAX_CELLS`], `Medium` up to [`MEDIUM_MAX_CELLS`], `Hard` above.
@@ -216,7 +222,7 @@ pub fn cell_centre(row: usize, col: usize) -> [f64; 2] {
 }
 
 /// The BARN score of one run: `success · OT / clip(T, 2·OT, 8·OT)`
-/// (`run.py`), at most 0.5.
+/// (the run script), at most 0.5.
 ///
 /// A failed run scores 0. So does a run whose time or optimal time makes
 /// no sense (NaN time, OT not a positive finite number), rather than
@@ -266,7 +272,7 @@ impl BarnWorld {
 
     /// The reference path as world points: the start, each path cell
     /// mapped by x = 0.15·row − 4.575, y = 0.15·col + 5.075, the goal
-    /// (`run.py`).
+    /// (the run script).
     pub fn reference_path(&self) -> Vec<[f64; 2]> {
         let mut pts = Vec::with_capacity(self.path.len() + 2);
         pts.push([START.x, START.y]);

@@ -1,7 +1,7 @@
 //! Reading a BARN reference path: a numpy `.npy` file holding an int64
 //! array of shape (n, 2).
 //!
-//! The format (numpy's `format.py`, versions 1–3) is a magic string, a
+//! The format (numpy's format module, versions 1–3) is a magic string, a
 //! version, a header length, a Python dict literal with three keys
 //! (`descr`, `fortran_order`, `shape`) and the raw data. That header is
 //! parsed here rather than through a crate: the `.npy` crates parse

@@ -23,7 +23,7 @@ impl BarnWorld {
     /// an error). Cylinders with y < [`WALL_Y_MAX`] are the containment
     /// wall; every other one must sit on a grid cell centre.
     ///
-    /// The generator (`world_writer.py`) writes no cylinder for an occupied
+    /// The generator's world writer writes no cylinder for an occupied
     /// cell whose 8 neighbours are all occupied (never for a border cell),
     /// so such interiors come back empty. They are filled back: every
     /// 8-connected group of empty cells that reaches no border cell is

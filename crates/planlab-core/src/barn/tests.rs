@@ -56,20 +56,19 @@ fn sdf_import_fills_the_left_out_centre_and_splits_off_the_wall() {
 
 #[test]
 fn fill_interiors_fills_enclosed_groups_only() {
-    let mut cells = [[false; GRID]; GRID];
     // A ring of 16 cells (rows/cols 2..=6) around a free 3 × 3 pocket, and
-    // a U open to the border at column 0.
-    for r in 2..=6 {
-        for c in 2..=6 {
-            cells[r][c] = r == 2 || r == 6 || c == 2 || c == 6;
+    // a U (rows 10 and 14, columns 0..=3, closed at column 3) open to the
+    // border at column 0.
+    let ring = |r: usize, c: usize| {
+        (2..=6).contains(&r) && (2..=6).contains(&c) && (r == 2 || r == 6 || c == 2 || c == 6)
+    };
+    let u =
+        |r: usize, c: usize| ((r == 10 || r == 14) && c <= 3) || ((10..=14).contains(&r) && c == 3);
+    let mut cells = [[false; GRID]; GRID];
+    for (r, row) in cells.iter_mut().enumerate() {
+        for (c, cell) in row.iter_mut().enumerate() {
+            *cell = ring(r, c) || u(r, c);
         }
-    }
-    for c in 0..4 {
-        cells[10][c] = true;
-        cells[14][c] = true;
-    }
-    for r in 10..=14 {
-        cells[r][3] = true;
     }
     let before = cells;
     fill_interiors(&mut cells);
@@ -160,7 +159,7 @@ fn score_matches_hand_computed_cases() {
 }
 
 #[test]
-fn reference_path_maps_cells_by_run_py_formula() {
+fn reference_path_maps_cells_by_the_run_script_formula() {
     let w = BarnWorld {
         id: 0,
         cells: [[false; GRID]; GRID],
@@ -249,14 +248,37 @@ fn conservative_grid_collides_exactly_when_the_robot_touches_a_cylinder() {
     let res = TRUTH_RESOLUTION;
     let map = StaticMap::new(w.grid(res).unwrap(), false).unwrap();
     let b = map.bounds();
-    // The margin: start, goal and every disc lie ≥ 1.5 m inside the map.
-    for p in w.cylinders().iter().chain([&[START.x, START.y], &GOAL]) {
+    // The margin: every disc, the start and the goal lie ≥ 1.5 m inside the map.
+    let discs = w.cylinders().into_iter().map(|p| (p, RADIUS));
+    for (p, r) in discs.chain([([START.x, START.y], 0.0), (GOAL, 0.0)]) {
+        let room = [
+            p[0] - r - b[0],
+            p[1] - r - b[1],
+            b[2] - p[0] - r,
+            b[3] - p[1] - r,
+        ];
         assert!(
-            p[0] - RADIUS - b[0] >= MAP_MARGIN - 1e-9 && b[2] - p[0] - RADIUS >= MAP_MARGIN - 1e-9
+            room.iter().all(|&m| m >= MAP_MARGIN - 1e-9),
+            "{p:?}: {room:?}"
         );
-        assert!(
-            p[1] - RADIUS - b[1] >= MAP_MARGIN - 1e-9 && b[3] - p[1] - RADIUS >= MAP_MARGIN - 1e-9
-        );
+    }
+    // Conservative: every point of every disc (sampled on its rim, where
+    // a cell is most easily lost) lies in an occupied cell.
+    let grid = map.grid();
+    for c in w.cylinders() {
+        for k in 0..720 {
+            let a = k as f64 * std::f64::consts::TAU / 720.0;
+            let (x, y) = (
+                c[0] + RADIUS * (1.0 - 1e-6) * a.cos(),
+                c[1] + RADIUS * (1.0 - 1e-6) * a.sin(),
+            );
+            let (col, row) = grid.world_to_cell(x, y).unwrap();
+            assert_eq!(
+                grid.get(col, row),
+                Some(crate::map::Cell::Occupied),
+                "rim of {c:?} at {a} rad"
+            );
+        }
     }
     let cyl = w.cylinders();
     let diag = res * std::f64::consts::SQRT_2;
@@ -357,5 +379,48 @@ fn compact_form_round_trips_and_rejects_malformed_lines() {
             }
             other => panic!("{text:?}: expected a Compact error, got {other:?}"),
         }
+    }
+}
+
+#[test]
+fn grid_covers_every_disc_and_reaches_at_most_a_diagonal_beyond_at_any_resolution() {
+    let m = block_world();
+    let w = BarnWorld::from_sdf(1, sdf(&m, &[]).as_bytes()).unwrap();
+    let cyl = w.cylinders();
+    for res in [0.04, 0.05, 0.07, 0.1] {
+        let g = w.grid(res).unwrap();
+        for c in &cyl {
+            for k in 0..360 {
+                let a = k as f64 * std::f64::consts::TAU / 360.0;
+                let r = RADIUS * (1.0 - 1e-6);
+                let (col, row) = g
+                    .world_to_cell(c[0] + r * a.cos(), c[1] + r * a.sin())
+                    .unwrap();
+                assert_eq!(
+                    g.get(col, row),
+                    Some(Cell::Occupied),
+                    "res {res}: rim of {c:?}"
+                );
+            }
+        }
+        let mut occupied = 0;
+        for row in 0..g.height() {
+            for col in 0..g.width() {
+                if g.get(col, row) == Some(Cell::Occupied) {
+                    occupied += 1;
+                    let (x, y) = g.cell_to_world(col, row);
+                    // The cell's centre lies within radius + half a diagonal.
+                    let near = cyl
+                        .iter()
+                        .map(|c| (c[0] - x).hypot(c[1] - y))
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(
+                        near <= RADIUS + res * std::f64::consts::FRAC_1_SQRT_2 + 1e-9,
+                        "res {res}: ({col}, {row})"
+                    );
+                }
+            }
+        }
+        assert!(occupied >= cyl.len(), "res {res}");
     }
 }
