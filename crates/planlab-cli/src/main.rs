@@ -15,6 +15,7 @@ macro_rules! outln {
 }
 
 mod arm_cmds;
+mod barn_cmd;
 mod batch_cmd;
 mod bench;
 mod gen_cmd;
@@ -311,6 +312,41 @@ enum Command {
         #[arg(long)]
         list: bool,
     },
+    /// Run the planners on BARN worlds (Perille et al. 2020; the BARN
+    /// Challenge): the Jackal with only its laser in an unknown cluttered
+    /// world, scored as the challenge scores (success · OT / clip(T, 2·OT,
+    /// 8·OT)). Per planner: success, collision and timeout rates with
+    /// Wilson 95% intervals, mean time, mean score with a bootstrap
+    /// interval, overall and by difficulty class. `planlab run barn:N
+    /// --planner P --seed S` replays one run.
+    Barn {
+        /// BARN folders (the challenge's jackal_helper/worlds/BARN) or
+        /// world_N.world files; default: the 250 public worlds the
+        /// repository holds.
+        paths: Vec<PathBuf>,
+        /// Worlds to run, e.g. `1,2,10-20` [default: all loaded].
+        #[arg(long)]
+        worlds: Option<String>,
+        /// Comma-separated planner names [default: every planner that can
+        /// drive an unknown map].
+        #[arg(long, value_delimiter = ',')]
+        planners: Vec<String>,
+        /// Runs per world and planner (they differ by the laser's noise).
+        #[arg(long, default_value_t = 1)]
+        runs: u32,
+        /// Seed of the sweep.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Laser range noise σ, metres (0: exact scans).
+        #[arg(long, default_value_t = planlab_core::barn::run::DEFAULT_NOISE)]
+        noise: f64,
+        /// One JSON line per planner and class, then a footer line.
+        #[arg(long)]
+        json: bool,
+        /// Write one CSV row per run (with the command that replays it).
+        #[arg(long, value_name = "FILE.csv")]
+        csv: Option<PathBuf>,
+    },
     /// Run N seeded variants of a scenario (start, goal and movers
     /// jittered) with several planners in parallel; print the success rate
     /// and the mean, median and 95% confidence interval of every metric.
@@ -444,6 +480,25 @@ fn run(cli: Cli) -> Result<(), String> {
             },
         ),
         Command::Planners { json } => sim_cmds::planners(json),
+        Command::Barn {
+            paths,
+            worlds,
+            planners,
+            runs,
+            seed,
+            noise,
+            json,
+            csv,
+        } => barn_cmd::barn(&barn_cmd::BarnArgs {
+            paths: &paths,
+            worlds: worlds.as_deref(),
+            planners: &planners,
+            runs,
+            seed,
+            noise,
+            json,
+            csv: csv.as_deref(),
+        }),
         Command::Batch {
             scenario,
             planners,

@@ -191,7 +191,16 @@ pub fn apf_metrics_table(m: &ApfMetrics) -> String {
 /// `planlab run`: one episode (or APF or arm run), metrics on stdout.
 pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
     let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-    let text = load::read_text(path)?;
+    // `barn:N`: the BARN world's scenario for the planner and seed asked for.
+    let barn = path
+        .to_str()
+        .map(|s| load::barn::scenario_json(s, args.planner, args.seed))
+        .transpose()?
+        .flatten();
+    let text = match barn {
+        Some(text) => text,
+        None => load::read_text(path)?,
+    };
     let (scenario, grid) = edited_scenario(path, &text, args)?;
     let done = scenario
         .start(grid)

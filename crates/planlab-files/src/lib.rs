@@ -3,6 +3,8 @@
 //! finds and reads the files (the core never touches the file system), so
 //! both refuse devices, folders and oversized files the same way.
 
+pub mod barn;
+
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::{OccupancyGrid, MAX_CELLS};
 use planlab_core::scenario::Scenario;

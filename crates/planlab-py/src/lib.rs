@@ -517,6 +517,20 @@ impl Scenario {
         Ok(Scenario { tree, dir, parsed })
     }
 
+    /// The scenario of a BARN world (`planlab run barn:N`): `source` is
+    /// `barn:N` (one of the 250 worlds the package holds) or `barn:PATH`
+    /// (a `world_N.world` file of a BARN checkout), driven by `planner`
+    /// (default `move-base-dwa`) with `seed`.
+    #[staticmethod]
+    #[pyo3(signature = (source, planner = None, seed = None))]
+    fn barn(source: &str, planner: Option<&str>, seed: Option<u64>) -> PyResult<Scenario> {
+        let text = planlab_files::barn::scenario_json(source, planner, seed)
+            .map_err(err::<ScenarioError>)?
+            .ok_or_else(|| err::<ParamError>(format!("{source}: expected barn:N or barn:PATH")))?;
+        let tree: Value = serde_json::from_str(&text).map_err(err::<ScenarioError>)?;
+        Scenario::of_tree(tree, PathBuf::from("."))
+    }
+
     /// A scenario from a dict (the JSON document); relative map files are
     /// found in `base_dir` (default: the working folder).
     #[staticmethod]
@@ -975,6 +989,145 @@ fn batch_episodes<'py>(
     Ok(list)
 }
 
+// --------------------------------------------------------------- BARN
+
+/// The BARN worlds: the package's 250 (`paths` empty) or those at `paths`
+/// (BARN folders or `world_N.world` files).
+fn barn_worlds(paths: &[PathBuf]) -> PyResult<Vec<planlab_core::barn::BarnWorld>> {
+    if paths.is_empty() {
+        return planlab_files::barn::builtin_worlds().map_err(err::<ScenarioError>);
+    }
+    let mut out = Vec::new();
+    for p in paths {
+        out.extend(planlab_files::barn::load_worlds(p).map_err(err::<ScenarioError>)?);
+    }
+    Ok(out)
+}
+
+/// The planners that can drive an unknown map on BARN (`planlab barn`'s
+/// default list).
+#[pyfunction]
+fn barn_planners() -> Vec<&'static str> {
+    planlab_core::barn::run::PLANNERS.to_vec()
+}
+
+/// The numbers of the BARN worlds at `paths` (default: the package's 250)
+/// with their difficulty class and optimal time OT: a list of dicts
+/// `world`, `difficulty`, `optimal_time`.
+#[pyfunction]
+#[pyo3(signature = (paths = Vec::new()))]
+fn barn_worlds_info<'py>(py: Python<'py>, paths: Vec<PathBuf>) -> PyResult<Bound<'py, PyList>> {
+    let list = PyList::empty(py);
+    for w in barn_worlds(&paths)? {
+        let d = PyDict::new(py);
+        d.set_item("world", w.id)?;
+        d.set_item("difficulty", w.difficulty().name())?;
+        d.set_item("optimal_time", w.optimal_time())?;
+        list.append(d)?;
+    }
+    Ok(list)
+}
+
+/// BARN runs (`planlab barn`'s episodes): each `(world, planner, run)` of
+/// `jobs`, seeded as `planlab barn --seed SEED` seeds it, with laser noise
+/// `noise` m. Returns one dict per run: `world`, `planner`, `run`, `seed`,
+/// `outcome`, `time`, `optimal_time`, `score`, `path_length`,
+/// `trace_hash` (hex), `difficulty`. The GIL is released while they run.
+#[pyfunction]
+#[pyo3(signature = (jobs, seed = 0, noise = planlab_core::barn::run::DEFAULT_NOISE, paths = Vec::new()))]
+fn barn_runs<'py>(
+    py: Python<'py>,
+    jobs: Vec<(u32, String, u32)>,
+    seed: u64,
+    noise: f64,
+    paths: Vec<PathBuf>,
+) -> PyResult<Bound<'py, PyList>> {
+    use planlab_core::barn::run as br;
+    if !(noise.is_finite() && (0.0..=1.0).contains(&noise)) {
+        return Err(err::<ParamError>(format!(
+            "noise {noise}: must be from 0 to 1 m"
+        )));
+    }
+    let worlds = barn_worlds(&paths)?;
+    for (w, p, _) in &jobs {
+        if !worlds.iter().any(|x| x.id == *w) {
+            return Err(err::<ParamError>(format!(
+                "world {w}: not among the BARN worlds loaded"
+            )));
+        }
+        if !br::PLANNERS.contains(&p.as_str()) {
+            return Err(err::<ParamError>(format!(
+                "planner {p}: cannot drive an unknown map on BARN; choose from {}",
+                br::PLANNERS.join(", ")
+            )));
+        }
+    }
+    let opts = br::BarnOptions { noise_std: noise };
+    let runs = py.detach(
+        || -> Result<Vec<(br::BarnRun, &'static str)>, br::RunError> {
+            jobs.iter()
+                .map(|(w, p, r)| {
+                    let world = worlds.iter().find(|x| x.id == *w).expect("checked above");
+                    let run = br::run_one(world, p, *r, br::run_seed(seed, *w, *r), &opts)?;
+                    Ok((run, world.difficulty().name()))
+                })
+                .collect()
+        },
+    );
+    let runs = runs.map_err(err::<ScenarioError>)?;
+    let list = PyList::empty(py);
+    for (r, class) in &runs {
+        let d = PyDict::new(py);
+        d.set_item("world", r.world)?;
+        d.set_item("difficulty", *class)?;
+        d.set_item("planner", &r.planner)?;
+        d.set_item("run", r.run)?;
+        d.set_item("seed", r.seed)?;
+        d.set_item("outcome", r.outcome.as_str())?;
+        d.set_item("time", r.time)?;
+        d.set_item("optimal_time", r.optimal_time)?;
+        d.set_item("score", r.score)?;
+        d.set_item("path_length", r.path_length)?;
+        d.set_item("trace_hash", format!("{:016x}", r.trace_hash))?;
+        list.append(d)?;
+    }
+    Ok(list)
+}
+
+/// The figures of BARN runs of one planner (`planlab barn --json`'s
+/// lines): `runs` is a list of the dicts [`barn_runs`] returns.
+#[pyfunction]
+fn barn_stats<'py>(py: Python<'py>, runs: &Bound<'py, PyList>) -> PyResult<Bound<'py, PyAny>> {
+    use planlab_core::barn::run as br;
+    let mut rows = Vec::with_capacity(runs.len());
+    for item in runs.iter() {
+        let get = |k: &str| -> PyResult<Bound<'py, PyAny>> {
+            item.get_item(k)
+                .map_err(|_| err::<ParamError>(format!("runs: each run needs `{k}`")))
+        };
+        let outcome: String = get("outcome")?.extract()?;
+        let outcome = match outcome.as_str() {
+            "reached" => planlab_core::world::Outcome::Reached,
+            "collision" => planlab_core::world::Outcome::Collision,
+            "timeout" | "stuck" => planlab_core::world::Outcome::Timeout,
+            o => return Err(err::<ParamError>(format!("runs: unknown outcome {o}"))),
+        };
+        rows.push(br::BarnRun {
+            world: get("world")?.extract()?,
+            planner: get("planner")?.extract()?,
+            run: get("run")?.extract()?,
+            seed: get("seed")?.extract()?,
+            outcome,
+            time: get("time")?.extract()?,
+            optimal_time: get("optimal_time")?.extract()?,
+            score: get("score")?.extract()?,
+            path_length: get("path_length")?.extract()?,
+            trace_hash: 0,
+        });
+    }
+    to_py(py, &br::BarnStats::of(rows.iter()))
+}
+
 /// Per-planner statistics of batch runs (`planlab batch --json`'s summary
 /// lines): `runs` is a list of metrics dicts of one planner.
 #[pyfunction]
@@ -1084,6 +1237,10 @@ fn _planlab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch_episodes, m)?)?;
     m.add_function(wrap_pyfunction!(summarise, m)?)?;
     m.add_function(wrap_pyfunction!(max_variants, m)?)?;
+    m.add_function(wrap_pyfunction!(barn_runs, m)?)?;
+    m.add_function(wrap_pyfunction!(barn_planners, m)?)?;
+    m.add_function(wrap_pyfunction!(barn_stats, m)?)?;
+    m.add_function(wrap_pyfunction!(barn_worlds_info, m)?)?;
     m.add_function(wrap_pyfunction!(reproduce_experiment, m)?)?;
     m.add_function(wrap_pyfunction!(reproduce_ids, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -22,6 +22,7 @@
 
 mod compact;
 mod npy;
+pub mod run;
 mod sdf;
 mod summary;
 
@@ -206,6 +207,9 @@ pub enum Difficulty {
 }
 
 impl Difficulty {
+    /// Every class, easiest first.
+    pub const ALL: [Difficulty; 3] = [Difficulty::Easy, Difficulty::Medium, Difficulty::Hard];
+
     /// Lower-case name: `easy`, `medium`, `hard`.
     pub fn name(self) -> &'static str {
         match self {

@@ -42,7 +42,7 @@ use super::engine::{CriticSlot, Engine, Scoring, ScreenConfig, StepRequest};
 use super::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug};
 use crate::params::Params;
 use crate::world::Command;
-use crate::world::{RobotSpec, RobotState, StaticMap};
+use crate::world::{RobotLimits, RobotSpec, RobotState, StaticMap};
 
 crate::params::params! {
     /// Critic weights of G = α·head + β·dist + γ·vel.
@@ -89,6 +89,16 @@ crate::params::params! {
             "apply V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b), dist along the arc to the first contact";
         pub rotate_in_place: bool = true, "bool" []
             "with no admissible sample, a round robot turns toward the goal";
+        /// A planner's own caps, as ROS planners have `max_vel_x`: the
+        /// robot's limits when 0; never above them.
+        pub max_speed: f64 = 0.0, "m/s" [>= 0.0, <= 100.0]
+            "fastest forward speed sampled (0: the robot's v_max)";
+        pub max_turn: f64 = 0.0, "rad/s" [>= 0.0, <= 100.0]
+            "fastest turn rate sampled (0: the robot's ω_max)";
+        pub max_accel: f64 = 0.0, "m/s²" [>= 0.0, <= 1000.0]
+            "linear acceleration of the window and of braking (0: the robot's a_v)";
+        pub max_turn_accel: f64 = 0.0, "rad/s²" [>= 0.0, <= 1000.0]
+            "angular acceleration of the window and of braking (0: the robot's a_ω)";
     }
 }
 
@@ -135,6 +145,18 @@ impl DwaConfig {
         robot
             .validate()
             .map_err(|e| LocalError::InvalidParameter(e.to_string()))?;
+        let robot = &RobotSpec {
+            limits: capped_limits(
+                robot.limits,
+                [
+                    self.max_speed,
+                    self.max_turn,
+                    self.max_accel,
+                    self.max_turn_accel,
+                ],
+            ),
+            ..*robot
+        };
         let generator = DynamicWindow::new(
             robot.limits,
             (self.v_res, self.w_res),
@@ -161,6 +183,19 @@ impl DwaConfig {
             Scoring::NormalisedSum,
             Some(screen),
         ))
+    }
+}
+
+/// `limits` with a planner's own caps `[v_max, ω_max, a_v, a_ω]` applied:
+/// a cap of 0 keeps the robot's value, and a cap never raises it.
+pub fn capped_limits(limits: RobotLimits, caps: [f64; 4]) -> RobotLimits {
+    let cap = |own: f64, robot: f64| if own > 0.0 { own.min(robot) } else { robot };
+    RobotLimits {
+        v_max: cap(caps[0], limits.v_max),
+        w_max: cap(caps[1], limits.w_max),
+        acc_v: cap(caps[2], limits.acc_v),
+        acc_w: cap(caps[3], limits.acc_w),
+        ..limits
     }
 }
 

@@ -99,6 +99,19 @@ impl PerceptionSpec {
     }
 }
 
+/// Grid traversal set-up on one axis (local cell coordinate `l`, unit
+/// direction component `d`, cell size `res`): step sign, ray distance
+/// between crossings, ray distance to the first crossing.
+fn dda_axis(l: f64, d: f64, res: f64) -> (i64, f64, f64) {
+    if d > 0.0 {
+        (1, res / d, (l.floor() + 1.0 - l) * res / d)
+    } else if d < 0.0 {
+        (-1, -res / d, (l - l.floor()) * res / -d)
+    } else {
+        (0, f64::INFINITY, f64::INFINITY)
+    }
+}
+
 /// Number of beams of a laser: fov / resolution, plus the closing beam
 /// when the field of view is not a full turn.
 fn beams(l: &LaserConfig) -> usize {
@@ -309,23 +322,37 @@ impl Perception {
             let end = [pose[0] + d * dx, pose[1] + d * dy];
             let end_cell = cell(end[0], end[1]);
             // Clear along the ray up to the raytrace range, sparing the
-            // return's own cell.
+            // return's own cell: a grid traversal of every crossed cell.
             let reach = d.min(c.raytrace_range);
-            let steps = (reach / (0.5 * res)).ceil() as usize;
-            for k in 0..steps {
-                let t = k as f64 * 0.5 * res;
-                if let Some(cr) = cell(pose[0] + t * dx, pose[1] + t * dy) {
-                    if Some(cr) == end_cell {
-                        break;
-                    }
-                    let idx = (cr.1 * w + cr.0) as usize;
-                    self.seen[idx] = true;
-                    if self.marks[idx] {
-                        self.marks[idx] = false;
-                        changed = true;
-                    }
-                } else {
+            let (lx, ly) = ((pose[0] - o.x) / res, (pose[1] - o.y) / res);
+            let (mut cx, mut cu) = (lx.floor() as i64, ly.floor() as i64);
+            let (sx, tdx, mut tmx) = dda_axis(lx, dx, res);
+            let (su, tdu, mut tmu) = dda_axis(ly, dy, res);
+            let end = end_cell.unwrap_or((-1, -1));
+            loop {
+                if cx < 0 || cu < 0 || cx >= w || cu >= h {
                     break;
+                }
+                let row = h - 1 - cu;
+                if (cx, row) == end {
+                    break;
+                }
+                let idx = (row * w + cx) as usize;
+                self.seen[idx] = true;
+                if self.marks[idx] {
+                    self.marks[idx] = false;
+                    changed = true;
+                }
+                let t = tmx.min(tmu);
+                if t > reach {
+                    break;
+                }
+                if tmx < tmu {
+                    cx += sx;
+                    tmx += tdx;
+                } else {
+                    cu += su;
+                    tmu += tdu;
                 }
             }
             if d <= c.obstacle_range {

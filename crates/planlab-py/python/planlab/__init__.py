@@ -23,6 +23,10 @@ from ._planlab import (  # noqa: F401  (re-exported API)
     ScenarioError,
     __version__,
     algorithms,
+    barn_planners,
+    barn_runs,
+    barn_stats,
+    barn_worlds_info,
     batch_episodes,
     load_map,
     load_scen,
@@ -34,6 +38,7 @@ from ._planlab import (  # noqa: F401  (re-exported API)
 )
 from ._planlab import planner_catalogue as _planner_catalogue
 from .sweep import SweepResult, sweep  # noqa: F401
+from .barn import BarnResult, barn  # noqa: F401
 
 ScenarioLike = Union[str, "os.PathLike[str]", Scenario, dict]
 
@@ -45,6 +50,8 @@ def as_scenario(scenario: ScenarioLike) -> Scenario:
         return scenario
     if isinstance(scenario, dict):
         return Scenario.from_dict(scenario)
+    if isinstance(scenario, str) and scenario.startswith("barn:"):
+        return Scenario.barn(scenario)
     if isinstance(scenario, (str, os.PathLike)):
         return Scenario.from_file(os.fspath(scenario))
     raise ParamError(
@@ -92,6 +99,12 @@ def batch(
 
 
 __all__ = [
+    "BarnResult",
+    "barn",
+    "barn_planners",
+    "barn_runs",
+    "barn_stats",
+    "barn_worlds_info",
     "Episode",
     "Grid",
     "MapError",

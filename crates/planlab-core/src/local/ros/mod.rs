@@ -98,6 +98,9 @@ pub struct Layers {
     padding: f64,
     /// Whether `cur` holds movers (else it equals `stat`).
     dirty: bool,
+    /// The map revision the static layer was built from (see
+    /// [`Observation::map_revision`]).
+    revision: u64,
 }
 
 impl Layers {
@@ -122,6 +125,7 @@ impl Layers {
             scaling: p.cost_scaling_factor,
             padding: p.footprint_padding,
             dirty: false,
+            revision: 0,
         })
     }
 
@@ -139,7 +143,16 @@ impl Layers {
     /// Marks the movers of `obs` at their current positions (cells whose
     /// centre lies within a mover's disc, and the cell of its centre) and
     /// inflates; without movers the static costmap.
+    /// A changed known map (a perceived one, [`Observation::map_revision`])
+    /// replaces the static layer first.
     pub fn update(&mut self, obs: &Observation<'_>) {
+        if obs.map_revision != self.revision {
+            // A failed rebuild keeps the old layer (the map's frame does
+            // not change, so it cannot fail in practice).
+            if self.set_static(obs.map).is_ok() {
+                self.revision = obs.map_revision;
+            }
+        }
         if obs.movers.is_empty() {
             if self.dirty {
                 self.cur.costs.clone_from(&self.stat.costs);
@@ -519,7 +532,7 @@ pub struct RosPlanner<G: RosGenerator> {
     failed: bool,
     /// Where the escape began (x, y, θ), while escaping.
     escaping: Option<[f64; 3]>,
-    /// The map revision the static layer was built from.
+    /// The map revision the plan was last checked against.
     revision: u64,
 }
 
@@ -581,15 +594,14 @@ impl<G: RosGenerator> LocalPlanner for RosPlanner<G> {
         let mut due = self.follow.replan_period > 0.0 && obs.time >= self.next_replan;
         if obs.map_revision != self.revision {
             self.revision = obs.map_revision;
-            // The known map changed (a perceived map): new static layer, and
-            // a new plan when the old one now crosses an inscribed cell.
-            if self.layers.set_static(obs.map).is_ok() {
-                due |= self.plan.path().iter().any(|p| {
-                    self.layers
-                        .cost_at(p[0], p[1])
-                        .is_none_or(|c| c >= INSCRIBED)
-                });
-            }
+            // The known map changed (a perceived map): a new plan when the
+            // old one now crosses an inscribed cell.
+            self.layers.update(obs);
+            due |= self.plan.path().iter().any(|p| {
+                self.layers
+                    .cost_at(p[0], p[1])
+                    .is_none_or(|c| c >= INSCRIBED)
+            });
         }
         if due || self.failed {
             self.layers.update(obs);

@@ -105,15 +105,15 @@ impl MoveBaseConfig {
     /// The robot's limits with the planner's own caps (a cap of 0 keeps
     /// the robot's value; a cap never raises it).
     pub fn limits(&self, robot: &RobotSpec) -> crate::world::RobotLimits {
-        let cap = |own: f64, robot: f64| if own > 0.0 { own.min(robot) } else { robot };
-        let l = robot.limits;
-        crate::world::RobotLimits {
-            v_max: cap(self.max_vel_x, l.v_max),
-            w_max: cap(self.max_vel_theta, l.w_max),
-            acc_v: cap(self.acc_lim_x, l.acc_v),
-            acc_w: cap(self.acc_lim_theta, l.acc_w),
-            ..l
-        }
+        crate::local::dwa::capped_limits(
+            robot.limits,
+            [
+                self.max_vel_x,
+                self.max_vel_theta,
+                self.acc_lim_x,
+                self.acc_lim_theta,
+            ],
+        )
     }
 }
 
