@@ -49,9 +49,10 @@ fn same_file(a: &Path, b: &Path) -> bool {
     }
 }
 
-/// Parses `1,2,5-9` into world numbers.
-fn parse_worlds(text: &str) -> Result<Vec<u32>, String> {
-    let mut out = Vec::new();
+/// Parses `1,2,5-9` into world numbers: the single ones (which must be
+/// loaded) and the ranges (of which the loaded ones run).
+fn parse_worlds(text: &str) -> Result<(Vec<u32>, Vec<u32>), String> {
+    let (mut out, mut ranged) = (Vec::new(), Vec::new());
     for part in text.split(',').map(str::trim).filter(|p| !p.is_empty()) {
         let num = |s: &str| {
             s.trim()
@@ -64,15 +65,15 @@ fn parse_worlds(text: &str) -> Result<Vec<u32>, String> {
                 if a > b || b - a > 10_000 {
                     return Err(format!("--worlds {text}: bad range {part}"));
                 }
-                out.extend(a..=b);
+                ranged.extend(a..=b);
             }
             None => out.push(num(part)?),
         }
     }
-    if out.is_empty() {
+    if out.is_empty() && ranged.is_empty() {
         return Err(format!("--worlds {text}: no world numbers"));
     }
-    Ok(out)
+    Ok((out, ranged))
 }
 
 /// The worlds the arguments name.
@@ -89,7 +90,7 @@ fn load_worlds(args: &BarnArgs<'_>) -> Result<Vec<BarnWorld>, String> {
     worlds.sort_by_key(|w| w.id);
     worlds.dedup_by_key(|w| w.id);
     if let Some(list) = args.worlds {
-        let want = parse_worlds(list)?;
+        let (want, ranged) = parse_worlds(list)?;
         for id in &want {
             if !worlds.iter().any(|w| w.id == *id) {
                 return Err(format!(
@@ -103,7 +104,10 @@ fn load_worlds(args: &BarnArgs<'_>) -> Result<Vec<BarnWorld>, String> {
                 ));
             }
         }
-        worlds.retain(|w| want.contains(&w.id));
+        worlds.retain(|w| want.contains(&w.id) || ranged.contains(&w.id));
+        if worlds.is_empty() {
+            return Err(format!("--worlds {list}: none of these worlds is loaded"));
+        }
     }
     Ok(worlds)
 }
@@ -347,7 +351,10 @@ mod tests {
 
     #[test]
     fn world_lists_take_numbers_and_ranges() {
-        assert_eq!(parse_worlds("1,3-5, 9").unwrap(), vec![1, 3, 4, 5, 9]);
+        assert_eq!(
+            parse_worlds("1,3-5, 9").unwrap(),
+            (vec![1, 9], vec![3, 4, 5])
+        );
         assert!(parse_worlds("x")
             .unwrap_err()
             .contains("not a world number"));

@@ -145,6 +145,7 @@ impl DwaConfig {
         robot
             .validate()
             .map_err(|e| LocalError::InvalidParameter(e.to_string()))?;
+        let own = robot.limits;
         let robot = &RobotSpec {
             limits: capped_limits(
                 robot.limits,
@@ -175,6 +176,7 @@ impl DwaConfig {
             predict_movers: self.predict_movers,
             admissible_window: self.admissible_window,
             rotate_in_place: self.rotate_in_place,
+            emergency: (own != robot.limits).then_some(own),
         };
         Ok(Engine::new(
             robot,

@@ -21,7 +21,7 @@
 //!   once, could reach it.
 //!
 //! With no admissible sample the screen's fallback brakes at the largest
-//! deceleration and, for a circular footprint, turns in place toward the
+//! deceleration (the robot's own, when the planner is capped below it) and, for a circular footprint, turns in place toward the
 //! goal (only when that braking turn hits nothing) — unless braking itself
 //! would be hit or would stop the robot in a mover's predicted path: then
 //! the engine takes the collision-free sample with the best G.
@@ -50,6 +50,11 @@ pub struct ScreenConfig {
     pub admissible_window: bool,
     /// With no admissible sample, a round robot turns toward the goal.
     pub rotate_in_place: bool,
+    /// The robot's own limits when the planner runs capped below them
+    /// (`DwaConfig::max_accel` …): the fallback then brakes at the robot's
+    /// full deceleration, since an emergency stop needs no comfort margin.
+    /// `None`: the planner's limits are the robot's.
+    pub emergency: Option<RobotLimits>,
 }
 
 /// How the screen judged one rollout.
@@ -518,7 +523,7 @@ impl Screen {
     /// robot also turns toward the goal (within its angular window) when
     /// that braking turn hits nothing, else its turn rate goes to 0 too.
     pub fn fallback(&self, map: &StaticMap, s: &RobotState, goal: [f64; 2], dt: f64) -> Command {
-        let l = &self.limits;
+        let l = self.cfg.emergency.as_ref().unwrap_or(&self.limits);
         let v = toward_zero(s.v, l.acc_v * dt);
         // Turning while still moving sweeps a wider path than braking
         // straight: it may reach a wall that straight braking stops short
