@@ -60,3 +60,13 @@ class Cli:
 @pytest.fixture(scope="session")
 def cli() -> Cli:
     return Cli(_find_cli())
+
+
+@pytest.fixture(scope="module")
+def ray_two_workers():
+    import ray
+    os.environ.setdefault("RAY_ENABLE_UV_RUN_RUNTIME_ENV", "0")
+    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False,
+             configure_logging=False)
+    yield ray
+    ray.shutdown()

@@ -4,7 +4,6 @@ reproduce --json`."""
 
 from __future__ import annotations
 
-import os
 
 import pytest
 
@@ -45,16 +44,6 @@ def test_local_sweep_equals_planlab_batch(cli, tmp_path):
     assert hashes(res.rows) == want
     assert res.tasks == 6 and res.variants_per_task == 1  # one variant per block
     assert [r["variant"] for r in res.rows] == [v for v in range(6) for _ in PLANNERS]
-
-
-@pytest.fixture(scope="module")
-def ray_two_workers():
-    import ray
-    os.environ.setdefault("RAY_ENABLE_UV_RUN_RUNTIME_ENV", "0")
-    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False,
-             configure_logging=False)
-    yield ray
-    ray.shutdown()
 
 
 def test_ray_sweep_with_two_workers_equals_planlab_batch(cli, tmp_path, ray_two_workers):
