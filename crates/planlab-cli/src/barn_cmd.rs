@@ -187,7 +187,7 @@ pub fn barn(args: &BarnArgs<'_>) -> Result<(), String> {
             let out =
                 barn_run::run_one(world, &planners[p], r, seed, &opts).map_err(|e| e.to_string());
             let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-            if !args.json || n == total {
+            {
                 eprint!(
                     "\r{n}/{total} runs, {:.0} s{}",
                     started.elapsed().as_secs_f64(),

@@ -67,42 +67,16 @@ impl SeenCells {
             let hit = returns.get(i).copied().unwrap_or(false);
             // A returning beam ends just inside the cell it hit.
             let reach = if hit { d + 1e-6 } else { d };
-            let mut cx = lx.floor() as i64;
-            let mut cu = ly.floor() as i64;
-            let (sx, tdx, mut tmx) = axis(lx, dx, res);
-            let (su, tdu, mut tmu) = axis(ly, dy, res);
-            loop {
-                if cx < 0 || cu < 0 || cx >= w || cu >= h {
-                    break;
+            let (width, seen, count) = (self.width, &mut self.seen, &mut self.count);
+            crate::map::ray::walk((w, h), res, (lx, ly), (dx, dy), reach, |c, r| {
+                let k = r as usize * width + c as usize;
+                if seen[k] == 0 {
+                    seen[k] = 1;
+                    *count += 1;
                 }
-                let k = (h - 1 - cu) as usize * self.width + cx as usize;
-                if self.seen[k] == 0 {
-                    self.seen[k] = 1;
-                    self.count += 1;
-                }
-                let t = tmx.min(tmu);
-                if t > reach {
-                    break;
-                }
-                if tmx < tmu {
-                    cx += sx;
-                    tmx += tdx;
-                } else {
-                    cu += su;
-                    tmu += tdu;
-                }
-            }
+                true
+            });
         }
-    }
-}
-
-fn axis(l: f64, d: f64, res: f64) -> (i64, f64, f64) {
-    if d > 0.0 {
-        (1, res / d, (l.floor() + 1.0 - l) * res / d)
-    } else if d < 0.0 {
-        (-1, -res / d, (l - l.floor()) * res / -d)
-    } else {
-        (0, f64::INFINITY, f64::INFINITY)
     }
 }
 

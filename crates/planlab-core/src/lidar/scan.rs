@@ -4,6 +4,7 @@
 
 use super::LidarError;
 use crate::local::Observation;
+use crate::map::ray::axis;
 use crate::num::{cos, hypot, sin, Rng};
 use crate::world::StaticMap;
 
@@ -287,19 +288,6 @@ fn next_crossing(q: f64, d: f64, res: f64, t: f64) -> f64 {
         t + (q - fl) * res / -d
     } else {
         f64::INFINITY
-    }
-}
-
-/// DDA set-up on one axis: step sign, distance between crossings, distance
-/// to the first crossing (m along the ray).
-#[inline]
-fn axis(l: f64, d: f64, res: f64) -> (i64, f64, f64) {
-    if d > 0.0 {
-        (1, res / d, (l.floor() + 1.0 - l) * res / d)
-    } else if d < 0.0 {
-        (-1, -res / d, (l - l.floor()) * res / -d)
-    } else {
-        (0, f64::INFINITY, f64::INFINITY)
     }
 }
 

@@ -11,6 +11,7 @@ pub mod edit;
 pub mod generate;
 mod grid_pos;
 pub mod io;
+pub mod ray;
 
 pub use grid_pos::{supercover, supercover_while, GridPos};
 

@@ -99,19 +99,6 @@ impl PerceptionSpec {
     }
 }
 
-/// Grid traversal set-up on one axis (local cell coordinate `l`, unit
-/// direction component `d`, cell size `res`): step sign, ray distance
-/// between crossings, ray distance to the first crossing.
-fn dda_axis(l: f64, d: f64, res: f64) -> (i64, f64, f64) {
-    if d > 0.0 {
-        (1, res / d, (l.floor() + 1.0 - l) * res / d)
-    } else if d < 0.0 {
-        (-1, -res / d, (l - l.floor()) * res / -d)
-    } else {
-        (0, f64::INFINITY, f64::INFINITY)
-    }
-}
-
 /// Number of beams of a laser: fov / resolution, plus the closing beam
 /// when the field of view is not a full turn.
 fn beams(l: &LaserConfig) -> usize {
@@ -324,37 +311,21 @@ impl Perception {
             // Clear along the ray up to the raytrace range, sparing the
             // return's own cell: a grid traversal of every crossed cell.
             let reach = d.min(c.raytrace_range);
-            let (lx, ly) = ((pose[0] - o.x) / res, (pose[1] - o.y) / res);
-            let (mut cx, mut cu) = (lx.floor() as i64, ly.floor() as i64);
-            let (sx, tdx, mut tmx) = dda_axis(lx, dx, res);
-            let (su, tdu, mut tmu) = dda_axis(ly, dy, res);
+            let local = ((pose[0] - o.x) / res, (pose[1] - o.y) / res);
             let end = end_cell.unwrap_or((-1, -1));
-            loop {
-                if cx < 0 || cu < 0 || cx >= w || cu >= h {
-                    break;
-                }
-                let row = h - 1 - cu;
+            let (marks, seen) = (&mut self.marks, &mut self.seen);
+            crate::map::ray::walk((w, h), res, local, (dx, dy), reach, |cx, row| {
                 if (cx, row) == end {
-                    break;
+                    return false;
                 }
                 let idx = (row * w + cx) as usize;
-                self.seen[idx] = true;
-                if self.marks[idx] {
-                    self.marks[idx] = false;
+                seen[idx] = true;
+                if marks[idx] {
+                    marks[idx] = false;
                     changed = true;
                 }
-                let t = tmx.min(tmu);
-                if t > reach {
-                    break;
-                }
-                if tmx < tmu {
-                    cx += sx;
-                    tmx += tdx;
-                } else {
-                    cu += su;
-                    tmu += tdu;
-                }
-            }
+                true
+            });
             if d <= c.obstacle_range {
                 if let Some(cr) = end_cell {
                     ends.push((cr.1 * w + cr.0) as usize);

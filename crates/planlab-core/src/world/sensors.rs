@@ -44,7 +44,9 @@ impl LaserScan {
     /// beam beyond the first or last beam).
     pub fn at_angle(&self, a: f64) -> Option<f64> {
         let n = self.ranges.len();
-        if n == 0 || !(self.angle_increment > 0.0) || !a.is_finite() {
+        // NaN increments fail `>` too.
+        let ok = self.angle_increment > 0.0;
+        if n == 0 || !ok || !a.is_finite() {
             return None;
         }
         let tau = std::f64::consts::TAU;

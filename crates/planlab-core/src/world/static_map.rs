@@ -71,6 +71,19 @@ impl StaticMap {
         })
     }
 
+    /// The grid as the robot meets it: every blocked cell occupied
+    /// (unknown ones too when they count as obstacles), every other free,
+    /// in the same frame — what a costmap's static layer holds.
+    pub fn solid(&self) -> OccupancyGrid {
+        let mut g = self.grid.clone();
+        for (i, &b) in self.blocked.iter().enumerate() {
+            let (c, r) = (i % g.width(), i / g.width());
+            // In bounds by construction.
+            let _ = g.set(c, r, if b { Cell::Occupied } else { Cell::Free });
+        }
+        g
+    }
+
     /// The occupancy grid.
     pub fn grid(&self) -> &OccupancyGrid {
         &self.grid

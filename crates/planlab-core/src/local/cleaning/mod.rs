@@ -115,7 +115,7 @@ use super::engine::critic::Twirling;
 use super::engine::{CriticSlot, Engine, Scoring};
 use super::LocalError;
 use crate::map::costmap::Costmap;
-use crate::map::{Cell, OccupancyGrid};
+use crate::map::OccupancyGrid;
 use crate::world::terrain::IDENTITY;
 use crate::world::{RobotSpec, RobotState, StaticMap};
 use path::GlobalPath;
@@ -169,21 +169,7 @@ impl CleaningDwa {
         goal: [f64; 2],
     ) -> Result<Self, LocalError> {
         cfg.validate(name)?;
-        let grid = map.grid();
-        let (w, h) = (grid.width(), grid.height());
-        let cells = (0..h)
-            .flat_map(|r| (0..w).map(move |c| (c, r)))
-            .map(|(c, r)| {
-                if map.is_blocked(c as i64, r as i64) {
-                    Cell::Occupied
-                } else {
-                    Cell::Free
-                }
-            })
-            .collect();
-        let solid = OccupancyGrid::from_cells(w, h, cells)
-            .and_then(|g| g.with_frame(grid.resolution(), grid.origin()))
-            .map_err(|e| LocalError::InvalidParameter(format!("{name}: map: {e}")))?;
+        let solid = map.solid();
         let costmap = Costmap::ros(
             &solid,
             cfg.inflation_radius,

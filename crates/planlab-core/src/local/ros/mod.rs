@@ -66,26 +66,6 @@ fn costmap_err(e: crate::map::MapError) -> LocalError {
     LocalError::InvalidParameter(format!("costmap: {e}"))
 }
 
-/// The static layer of `map`: its blocked cells (unknown ones included
-/// when the map counts them as obstacles) as occupied.
-fn solid_of(map: &StaticMap) -> Result<OccupancyGrid, LocalError> {
-    let grid = map.grid();
-    let (w, h) = (grid.width(), grid.height());
-    let cells = (0..h)
-        .flat_map(|r| (0..w).map(move |c| (c, r)))
-        .map(|(c, r)| {
-            if map.is_blocked(c as i64, r as i64) {
-                Cell::Occupied
-            } else {
-                Cell::Free
-            }
-        })
-        .collect();
-    OccupancyGrid::from_cells(w, h, cells)
-        .and_then(|g| g.with_frame(grid.resolution(), grid.origin()))
-        .map_err(costmap_err)
-}
-
 /// The costmap of one cycle: the static layer and the movers, inflated.
 #[derive(Debug, Clone)]
 pub struct Layers {
@@ -106,7 +86,7 @@ pub struct Layers {
 impl Layers {
     /// The layers of `map` for `robot` (inscribed radius = the footprint's).
     pub fn new(map: &StaticMap, robot: &RobotSpec, p: &CostmapParams) -> Result<Self, LocalError> {
-        let solid = solid_of(map)?;
+        let solid = map.solid();
         let inscribed = padded(&robot.footprint, p.footprint_padding).inscribed_radius();
         let inscribed = match robot.footprint {
             // The padded disc's 16-gon.
@@ -131,7 +111,7 @@ impl Layers {
 
     /// Replaces the static layer by `map` (the known map changed).
     pub fn set_static(&mut self, map: &StaticMap) -> Result<(), LocalError> {
-        let solid = solid_of(map)?;
+        let solid = map.solid();
         self.stat = Costmap::ros(&solid, self.inscribed, self.inflation, self.scaling)
             .map_err(costmap_err)?;
         self.solid = solid;
@@ -600,7 +580,7 @@ impl<G: RosGenerator> LocalPlanner for RosPlanner<G> {
             due |= self.plan.path().iter().any(|p| {
                 self.layers
                     .cost_at(p[0], p[1])
-                    .is_none_or(|c| c >= INSCRIBED)
+                    .map_or(true, |c| c >= INSCRIBED)
             });
         }
         if due || self.failed {
