@@ -23,6 +23,9 @@ struct WorldInfo {
 /// The world `id` of the compact `text`.
 fn world(text: &str, id: u32) -> Result<BarnWorld, JsError> {
     let worlds = parse_compact(text)?;
+    if worlds.is_empty() {
+        return Err(JsError::new("the BARN worlds file holds no world"));
+    }
     let (lo, hi) = worlds
         .iter()
         .fold((u32::MAX, 0), |(lo, hi), w| (lo.min(w.id), hi.max(w.id)));

@@ -20,7 +20,7 @@ export class Race {
 
   /** A lane per planner in `chosen` on `scenario` (fan recorded when
    *  `fan`); returns the planners that cannot run it, with the reason. */
-  rebuild(scenario: ComparedScenario, chosen: string[], fan: boolean): string[] {
+  rebuild(scenario: Pick<ComparedScenario, 'text' | 'build'>, chosen: string[], fan: boolean): string[] {
     this.generation += 1;
     this.instant = false;
     for (const l of this.lanes) l.free();
