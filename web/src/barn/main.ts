@@ -329,7 +329,8 @@ function setMode(m: Mode): void {
 
 function showPlanner(): void {
   const p = infos.find((i) => i.name === ui.planner.value);
-  ui.plannerSummary.textContent = p ? `${p.paper} — ${p.plain ?? p.summary}` : '—';
+  ui.plannerSummary.textContent = p ? (p.plain ?? p.summary) : '—';
+  ui.plannerSummary.title = p?.paper ?? '';
 }
 
 function updateUrl(): void {

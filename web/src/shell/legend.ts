@@ -55,7 +55,7 @@ const ARM: Item[] = [
 
 const BARN: Item[] = [
   [COSTMAP_SWATCHES.unknown, 'dot', 'Grey: space the laser has never seen (costmap 255).'],
-  [`linear-gradient(90deg,${COSTMAP_SWATCHES.decayLow},${COSTMAP_SWATCHES.decayHigh})`, 'line', 'Yellow to orange: the cost decaying away from a laser mark (1–252); the planner prefers low cost.'],
+  [`linear-gradient(90deg,${COSTMAP_SWATCHES.decayLow},${COSTMAP_SWATCHES.decayHigh})`, 'line', 'Pale to deep violet: the cost decaying away from a laser mark (1–252); the planner prefers low cost.'],
   [COSTMAP_SWATCHES.inscribed, 'dot', 'Rose: inscribed (253): the robot\'s centre here would touch an obstacle.'],
   [COSTMAP_SWATCHES.lethal, 'dot', 'Black: a laser mark (254), an obstacle the scans hit.'],
   ['rgba(234, 88, 12, 0.6)', 'line', 'Laser rays: orange where a beam hit something, grey where it saw nothing in range.'],
