@@ -31,7 +31,7 @@ import { el, errorBanner, messageOf } from '../shell/dom';
 import { SimClock } from '../shell/sim-clock';
 import { bindSpeed } from '../shell/speed';
 import { panZoom } from '../shell/canvas-input';
-import { installKeys } from '../shell/keys';
+import { showDone, showPlaying, wireTransport } from '../shell/transport';
 import { Worlds } from './worlds';
 import { drawTruth } from './overlay';
 import { renderResults, resultOf, scoreFormula } from './results';
@@ -271,10 +271,7 @@ function ready(): boolean {
 
 function setPlaying(on: boolean): void {
   const playing = on && ready();
-  ui.play.textContent = playing ? '❚❚ Pause' : '▶ Run';
-  ui.play.dataset.playing = String(playing);
-  ui.body.dataset.playing = String(playing);
-  if (playing) ui.body.dataset.state = 'running';
+  showPlaying(ui.play, ui.body, playing);
   clock.play(playing);
   renderStatus();
 }
@@ -289,11 +286,7 @@ function advance(n: number, budgetMs = Infinity): number {
 
 function finish(): void {
   clock.play(false);
-  ui.play.textContent = '▶ Run';
-  ui.play.dataset.playing = 'false';
-  ui.body.dataset.playing = 'false';
-  ui.body.dataset.state = 'done';
-  ui.body.dataset.done = 'true';
+  showDone(ui.play, ui.body);
   ui.hint.textContent = 'Run over: the table has the outcome, time and BARN score. Reset to run again.';
   renderAll();
 }
@@ -370,17 +363,20 @@ ui.difficulty.addEventListener(
   }),
 );
 for (const b of ui.modes) b.addEventListener('click', guard(() => setMode(b.dataset.mode as Mode)));
-ui.play.addEventListener('click', guard(() => setPlaying(!clock.playing)));
-ui.step.addEventListener(
-  'click',
-  guard(() => {
-    setPlaying(false);
-    advance(1);
-    renderAll();
-  }),
+wireTransport(
+  ui,
+  {
+    toggle: () => setPlaying(!clock.playing),
+    step: () => {
+      setPlaying(false);
+      advance(1);
+      renderAll();
+    },
+    reset: rebuild,
+    instant: runToEnd,
+  },
+  guard,
 );
-ui.reset.addEventListener('click', guard(rebuild));
-ui.instant.addEventListener('click', guard(() => runToEnd()));
 bindSpeed(ui.speed, ui.speedOut, clock);
 for (const box of [ui.showLidar, ui.showCostmap, ui.showTrail, ui.showTruth]) {
   box.addEventListener(
@@ -395,14 +391,6 @@ for (const box of [ui.showLidar, ui.showCostmap, ui.showTrail, ui.showTruth]) {
 panZoom(ui.stage, (c) => (c.classList.contains('lane-canvas') ? views : null));
 ui.stage.addEventListener('dblclick', (ev) => {
   if (ev.target instanceof HTMLCanvasElement && ev.target.classList.contains('lane-canvas')) for (const v of views) v.fit();
-});
-installKeys({
-  ' ': () => {
-    if (!ui.play.disabled) ui.play.click();
-  },
-  '.': () => ui.step.click(),
-  r: () => ui.reset.click(),
-  e: () => ui.instant.click(),
 });
 
 /** For the e2e tests (and the console): the core's score, each lane's
