@@ -124,7 +124,7 @@ test('a race of two planners on one world ends with a results row each', async (
   await page.close();
 });
 
-test('a world the file does not hold is a one-line error', async () => {
+test('a world the file does not hold, a fractional world and negative noise are one-line errors', async () => {
   const { page, problems } = await openBarn('?world=1&planner=dwb');
   await page.fill('#world', '6');
   await page.dispatchEvent('#world', 'change');
@@ -137,6 +137,11 @@ test('a world the file does not hold is a one-line error', async () => {
   await page.fill('#world', '2.5');
   await page.dispatchEvent('#world', 'change');
   assert.match(await errorText(page), /World “2.5” is not a whole number/);
+  await page.fill('#world', '1');
+  await page.fill('#noise', '-0.5');
+  await page.dispatchEvent('#noise', 'change');
+  assert.match(await errorText(page), /noise_std/);
+  assert.ok(!(await errorText(page)).includes('\n'));
   assert.deepEqual(problems, []);
   await page.close();
 });

@@ -89,8 +89,12 @@ pub fn barn_scenario(
     let opts = BarnOptions { noise_std: noise };
     let (s, _) = barn_run::scenario(&w, planner, seed as u64, &opts)?;
     // Bad noise (negative, NaN, above the laser's bound) is caught here
-    // rather than when the page builds the episode.
+    // rather than when the page builds the episode (`Scenario::validate`
+    // leaves the perception section to the episode).
     s.validate()?;
+    if let Some(p) = &s.perception {
+        p.validate()?;
+    }
     Ok(serde_json::to_string(&s)?)
 }
 
