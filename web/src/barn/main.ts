@@ -273,7 +273,8 @@ function setPlaying(on: boolean): void {
   const playing = on && ready();
   showPlaying(ui.play, ui.body, playing);
   clock.play(playing);
-  renderStatus();
+  // Paused: heads, table and status all say the time the lanes stopped at.
+  renderSlow();
 }
 
 /** Up to `n` lock-step rounds within the budget; returns how many ran. */
