@@ -279,7 +279,7 @@ function setPlaying(on: boolean): void {
 
 /** Up to `n` lock-step rounds within the budget; returns how many ran. */
 function advance(n: number, budgetMs = Infinity): number {
-  const done = clock.run(n, () => !race.allDone(), () => race.round(), budgetMs);
+  const done = race.rounds(clock, n, budgetMs);
   pull();
   if (race.allDone()) finish();
   return done;

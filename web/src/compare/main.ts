@@ -196,7 +196,7 @@ function setPlaying(on: boolean): void {
 
 /** Up to `n` rounds within the budget; returns how many ran. */
 function advance(n: number, budgetMs = Infinity): number {
-  const done = clock.run(n, () => !allDone(), () => race.round(), budgetMs);
+  const done = race.rounds(clock, n, budgetMs);
   race.pull();
   if (allDone()) finish();
   return done;
