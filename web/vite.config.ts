@@ -127,6 +127,7 @@ export default defineConfig({
         robot: resolve(here, 'robot.html'),
         compare: resolve(here, 'compare.html'),
         race: resolve(here, 'race.html'),
+        barn: resolve(here, 'barn.html'),
         arm: resolve(here, 'arm.html'),
         apf: resolve(here, 'apf.html'),
         bench: resolve(here, 'bench.html'),

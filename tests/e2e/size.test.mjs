@@ -19,7 +19,7 @@ after(async () => {
 test('first load of every page is within FIRST_LOAD_LIMIT (wasm + JS + CSS)', async () => {
   const pages = sitePages();
   // The site's own pages at least; pages added later are measured too.
-  for (const p of ['index.html', 'robot.html', 'apf.html', 'arm.html']) assert.ok(pages.includes(p), `${p} built`);
+  for (const p of ['index.html', 'robot.html', 'apf.html', 'arm.html', 'barn.html']) assert.ok(pages.includes(p), `${p} built`);
   for (const p of pages) {
     const m = await measureFirstLoad(session, p);
     console.log(`${p}: first load ${kB(m.firstLoad)} (wasm ${kB(m.wasm)}, js ${kB(m.js)}, css ${kB(m.css)})`);

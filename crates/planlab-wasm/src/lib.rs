@@ -32,6 +32,9 @@
 //!   arm page: the 7-DOF arm's links, joint angles, tool and hand paths,
 //!   the hand's predicted positions and the minimum distance; see [`arm`].
 //!
+//! - [`barn`] gives the BARN page its worlds, a run's scenario (built into
+//!   a [`SimHandle`] like any other), the BARN planners and the score.
+//!
 //! - [`ApfHandle`] runs one 2D potential-field scene (core `apf::ApfRun`)
 //!   for the APF page: path, obstacles, field lattice, sampled directions,
 //!   predictions; see [`apf`].
@@ -41,6 +44,8 @@
 
 #[cfg(feature = "robot")]
 pub mod apf;
+#[cfg(feature = "robot")]
+pub mod barn;
 pub mod batch;
 mod draw_js;
 #[cfg(feature = "grid-search")]
@@ -54,6 +59,8 @@ pub mod sim;
 
 #[cfg(feature = "robot")]
 pub use apf::ApfHandle;
+#[cfg(feature = "robot")]
+pub use barn::{barn_cylinders, barn_planners, barn_scenario, barn_score, barn_worlds};
 #[cfg(feature = "grid-search")]
 pub use dstar::{grid_algorithms, DStarSession};
 /// The arm page's handle, from its own crate (the arm page loads that

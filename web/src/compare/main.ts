@@ -25,6 +25,7 @@ import { el, messageOf, errorBanner } from '../shell/dom';
 import { SimClock } from '../shell/sim-clock';
 import { panZoom } from '../shell/canvas-input';
 import { installKeys } from '../shell/keys';
+import { showDone, showPlaying, wireTransport } from '../shell/transport';
 import { bindSpeed } from '../shell/speed';
 import { summary } from '../shell/frame-meter';
 import { buildLanes, lanesCsv, renderHeads, renderTable } from './render';
@@ -188,17 +189,14 @@ function renderAll(): void {
 // ------------------------------------------------------------ simulation
 function setPlaying(on: boolean): void {
   const playing = on && race.lanes.length >= MIN_PLANNERS && !allDone() && !race.instant;
-  ui.play.textContent = playing ? '❚❚ Pause' : '▶ Run';
-  ui.play.dataset.playing = String(playing);
-  ui.body.dataset.playing = String(playing);
-  if (playing) ui.body.dataset.state = 'running';
+  showPlaying(ui.play, ui.body, playing);
   clock.play(playing);
   renderStatus();
 }
 
 /** Up to `n` rounds within the budget; returns how many ran. */
 function advance(n: number, budgetMs = Infinity): number {
-  const done = clock.run(n, () => !allDone(), () => race.round(), budgetMs);
+  const done = race.rounds(clock, n, budgetMs);
   race.pull();
   if (allDone()) finish();
   return done;
@@ -206,11 +204,7 @@ function advance(n: number, budgetMs = Infinity): number {
 
 function finish(): void {
   clock.play(false);
-  ui.play.textContent = '▶ Run';
-  ui.play.dataset.playing = 'false';
-  ui.body.dataset.playing = 'false';
-  ui.body.dataset.state = 'done';
-  ui.body.dataset.done = 'true';
+  showDone(ui.play, ui.body);
   ui.hint.textContent = 'All episodes over: the table marks the best planner per metric. Reset to run again.';
   renderAll();
 }
@@ -296,23 +290,23 @@ ui.file.addEventListener(
     showOpened(ui.preset, got.name);
   }),
 );
-ui.play.addEventListener('click', guard(() => setPlaying(!clock.playing)));
-ui.step.addEventListener(
-  'click',
-  guard(() => {
-    setPlaying(false);
-    advance(1);
-    renderAll();
-  }),
+wireTransport(
+  ui,
+  {
+    toggle: () => setPlaying(!clock.playing),
+    step: () => {
+      setPlaying(false);
+      advance(1);
+      renderAll();
+    },
+    reset: () => {
+      rebuild();
+      ui.hint.textContent = 'Back at the start.';
+    },
+    instant: runToEnd,
+  },
+  guard,
 );
-ui.reset.addEventListener(
-  'click',
-  guard(() => {
-    rebuild();
-    ui.hint.textContent = 'Back at the start.';
-  }),
-);
-ui.instant.addEventListener('click', guard(() => runToEnd()));
 bindSpeed(ui.speed, ui.speedOut, clock);
 for (const b of ui.views) b.addEventListener('click', () => setView(b.dataset.view as ViewMode));
 ui.showFan.addEventListener(
@@ -344,15 +338,7 @@ const currentCsv = () => lanesCsv(race.lanes, allDone());
 
 wireCopyCsv(ui.copyCsv, ui.csvStatus, currentCsv, guard);
 
-installKeys({
-  ' ': () => {
-    if (!ui.play.disabled) ui.play.click();
-  },
-  '.': () => ui.step.click(),
-  r: () => ui.reset.click(),
-  e: () => ui.instant.click(),
-  v: () => setView(viewMode === 'side' ? 'overlay' : 'side'),
-});
+installKeys({ v: () => setView(viewMode === 'side' ? 'overlay' : 'side') });
 
 /** For the e2e tests: the metrics and hashes per planner, and the CSV. */
 (window as unknown as { planlabCompare: unknown }).planlabCompare = {

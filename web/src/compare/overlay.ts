@@ -28,7 +28,7 @@ export class OverlayView {
     // The view's own robot, fan, trail and paths are off: each planner's
     // are drawn by drawLanes (the frame never gets a Robot layer). Movers
     // are not coloured by one planner's classes, nor its subgoal marked.
-    s.show = { fan: false, path: false, trail: false, lidar: false, fog: false, classes: false, subgoal: false };
+    s.show = { fan: false, path: false, trail: false, lidar: false, fog: false, classes: false, subgoal: false, costmap: false };
     return s;
   }
 

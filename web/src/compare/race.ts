@@ -7,6 +7,7 @@ import { Lane } from './lane';
 import { laneColour } from './render';
 import type { ComparedScenario } from './scenario';
 import { messageOf } from '../shell/dom';
+import type { SimClock } from '../shell/sim-clock';
 
 /** "Run to end": work per slice before the page gets a frame, ms. */
 const INSTANT_SLICE_MS = 40;
@@ -20,7 +21,7 @@ export class Race {
 
   /** A lane per planner in `chosen` on `scenario` (fan recorded when
    *  `fan`); returns the planners that cannot run it, with the reason. */
-  rebuild(scenario: ComparedScenario, chosen: string[], fan: boolean): string[] {
+  rebuild(scenario: Pick<ComparedScenario, 'text' | 'build'>, chosen: string[], fan: boolean): string[] {
     this.generation += 1;
     this.instant = false;
     for (const l of this.lanes) l.free();
@@ -46,6 +47,12 @@ export class Race {
   /** One control step for every planner still running. */
   round(): void {
     for (const l of this.lanes) l.step(1);
+  }
+
+  /** Up to `n` rounds on `clock` within `budgetMs` (`SimClock.run`);
+   *  returns how many ran. */
+  rounds(clock: SimClock, n: number, budgetMs: number): number {
+    return clock.run(n, () => !this.allDone(), () => this.round(), budgetMs);
   }
 
   pull(): void {

@@ -34,9 +34,10 @@ export const Layer = {
   Links: 25,
   Hand: 26,
   HandPath: 27,
+  Costmap: 28,
 } as const;
 export type LayerCode = (typeof Layer)[keyof typeof Layer];
-const LAYER_COUNT = 28;
+const LAYER_COUNT = 29;
 
 /** Shape codes (`planlab_core::draw::Shape`). */
 export const Shape = {
@@ -216,6 +217,12 @@ export class Frame {
   /** Whether the last step reported LiDAR data (the target is always there). */
   hasLidar(): boolean {
     return this.of(Layer.LidarTarget).count(Layer.LidarTarget) > 0;
+  }
+
+  /** Whether there are laser rays to draw: a LiDAR planner's, or the
+   *  simulated laser's of a robot that perceives its map (`perception`). */
+  hasRays(): boolean {
+    return this.hasLidar() || this.of(Layer.LidarRays).count(Layer.LidarRays) > 0;
   }
 }
 

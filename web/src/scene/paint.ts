@@ -9,6 +9,8 @@ import { COLORS, EDGE_COLOURS, type Scene } from './view';
 
 /** Score buckets of the fan: one stroke each. */
 export const FAN_BUCKETS = 10;
+/** Beams up to which laser rays keep their full alpha. */
+const RAYS_FULL_ALPHA = 360;
 
 /** Colour of bucket b (0 = worst admissible score, FAN_BUCKETS-1 = best). */
 function bucketColour(b: number): string {
@@ -156,6 +158,11 @@ export class Painter {
     const ctx = this.ctx;
     const f = this.S.frame;
     const rays = f.of(Layer.LidarRays);
+    let beams = 0;
+    for (let i = rays.first(Layer.LidarRays); i < rays.end(Layer.LidarRays); i++) beams += rays.numbers(i).length / 4;
+    // A dense scan (a UST-10's 1081 beams) would paint a solid wedge: fade
+    // it to the tint of a 360-beam one.
+    const fade = Math.min(1, RAYS_FULL_ALPHA / Math.max(1, beams));
     for (let i = rays.first(Layer.LidarRays); i < rays.end(Layer.LidarRays); i++) {
       const s = rays.numbers(i);
       ctx.beginPath();
@@ -163,7 +170,7 @@ export class Painter {
         ctx.moveTo(s[j], s[j + 1]);
         ctx.lineTo(s[j + 2], s[j + 3]);
       }
-      ctx.strokeStyle = rays.tag(i) ? 'rgba(234, 88, 12, 0.22)' : 'rgba(148, 163, 184, 0.14)';
+      ctx.strokeStyle = rays.tag(i) ? `rgba(234, 88, 12, ${0.22 * fade})` : `rgba(148, 163, 184, ${0.14 * fade})`;
       ctx.lineWidth = 1 * this.px;
       ctx.stroke();
     }

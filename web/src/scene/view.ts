@@ -8,6 +8,7 @@
 import { DrawList, Frame, Layer } from './draw';
 import { Painter, lidarLayers } from './paint';
 import { knownBox as knownCells, offscreen, sizeToBox } from '../shell/cells';
+import { COSTMAP_RGBA } from './costmap';
 
 export interface MapInfo {
   width: number;
@@ -65,8 +66,9 @@ export interface Scene {
   /** The mover being placed by a drag: centre, velocity, radius. */
   preview: { x: number; y: number; vx: number; vy: number; radius: number } | null;
   /** Layer toggles; `classes` colours movers by class and `subgoal` marks
-   *  the goal steered to (the overlay view shows neither). */
-  show: { fan: boolean; path: boolean; trail: boolean; lidar: boolean; fog: boolean; classes: boolean; subgoal: boolean };
+   *  the goal steered to (the overlay view shows neither); `costmap` paints
+   *  the perceived map's costs when the frame holds them (BARN page). */
+  show: { fan: boolean; path: boolean; trail: boolean; lidar: boolean; fog: boolean; classes: boolean; subgoal: boolean; costmap: boolean };
 }
 
 export function emptyScene(): Scene {
@@ -77,7 +79,7 @@ export function emptyScene(): Scene {
     trailLen: 0,
     seenCount: -1,
     preview: null,
-    show: { fan: true, path: true, trail: true, lidar: true, fog: false, classes: true, subgoal: true },
+    show: { fan: true, path: true, trail: true, lidar: true, fog: false, classes: true, subgoal: true, costmap: false },
   };
 }
 
@@ -103,6 +105,9 @@ export class RobotView {
   /** Fog overlay (unseen cells shaded) and the seen count it was built for. */
   private fog: HTMLCanvasElement | null = null;
   private fogCount = -1;
+  /** Costmap image and the draw list it was built from. */
+  private costmap: HTMLCanvasElement | null = null;
+  private costmapOf: DrawList | null = null;
   /** CSS pixels per metre and CSS position of the map's top-left corner. */
   private k = 1;
   private ox = 0;
@@ -305,6 +310,7 @@ export class RobotView {
       if (fog) ctx.drawImage(fog, this.ox, this.oy, w, h);
     }
     this.canvas.dataset.fog = fogged ? 'on' : 'off';
+    this.canvas.dataset.costmap = S.show.costmap && this.paintCostmap(S.frame.of(Layer.Costmap)) ? 'on' : 'off';
 
     // World-space layers: widths in metres = CSS px / k.
     this.worldTransform();
@@ -314,7 +320,7 @@ export class RobotView {
     if (S.show.path) p.globalPath();
     if (S.show.trail && S.trailLen >= 2) p.polyline(S.trail, 0, S.trailLen, COLORS.trail, 2.5);
     if (S.show.fan) p.fan();
-    const lidarOn = S.show.lidar && S.frame.hasLidar();
+    const lidarOn = S.show.lidar && S.frame.hasRays();
     if (lidarOn) p.lidar();
     p.robot();
 
@@ -327,6 +333,28 @@ export class RobotView {
     p.goals();
     p.preview(this.k);
     this.overlay?.(ctx);
+  }
+
+  /** Paints the Costmap layer of `d` (its own frame: the perceived map's)
+   *  over the map; false without one. The image is rebuilt only for a new
+   *  draw list. */
+  private paintCostmap(d: DrawList): boolean {
+    const i = d.first(Layer.Costmap);
+    if (i >= d.end(Layer.Costmap)) return false;
+    const [w, h, res, x0, y0] = d.numbers(i);
+    if (this.costmapOf !== d || !this.costmap) {
+      const costs = d.cellBytes(i);
+      const [c, ctx] = offscreen(w, h);
+      const img = ctx.createImageData(w, h);
+      const px = img.data;
+      for (let k = 0; k < costs.length; k++) px.set(COSTMAP_RGBA.subarray(costs[k] * 4, costs[k] * 4 + 4), k * 4);
+      ctx.putImageData(img, 0, 0);
+      this.costmap = c;
+      this.costmapOf = d;
+    }
+    const [sx, sy] = this.toScreen(x0, y0 + h * res);
+    this.ctx.drawImage(this.costmap, sx, sy, w * res * this.k, h * res * this.k);
+    return true;
   }
 
   /** The fog overlay: unseen cells shaded (rebuilt when the count changes). */

@@ -4,6 +4,7 @@
 // constants the canvas is painted with.
 
 import { COLORS } from '../scene/view';
+import { COSTMAP_SWATCHES } from '../scene/costmap';
 import './legend.css';
 
 type Item = [swatch: string, shape: 'dot' | 'line' | 'star' | 'ring' | 'text', words: string];
@@ -52,7 +53,25 @@ const ARM: Item[] = [
   ['#334155', 'text', 'Min distance: the closest the arm came to the hand; larger is safer.'],
 ];
 
+const BARN: Item[] = [
+  [COSTMAP_SWATCHES.unknown, 'dot', 'Grey: space the laser has never seen (costmap 255).'],
+  [`linear-gradient(90deg,${COSTMAP_SWATCHES.decayLow},${COSTMAP_SWATCHES.decayHigh})`, 'line', 'Pale to deep violet: the cost decaying away from a laser mark (1–252); the planner prefers low cost.'],
+  [COSTMAP_SWATCHES.inscribed, 'dot', 'Rose: inscribed (253): the robot\'s centre here would touch an obstacle.'],
+  [COSTMAP_SWATCHES.lethal, 'dot', 'Black: a laser mark (254), an obstacle the scans hit.'],
+  ['rgba(234, 88, 12, 0.6)', 'line', 'Laser rays: orange where a beam hit something, grey where it saw nothing in range.'],
+  ['#0d9488', 'dot', 'True cylinders (toggle): the world as it is; the planner never sees it.'],
+  [COLORS.goal, 'dot', 'Goal, with its dashed 1 m success circle.'],
+  [COLORS.trail, 'line', 'Trail: where the robot has driven.'],
+];
+
+const BARN_OUTCOMES: Item[] = [
+  ['#15803d', 'text', 'reached: the robot\'s centre came within 1 m of the goal; scored OT / clip(T, 2·OT, 8·OT).'],
+  ['#b91c1c', 'text', 'collision: the robot touched a cylinder; score 0.'],
+  ['#b45309', 'text', 'timeout: 100 s went by; score 0.'],
+];
+
 const SECTIONS: Record<string, [string, Item[]][]> = {
+  barn: [['What the planner knows', BARN], ['How a BARN run ends', BARN_OUTCOMES]],
   robot: [['Goals and paths', GOALS], ['The fan', FAN], ['Obstacle classes (improved DWA)', CLASSES], ['How a run ends', OUTCOMES]],
   compare: [['Goals and paths', GOALS], ['The fan', FAN], ['Obstacle classes (improved DWA)', CLASSES], ['How a run ends', OUTCOMES]],
   gallery: [['On every run page', GOALS], ['The fan', FAN], ['How a run ends', OUTCOMES]],
