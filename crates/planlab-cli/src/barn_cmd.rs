@@ -200,7 +200,25 @@ pub fn barn(args: &BarnArgs<'_>) -> Result<(), String> {
     let runs: Vec<BarnRun> = results.into_iter().collect::<Result<_, _>>()?;
     let seconds = started.elapsed().as_secs_f64();
     if let Some(csv) = args.csv {
-        crate::sim_cmds::write_atomically(csv, runs_csv(&runs, &worlds, &opts).as_bytes())?;
+        let source = |id: u32| -> String {
+            // A checkout's world replays from its file; a built-in one by number.
+            args.paths
+                .iter()
+                .find_map(|p| {
+                    let f = if p.is_dir() {
+                        p.join(format!("world_{id}.world"))
+                    } else {
+                        p.clone()
+                    };
+                    let named = f.file_name()? == format!("world_{id}.world").as_str();
+                    (named && f.is_file()).then(|| f.display().to_string())
+                })
+                .unwrap_or_else(|| id.to_string())
+        };
+        crate::sim_cmds::write_atomically(
+            csv,
+            runs_csv(&runs, &worlds, &opts, &source).as_bytes(),
+        )?;
     }
     let classes = planlab_core::barn::Difficulty::ALL;
     let class_of = |id: u32| {
@@ -308,7 +326,12 @@ fn table_row(name: &str, class: &str, s: &BarnStats) -> String {
 }
 
 /// The CSV of every run, with the command that replays each.
-fn runs_csv(runs: &[BarnRun], worlds: &[BarnWorld], opts: &BarnOptions) -> String {
+fn runs_csv(
+    runs: &[BarnRun],
+    worlds: &[BarnWorld],
+    opts: &BarnOptions,
+    source: &dyn Fn(u32) -> String,
+) -> String {
     let mut s = String::from(
         "world,difficulty,planner,run,seed,outcome,time_s,optimal_time_s,score,path_length_m,trace_hash,replay\n",
     );
@@ -336,7 +359,7 @@ fn runs_csv(runs: &[BarnRun], worlds: &[BarnWorld], opts: &BarnOptions) -> Strin
             r.score,
             r.path_length,
             r.trace_hash,
-            r.world,
+            source(r.world),
             r.planner,
             r.seed,
             noise
