@@ -8,9 +8,10 @@ from __future__ import annotations
 import math
 import os
 import time
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Iterable, List, Optional, Sequence
+
+from .sweep import fan_out
 
 
 @dataclass
@@ -52,7 +53,8 @@ def barn(
     public worlds the package holds). ``noise``: the laser's range noise
     σ in metres (0: exact). ``backend``: ``"local"`` (a thread pool; the
     core releases the GIL) or ``"ray"`` (Ray tasks of ``jobs_per_task``
-    runs; ``ray.init(**ray_init)`` when Ray is not initialised).
+    runs; ``ray.init(**ray_init)`` when Ray is not initialised), through
+    the same fan-out as :func:`planlab.sweep`.
     """
     import planlab
 
@@ -75,16 +77,8 @@ def barn(
     todo = [(w, p, r) for w in ids for p in names for r in range(runs)]
     blocks = [todo[i:i + jobs_per_task] for i in range(0, len(todo), jobs_per_task)]
     started = time.perf_counter()
-    if backend == "local":
-        with ThreadPoolExecutor(max_workers=workers or os.cpu_count() or 1) as pool:
-            results = list(pool.map(lambda b: _run_jobs(b, seed, noise, paths), blocks))
-    else:
-        import ray
-
-        if not ray.is_initialized():
-            ray.init(**(ray_init or {}))
-        remote = ray.remote(num_cpus=1)(_run_jobs)
-        results = ray.get([remote.remote(b, seed, noise, paths) for b in blocks])
+    tasks = [(_run_jobs, (b, seed, noise, paths)) for b in blocks]
+    results = fan_out(tasks, backend, workers, ray_init)
     rows = [r for block in results for r in block]
     summaries = []
     for p in names:

@@ -62,6 +62,31 @@ def _run_block(doc: dict, base_dir: str, variants: Sequence[int], planners: Sequ
     return planlab.batch_episodes(s, list(variants), list(planners), seed, jitter)
 
 
+def fan_out(tasks: Sequence[tuple], backend: str, workers: Optional[int] = None,
+            ray_init: Optional[dict] = None) -> List[Any]:
+    """Runs ``fn(*args)`` for each ``(fn, args)`` of ``tasks`` on a local
+    thread pool of ``workers`` threads (the core releases the GIL) or as
+    Ray tasks of one CPU each (``ray.init(**ray_init)`` when Ray is not
+    initialised yet); returns the results in task order. ``sweep`` and
+    ``barn`` spread their episodes through it."""
+    if backend == "local":
+        with ThreadPoolExecutor(max_workers=workers or os.cpu_count() or 1) as pool:
+            futures = [pool.submit(fn, *args) for fn, args in tasks]
+            return [f.result() for f in futures]
+    import ray
+
+    if not ray.is_initialized():
+        ray.init(**(ray_init or {}))
+    # One CPU per task: the cluster's CPUs are the workers (`workers` is
+    # for the local backend).
+    remotes = {}
+    refs = []
+    for fn, args in tasks:
+        remote = remotes.setdefault(fn, ray.remote(num_cpus=1)(fn))
+        refs.append(remote.remote(*args))
+    return ray.get(refs)
+
+
 def _blocks(n: int, size: int) -> List[List[int]]:
     return [list(range(a, min(n, a + size))) for a in range(0, n, size)]
 
@@ -122,26 +147,17 @@ def sweep(
     docs = [(s.to_dict(), str(s.base_dir)) for s in items]
 
     if backend == "local":
-        with ThreadPoolExecutor(max_workers=workers or os.cpu_count() or 1) as pool:
-            futures = [
-                pool.submit(batch_block, items[i], block, planners, seed, jitter)
-                for i, block in jobs
-            ]
-            results = [f.result() for f in futures]
+        tasks = [(batch_block, (items[i], block, planners, seed, jitter)) for i, block in jobs]
+        results = fan_out(tasks, "local", workers)
     else:
         import ray
 
         if not ray.is_initialized():
             ray.init(**(ray_init or {}))
-        # One CPU per task: the cluster's CPUs are the workers (`workers`
-        # is for the local backend).
-        remote = ray.remote(num_cpus=1)(_run_block)
         refs = [ray.put(d) for d, _ in docs]
-        futures = [
-            remote.remote(refs[i], docs[i][1], block, planners, seed, jitter)
-            for i, block in jobs
-        ]
-        results = ray.get(futures)
+        tasks = [(_run_block, (refs[i], docs[i][1], block, planners, seed, jitter))
+                 for i, block in jobs]
+        results = fan_out(tasks, "ray", workers, ray_init)
 
     rows = [dict(r, scenario=0) for r in first]
     for (i, _), res in zip(jobs, results):
