@@ -8,7 +8,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use planlab_core::barn::run::{self as barn_run, BarnOptions, BarnRun, BarnStats, PLANNERS};
-use planlab_core::barn::BarnWorld;
+use planlab_core::barn::{BarnWorld, Difficulty};
+use planlab_core::reproduce::stats::Share;
+use planlab_core::world::Outcome;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -26,10 +28,12 @@ pub struct BarnArgs<'a> {
     pub seed: u64,
     /// Laser noise σ, m.
     pub noise: f64,
-    /// JSON lines instead of a table.
-    pub json: bool,
+    /// How the figures are printed.
+    pub format: Format,
     /// Per-run CSV output.
     pub csv: Option<&'a Path>,
+    /// Summarise these earlier `--csv` files instead of running.
+    pub from_csv: &'a [PathBuf],
 }
 
 /// Most runs one sweep may ask for.
@@ -122,7 +126,7 @@ struct StatsLine<'a> {
     stats: &'a BarnStats,
 }
 
-/// The last JSON line: what was run.
+/// The last JSON line of a sweep: what was run.
 #[derive(Serialize)]
 struct Footer<'a> {
     worlds: usize,
@@ -135,8 +139,31 @@ struct Footer<'a> {
     seconds: f64,
 }
 
+/// The last JSON line of a summary of CSV files: what was read.
+#[derive(Serialize)]
+struct CsvFooter<'a> {
+    from_csv: Vec<String>,
+    worlds: usize,
+    planners: Vec<&'a str>,
+    episodes: usize,
+}
+
+/// How the figures are printed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// An aligned text table.
+    Text,
+    /// One JSON line per planner and class, then a footer.
+    Json,
+    /// Markdown tables (overall, then success and score by class).
+    Markdown,
+}
+
 /// `planlab barn`.
 pub fn barn(args: &BarnArgs<'_>) -> Result<(), String> {
+    if !args.from_csv.is_empty() {
+        return summarise_csv(args);
+    }
     if args.runs == 0 || args.runs > MAX_RUNS {
         return Err(format!(
             "--runs {}: must be from 1 to {MAX_RUNS}",
@@ -146,19 +173,7 @@ pub fn barn(args: &BarnArgs<'_>) -> Result<(), String> {
     if !(args.noise.is_finite() && (0.0..=1.0).contains(&args.noise)) {
         return Err(format!("--noise {}: must be from 0 to 1 m", args.noise));
     }
-    let planners: Vec<String> = if args.planners.is_empty() {
-        PLANNERS.iter().map(|s| s.to_string()).collect()
-    } else {
-        for p in args.planners {
-            if !PLANNERS.contains(&p.as_str()) {
-                return Err(format!(
-                    "--planners: `{p}` cannot drive an unknown map on BARN; choose from {}",
-                    PLANNERS.join(", ")
-                ));
-            }
-        }
-        args.planners.to_vec()
-    };
+    let planners = chosen_planners(args.planners)?;
     if let Some(csv) = args.csv {
         for p in args.paths {
             if same_file(p, csv) {
@@ -215,12 +230,8 @@ pub fn barn(args: &BarnArgs<'_>) -> Result<(), String> {
                 })
                 .unwrap_or_else(|| id.to_string())
         };
-        crate::sim_cmds::write_atomically(
-            csv,
-            runs_csv(&runs, &worlds, &opts, &source).as_bytes(),
-        )?;
+        crate::sim_cmds::write_atomically(csv, &runs_csv(&runs, &worlds, &opts, &source)?)?;
     }
-    let classes = planlab_core::barn::Difficulty::ALL;
     let class_of = |id: u32| {
         worlds
             .iter()
@@ -228,7 +239,8 @@ pub fn barn(args: &BarnArgs<'_>) -> Result<(), String> {
             .map(BarnWorld::difficulty)
     };
     let mut out = String::new();
-    if !args.json {
+    let names: Vec<&str> = planners.iter().map(String::as_str).collect();
+    if args.format == Format::Text {
         let _ = writeln!(
             out,
             "BARN: {} worlds × {} run(s), laser noise σ = {} m, seed {}",
@@ -237,57 +249,240 @@ pub fn barn(args: &BarnArgs<'_>) -> Result<(), String> {
             args.noise,
             args.seed
         );
-        let _ = writeln!(out, "{}", table_header());
     }
-    for name in &planners {
-        let mine: Vec<&BarnRun> = runs.iter().filter(|r| &r.planner == name).collect();
-        let all = BarnStats::of(mine.iter().copied());
-        let mut lines = vec![("all".to_string(), all)];
-        for c in classes {
+    out.push_str(&figures(&runs, &names, &class_of, args.format)?);
+    match args.format {
+        Format::Json => {
+            let footer = Footer {
+                worlds: worlds.len(),
+                planners: names.clone(),
+                runs: args.runs,
+                seed: args.seed,
+                noise_std_m: args.noise,
+                episodes: total,
+                threads: rayon::current_num_threads(),
+                seconds,
+            };
+            out.push_str(&serde_json::to_string(&footer).map_err(|e| e.to_string())?);
+            out.push('\n');
+        }
+        Format::Text | Format::Markdown => {
+            let _ = writeln!(
+                out,
+                "\n{total} episodes in {seconds:.1} s on {} threads; score = success · OT / clip(T, 2·OT, 8·OT)",
+                rayon::current_num_threads()
+            );
+        }
+    }
+    crate::sim_cmds::emit(&out)
+}
+
+/// The planners asked for, checked against [`PLANNERS`] (all of them when
+/// none is named).
+fn chosen_planners(asked: &[String]) -> Result<Vec<String>, String> {
+    if asked.is_empty() {
+        return Ok(PLANNERS.iter().map(|s| s.to_string()).collect());
+    }
+    for p in asked {
+        if !PLANNERS.contains(&p.as_str()) {
+            return Err(format!(
+                "--planners: `{p}` cannot drive an unknown map on BARN; choose from {}",
+                PLANNERS.join(", ")
+            ));
+        }
+    }
+    Ok(asked.to_vec())
+}
+
+/// `planlab barn --from-csv`: the figures of runs written earlier by
+/// `--csv` (chunks of one sweep merge; a run found in two files counts
+/// once), filtered by `--worlds` and `--planners`.
+fn summarise_csv(args: &BarnArgs<'_>) -> Result<(), String> {
+    if args.csv.is_some() || !args.paths.is_empty() {
+        return Err(
+            "--from-csv summarises earlier runs: it takes no BARN paths and no --csv".into(),
+        );
+    }
+    let planners = chosen_planners(args.planners)?;
+    let wanted = args.worlds.map(parse_worlds).transpose()?;
+    let mut rows: Vec<(BarnRun, Difficulty)> = Vec::new();
+    for path in args.from_csv {
+        let text = planlab_files::read_text(path)?;
+        for row in parse_runs_csv(&text).map_err(|e| format!("{}: {e}", path.display()))? {
+            let key = |r: &BarnRun| (r.world, r.planner.clone(), r.run, r.seed);
+            match rows.iter().find(|(r, _)| key(r) == key(&row.0)) {
+                Some((r, _)) if r.trace_hash == row.0.trace_hash => {}
+                Some(_) => {
+                    return Err(format!(
+                        "{}: world {} planner {} run {} seed {} appears with two different trace hashes",
+                        path.display(),
+                        row.0.world,
+                        row.0.planner,
+                        row.0.run,
+                        row.0.seed
+                    ))
+                }
+                None => rows.push(row),
+            }
+        }
+    }
+    rows.retain(|(r, _)| {
+        planners.contains(&r.planner)
+            && wanted
+                .as_ref()
+                .is_none_or(|(a, b)| a.contains(&r.world) || b.contains(&r.world))
+    });
+    if rows.is_empty() {
+        return Err("--from-csv: no run matches the planners and worlds asked for".into());
+    }
+    let names: Vec<&str> = planners
+        .iter()
+        .map(String::as_str)
+        .filter(|p| rows.iter().any(|(r, _)| r.planner == *p))
+        .collect();
+    let class: std::collections::HashMap<u32, Difficulty> =
+        rows.iter().map(|(r, d)| (r.world, *d)).collect();
+    let runs: Vec<BarnRun> = rows.into_iter().map(|(r, _)| r).collect();
+    let mut out = figures(&runs, &names, &|id| class.get(&id).copied(), args.format)?;
+    let files: Vec<String> = args
+        .from_csv
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect();
+    if args.format == Format::Json {
+        let footer = CsvFooter {
+            from_csv: files,
+            worlds: class.len(),
+            planners: names,
+            episodes: runs.len(),
+        };
+        out.push_str(&serde_json::to_string(&footer).map_err(|e| e.to_string())?);
+        out.push('\n');
+    } else {
+        let _ = writeln!(
+            out,
+            "\n{} runs on {} worlds from {}; score = success · OT / clip(T, 2·OT, 8·OT)",
+            runs.len(),
+            class.len(),
+            files.join(", ")
+        );
+    }
+    crate::sim_cmds::emit(&out)
+}
+
+/// The figures of `runs` for each planner of `names`, overall and by
+/// difficulty class, in `format` (without a footer).
+fn figures(
+    runs: &[BarnRun],
+    names: &[&str],
+    class_of: &dyn Fn(u32) -> Option<Difficulty>,
+    format: Format,
+) -> Result<String, String> {
+    let mut rows: Vec<(&str, Vec<(&str, BarnStats)>)> = Vec::new();
+    for &name in names {
+        let mine: Vec<&BarnRun> = runs.iter().filter(|r| r.planner == name).collect();
+        let mut lines = vec![("all", BarnStats::of(mine.iter().copied()))];
+        for c in Difficulty::ALL {
             let sub: Vec<&BarnRun> = mine
                 .iter()
                 .copied()
                 .filter(|r| class_of(r.world) == Some(c))
                 .collect();
             if !sub.is_empty() {
-                lines.push((c.name().to_string(), BarnStats::of(sub)));
+                lines.push((c.name(), BarnStats::of(sub)));
             }
         }
-        for (class, s) in &lines {
-            if args.json {
-                let line = StatsLine {
-                    planner: name,
-                    class,
-                    stats: s,
-                };
-                out.push_str(&serde_json::to_string(&line).map_err(|e| e.to_string())?);
-                out.push('\n');
-            } else {
-                let _ = writeln!(out, "{}", table_row(name, class, s));
-            }
-        }
+        rows.push((name, lines));
     }
-    let footer = Footer {
-        worlds: worlds.len(),
-        planners: planners.iter().map(String::as_str).collect(),
-        runs: args.runs,
-        seed: args.seed,
-        noise_std_m: args.noise,
-        episodes: total,
-        threads: rayon::current_num_threads(),
-        seconds,
+    let mut out = String::new();
+    match format {
+        Format::Json => {
+            for (planner, lines) in &rows {
+                for (class, stats) in lines {
+                    let line = StatsLine {
+                        planner,
+                        class,
+                        stats,
+                    };
+                    out.push_str(&serde_json::to_string(&line).map_err(|e| e.to_string())?);
+                    out.push('\n');
+                }
+            }
+        }
+        Format::Text => {
+            let _ = writeln!(out, "{}", table_header());
+            for (planner, lines) in &rows {
+                for (class, s) in lines {
+                    let _ = writeln!(out, "{}", table_row(planner, class, s));
+                }
+            }
+        }
+        Format::Markdown => out.push_str(&markdown(&rows)),
+    }
+    Ok(out)
+}
+
+/// Markdown tables: every planner overall, then success and score by
+/// difficulty class.
+fn markdown(rows: &[(&str, Vec<(&str, BarnStats)>)]) -> String {
+    let mut out = String::from(
+        "| planner | runs | success [95% CI] | collision | timeout | mean time of successes, s | score [95% CI] |\n|---|---:|---|---:|---:|---:|---|\n",
+    );
+    let rate = |s: &Share| format!("{:.3} [{:.2}, {:.2}]", s.rate, s.ci95[0], s.ci95[1]);
+    let score = |s: &BarnStats| {
+        s.score.map_or("—".into(), |m| {
+            format!("{:.3} [{:.3}, {:.3}]", m.mean, m.ci95[0], m.ci95[1])
+        })
     };
-    if args.json {
-        out.push_str(&serde_json::to_string(&footer).map_err(|e| e.to_string())?);
-        out.push('\n');
-    } else {
+    for (planner, lines) in rows {
+        let Some((_, s)) = lines.iter().find(|(c, _)| *c == "all") else {
+            continue;
+        };
         let _ = writeln!(
             out,
-            "{total} episodes in {seconds:.1} s on {} threads; score = success · OT / clip(T, 2·OT, 8·OT)",
-            footer.threads
+            "| {planner} | {} | {} | {:.3} | {:.3} | {} | {} |",
+            s.runs,
+            rate(&s.success),
+            s.collision.rate,
+            s.timeout.rate,
+            s.mean_time.map_or("—".into(), |t| format!("{t:.1}")),
+            score(s)
         );
     }
-    crate::sim_cmds::emit(&out)
+    let classes: Vec<&str> = Difficulty::ALL
+        .iter()
+        .map(|c| c.name())
+        .filter(|c| rows.iter().any(|(_, l)| l.iter().any(|(k, _)| k == c)))
+        .collect();
+    if classes.is_empty() {
+        return out;
+    }
+    let _ = write!(out, "\n| planner |");
+    for c in &classes {
+        let _ = write!(out, " success, {c} |");
+    }
+    for c in &classes {
+        let _ = write!(out, " score, {c} |");
+    }
+    let _ = writeln!(out, "\n|---|{}", "---|".repeat(2 * classes.len()));
+    for (planner, lines) in rows {
+        let _ = write!(out, "| {planner} |");
+        let of = |c: &str| lines.iter().find(|(k, _)| *k == c).map(|(_, s)| s);
+        for c in &classes {
+            let cell = of(c).map_or("—".into(), |s| {
+                format!("{:.2} ({}/{})", s.success.rate, s.success.k, s.success.n)
+            });
+            let _ = write!(out, " {cell} |");
+        }
+        for c in &classes {
+            let cell = of(c)
+                .and_then(|s| s.score)
+                .map_or("—".into(), |m| format!("{:.3}", m.mean));
+            let _ = write!(out, " {cell} |");
+        }
+        out.push('\n');
+    }
+    out
 }
 
 fn table_header() -> String {
@@ -305,7 +500,7 @@ fn table_header() -> String {
 }
 
 fn table_row(name: &str, class: &str, s: &BarnStats) -> String {
-    let share = |x: &planlab_core::reproduce::stats::Share| format!("{:.3}", x.rate);
+    let share = |x: &Share| format!("{:.3}", x.rate);
     format!(
         "{:<20}{:<8}{:>5}  {:<22}{:>11}{:>11}{:>9}  {}",
         name,
@@ -325,47 +520,118 @@ fn table_row(name: &str, class: &str, s: &BarnStats) -> String {
     )
 }
 
-/// The CSV of every run, with the command that replays each.
+/// Columns of the runs CSV, in order.
+const CSV_HEADER: [&str; 12] = [
+    "world",
+    "difficulty",
+    "planner",
+    "run",
+    "seed",
+    "outcome",
+    "time_s",
+    "optimal_time_s",
+    "score",
+    "path_length_m",
+    "trace_hash",
+    "replay",
+];
+
+/// The CSV of every run, with the command that replays each (fields
+/// quoted where they need it: a world's path may hold a comma).
 fn runs_csv(
     runs: &[BarnRun],
     worlds: &[BarnWorld],
     opts: &BarnOptions,
     source: &dyn Fn(u32) -> String,
-) -> String {
-    let mut s = String::from(
-        "world,difficulty,planner,run,seed,outcome,time_s,optimal_time_s,score,path_length_m,trace_hash,replay\n",
-    );
+) -> Result<Vec<u8>, String> {
     let noise = if opts.noise_std == barn_run::DEFAULT_NOISE {
         String::new()
     } else {
         format!(" --set perception.laser.noise_std={}", opts.noise_std)
     };
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let err = |e: csv::Error| format!("writing the CSV: {e}");
+    w.write_record(CSV_HEADER).map_err(err)?;
     for r in runs {
         let class = worlds
             .iter()
             .find(|w| w.id == r.world)
             .map_or("", |w| w.difficulty().name());
-        let _ = writeln!(
-            s,
-            "{},{},{},{},{},{},{:.2},{:.3},{:.4},{:.3},{:016x},planlab run barn:{} --planner {} --seed {}{}",
-            r.world,
-            class,
-            r.planner,
-            r.run,
-            r.seed,
-            r.outcome.as_str(),
-            r.time,
-            r.optimal_time,
-            r.score,
-            r.path_length,
-            r.trace_hash,
-            source(r.world),
-            r.planner,
-            r.seed,
-            noise
-        );
+        w.write_record([
+            r.world.to_string(),
+            class.to_string(),
+            r.planner.clone(),
+            r.run.to_string(),
+            r.seed.to_string(),
+            r.outcome.as_str().to_string(),
+            format!("{:.2}", r.time),
+            format!("{:.3}", r.optimal_time),
+            format!("{:.4}", r.score),
+            format!("{:.3}", r.path_length),
+            format!("{:016x}", r.trace_hash),
+            format!(
+                "planlab run barn:{} --planner {} --seed {}{}",
+                source(r.world),
+                r.planner,
+                r.seed,
+                noise
+            ),
+        ])
+        .map_err(err)?;
     }
-    s
+    w.into_inner().map_err(|e| format!("writing the CSV: {e}"))
+}
+
+/// Reads a runs CSV written by `--csv`: each run with its world's class.
+/// Scores are read as written (4 decimals), not recomputed.
+fn parse_runs_csv(text: &str) -> Result<Vec<(BarnRun, Difficulty)>, String> {
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let header = r.headers().map_err(|e| format!("not a runs CSV: {e}"))?;
+    if header.iter().ne(CSV_HEADER) {
+        return Err(format!(
+            "not a runs CSV of planlab barn (its header should be {})",
+            CSV_HEADER.join(",")
+        ));
+    }
+    let mut out = Vec::new();
+    for (i, rec) in r.records().enumerate() {
+        let line = i + 2;
+        let rec = rec.map_err(|e| format!("line {line}: {e}"))?;
+        let field = |k: usize| rec.get(k).unwrap_or("");
+        let bad = |k: usize| format!("line {line}: bad {} `{}`", CSV_HEADER[k], field(k));
+        let num = |k: usize| -> Result<f64, String> {
+            field(k)
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| bad(k))
+        };
+        let class = Difficulty::ALL
+            .into_iter()
+            .find(|c| c.name() == field(1))
+            .ok_or_else(|| bad(1))?;
+        let outcome = [Outcome::Reached, Outcome::Collision, Outcome::Timeout]
+            .into_iter()
+            .find(|o| o.as_str() == field(5))
+            .ok_or_else(|| bad(5))?;
+        let run = BarnRun {
+            world: field(0).parse().map_err(|_| bad(0))?,
+            planner: field(2).to_string(),
+            run: field(3).parse().map_err(|_| bad(3))?,
+            seed: field(4).parse().map_err(|_| bad(4))?,
+            outcome,
+            time: num(6)?,
+            optimal_time: num(7)?,
+            score: num(8)?,
+            path_length: num(9)?,
+            trace_hash: u64::from_str_radix(field(10), 16).map_err(|_| bad(10))?,
+        };
+        if !(0.0..=0.5).contains(&run.score) {
+            return Err(bad(8));
+        }
+        out.push((run, class));
+    }
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -341,11 +341,19 @@ enum Command {
         #[arg(long, default_value_t = planlab_core::barn::run::DEFAULT_NOISE)]
         noise: f64,
         /// One JSON line per planner and class, then a footer line.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "markdown")]
         json: bool,
+        /// Markdown tables: every planner overall, then success and score
+        /// by difficulty class.
+        #[arg(long)]
+        markdown: bool,
         /// Write one CSV row per run (with the command that replays it).
         #[arg(long, value_name = "FILE.csv")]
         csv: Option<PathBuf>,
+        /// Run nothing: summarise the runs of earlier --csv files (chunks
+        /// of one sweep merge; --worlds and --planners filter them).
+        #[arg(long, value_name = "FILE.csv")]
+        from_csv: Vec<PathBuf>,
     },
     /// Run N seeded variants of a scenario (start, goal and movers
     /// jittered) with several planners in parallel; print the success rate
@@ -488,7 +496,9 @@ fn run(cli: Cli) -> Result<(), String> {
             seed,
             noise,
             json,
+            markdown,
             csv,
+            from_csv,
         } => barn_cmd::barn(&barn_cmd::BarnArgs {
             paths: &paths,
             worlds: worlds.as_deref(),
@@ -496,8 +506,15 @@ fn run(cli: Cli) -> Result<(), String> {
             runs,
             seed,
             noise,
-            json,
+            format: if json {
+                barn_cmd::Format::Json
+            } else if markdown {
+                barn_cmd::Format::Markdown
+            } else {
+                barn_cmd::Format::Text
+            },
             csv: csv.as_deref(),
+            from_csv: &from_csv,
         }),
         Command::Batch {
             scenario,

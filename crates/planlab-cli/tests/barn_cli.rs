@@ -3,19 +3,8 @@
 
 mod common;
 
-use common::planlab;
+use common::{assert_error, planlab};
 use serde_json::Value;
-use std::process::Output;
-
-fn assert_error(o: &Output, needles: &[&str]) {
-    assert!(!o.status.success(), "expected failure");
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(err.lines().count(), 1, "one error line expected: {err:?}");
-    assert!(err.starts_with("planlab: error: "), "{err}");
-    for n in needles {
-        assert!(err.contains(n), "{n:?} not in {err:?}");
-    }
-}
 
 #[test]
 fn a_small_sweep_has_sane_figures_and_its_rows_replay() {
@@ -65,6 +54,77 @@ fn a_small_sweep_has_sane_figures_and_its_rows_replay() {
     let report: Value = serde_json::from_slice(&r.stdout).unwrap();
     assert_eq!(report["trace_hash"], cols[10], "{replay}");
     assert_eq!(report["outcome"], cols[5]);
+
+    // The CSV summarised again (twice: a run found in two files counts
+    // once) gives the sweep's figures; scores are read at 4 decimals.
+    let csv_arg = csv.to_str().unwrap();
+    let again = planlab(&[
+        "barn",
+        "--from-csv",
+        csv_arg,
+        "--from-csv",
+        csv_arg,
+        "--json",
+    ]);
+    assert!(
+        again.status.success(),
+        "{}",
+        String::from_utf8_lossy(&again.stderr)
+    );
+    let summary: Vec<Value> = String::from_utf8_lossy(&again.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    for (live, read) in lines.iter().zip(&summary).take(lines.len() - 1) {
+        assert_eq!(live["planner"], read["planner"]);
+        assert_eq!(live["class"], read["class"]);
+        assert_eq!(live["success"], read["success"], "{live} vs {read}");
+        assert_eq!(live["collision"], read["collision"]);
+        let (a, b) = (&live["score"]["mean"], &read["score"]["mean"]);
+        match (a.as_f64(), b.as_f64()) {
+            (Some(a), Some(b)) => assert!((a - b).abs() < 1e-4, "{a} vs {b}"),
+            _ => assert_eq!(a, b),
+        }
+    }
+    assert_eq!(summary.last().unwrap()["episodes"], 4);
+    // Markdown: a row per planner in the overall table and the class table.
+    let md = planlab(&[
+        "barn",
+        "--from-csv",
+        csv_arg,
+        "--markdown",
+        "--planners",
+        "dwb",
+    ]);
+    assert!(
+        md.status.success(),
+        "{}",
+        String::from_utf8_lossy(&md.stderr)
+    );
+    let md = String::from_utf8_lossy(&md.stdout).into_owned();
+    assert_eq!(
+        md.lines().filter(|l| l.starts_with("| dwb |")).count(),
+        2,
+        "{md}"
+    );
+    assert!(!md.contains("move-base-dwa"), "{md}");
+
+    // Not a runs CSV, a row with a bad outcome: one-line errors.
+    let other = dir.join("other.csv");
+    std::fs::write(&other, "a,b\n1,2\n").unwrap();
+    assert_error(
+        &planlab(&["barn", "--from-csv", other.to_str().unwrap()]),
+        &["not a runs CSV"],
+    );
+    let bad = text
+        .replacen(",reached,", ",landed,", 1)
+        .replacen(",collision,", ",landed,", 1)
+        .replacen(",timeout,", ",landed,", 1);
+    std::fs::write(&other, bad).unwrap();
+    assert_error(
+        &planlab(&["barn", "--from-csv", other.to_str().unwrap()]),
+        &["line 2", "outcome", "landed"],
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::planlab;
+use common::{assert_error, planlab};
 use serde_json::Value;
 use std::path::PathBuf;
 use std::process::Output;
@@ -24,16 +24,6 @@ fn temp_path(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("planlab-batch-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
-}
-
-fn assert_error(o: &Output, needles: &[&str]) {
-    assert!(!o.status.success(), "expected failure");
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(err.lines().count(), 1, "one error line expected: {err:?}");
-    assert!(err.starts_with("planlab: error: "), "{err}");
-    for n in needles {
-        assert!(err.contains(n), "{n:?} not in {err:?}");
-    }
 }
 
 #[test]

@@ -20,3 +20,20 @@ pub fn planlab(args: &[&str]) -> Output {
         .output()
         .expect("run planlab")
 }
+
+/// Asserts a failure with exactly one `planlab: error:` line containing
+/// every needle, and no panic.
+pub fn assert_error(o: &Output, needles: &[&str]) {
+    assert!(
+        !o.status.success(),
+        "expected failure, got {}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 1, "one error line expected, got {err:?}");
+    assert!(lines[0].starts_with("planlab: error: "), "{err}");
+    for n in needles {
+        assert!(lines[0].contains(n), "{n:?} not in {err:?}");
+    }
+}

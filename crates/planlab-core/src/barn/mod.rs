@@ -10,9 +10,10 @@
 //! reference path per world as a numpy array ([`BarnWorld::path_from_npy`]);
 //! planlab keeps them in a compact text form ([`parse_compact`],
 //! [`to_compact`]; the repository's `assets/barn/worlds.txt` holds the
-//! 250 public worlds and says where they come from). [`Summary`] gives the
-//! challenge's figures over a set of runs. This module reads no
-//! file: callers pass bytes or text.
+//! 250 public worlds and says where they come from). [`run`] drives the
+//! planners on them and [`run::BarnStats`] gives the challenge's figures
+//! over a set of runs. This module reads no file: callers pass bytes or
+//! text.
 //!
 //! The facts below come from the challenge repository
 //! (`Daffan/the-barn-challenge`: its evaluation script, called "the run
@@ -24,10 +25,8 @@ mod compact;
 mod npy;
 pub mod run;
 mod sdf;
-mod summary;
 
 pub use compact::{parse_compact, to_compact};
-pub use summary::{RunRecord, Summary};
 
 use thiserror::Error;
 
