@@ -426,7 +426,7 @@ fn figures(
 /// difficulty class.
 fn markdown(rows: &[(&str, Vec<(&str, BarnStats)>)]) -> String {
     let mut out = String::from(
-        "| planner | runs | success [95% CI] | collision | timeout | mean time of successes, s | score [95% CI] |\n|---|---:|---|---:|---:|---:|---|\n",
+        "| planner | runs | success [95% CI] | collision | of which seen | timeout | mean time of successes, s | score [95% CI] |\n|---|---:|---|---:|---:|---:|---:|---|\n",
     );
     let rate = |s: &Share| format!("{:.3} [{:.2}, {:.2}]", s.rate, s.ci95[0], s.ci95[1]);
     let score = |s: &BarnStats| {
@@ -434,16 +434,27 @@ fn markdown(rows: &[(&str, Vec<(&str, BarnStats)>)]) -> String {
             format!("{:.3} [{:.3}, {:.3}]", m.mean, m.ci95[0], m.ci95[1])
         })
     };
+    // Collisions with what the laser had shown, of all collisions ("?"
+    // counts runs from a CSV without the column).
+    let seen = |s: &BarnStats| {
+        let unknown = if s.collisions_unclassified > 0 {
+            format!(" (+{}?)", s.collisions_unclassified)
+        } else {
+            String::new()
+        };
+        format!("{}/{}{unknown}", s.collisions_seen, s.collision.k)
+    };
     for (planner, lines) in rows {
         let Some((_, s)) = lines.iter().find(|(c, _)| *c == "all") else {
             continue;
         };
         let _ = writeln!(
             out,
-            "| {planner} | {} | {} | {:.3} | {:.3} | {} | {} |",
+            "| {planner} | {} | {} | {:.3} | {} | {:.3} | {} | {} |",
             s.runs,
             rate(&s.success),
             s.collision.rate,
+            seen(s),
             s.timeout.rate,
             s.mean_time.map_or("—".into(), |t| format!("{t:.1}")),
             score(s)
@@ -521,7 +532,7 @@ fn table_row(name: &str, class: &str, s: &BarnStats) -> String {
 }
 
 /// Columns of the runs CSV, in order.
-const CSV_HEADER: [&str; 12] = [
+const CSV_HEADER: [&str; 13] = [
     "world",
     "difficulty",
     "planner",
@@ -534,6 +545,7 @@ const CSV_HEADER: [&str; 12] = [
     "path_length_m",
     "trace_hash",
     "replay",
+    "collision_seen",
 ];
 
 /// The CSV of every run, with the command that replays each (fields
@@ -576,6 +588,12 @@ fn runs_csv(
                 r.seed,
                 noise
             ),
+            match r.collision_seen {
+                Some(true) => "yes",
+                Some(false) => "no",
+                None => "",
+            }
+            .to_string(),
         ])
         .map_err(err)?;
     }
@@ -587,7 +605,11 @@ fn runs_csv(
 fn parse_runs_csv(text: &str) -> Result<Vec<(BarnRun, Difficulty)>, String> {
     let mut r = csv::Reader::from_reader(text.as_bytes());
     let header = r.headers().map_err(|e| format!("not a runs CSV: {e}"))?;
-    if header.iter().ne(CSV_HEADER) {
+    // Files from before the collision_seen column read as unclassified.
+    let columns = header.len();
+    if !(columns == CSV_HEADER.len() || columns == CSV_HEADER.len() - 1)
+        || header.iter().ne(CSV_HEADER.into_iter().take(columns))
+    {
         return Err(format!(
             "not a runs CSV of planlab barn (its header should be {})",
             CSV_HEADER.join(",")
@@ -625,6 +647,12 @@ fn parse_runs_csv(text: &str) -> Result<Vec<(BarnRun, Difficulty)>, String> {
             score: num(8)?,
             path_length: num(9)?,
             trace_hash: u64::from_str_radix(field(10), 16).map_err(|_| bad(10))?,
+            collision_seen: match field(12) {
+                "yes" => Some(true),
+                "no" => Some(false),
+                "" => None,
+                _ => return Err(bad(12)),
+            },
         };
         if !(0.0..=0.5).contains(&run.score) {
             return Err(bad(8));

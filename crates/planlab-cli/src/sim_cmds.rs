@@ -53,6 +53,10 @@ struct RunReport<'a> {
     steps: u64,
     /// FNV-1a hash of the trace, hex (the determinism check compares it).
     trace_hash: String,
+    /// With a perception section and a collision: whether the laser had
+    /// shown what the robot hit.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    collision_seen: Option<bool>,
     #[serde(flatten)]
     metrics: &'a EpisodeMetrics,
 }
@@ -242,6 +246,7 @@ fn report_episode(
         seed,
         steps: ep.steps(),
         trace_hash: format!("{hash:016x}"),
+        collision_seen: ep.collision_seen(),
         metrics: m,
     };
     if args.json {
@@ -251,6 +256,14 @@ fn report_episode(
         emit(&metrics_table(m))?;
         emit(&(format!("{:<22}{}", "steps", report.steps) + "\n"))?;
         emit(&(format!("{:<22}{}", "trace hash", report.trace_hash) + "\n"))?;
+        if let Some(seen) = report.collision_seen {
+            let what = if seen {
+                "yes (the laser had shown it)"
+            } else {
+                "no (out of the laser's sight)"
+            };
+            emit(&(format!("{:<22}{what}", "collision seen") + "\n"))?;
+        }
     }
     Ok(())
 }

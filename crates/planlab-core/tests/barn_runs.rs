@@ -118,6 +118,7 @@ fn fake(outcome: Outcome, time: f64, ot: f64) -> BarnRun {
         score: score(outcome == Outcome::Reached, time, ot),
         path_length: 10.0,
         trace_hash: 0,
+        collision_seen: (outcome == Outcome::Collision).then_some(true),
     }
 }
 
@@ -132,6 +133,7 @@ fn statistics_count_outcomes_and_give_intervals() {
     let s = BarnStats::of(runs.iter());
     assert_eq!(s.runs, 4);
     assert_eq!((s.success.k, s.collision.k, s.timeout.k), (2, 1, 1));
+    assert_eq!((s.collisions_seen, s.collisions_unclassified), (1, 0));
     assert!(s.success.ci95[0] < 0.5 && s.success.ci95[1] > 0.5);
     assert_eq!(s.mean_time, Some(15.0));
     let m = s.score.unwrap();
@@ -149,4 +151,36 @@ fn sweep_seeds_are_shared_by_planners_and_differ_by_world_and_run() {
     assert_ne!(run::run_seed(0, 1, 0), run::run_seed(0, 1, 1));
     assert_ne!(run::run_seed(0, 1, 0), run::run_seed(0, 2, 0));
     assert_ne!(run::run_seed(0, 1, 0), run::run_seed(1, 1, 0));
+}
+
+/// Drives `ep` with a constant command until the episode ends.
+fn drive_until_end(ep: &mut Episode, v: f64) -> Outcome {
+    let cmd = planlab_core::world::Command { v, vy: 0.0, w: 0.0 };
+    for _ in 0..5000 {
+        let o = ep.step_with(cmd).unwrap();
+        if o != Outcome::Running {
+            return o;
+        }
+    }
+    Outcome::Running
+}
+
+#[test]
+fn a_collision_is_seen_when_the_scans_had_marked_what_was_hit() {
+    // Straight ahead into the cylinders: the laser looks that way.
+    let mut ahead = episode(1, "dwa", 0);
+    assert_eq!(ahead.collision_seen(), None, "not before a collision");
+    assert_eq!(drive_until_end(&mut ahead, 1.0), Outcome::Collision);
+    assert_eq!(ahead.collision_seen(), Some(true));
+    // Backing straight into the containment wall: in the 90° the UST-10
+    // does not cover, so never marked.
+    let mut behind = episode(1, "dwa", 0);
+    assert_eq!(drive_until_end(&mut behind, -1.0), Outcome::Collision);
+    assert_eq!(behind.collision_seen(), Some(false));
+    // A run that does not collide has no such verdict.
+    let r = run::run_one(&world(1), "dwa", 0, 1, &BarnOptions::default()).unwrap();
+    assert!(r.outcome != Outcome::Collision || r.collision_seen.is_some());
+    if r.outcome != Outcome::Collision {
+        assert_eq!(r.collision_seen, None);
+    }
 }

@@ -1089,6 +1089,7 @@ fn barn_runs<'py>(
         d.set_item("score", r.score)?;
         d.set_item("path_length", r.path_length)?;
         d.set_item("trace_hash", format!("{:016x}", r.trace_hash))?;
+        d.set_item("collision_seen", r.collision_seen)?;
         list.append(d)?;
     }
     Ok(list)
@@ -1123,6 +1124,10 @@ fn barn_stats<'py>(py: Python<'py>, runs: &Bound<'py, PyList>) -> PyResult<Bound
             score: get("score")?.extract()?,
             path_length: get("path_length")?.extract()?,
             trace_hash: 0,
+            collision_seen: match item.get_item("collision_seen") {
+                Ok(v) => v.extract()?,
+                Err(_) => None,
+            },
         });
     }
     to_py(py, &br::BarnStats::of(rows.iter()))

@@ -303,6 +303,11 @@ pub struct BarnRun {
     pub path_length: f64,
     /// FNV-1a of the trace (what `planlab run` prints).
     pub trace_hash: u64,
+    /// For a collision: whether the laser had shown what the robot hit
+    /// ([`Episode::collision_seen`]; a seen one is a planner's bug);
+    /// `None` otherwise, or when not known (a CSV from before the column).
+    #[serde(default)]
+    pub collision_seen: Option<bool>,
 }
 
 impl BarnRun {
@@ -346,6 +351,7 @@ pub fn run_one(
         score: score(outcome == Outcome::Reached, m.time_s, ot),
         path_length: m.path_length_m,
         trace_hash: ep.trace().hash(),
+        collision_seen: ep.collision_seen(),
     })
 }
 
@@ -400,6 +406,10 @@ pub struct BarnStats {
     pub collision: Share,
     /// Timeout rate.
     pub timeout: Share,
+    /// Collisions with something the laser had shown (planners' bugs).
+    pub collisions_seen: u32,
+    /// Collisions not known to be seen or not (runs without the column).
+    pub collisions_unclassified: u32,
     /// Mean time of the successful runs, s.
     pub mean_time: Option<f64>,
     /// Mean score with its bootstrap interval.
@@ -417,6 +427,14 @@ impl BarnStats {
             success: Share::of(all.iter().map(|r| r.success())),
             collision: Share::of(all.iter().map(|r| r.outcome == Outcome::Collision)),
             timeout: Share::of(all.iter().map(|r| r.outcome == Outcome::Timeout)),
+            collisions_seen: all
+                .iter()
+                .filter(|r| r.collision_seen == Some(true))
+                .count() as u32,
+            collisions_unclassified: all
+                .iter()
+                .filter(|r| r.outcome == Outcome::Collision && r.collision_seen.is_none())
+                .count() as u32,
             mean_time: (!times.is_empty()).then(|| times.iter().sum::<f64>() / times.len() as f64),
             score: MeanCi::of(&scores),
         }

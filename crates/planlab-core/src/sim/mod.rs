@@ -549,6 +549,33 @@ impl Episode {
         self.perception.as_ref()
     }
 
+    /// For an episode with a perception section that ended in a
+    /// collision: whether the laser had shown what the robot hit — the
+    /// footprint at its final pose touches a cell its scans had marked by
+    /// then (the static part), or the mover it hit was in the last scan's
+    /// field of view. `None` for any other episode. A collision with a seen
+    /// obstacle is a planner's bug; one with an unseen obstacle (behind a
+    /// 270° laser, hidden) is not.
+    pub fn collision_seen(&self) -> Option<bool> {
+        if self.outcome != Outcome::Collision {
+            return None;
+        }
+        let p = self.perception.as_ref()?;
+        let fp = &self.robot.footprint;
+        let static_seen = self.map.footprint_collides(fp, &self.state)
+            && p.marked_map()
+                .is_some_and(|m| m.footprint_collides(fp, &self.state));
+        let mover_seen = self
+            .movers
+            .iter()
+            .zip(self.movers_at(self.time()))
+            .any(|(m, ms)| {
+                footprint_disc_distance(fp, &self.state, ms.pos, m.radius) <= 0.0
+                    && p.in_view(&self.state, ms.pos)
+            });
+        Some(static_seen || mover_seen)
+    }
+
     /// Exact clearance of the robot at its current pose (capped).
     fn clearance(&self, movers: &[MoverState]) -> f64 {
         let fp = &self.robot.footprint;

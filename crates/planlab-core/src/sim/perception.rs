@@ -342,19 +342,34 @@ impl Perception {
         self.dirty |= changed;
     }
 
-    fn rebuild(&mut self) {
+    /// Whether `point` lies in the laser's field of view and range from
+    /// the robot at `state`.
+    pub fn in_view(&self, state: &crate::world::RobotState, point: [f64; 2]) -> bool {
+        let l = &self.spec.laser;
+        let (dx, dy) = (point[0] - state.x, point[1] - state.y);
+        let bearing = crate::num::wrap_angle(crate::num::atan2(dy, dx) - state.theta);
+        crate::num::hypot(dx, dy) <= l.range
+            && (l.fov_deg >= 360.0 || bearing.abs() <= 0.5 * l.fov_deg.to_radians())
+    }
+
+    /// The marks as they stand now, as a map (what [`Perception::map`]
+    /// becomes at its next rebuild); `None` only if the frame were invalid,
+    /// which construction rules out.
+    pub fn marked_map(&self) -> Option<StaticMap> {
         let cells: Vec<Cell> = self
             .marks
             .iter()
             .map(|&m| if m { Cell::Occupied } else { Cell::Free })
             .collect();
-        let built = OccupancyGrid::from_cells(self.frame.width(), self.frame.height(), cells)
+        OccupancyGrid::from_cells(self.frame.width(), self.frame.height(), cells)
             .and_then(|g| g.with_frame(self.frame.resolution(), self.frame.origin()))
             .ok()
-            .and_then(|g| StaticMap::new(g, false).ok());
-        // The frame was valid at construction, so this cannot fail; if it
-        // did, the planner keeps the previous map.
-        if let Some(map) = built {
+            .and_then(|g| StaticMap::new(g, false).ok())
+    }
+
+    fn rebuild(&mut self) {
+        // If the map could not be built the planner keeps the previous one.
+        if let Some(map) = self.marked_map() {
             self.map = map;
             self.revision += 1;
         }
