@@ -92,6 +92,27 @@ fn barn_world_4_safe_dual_dwa_stops_before_a_cylinder_it_saw_2_5_m_ahead() {
 }
 
 #[test]
+fn barn_world_121_move_base_dwa_hits_a_seen_cylinder_only_backing_up_blind() {
+    // The one kind of seen collision the baseline keeps on purpose: with no
+    // legal trajectory, base_local_planner's TrajectoryPlanner backs up at
+    // escape_vel "even when the static map shows it as blocked" (its source
+    // says so), and the Jackal's laser does not look behind. The contact
+    // comes in escape mode, moving backwards.
+    let mut ep = episode(121, "move-base-dwa", 457844488705524604);
+    assert_eq!(ep.run(), Outcome::Collision);
+    assert_eq!(ep.collision_seen(), Some(true));
+    let steps = &ep.trace().steps;
+    let last = steps.last().unwrap();
+    assert_eq!(last.mode, "escape", "at t = {}", last.t);
+    assert!(
+        last.cmd.v < 0.0 && last.v < 0.0,
+        "{:?} {}",
+        last.cmd,
+        last.v
+    );
+}
+
+#[test]
 fn every_barn_planner_starts_on_a_world() {
     let w = world(2);
     for p in run::PLANNERS {
