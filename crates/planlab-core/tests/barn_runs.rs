@@ -162,6 +162,11 @@ fn statistics_count_outcomes_and_give_intervals() {
     assert!((m.mean - want).abs() < 1e-12);
     assert!(m.ci95[0] <= m.mean && m.mean <= m.ci95[1] && m.ci95[0] >= 0.0);
     assert_eq!(MeanCi::of(&[0.2, 0.4]), MeanCi::of(&[0.2, 0.4]));
+    // The order of the runs does not change the interval.
+    let v: Vec<f64> = (0..40).map(|i| f64::from(i * 7 % 13) / 26.0).collect();
+    let mut w = v.clone();
+    w.reverse();
+    assert_eq!(MeanCi::of(&v), MeanCi::of(&w));
     assert_eq!(MeanCi::of(&[]), None);
     assert_eq!(MeanCi::of(&[0.3]).unwrap().ci95, [0.3, 0.3]);
 }

@@ -376,6 +376,10 @@ impl MeanCi {
         if n == 0 {
             return None;
         }
+        // Sorted first, so the same runs give the same interval in any
+        // order (a sweep's CSV rows, merged chunks).
+        let mut values = values.to_vec();
+        values.sort_by(f64::total_cmp);
         let mean = values.iter().sum::<f64>() / n as f64;
         let mut rng = Rng::new(0xB00_757A9);
         let mut means: Vec<f64> = (0..BOOTSTRAP_RESAMPLES)
