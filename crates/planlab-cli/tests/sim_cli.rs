@@ -1,6 +1,9 @@
 //! `planlab run`, `planlab planners` and `planlab reproduce` as other tools
 //! call them: outputs, determinism, edits and one-line errors.
 
+mod common;
+
+use common::assert_error;
 use serde_json::Value;
 use std::path::PathBuf;
 use std::process::{Command, Output};
@@ -28,18 +31,6 @@ fn json_of(o: &Output) -> Value {
     serde_json::from_str(stdout(o).trim()).expect("one JSON object")
 }
 
-/// Asserts a failure with exactly one `planlab: error:` line containing
-/// every needle, and no panic.
-fn assert_error(o: &Output, needles: &[&str]) {
-    assert!(!o.status.success(), "expected failure, got {}", stdout(o));
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    let lines: Vec<&str> = err.lines().collect();
-    assert_eq!(lines.len(), 1, "one error line expected, got {err:?}");
-    assert!(lines[0].starts_with("planlab: error: "), "{err}");
-    for n in needles {
-        assert!(lines[0].contains(n), "{n:?} not in {err:?}");
-    }
-}
 
 fn temp_file(name: &str, contents: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("planlab-sim-cli-{}", std::process::id()));
