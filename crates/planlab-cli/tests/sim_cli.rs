@@ -31,7 +31,6 @@ fn json_of(o: &Output) -> Value {
     serde_json::from_str(stdout(o).trim()).expect("one JSON object")
 }
 
-
 fn temp_file(name: &str, contents: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("planlab-sim-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
