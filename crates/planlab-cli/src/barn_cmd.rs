@@ -330,7 +330,7 @@ fn summarise_csv(args: &BarnArgs<'_>) -> Result<(), String> {
         planners.contains(&r.planner)
             && wanted
                 .as_ref()
-                .is_none_or(|(a, b)| a.contains(&r.world) || b.contains(&r.world))
+                .map_or(true, |(a, b)| a.contains(&r.world) || b.contains(&r.world))
     });
     if rows.is_empty() {
         return Err("--from-csv: no run matches the planners and worlds asked for".into());
