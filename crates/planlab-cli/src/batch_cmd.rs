@@ -64,20 +64,24 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
     }
     let text = load::read_text(path)?;
     let base = Scenario::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    let grid = load::grid_of(path, &base)?;
+    let mut inputs = vec![path.to_path_buf()];
+    let grid = base
+        .load_grid(&mut crate::sim_cmds::noting_map_reader(path, &mut inputs))
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    if let Some(csv) = args.csv {
+        crate::output::refuse_input("--csv", csv, &inputs)?;
+    }
     let choices =
         batch::planner_choices(&base, args.planners).map_err(|e| format!("--planners: {e}"))?;
     let started = Instant::now();
-    // The CSV is opened first and written a chunk of variants at a time, so
-    // a long batch shows its rows as they finish and a bad path fails fast.
+    // The CSV goes to a temporary file beside it (created first, so a bad
+    // path fails fast), a chunk of variants at a time, and replaces the
+    // file only when the whole batch has run: a failed batch leaves it.
     let mut csv = match args.csv {
         Some(p) => {
-            let f = std::fs::File::create(p)
-                .map_err(|e| format!("cannot write {}: {e}", p.display()))?;
-            let mut w = std::io::BufWriter::new(f);
-            std::io::Write::write_all(&mut w, csv_header().as_bytes())
-                .map_err(|e| format!("cannot write {}: {e}", p.display()))?;
-            Some((p, w))
+            let mut f = crate::output::AtomicFile::create(p)?;
+            f.write(csv_header().as_bytes())?;
+            Some(f)
         }
         None => None,
     };
@@ -87,13 +91,14 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
     while from < args.variants {
         let to = from.saturating_add(chunk).min(args.variants);
         let chunk_rows = run_variants(path, &base, &grid, &choices, from..to, args)?;
-        if let Some((p, w)) = csv.as_mut() {
-            std::io::Write::write_all(w, runs_csv(&chunk_rows, &choices, args).as_bytes())
-                .and_then(|()| std::io::Write::flush(w))
-                .map_err(|e| format!("cannot write {}: {e}", p.display()))?;
+        if let Some(f) = csv.as_mut() {
+            f.write(runs_csv(&chunk_rows, &choices, args).as_bytes())?;
         }
         rows.extend(chunk_rows);
         from = to;
+    }
+    if let Some(f) = csv {
+        f.commit()?;
     }
     let seconds = started.elapsed().as_secs_f64();
 
