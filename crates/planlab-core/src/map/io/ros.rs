@@ -832,6 +832,27 @@ fn pgm_header(bytes: &[u8]) -> Result<PgmHeader<'_>, MapError> {
     })
 }
 
+/// Whether `bytes` stop inside a PGM header: the magic number is P5 or P2
+/// and the bytes end before maxval is read. A reader that read only a
+/// prefix of a file tells "the header is longer than I read" from any
+/// other fault (not a PGM, dimensions too large …) by this.
+pub fn pgm_header_is_cut(bytes: &[u8]) -> bool {
+    if !matches!(bytes.get(..2), Some(b"P5" | b"P2")) {
+        return false;
+    }
+    let mut cur = Cursor {
+        bytes,
+        pos: 2,
+        line: 1,
+    };
+    for what in ["width", "height", "maxval"] {
+        if cur.number(what).is_err() {
+            return cur.pos >= bytes.len();
+        }
+    }
+    false
+}
+
 /// Bytes a PGM file beyond its header may hold per pixel in ASCII (P2):
 /// `65535` and a separator, with room for spacing and short comments.
 pub const P2_BYTES_PER_PIXEL: u64 = 16;
