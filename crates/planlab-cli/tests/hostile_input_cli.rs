@@ -454,3 +454,41 @@ fn write_variants_replaces_a_planted_symlink_not_its_target() {
     let written: Value = serde_json::from_slice(&std::fs::read(&link).unwrap()).unwrap();
     assert!(written.is_object());
 }
+
+#[test]
+fn a_start_on_an_unknown_cell_says_so_and_names_allow_unknown() {
+    // Before: "start (0, 0) is inside an obstacle", in trinary and raw
+    // mode alike, with no word of --allow-unknown.
+    let dir = scratch("unknown-start");
+    // 4×1: unknown, then free (trinary 205 is unknown, 254 free; raw
+    // above 100 is unknown, 0 free).
+    for (mode, pixels) in [("trinary", [205u8, 254, 254, 254]), ("raw", [255, 0, 0, 0])] {
+        let mut pgm = b"P5\n4 1\n255\n".to_vec();
+        pgm.extend_from_slice(&pixels);
+        std::fs::write(dir.join("m.pgm"), &pgm).unwrap();
+        std::fs::write(
+            dir.join("m.yaml"),
+            format!("image: m.pgm\nresolution: 1\norigin: [0, 0, 0]\nmode: {mode}\n"),
+        )
+        .unwrap();
+        let yaml = dir.join("m.yaml").display().to_string();
+        let o = planlab(&["plan", &yaml, "--start", "0,0", "--goal", "3,0"]);
+        common::assert_error(&o, &["start (0, 0)", "unknown cell", "--allow-unknown"]);
+        let o = planlab(&["plan", &yaml, "--start", "3,0", "--goal", "0,0"]);
+        common::assert_error(&o, &["goal (0, 0)", "unknown cell", "--allow-unknown"]);
+        let o = planlab(&[
+            "plan",
+            &yaml,
+            "--start",
+            "0,0",
+            "--goal",
+            "3,0",
+            "--allow-unknown",
+        ]);
+        assert!(
+            o.status.success(),
+            "{mode}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+}
