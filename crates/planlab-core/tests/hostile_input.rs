@@ -183,3 +183,15 @@ fn a_garbage_map_is_not_echoed() {
     );
     assert!(!e.contains("\\u{") && !e.contains("PNG"), "{e}");
 }
+
+#[test]
+fn a_ros_yaml_starting_with_a_byte_order_mark_parses() {
+    // Before: "missing `image`" (the BOM became part of the first key).
+    // Windows editors write one.
+    let yaml = "\u{feff}image: m.pgm\nresolution: 0.05\norigin: [1, 2, 0]\n";
+    let meta = ros::parse_yaml(yaml).unwrap();
+    assert_eq!(meta.image, "m.pgm");
+    assert_eq!(meta.resolution, 0.05);
+    // Only a leading one: anywhere else it is still an unknown character.
+    assert!(ros::parse_yaml("image: m.pgm\n\u{feff}resolution: 0.05\norigin: [1, 2, 0]\n").is_err());
+}

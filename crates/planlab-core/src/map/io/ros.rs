@@ -470,6 +470,9 @@ fn yaml_number(v: &Value, key: &str, line: usize) -> Result<f64, MapError> {
 /// assert_eq!(meta.free_thresh, 0.196);
 /// ```
 pub fn parse_yaml(text: &str) -> Result<RosMapMeta, MapError> {
+    // A UTF-8 byte-order mark (Windows editors write one) is not part of
+    // the first key.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let entries = parse_flat_yaml(text)?;
     let mut image = None;
     let mut resolution = None;
