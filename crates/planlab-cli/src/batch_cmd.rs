@@ -8,7 +8,7 @@ use std::time::Instant;
 use planlab_core::batch::{self, metric_values, PlannerSummary};
 use planlab_core::metrics::EpisodeMetrics;
 use planlab_core::planners::PlannerChoice;
-use planlab_core::scenario::Scenario;
+use planlab_core::scenario::{Scenario, ScenarioKind};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -63,6 +63,14 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
         ));
     }
     let text = load::read_text(path)?;
+    // An arm file is no robot scenario at all: say so, not "unknown field".
+    if let Ok(tree) = serde_json::from_str::<serde_json::Value>(&text) {
+        let kind = ScenarioKind::of(&tree);
+        if kind != ScenarioKind::Robot {
+            let e = batch::BatchError::NoVariants(kind.name());
+            return Err(format!("{}: {e}", path.display()));
+        }
+    }
     let base = Scenario::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut inputs = vec![path.to_path_buf()];
     let grid = base
@@ -71,8 +79,10 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
     if let Some(csv) = args.csv {
         crate::output::refuse_input("--csv", csv, &inputs)?;
     }
-    let choices =
-        batch::planner_choices(&base, args.planners).map_err(|e| format!("--planners: {e}"))?;
+    let choices = batch::planner_choices(&base, args.planners).map_err(|e| match e {
+        batch::BatchError::BadPlanners(_) => format!("--planners: {e}"),
+        e => format!("{}: {e}", path.display()),
+    })?;
     let started = Instant::now();
     // The CSV goes to a temporary file beside it (created first, so a bad
     // path fails fast), a chunk of variants at a time, and replaces the
