@@ -506,3 +506,38 @@ fn batch_of_an_apf_or_arm_scenario_says_it_has_no_variants() {
         );
     }
 }
+
+#[test]
+fn map_frames_and_mover_coordinates_beyond_1e6_are_refused() {
+    // Before: an origin of 1e300 said "the goal (1000…000.000, 8.050) m is
+    // inside a wall" (300 digits); a resolution of 1e300 or a mover at
+    // 1e300 m ran.
+    let demo = asset("scenarios/dwa-demo.json");
+    for (edit, needles) in [
+        (
+            "map.origin.x=1e300",
+            &["invalid origin (1e300, 0, 0)", "1e6"][..],
+        ),
+        ("map.resolution=1e300", &["invalid resolution 1e300", "1e6"]),
+        (
+            "movers.0.motion.a=[1e300, 2]",
+            &["mover 1 a = (1e300, 2)", "1e6"],
+        ),
+    ] {
+        let o = planlab(&["run", &demo, "--set", edit]);
+        common::assert_error(&o, needles);
+        let e = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(!e.contains("wall") && e.len() < 300, "{edit}: {e}");
+    }
+    // A ROS YAML's resolution, through plan.
+    let dir = scratch("huge-resolution");
+    std::fs::write(dir.join("m.pgm"), b"P5\n2 1\n255\n\xfe\xfe").unwrap();
+    std::fs::write(
+        dir.join("m.yaml"),
+        "image: m.pgm\nresolution: 1e300\norigin: [0, 0, 0]\n",
+    )
+    .unwrap();
+    let yaml = dir.join("m.yaml").display().to_string();
+    let o = planlab(&["plan", &yaml, "--start", "0,0", "--goal", "1,0"]);
+    common::assert_error(&o, &["`resolution` is 1e300", "at most 1e6"]);
+}
