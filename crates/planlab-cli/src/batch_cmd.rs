@@ -232,9 +232,16 @@ fn runs_csv(rows: &[RunRow], choices: &[PlannerChoice], args: &BatchArgs<'_>) ->
 
 /// Per planner: success and each metric's mean, median and 95% interval.
 fn table(summaries: &[PlannerSummary], f: &BatchFooter<'_>) -> String {
+    // The name comes from the file: no escape sequence reaches the terminal.
     let mut s = format!(
         "{} — {} variants (seed {}, jitter {} m), {} episodes on {} threads in {:.1} s\n",
-        f.scenario, f.variants, f.seed, f.jitter_m, f.episodes, f.threads, f.seconds
+        planlab_core::text::one_line(f.scenario),
+        f.variants,
+        f.seed,
+        f.jitter_m,
+        f.episodes,
+        f.threads,
+        f.seconds
     );
     for p in summaries {
         let outcomes: Vec<String> = p.outcomes.iter().map(|(k, n)| format!("{k} {n}")).collect();

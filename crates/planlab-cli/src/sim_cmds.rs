@@ -235,10 +235,12 @@ pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
         .and_then(AnyRun::run)
         .map_err(|e| at(&e))?;
     let hash = done.trace_hash();
+    // The name comes from the file: escape sequences in it must not reach
+    // the terminal (JSON output escapes them itself).
     let title = if scenario.name().is_empty() {
         path.display().to_string()
     } else {
-        scenario.name().to_string()
+        planlab_core::text::one_line(scenario.name())
     };
     match &done {
         FinishedRun::Robot(ep, m) => {

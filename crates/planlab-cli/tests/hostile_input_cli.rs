@@ -541,3 +541,28 @@ fn map_frames_and_mover_coordinates_beyond_1e6_are_refused() {
     let o = planlab(&["plan", &yaml, "--start", "0,0", "--goal", "1,0"]);
     common::assert_error(&o, &["`resolution` is 1e300", "at most 1e6"]);
 }
+
+#[test]
+fn scenario_names_are_printed_with_control_characters_escaped() {
+    // Before: the text table printed the name raw, so an escape sequence
+    // in a file (here: clear screen, bell) reached the terminal.
+    let dir = scratch("escape-name");
+    let s = scenario_copy(&dir, "pursuit-demo.json", "s.json");
+    let mut tree: Value = serde_json::from_str(&std::fs::read_to_string(&s).unwrap()).unwrap();
+    tree["name"] = Value::from("evil\u{1b}[2J\u{7}\u{9b}name");
+    std::fs::write(&s, tree.to_string()).unwrap();
+    let sp = s.to_str().unwrap();
+    for args in [&["run", sp][..], &["batch", sp, "--variants", "1"]] {
+        let o = planlab(args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let out = String::from_utf8_lossy(&o.stdout).into_owned();
+        assert!(
+            !out.chars().any(|c| c.is_control() && c != '\n'),
+            "{args:?}: {out:?}"
+        );
+        assert!(
+            out.contains(r"evil\u{1b}[2J\u{7}\u{9b}name"),
+            "{args:?}: {out}"
+        );
+    }
+}
