@@ -39,20 +39,6 @@ pub struct BarnArgs<'a> {
 /// Most runs one sweep may ask for.
 pub const MAX_RUNS: u32 = 100;
 
-/// Whether `a` and `b` name the same file (or `b` lies inside folder `a`).
-fn same_file(a: &Path, b: &Path) -> bool {
-    let canon = |p: &Path| std::fs::canonicalize(p).ok();
-    // The output may not exist yet: compare its folder's canonical path.
-    let out = canon(b).or_else(|| {
-        let parent = b.parent().filter(|p| !p.as_os_str().is_empty())?;
-        Some(canon(parent)?.join(b.file_name()?))
-    });
-    match (canon(a), out) {
-        (Some(a), Some(b)) => a == b || b.starts_with(&a) && a.is_dir(),
-        _ => false,
-    }
-}
-
 /// Parses `1,2,5-9` into world numbers: the single ones (which must be
 /// loaded) and the ranges (of which the loaded ones run).
 fn parse_worlds(text: &str) -> Result<(Vec<u32>, Vec<u32>), String> {
@@ -175,14 +161,7 @@ pub fn barn(args: &BarnArgs<'_>) -> Result<(), String> {
     }
     let planners = chosen_planners(args.planners)?;
     if let Some(csv) = args.csv {
-        for p in args.paths {
-            if same_file(p, csv) {
-                return Err(format!(
-                    "--csv {}: that is an input of the run",
-                    csv.display()
-                ));
-            }
-        }
+        crate::output::refuse_input("--csv", csv, args.paths)?;
     }
     let worlds = load_worlds(args)?;
     let opts = BarnOptions {
@@ -230,7 +209,7 @@ pub fn barn(args: &BarnArgs<'_>) -> Result<(), String> {
                 })
                 .unwrap_or_else(|| id.to_string())
         };
-        crate::sim_cmds::write_atomically(csv, &runs_csv(&runs, &worlds, &opts, &source)?)?;
+        crate::output::write_atomically(csv, &runs_csv(&runs, &worlds, &opts, &source)?)?;
     }
     let class_of = |id: u32| {
         worlds

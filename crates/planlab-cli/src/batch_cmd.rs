@@ -8,7 +8,7 @@ use std::time::Instant;
 use planlab_core::batch::{self, metric_values, PlannerSummary};
 use planlab_core::metrics::EpisodeMetrics;
 use planlab_core::planners::PlannerChoice;
-use planlab_core::scenario::Scenario;
+use planlab_core::scenario::{Scenario, ScenarioKind};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -63,21 +63,35 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
         ));
     }
     let text = load::read_text(path)?;
+    // An arm file is no robot scenario at all: say so, not "unknown field".
+    if let Ok(tree) = serde_json::from_str::<serde_json::Value>(&text) {
+        let kind = ScenarioKind::of(&tree);
+        if kind != ScenarioKind::Robot {
+            let e = batch::BatchError::NoVariants(kind.name());
+            return Err(format!("{}: {e}", path.display()));
+        }
+    }
     let base = Scenario::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    let grid = load::grid_of(path, &base)?;
-    let choices =
-        batch::planner_choices(&base, args.planners).map_err(|e| format!("--planners: {e}"))?;
+    let mut inputs = vec![path.to_path_buf()];
+    let grid = base
+        .load_grid(&mut crate::sim_cmds::noting_map_reader(path, &mut inputs))
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    if let Some(csv) = args.csv {
+        crate::output::refuse_input("--csv", csv, &inputs)?;
+    }
+    let choices = batch::planner_choices(&base, args.planners).map_err(|e| match e {
+        batch::BatchError::BadPlanners(_) => format!("--planners: {e}"),
+        e => format!("{}: {e}", path.display()),
+    })?;
     let started = Instant::now();
-    // The CSV is opened first and written a chunk of variants at a time, so
-    // a long batch shows its rows as they finish and a bad path fails fast.
+    // The CSV goes to a temporary file beside it (created first, so a bad
+    // path fails fast), a chunk of variants at a time, and replaces the
+    // file only when the whole batch has run: a failed batch leaves it.
     let mut csv = match args.csv {
         Some(p) => {
-            let f = std::fs::File::create(p)
-                .map_err(|e| format!("cannot write {}: {e}", p.display()))?;
-            let mut w = std::io::BufWriter::new(f);
-            std::io::Write::write_all(&mut w, csv_header().as_bytes())
-                .map_err(|e| format!("cannot write {}: {e}", p.display()))?;
-            Some((p, w))
+            let mut f = crate::output::AtomicFile::create(p)?;
+            f.write(csv_header().as_bytes())?;
+            Some(f)
         }
         None => None,
     };
@@ -87,13 +101,14 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
     while from < args.variants {
         let to = from.saturating_add(chunk).min(args.variants);
         let chunk_rows = run_variants(path, &base, &grid, &choices, from..to, args)?;
-        if let Some((p, w)) = csv.as_mut() {
-            std::io::Write::write_all(w, runs_csv(&chunk_rows, &choices, args).as_bytes())
-                .and_then(|()| std::io::Write::flush(w))
-                .map_err(|e| format!("cannot write {}: {e}", p.display()))?;
+        if let Some(f) = csv.as_mut() {
+            f.write(runs_csv(&chunk_rows, &choices, args).as_bytes())?;
         }
         rows.extend(chunk_rows);
         from = to;
+    }
+    if let Some(f) = csv {
+        f.commit()?;
     }
     let seconds = started.elapsed().as_secs_f64();
 
@@ -217,9 +232,16 @@ fn runs_csv(rows: &[RunRow], choices: &[PlannerChoice], args: &BatchArgs<'_>) ->
 
 /// Per planner: success and each metric's mean, median and 95% interval.
 fn table(summaries: &[PlannerSummary], f: &BatchFooter<'_>) -> String {
+    // The name comes from the file: no escape sequence reaches the terminal.
     let mut s = format!(
         "{} — {} variants (seed {}, jitter {} m), {} episodes on {} threads in {:.1} s\n",
-        f.scenario, f.variants, f.seed, f.jitter_m, f.episodes, f.threads, f.seconds
+        planlab_core::text::one_line(f.scenario),
+        f.variants,
+        f.seed,
+        f.jitter_m,
+        f.episodes,
+        f.threads,
+        f.seconds
     );
     for p in summaries {
         let outcomes: Vec<String> = p.outcomes.iter().map(|(k, n)| format!("{k} {n}")).collect();

@@ -87,7 +87,7 @@ pub fn run(c: &GenerateConfig, out: &Path, json: bool) -> Result<(), String> {
             ))
         }
     };
-    std::fs::write(out, text).map_err(|e| format!("cannot write {}: {e}", out.display()))?;
+    crate::output::write_atomically(out, text.as_bytes())?;
     let report = GenerateReport {
         kind: c.kind.as_str(),
         seed: c.seed,

@@ -1,8 +1,10 @@
 //! `planlab scen` and `planlab plan`.
 
 use crate::load;
-use planlab_core::global::plan::{build_planner, plan_on_map, Algorithm, GridPlanOptions};
-use planlab_core::global::{GridPos, PlanGrid};
+use planlab_core::global::plan::{
+    build_planner, plan_on_map, Algorithm, GridPlanError, GridPlanOptions,
+};
+use planlab_core::global::{GridPos, PlanError, PlanGrid};
 use planlab_core::map::io::movingai;
 use planlab_core::map::OccupancyGrid;
 use serde_json::json;
@@ -129,8 +131,13 @@ pub struct PlanArgs {
 /// Plans once on any supported map file and prints the result.
 pub fn plan(map_path: &Path, grid: &OccupancyGrid, args: &PlanArgs) -> Result<(), String> {
     let t = Instant::now();
-    let result =
-        plan_on_map(grid, args.start, args.goal, &args.options).map_err(|e| e.to_string())?;
+    let result = plan_on_map(grid, args.start, args.goal, &args.options).map_err(|e| match e {
+        // The core names its option; here it is a flag.
+        GridPlanError::Plan(PlanError::UnknownCell { which, col, row }) => format!(
+            "{which} ({col}, {row}) is an unknown cell, and unknown cells are blocked unless --allow-unknown is given"
+        ),
+        e => e.to_string(),
+    })?;
     let micros = t.elapsed().as_secs_f64() * 1e6;
     let cells = |v: &[GridPos]| v.iter().map(|p| [p.col, p.row]).collect::<Vec<_>>();
     if args.json {

@@ -20,6 +20,7 @@ mod batch_cmd;
 mod bench;
 mod gen_cmd;
 mod grid_cmds;
+mod output;
 mod peer;
 mod reproduce_cmd;
 mod serve;

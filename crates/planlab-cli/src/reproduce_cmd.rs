@@ -146,8 +146,8 @@ fn one<M: RunMetrics>(
             for (run, tree) in &scene.trees {
                 let file = dir.join(format!("{}-v{k}-{run}.json", exp.id));
                 let text = serde_json::to_string_pretty(tree).map_err(|e| e.to_string())?;
-                std::fs::write(&file, text + "\n")
-                    .map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+                // Replaces a link planted at the name instead of following it.
+                crate::output::write_atomically(&file, (text + "\n").as_bytes())?;
             }
         }
     }

@@ -1,7 +1,7 @@
 //! `planlab run`, `planlab planners` and `planlab reproduce`: simulated
 //! episodes, the planner catalogue and the papers' experiments.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use planlab_core::apf::{AnyApfRun, ApfMetrics};
 use planlab_core::map::OccupancyGrid;
@@ -68,6 +68,7 @@ fn edited_scenario(
     path: &Path,
     text: &str,
     args: &RunArgs<'_>,
+    read: &mut Vec<PathBuf>,
 ) -> Result<(AnyScenario, Option<OccupancyGrid>), String> {
     let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
     let kind = serde_json::from_str::<serde_json::Value>(text)
@@ -98,7 +99,7 @@ fn edited_scenario(
     let edited = !args.set.is_empty()
         || (args.variant.is_none() && (args.planner.is_some() || args.seed.is_some()));
     let done = recipe
-        .apply(text, &mut load::map_reader(path))
+        .apply(text, &mut noting_map_reader(path, read))
         .map_err(|e| match e {
             RecipeError::NoVariants(_) | RecipeError::VariantTooLarge(_) => e.to_string(),
             RecipeError::Document(_) if edited && kind != ScenarioKind::Arm => {
@@ -107,6 +108,21 @@ fn edited_scenario(
             e => at(&e),
         })?;
     Ok((done.scenario, done.grid))
+}
+
+/// [`load::map_reader`] that also notes each file it reads in `read`: the
+/// inputs an output of the same command must not replace.
+pub(crate) fn noting_map_reader<'a>(
+    path: &'a Path,
+    read: &'a mut Vec<PathBuf>,
+) -> impl FnMut(&str) -> Result<Vec<u8>, String> + 'a {
+    let dir = path.parent().unwrap_or_else(|| Path::new("."));
+    move |rel: &str| {
+        let file = dir.join(rel);
+        let bytes = load::read_map_file(&file);
+        read.push(file);
+        bytes
+    }
 }
 
 /// What `planlab run --json` prints for a scenario with an `apf` section.
@@ -170,7 +186,7 @@ pub(crate) fn write_path_csv(
     for (i, [x, y, z]) in pts.into_iter().enumerate() {
         csv.push_str(&format!("{i},{x},{y},{z}\n"));
     }
-    std::fs::write(out, csv).map_err(|e| format!("cannot write {}: {e}", out.display()))
+    crate::output::write_atomically(out, csv.as_bytes())
 }
 
 /// APF (and arm) metrics as `name value unit` lines.
@@ -205,16 +221,26 @@ pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
         Some(text) => text,
         None => load::read_text(path)?,
     };
-    let (scenario, grid) = edited_scenario(path, &text, args)?;
+    // What the run reads may not be what it writes: `--trace s.json`.
+    let mut inputs = vec![path.to_path_buf()];
+    if let Some(world) = path.to_str().and_then(|s| s.strip_prefix("barn:")) {
+        inputs.push(PathBuf::from(world));
+    }
+    let (scenario, grid) = edited_scenario(path, &text, args, &mut inputs)?;
+    if let Some(t) = args.trace {
+        crate::output::refuse_input("--trace", t, &inputs)?;
+    }
     let done = scenario
         .start(grid)
         .and_then(AnyRun::run)
         .map_err(|e| at(&e))?;
     let hash = done.trace_hash();
+    // The name comes from the file: escape sequences in it must not reach
+    // the terminal (JSON output escapes them itself).
     let title = if scenario.name().is_empty() {
         path.display().to_string()
     } else {
-        scenario.name().to_string()
+        planlab_core::text::one_line(scenario.name())
     };
     match &done {
         FinishedRun::Robot(ep, m) => {
@@ -237,8 +263,7 @@ fn report_episode(
     args: &RunArgs<'_>,
 ) -> Result<(), String> {
     if let Some(t) = args.trace {
-        std::fs::write(t, ep.trace().to_csv())
-            .map_err(|e| format!("cannot write {}: {e}", t.display()))?;
+        crate::output::write_atomically(t, ep.trace().to_csv().as_bytes())?;
     }
     let report = RunReport {
         scenario: name,
@@ -379,7 +404,7 @@ pub fn train_predictor(
         ));
     }
     let text = serde_json::to_string_pretty(&w).map_err(|e| e.to_string())? + "\n";
-    write_atomically(out, text.as_bytes())?;
+    crate::output::write_atomically(out, text.as_bytes())?;
     let r = &w.report;
     if json {
         outln!("{}", serde_json::to_string(r).map_err(|e| e.to_string())?);
@@ -405,24 +430,4 @@ pub fn train_predictor(
         outln!("weights written to {}", out.display());
     }
     Ok(())
-}
-
-/// Writes `bytes` to `out` through a temporary file in the same folder
-/// renamed over it, so a reader never sees half a file and a failed write
-/// leaves the old one.
-pub(crate) fn write_atomically(out: &Path, bytes: &[u8]) -> Result<(), String> {
-    let name = out
-        .file_name()
-        .ok_or_else(|| format!("{}: not a file name", out.display()))?;
-    let mut tmp_name = std::ffi::OsString::from(".");
-    tmp_name.push(name);
-    tmp_name.push(format!(".tmp{}", std::process::id()));
-    let tmp = out.with_file_name(tmp_name);
-    let result = std::fs::write(&tmp, bytes)
-        .and_then(|()| std::fs::rename(&tmp, out))
-        .map_err(|e| format!("cannot write {}: {e}", out.display()));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
 }

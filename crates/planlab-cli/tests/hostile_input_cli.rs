@@ -331,3 +331,238 @@ fn a_spacious_p2_map_is_refused_not_cut() {
     let o = planlab(&["plan", &yaml, "--start", "0,0", "--goal", "2,0", "--json"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// `assets/scenarios/NAME` copied into `dir` as `as_name` (its map is
+/// inline, so the copy runs on its own).
+fn scenario_copy(dir: &std::path::Path, name: &str, as_name: &str) -> PathBuf {
+    let p = dir.join(as_name);
+    std::fs::copy(asset(&format!("scenarios/{name}")), &p).unwrap();
+    p
+}
+
+#[test]
+fn batch_csv_keeps_an_existing_file_when_the_batch_fails() {
+    // Before: the CSV was truncated before the first episode, so a batch
+    // that then failed left only the header of the user's file.
+    let dir = scratch("batch-keeps");
+    let s = scenario_copy(&dir, "dwa-demo.json", "s.json");
+    let mut tree: Value = serde_json::from_str(&std::fs::read_to_string(&s).unwrap()).unwrap();
+    tree["start"] = serde_json::json!({ "col": 0, "row": 0 }); // in the wall
+    std::fs::write(&s, tree.to_string()).unwrap();
+    let csv = dir.join("existing.csv");
+    std::fs::write(&csv, "precious\n").unwrap();
+    let o = planlab(&[
+        "batch",
+        s.to_str().unwrap(),
+        "--variants",
+        "2",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    common::assert_error(&o, &["starts in collision"]);
+    assert_eq!(std::fs::read_to_string(&csv).unwrap(), "precious\n");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["existing.csv", "s.json"], "no temporary file left");
+}
+
+#[test]
+fn outputs_that_are_inputs_of_the_command_are_refused() {
+    // Before: `batch s.json --csv s.json` and `run s.json --trace s.json`
+    // exited 0 having replaced the scenario with CSV.
+    let dir = scratch("out-is-in");
+    let s = scenario_copy(&dir, "dwa-demo.json", "s.json");
+    let before = std::fs::read(&s).unwrap();
+    let sp = s.to_str().unwrap();
+    let o = planlab(&["batch", sp, "--variants", "1", "--csv", sp]);
+    common::assert_error(&o, &["--csv", "s.json", "input"]);
+    let o = planlab(&["run", sp, "--trace", sp]);
+    common::assert_error(&o, &["--trace", "s.json", "input"]);
+    // The same file by another spelling.
+    let other = dir.join(".").join("s.json");
+    let o = planlab(&["run", sp, "--trace", other.to_str().unwrap()]);
+    common::assert_error(&o, &["--trace", "input"]);
+    assert_eq!(std::fs::read(&s).unwrap(), before, "the scenario is intact");
+    // A map file the scenario reads is an input too.
+    let mut pgm = b"P5\n40 40\n255\n".to_vec();
+    pgm.extend(std::iter::repeat_n(254u8, 40 * 40));
+    std::fs::write(dir.join("m.pgm"), &pgm).unwrap();
+    std::fs::write(
+        dir.join("m.yaml"),
+        "image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n",
+    )
+    .unwrap();
+    let mut tree: Value = serde_json::from_str(&std::fs::read_to_string(&s).unwrap()).unwrap();
+    tree["map"] = serde_json::json!({ "file": "m.yaml" });
+    tree["start"] = serde_json::json!({ "col": 5, "row": 34 });
+    tree["goal"] = serde_json::json!({ "col": 34, "row": 5 });
+    tree["movers"] = serde_json::json!([]);
+    let g = dir.join("g.json");
+    std::fs::write(&g, tree.to_string()).unwrap();
+    let gp = g.to_str().unwrap();
+    let o = planlab(&["run", gp, "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let yaml_before = std::fs::read(dir.join("m.yaml")).unwrap();
+    let yaml = dir.join("m.yaml");
+    let o = planlab(&[
+        "batch",
+        gp,
+        "--variants",
+        "1",
+        "--csv",
+        yaml.to_str().unwrap(),
+    ]);
+    common::assert_error(&o, &["--csv", "m.yaml", "input"]);
+    let image = dir.join("m.pgm");
+    let o = planlab(&["run", gp, "--trace", image.to_str().unwrap()]);
+    common::assert_error(&o, &["--trace", "m.pgm", "input"]);
+    assert_eq!(std::fs::read(&image).unwrap(), pgm);
+    assert_eq!(std::fs::read(dir.join("m.yaml")).unwrap(), yaml_before);
+}
+
+#[cfg(unix)]
+#[test]
+fn write_variants_replaces_a_planted_symlink_not_its_target() {
+    // Before: a symlink planted at an output name was followed and the
+    // file it points to (outside the folder) overwritten.
+    let dir = scratch("variants-link");
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    let outside = dir.join("outside.txt");
+    std::fs::write(&outside, "secret\n").unwrap();
+    let link = out.join("S-fig6-v0-safe-dual-dwa.json");
+    std::os::unix::fs::symlink(&outside, &link).unwrap();
+    let o = planlab(&[
+        "reproduce",
+        "S-fig6",
+        "--variants",
+        "1",
+        "--write-variants",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        std::fs::read_to_string(&outside).unwrap() == "secret\n",
+        "the link's target was overwritten"
+    );
+    let meta = std::fs::symlink_metadata(&link).unwrap();
+    assert!(meta.is_file(), "the link was replaced by the file");
+    let written: Value = serde_json::from_slice(&std::fs::read(&link).unwrap()).unwrap();
+    assert!(written.is_object());
+}
+
+#[test]
+fn a_start_on_an_unknown_cell_says_so_and_names_allow_unknown() {
+    // Before: "start (0, 0) is inside an obstacle", in trinary and raw
+    // mode alike, with no word of --allow-unknown.
+    let dir = scratch("unknown-start");
+    // 4×1: unknown, then free (trinary 205 is unknown, 254 free; raw
+    // above 100 is unknown, 0 free).
+    for (mode, pixels) in [("trinary", [205u8, 254, 254, 254]), ("raw", [255, 0, 0, 0])] {
+        let mut pgm = b"P5\n4 1\n255\n".to_vec();
+        pgm.extend_from_slice(&pixels);
+        std::fs::write(dir.join("m.pgm"), &pgm).unwrap();
+        std::fs::write(
+            dir.join("m.yaml"),
+            format!("image: m.pgm\nresolution: 1\norigin: [0, 0, 0]\nmode: {mode}\n"),
+        )
+        .unwrap();
+        let yaml = dir.join("m.yaml").display().to_string();
+        let o = planlab(&["plan", &yaml, "--start", "0,0", "--goal", "3,0"]);
+        common::assert_error(&o, &["start (0, 0)", "unknown cell", "--allow-unknown"]);
+        let o = planlab(&["plan", &yaml, "--start", "3,0", "--goal", "0,0"]);
+        common::assert_error(&o, &["goal (0, 0)", "unknown cell", "--allow-unknown"]);
+        let o = planlab(&[
+            "plan",
+            &yaml,
+            "--start",
+            "0,0",
+            "--goal",
+            "3,0",
+            "--allow-unknown",
+        ]);
+        assert!(
+            o.status.success(),
+            "{mode}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+}
+
+#[test]
+fn batch_of_an_apf_or_arm_scenario_says_it_has_no_variants() {
+    // Before: APF "variant 0: no valid start/goal/mover placement … at
+    // (0.000, 0.000) m: a wall"; arm "unknown field `arm`".
+    for (name, kind) in [("T-fig4-6.json", "APF"), ("T-tab5-3.json", "arm")] {
+        let s = asset(&format!("scenarios/{name}"));
+        let o = planlab(&["batch", &s, "--variants", "2"]);
+        common::assert_error(
+            &o,
+            &[name, &format!("{kind} scenarios have no batch variants")],
+        );
+    }
+}
+
+#[test]
+fn map_frames_and_mover_coordinates_beyond_1e6_are_refused() {
+    // Before: an origin of 1e300 said "the goal (1000…000.000, 8.050) m is
+    // inside a wall" (300 digits); a resolution of 1e300 or a mover at
+    // 1e300 m ran.
+    let demo = asset("scenarios/dwa-demo.json");
+    for (edit, needles) in [
+        (
+            "map.origin.x=1e300",
+            &["invalid origin (1e300, 0, 0)", "1e6"][..],
+        ),
+        ("map.resolution=1e300", &["invalid resolution 1e300", "1e6"]),
+        (
+            "movers.0.motion.a=[1e300, 2]",
+            &["mover 1 a = (1e300, 2)", "1e6"],
+        ),
+    ] {
+        let o = planlab(&["run", &demo, "--set", edit]);
+        common::assert_error(&o, needles);
+        let e = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(!e.contains("wall") && e.len() < 300, "{edit}: {e}");
+    }
+    // A ROS YAML's resolution, through plan.
+    let dir = scratch("huge-resolution");
+    std::fs::write(dir.join("m.pgm"), b"P5\n2 1\n255\n\xfe\xfe").unwrap();
+    std::fs::write(
+        dir.join("m.yaml"),
+        "image: m.pgm\nresolution: 1e300\norigin: [0, 0, 0]\n",
+    )
+    .unwrap();
+    let yaml = dir.join("m.yaml").display().to_string();
+    let o = planlab(&["plan", &yaml, "--start", "0,0", "--goal", "1,0"]);
+    common::assert_error(&o, &["`resolution` is 1e300", "at most 1e6"]);
+}
+
+#[test]
+fn scenario_names_are_printed_with_control_characters_escaped() {
+    // Before: the text table printed the name raw, so an escape sequence
+    // in a file (here: clear screen, bell) reached the terminal.
+    let dir = scratch("escape-name");
+    let s = scenario_copy(&dir, "pursuit-demo.json", "s.json");
+    let mut tree: Value = serde_json::from_str(&std::fs::read_to_string(&s).unwrap()).unwrap();
+    tree["name"] = Value::from("evil\u{1b}[2J\u{7}\u{9b}name");
+    std::fs::write(&s, tree.to_string()).unwrap();
+    let sp = s.to_str().unwrap();
+    for args in [&["run", sp][..], &["batch", sp, "--variants", "1"]] {
+        let o = planlab(args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let out = String::from_utf8_lossy(&o.stdout).into_owned();
+        assert!(
+            !out.chars().any(|c| c.is_control() && c != '\n'),
+            "{args:?}: {out:?}"
+        );
+        assert!(
+            out.contains(r"evil\u{1b}[2J\u{7}\u{9b}name"),
+            "{args:?}: {out}"
+        );
+    }
+}

@@ -35,6 +35,10 @@ pub enum BatchError {
         /// The last rejection.
         last: String,
     },
+    /// The scenario is not a robot scenario (an APF one): variants jitter a
+    /// robot's start, goal and movers.
+    #[error("{0} scenarios have no batch variants")]
+    NoVariants(&'static str),
     /// The planner list names an unknown planner or one twice.
     #[error("{0}")]
     BadPlanners(String),
@@ -61,12 +65,24 @@ pub fn choice_for(own: &PlannerChoice, name: &str) -> PlannerChoice {
     }
 }
 
+/// Refuses an APF scenario: its run has no robot, map start or movers to
+/// jitter (drawn as a robot's, it failed with a placement at (0, 0)).
+fn robot_only(base: &Scenario) -> Result<(), BatchError> {
+    match base.apf {
+        Some(_) => Err(BatchError::NoVariants(
+            crate::scenario::ScenarioKind::Apf.name(),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// The planners of a batch of `base` by name (trimmed); none = the
 /// scenario's own. Unknown names and repeats are refused.
 pub fn planner_choices(
     base: &Scenario,
     names: &[String],
 ) -> Result<Vec<PlannerChoice>, BatchError> {
+    robot_only(base)?;
     let own = base.local_planner.clone().unwrap_or_default();
     if names.is_empty() {
         return Ok(vec![own]);
@@ -163,6 +179,7 @@ pub fn variant(
     seed: u64,
     jitter: f64,
 ) -> Result<Scenario, BatchError> {
+    robot_only(base)?;
     if !(jitter.is_finite() && (0.0..=crate::num::MAX_PARAM).contains(&jitter)) {
         return Err(BatchError::BadJitter(jitter));
     }

@@ -183,3 +183,39 @@ fn a_garbage_map_is_not_echoed() {
     );
     assert!(!e.contains("\\u{") && !e.contains("PNG"), "{e}");
 }
+
+#[test]
+fn a_ros_yaml_starting_with_a_byte_order_mark_parses() {
+    // Before: "missing `image`" (the BOM became part of the first key).
+    // Windows editors write one.
+    let yaml = "\u{feff}image: m.pgm\nresolution: 0.05\norigin: [1, 2, 0]\n";
+    let meta = ros::parse_yaml(yaml).unwrap();
+    assert_eq!(meta.image, "m.pgm");
+    assert_eq!(meta.resolution, 0.05);
+    // Only a leading one: anywhere else it is still an unknown character.
+    assert!(
+        ros::parse_yaml("image: m.pgm\n\u{feff}resolution: 0.05\norigin: [1, 2, 0]\n").is_err()
+    );
+}
+
+#[test]
+fn batch_variants_of_an_apf_scenario_are_refused_as_such() {
+    // Before: drawn as a robot scenario, then "no valid start/goal/mover
+    // placement … (0.000, 0.000) m: a wall".
+    let text = include_str!("../../../assets/scenarios/T-fig4-6.json");
+    let s = Scenario::from_json(text).unwrap();
+    let mut no_files = |_: &str| Err::<Vec<u8>, String>("no files".into());
+    let grid = s.load_grid(&mut no_files).unwrap();
+    let e = planlab_core::batch::variant(&s, &grid, 1, 0, 0.3).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("APF scenarios have no batch variants"),
+        "{e}"
+    );
+    let e = planlab_core::batch::planner_choices(&s, &[]).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("APF scenarios have no batch variants"),
+        "{e}"
+    );
+}

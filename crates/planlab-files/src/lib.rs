@@ -80,7 +80,12 @@ pub fn read_pgm(path: &Path) -> Result<Vec<u8>, String> {
         .read_to_end(&mut head)
         .map_err(cannot)?;
     let limit = ros::pgm_byte_limit(&head).map_err(|e| {
-        if head.len() == ros::PGM_HEADER_MAX_BYTES && len > head.len() as u64 {
+        // Only a header still unfinished at the end of what was read is
+        // too long; any other fault is named as it is.
+        if head.len() == ros::PGM_HEADER_MAX_BYTES
+            && len > head.len() as u64
+            && ros::pgm_header_is_cut(&head)
+        {
             format!(
                 "{}: PGM header longer than {} bytes",
                 path.display(),

@@ -137,6 +137,17 @@ pub enum PlanError {
         /// Row.
         row: u32,
     },
+    /// Start or goal is an unknown cell of the map and unknown cells are
+    /// blocked (`allow_unknown` is off).
+    #[error("{which} ({col}, {row}) is an unknown cell, and unknown cells are blocked unless allow_unknown is set")]
+    UnknownCell {
+        /// Start or goal.
+        which: Endpoint,
+        /// Column.
+        col: u32,
+        /// Row.
+        row: u32,
+    },
     /// The search exhausted every reachable cell.
     #[error("goal is unreachable from start ({expanded} cells expanded)")]
     Unreachable {

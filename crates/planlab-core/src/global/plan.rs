@@ -15,7 +15,7 @@ use super::{
     PlanError, PlanGrid, SearchObserver,
 };
 use crate::map::costmap::inflate;
-use crate::map::{MapError, OccupancyGrid};
+use crate::map::{Cell, MapError, OccupancyGrid};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -521,12 +521,15 @@ fn plan_with<O: SearchObserver + ?Sized>(
     search: impl FnOnce(&mut O) -> Result<Path, PlanError>,
 ) -> Result<GridPlan, GridPlanError> {
     if let Err(e) = plan_grid.check_endpoints(start, goal) {
-        // Say "blocked after inflation" rather than a bare "inside an
-        // obstacle" when the raw map has the endpoint free.
+        // Say "blocked after inflation" or "unknown" rather than a bare
+        // "inside an obstacle" when the raw map has the endpoint free or
+        // unknown.
         if let PlanError::Blocked { which, col, row } = e {
-            let raw_free = map
-                .get(col as usize, row as usize)
-                .is_some_and(|c| c.passable(options.allow_unknown));
+            let raw = map.get(col as usize, row as usize);
+            if raw == Some(Cell::Unknown) && !options.allow_unknown {
+                return Err(PlanError::UnknownCell { which, col, row }.into());
+            }
+            let raw_free = raw.is_some_and(|c| c.passable(options.allow_unknown));
             if raw_free && options.inflate_m > 0.0 {
                 return Err(GridPlanError::BlockedByInflation {
                     which,

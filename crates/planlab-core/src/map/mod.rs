@@ -96,11 +96,12 @@ pub enum MapError {
         /// Cells actually given.
         got: u64,
     },
-    /// Resolution not finite and positive.
-    #[error("invalid resolution {}: must be a finite number > 0 (metres per cell)", crate::num::fmt_num(*.0))]
+    /// Resolution not finite and positive, or above
+    /// [`MAX_PARAM`](crate::num::MAX_PARAM).
+    #[error("invalid resolution {}: must be a finite number > 0 and at most {} (metres per cell)", crate::num::fmt_num(*.0), crate::num::fmt_num(crate::num::MAX_PARAM))]
     BadResolution(f64),
-    /// Origin not finite.
-    #[error("invalid origin ({}, {}, {}): all components must be finite", crate::num::fmt_num(*.x), crate::num::fmt_num(*.y), crate::num::fmt_num(*.yaw))]
+    /// Origin not finite, or x or y beyond ±[`MAX_PARAM`](crate::num::MAX_PARAM).
+    #[error("invalid origin ({}, {}, {}): x and y must be finite and within ±{} m, yaw finite", crate::num::fmt_num(*.x), crate::num::fmt_num(*.y), crate::num::fmt_num(*.yaw), crate::num::fmt_num(crate::num::MAX_PARAM))]
     BadOrigin {
         /// x in metres.
         x: f64,
@@ -176,6 +177,27 @@ pub fn check_dimensions(width: u64, height: u64) -> Result<usize, MapError> {
         });
     }
     Ok(cells as usize)
+}
+
+/// Checks a map's frame: metres per cell finite, > 0 and at most
+/// [`MAX_PARAM`](crate::num::MAX_PARAM); the origin's x and y finite and
+/// within ±`MAX_PARAM` m, its yaw finite. Every map's frame passes here (an
+/// origin of 1e300 m used to swallow the map's own coordinates, so the goal
+/// seemed to lie in a wall).
+pub fn check_frame(resolution: f64, origin: Pose2) -> Result<(), MapError> {
+    use crate::num::MAX_PARAM;
+    if !(resolution.is_finite() && resolution > 0.0 && resolution <= MAX_PARAM) {
+        return Err(MapError::BadResolution(resolution));
+    }
+    let within = |v: f64| v.is_finite() && v.abs() <= MAX_PARAM;
+    if !(within(origin.x) && within(origin.y) && origin.yaw.is_finite()) {
+        return Err(MapError::BadOrigin {
+            x: origin.x,
+            y: origin.y,
+            yaw: origin.yaw,
+        });
+    }
+    Ok(())
 }
 
 /// An occupancy grid with a metric frame.
@@ -300,16 +322,7 @@ impl OccupancyGrid {
     /// Sets the metric frame: metres per cell and the pose of the
     /// bottom-left corner of the image.
     pub fn with_frame(mut self, resolution: f64, origin: Pose2) -> Result<Self, MapError> {
-        if !(resolution.is_finite() && resolution > 0.0) {
-            return Err(MapError::BadResolution(resolution));
-        }
-        if !(origin.x.is_finite() && origin.y.is_finite() && origin.yaw.is_finite()) {
-            return Err(MapError::BadOrigin {
-                x: origin.x,
-                y: origin.y,
-                yaw: origin.yaw,
-            });
-        }
+        check_frame(resolution, origin)?;
         self.resolution = resolution;
         self.origin = origin;
         Ok(self)

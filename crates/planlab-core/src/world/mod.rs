@@ -62,14 +62,19 @@ pub(crate) fn check_positive(what: &str, value: f64) -> Result<(), WorldError> {
     Ok(check_param(what, value, Bound::above(0.0))?)
 }
 
-/// Checks that both coordinates of a point are finite.
+/// Checks that both coordinates of a point (metres, or m/s for a
+/// velocity) are finite and within ±[`MAX_PARAM`](crate::num::MAX_PARAM),
+/// as every distance and speed is.
 pub(crate) fn check_point(what: &str, p: [f64; 2]) -> Result<(), WorldError> {
-    if p[0].is_finite() && p[1].is_finite() {
+    use crate::num::{fmt_num, MAX_PARAM};
+    if p.iter().all(|v| v.is_finite() && v.abs() <= MAX_PARAM) {
         Ok(())
     } else {
         Err(WorldError::InvalidParameter(format!(
-            "{what} = ({}, {}): coordinates must be finite numbers",
-            p[0], p[1]
+            "{what} = ({}, {}): coordinates must be finite numbers within ±{}",
+            fmt_num(p[0]),
+            fmt_num(p[1]),
+            fmt_num(MAX_PARAM)
         )))
     }
 }

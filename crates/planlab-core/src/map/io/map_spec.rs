@@ -113,25 +113,15 @@ impl MapFileRef {
         })
     }
 
-    /// Checks the reference without reading the file: a known format, a
-    /// positive finite resolution and a finite origin when given.
+    /// Checks the reference without reading the file: a known format, and
+    /// the resolution and origin when given ([`crate::map::check_frame`]).
     pub fn validate(&self) -> Result<(), ScenarioError> {
         self.format()?;
-        if let Some(r) = self.resolution {
-            if !(r.is_finite() && r > 0.0) {
-                return Err(MapError::BadResolution(r).into());
-            }
-        }
-        if let Some(o) = self.origin {
-            if !(o.x.is_finite() && o.y.is_finite() && o.yaw.is_finite()) {
-                return Err(MapError::BadOrigin {
-                    x: o.x,
-                    y: o.y,
-                    yaw: o.yaw,
-                }
-                .into());
-            }
-        }
+        let default = (1.0, Pose2::default());
+        crate::map::check_frame(
+            self.resolution.unwrap_or(default.0),
+            self.origin.unwrap_or(default.1),
+        )?;
         Ok(())
     }
 }

@@ -25,8 +25,8 @@
 //! | key | required | meaning |
 //! |---|---|---|
 //! | `image` | yes | image path, relative to the YAML file (not opened here) |
-//! | `resolution` | yes | metres per pixel, finite and > 0 |
-//! | `origin` | yes | `[x, y, yaw]` of the bottom-left pixel corner, finite |
+//! | `resolution` | yes | metres per pixel, finite, > 0 and at most 10⁶ |
+//! | `origin` | yes | `[x, y, yaw]` of the bottom-left pixel corner, finite; x and y within ±10⁶ m |
 //! | `negate` | no (0) | `0`/`1`/`true`/`false`: swap black and white |
 //! | `occupied_thresh` | no (0.65) | in \[0, 1\] |
 //! | `free_thresh` | no (0.196) | in \[0, 1\], below `occupied_thresh` |
@@ -47,6 +47,7 @@
 //!   `negate` is ignored in raw mode, as in nav2.
 
 use crate::map::{check_dimensions, Cell, MapError, OccupancyGrid, Pose2};
+use crate::num::{fmt_num, MAX_PARAM};
 use serde::{Deserialize, Serialize};
 
 const YAML_FORMAT: &str = "ROS map yaml";
@@ -123,17 +124,7 @@ impl RosMapMeta {
         if self.image.trim().is_empty() {
             return Err(MapError::parse(YAML_FORMAT, 0, "`image` is empty"));
         }
-        if !(self.resolution.is_finite() && self.resolution > 0.0) {
-            return Err(MapError::BadResolution(self.resolution));
-        }
-        let o = self.origin;
-        if !(o.x.is_finite() && o.y.is_finite() && o.yaw.is_finite()) {
-            return Err(MapError::BadOrigin {
-                x: o.x,
-                y: o.y,
-                yaw: o.yaw,
-            });
-        }
+        crate::map::check_frame(self.resolution, self.origin)?;
         for (name, t) in [
             ("occupied_thresh", self.occupied_thresh),
             ("free_thresh", self.free_thresh),
@@ -470,6 +461,9 @@ fn yaml_number(v: &Value, key: &str, line: usize) -> Result<f64, MapError> {
 /// assert_eq!(meta.free_thresh, 0.196);
 /// ```
 pub fn parse_yaml(text: &str) -> Result<RosMapMeta, MapError> {
+    // A UTF-8 byte-order mark (Windows editors write one) is not part of
+    // the first key.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let entries = parse_flat_yaml(text)?;
     let mut image = None;
     let mut resolution = None;
@@ -494,11 +488,15 @@ pub fn parse_yaml(text: &str) -> Result<RosMapMeta, MapError> {
             },
             "resolution" => {
                 let r = yaml_number(value, key, n)?;
-                if !(r.is_finite() && r > 0.0) {
+                if !(r.is_finite() && r > 0.0 && r <= MAX_PARAM) {
                     return Err(MapError::parse(
                         YAML_FORMAT,
                         n,
-                        format!("`resolution` is {r}; it must be a finite number > 0 (metres per pixel)"),
+                        format!(
+                            "`resolution` is {}; it must be a finite number > 0 and at most {} (metres per pixel)",
+                            fmt_num(r),
+                            fmt_num(MAX_PARAM)
+                        ),
                     ));
                 }
                 resolution = Some(r);
@@ -522,7 +520,7 @@ pub fn parse_yaml(text: &str) -> Result<RosMapMeta, MapError> {
                     ));
                 }
                 let mut xyz = [0.0; 3];
-                for (slot, item) in xyz.iter_mut().zip(items) {
+                for (i, (slot, item)) in xyz.iter_mut().zip(items).enumerate() {
                     let v = item.trim().parse::<f64>().map_err(|_| {
                         MapError::parse(
                             YAML_FORMAT,
@@ -535,6 +533,18 @@ pub fn parse_yaml(text: &str) -> Result<RosMapMeta, MapError> {
                             YAML_FORMAT,
                             n,
                             format!("`origin` entry {item} is not finite"),
+                        ));
+                    }
+                    // x and y are distances (the yaw an angle).
+                    if i < 2 && v.abs() > MAX_PARAM {
+                        return Err(MapError::parse(
+                            YAML_FORMAT,
+                            n,
+                            format!(
+                                "`origin` entry {} is out of range: x and y must be within ±{} m",
+                                fmt_num(v),
+                                fmt_num(MAX_PARAM)
+                            ),
                         ));
                     }
                     *slot = v;
@@ -830,6 +840,27 @@ fn pgm_header(bytes: &[u8]) -> Result<PgmHeader<'_>, MapError> {
         maxval,
         cur,
     })
+}
+
+/// Whether `bytes` stop inside a PGM header: the magic number is P5 or P2
+/// and the bytes end before maxval is read. A reader that read only a
+/// prefix of a file tells "the header is longer than I read" from any
+/// other fault (not a PGM, dimensions too large …) by this.
+pub fn pgm_header_is_cut(bytes: &[u8]) -> bool {
+    if !matches!(bytes.get(..2), Some(b"P5" | b"P2")) {
+        return false;
+    }
+    let mut cur = Cursor {
+        bytes,
+        pos: 2,
+        line: 1,
+    };
+    for what in ["width", "height", "maxval"] {
+        if cur.number(what).is_err() {
+            return cur.pos >= bytes.len();
+        }
+    }
+    false
 }
 
 /// Bytes a PGM file beyond its header may hold per pixel in ASCII (P2):
