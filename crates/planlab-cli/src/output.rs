@@ -186,7 +186,7 @@ mod tests {
 
     #[test]
     fn an_output_in_the_current_folder_is_compared_by_its_full_path() {
-        // `--csv s.json` beside `./s.json`: the bare name has no parent.
+        // A bare output name (`--csv s.json`) has no parent folder.
         let here = std::env::current_dir().unwrap();
         let file = here.join("Cargo.toml");
         assert!(same_file(&file, Path::new("Cargo.toml")));
