@@ -285,23 +285,31 @@ fn summarise_csv(args: &BarnArgs<'_>) -> Result<(), String> {
     let planners = chosen_planners(args.planners)?;
     let wanted = args.worlds.map(parse_worlds).transpose()?;
     let mut rows: Vec<(BarnRun, Difficulty)> = Vec::new();
+    // (world, planner, run, seed) → its row's index: a run found twice is
+    // checked in constant time (a merged sweep has thousands of rows).
+    let mut seen: std::collections::HashMap<(u32, String, u32, u64), usize> =
+        std::collections::HashMap::new();
     for path in args.from_csv {
         let text = planlab_files::read_text(path)?;
         for row in parse_runs_csv(&text).map_err(|e| format!("{}: {e}", path.display()))? {
-            let key = |r: &BarnRun| (r.world, r.planner.clone(), r.run, r.seed);
-            match rows.iter().find(|(r, _)| key(r) == key(&row.0)) {
-                Some((r, _)) if r.trace_hash == row.0.trace_hash => {}
+            let r = &row.0;
+            let key = (r.world, r.planner.clone(), r.run, r.seed);
+            match seen.get(&key) {
+                Some(&i) if rows[i].0.trace_hash == r.trace_hash => {}
                 Some(_) => {
                     return Err(format!(
                         "{}: world {} planner {} run {} seed {} appears with two different trace hashes",
                         path.display(),
-                        row.0.world,
-                        row.0.planner,
-                        row.0.run,
-                        row.0.seed
+                        r.world,
+                        r.planner,
+                        r.run,
+                        r.seed
                     ))
                 }
-                None => rows.push(row),
+                None => {
+                    seen.insert(key, rows.len());
+                    rows.push(row);
+                }
             }
         }
     }

@@ -120,6 +120,20 @@ fn a_small_sweep_has_sane_figures_and_its_rows_replay() {
         .replacen(",reached,", ",landed,", 1)
         .replacen(",collision,", ",landed,", 1)
         .replacen(",timeout,", ",landed,", 1);
+    // The same run with another trace hash is refused, not counted twice.
+    let hash = cols[10];
+    let changed = text.replacen(hash, &"0".repeat(hash.len()), 1);
+    std::fs::write(&other, changed).unwrap();
+    assert_error(
+        &planlab(&[
+            "barn",
+            "--from-csv",
+            csv_arg,
+            "--from-csv",
+            other.to_str().unwrap(),
+        ]),
+        &["two different trace hashes"],
+    );
     std::fs::write(&other, bad).unwrap();
     assert_error(
         &planlab(&["barn", "--from-csv", other.to_str().unwrap()]),
