@@ -113,6 +113,17 @@ fn barn_world_121_move_base_dwa_hits_a_seen_cylinder_only_backing_up_blind() {
 }
 
 #[test]
+fn barn_world_208_scan_apf_never_turns_a_corner_into_a_cylinder_it_sees() {
+    // Stopped beside a cylinder (its circumscribed disc no longer clear),
+    // the APF under scan-apf turned in place toward the goal and swept a
+    // corner of the Jackal's rectangle into the cylinder: only driving was
+    // checked, for the disc. The turn is now swept against the map first.
+    let mut ep = episode(208, "scan-apf", 14352028815507708487);
+    let end = ep.run();
+    assert_ne!(end, Outcome::Collision, "at t = {}", ep.time());
+}
+
+#[test]
 fn every_barn_planner_starts_on_a_world() {
     let w = world(2);
     for p in run::PLANNERS {

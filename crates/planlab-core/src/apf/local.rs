@@ -8,15 +8,21 @@
 //! as a point obstacle found from the map's clearance field (the point at
 //! the clearance distance down its gradient) — and then pursues that APF
 //! point within the robot's limits: heading error e to the step direction,
-//! ω = k_w·e clamped to ω_max, v = min(v_max, √(2·b·a_v·(d − tol)))·cos e,
-//! 0 while |e| > `turn_angle` (turn first). The robot's circumscribed
-//! radius is added to every distance.
+//! ω = k_w·e clamped to ω_max, v = min(v_max, v_b)·cos e, 0 while
+//! |e| > `turn_angle` (turn first), where v_b is the speed held for one
+//! period and then braked at b·a_v that stops within the room left (to the
+//! goal, and to what lies ahead): v_b·Δt + v_b²/(2·b·a_v) ≤ room. The
+//! robot's circumscribed radius is added to every distance; a turn in
+//! place, whose footprint is not that disc, is swept against the map first
+//! and slowed or refused when a corner would meet an obstacle.
 
 use super::planner::{Apf, ObstacleObs, StepKind};
 use super::{ApfConfig, ApfMode};
 use crate::local::{GoalKind, LocalError, LocalPlanner, Observation, PlannerDebug, Rollout};
 use crate::num::{atan2, cos, wrap_angle};
 use crate::params::Params;
+#[cfg(test)]
+use crate::world::Footprint;
 use crate::world::{Command, RobotSpec, RobotState, StaticMap};
 use glam::DVec2;
 
@@ -157,6 +163,53 @@ pub fn free_ahead(map: &StaticMap, pos: DVec2, heading: DVec2, r: f64, max: f64)
     max
 }
 
+/// The highest speed from which the robot, holding it for one control
+/// period `dt` and then braking at `decel`, stops within `room` metres:
+/// the largest v with v·dt + v²/(2·decel) ≤ room (0 when room ≤ 0).
+pub fn braking_speed(decel: f64, dt: f64, room: f64) -> f64 {
+    if !(room > 0.0) || !(decel > 0.0) {
+        return 0.0;
+    }
+    let dt = dt.max(0.0);
+    decel * ((dt * dt + 2.0 * room / decel).sqrt() - dt)
+}
+
+/// Angle step, rad, at which an in-place turn's sweep is checked: the
+/// Jackal's corner (0.33 m out) moves 1.3 cm a step, a quarter of a BARN
+/// map cell.
+const TURN_CHECK_STEP: f64 = 0.04;
+
+/// ω for an in-place turn that keeps the footprint off every blocked cell
+/// of `map`: the turn the robot would make in one period and then while
+/// braking ω at the acceleration limit is swept; when it meets an
+/// obstacle ω is halved (up to four times), else 0. A robot that already
+/// overlaps the map turns as asked (nothing to keep).
+fn safe_turn(map: &StaticMap, robot: &RobotSpec, s: &RobotState, w: f64, dt: f64) -> f64 {
+    let fp = &robot.footprint;
+    if w == 0.0 || map.footprint_collides(fp, s) {
+        return w;
+    }
+    let l = &robot.limits;
+    let mut w = w;
+    for _ in 0..5 {
+        let wf = robot.feasible(s, Command { v: 0.0, vy: 0.0, w }, dt).w;
+        let sweep = wf * dt.max(0.0) + wf * wf.abs() / (2.0 * l.acc_w);
+        let n = (sweep.abs() / TURN_CHECK_STEP).ceil().max(1.0) as usize;
+        let clear = (1..=n).all(|k| {
+            let pose = RobotState {
+                theta: s.theta + sweep * k as f64 / n as f64,
+                ..*s
+            };
+            !map.footprint_collides(fp, &pose)
+        });
+        if clear {
+            return w;
+        }
+        w *= 0.5;
+    }
+    0.0
+}
+
 impl LocalPlanner for ApfLocal {
     fn name(&self) -> &'static str {
         self.name
@@ -236,8 +289,18 @@ impl LocalPlanner for ApfLocal {
                 }
             }
             let room = (d - self.cfg.stop_distance).min(ahead - self.cfg.safety_margin);
-            let brake = 2.0 * self.cfg.brake_fraction * l.acc_v * room;
-            l.v_max.min(brake.max(0.0).sqrt()) * cos(err).max(0.0)
+            l.v_max.min(braking_speed(
+                self.cfg.brake_fraction * l.acc_v,
+                obs.dt,
+                room,
+            )) * cos(err).max(0.0)
+        };
+        let w = if v > 0.0 {
+            // Driving needs the circumscribed disc clear, and the disc holds
+            // the footprint in every orientation: any turn is safe.
+            w
+        } else {
+            safe_turn(obs.map, &self.robot, s, w, obs.dt)
         };
         Command { v, vy: 0.0, w }
     }
@@ -265,5 +328,70 @@ impl LocalPlanner for ApfLocal {
 
     fn set_record_rollouts(&mut self, on: bool) {
         self.record = on;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::barn::run::jackal;
+    use crate::map::{Cell, OccupancyGrid, Pose2};
+
+    #[test]
+    fn the_braking_speed_held_one_period_stops_within_the_room() {
+        for (decel, dt, room) in [(16.0, 0.1, 0.2), (0.8, 0.05, 1.0), (16.0, 0.0, 0.3)] {
+            let v = braking_speed(decel, dt, room);
+            let travelled = v * dt + v * v / (2.0 * decel);
+            assert!((travelled - room).abs() < 1e-9, "{v} {travelled}");
+        }
+        // Holding the speed a period costs room: slower than √(2·a·room).
+        assert!(braking_speed(16.0, 0.1, 0.2) < (2.0f64 * 16.0 * 0.2).sqrt() - 0.5);
+        assert_eq!(braking_speed(16.0, 0.1, -0.1), 0.0);
+        assert_eq!(braking_speed(16.0, 0.1, f64::NAN), 0.0);
+    }
+
+    /// A 2 m × 2 m map (1 cm cells) with one blocked cell where the
+    /// Jackal's front-left corner, the robot at the centre facing +x, is
+    /// after turning left by `angle`.
+    fn corner_map(angle: f64) -> (StaticMap, RobotState) {
+        let robot = jackal();
+        let Footprint::Rectangle { length, width } = robot.footprint else {
+            unreachable!()
+        };
+        let mut g = OccupancyGrid::new(200, 200)
+            .unwrap()
+            .with_frame(0.01, Pose2::default())
+            .unwrap();
+        let s = RobotState {
+            x: 1.0,
+            y: 1.0,
+            ..Default::default()
+        };
+        let corner = DVec2::new(0.5 * length, 0.5 * width);
+        let p = DVec2::new(s.x, s.y) + DVec2::from_angle(angle).rotate(corner);
+        let (c, r) = g.world_to_cell(p.x, p.y).unwrap();
+        g.set(c, r, Cell::Occupied).unwrap();
+        let map = StaticMap::new(g, false).unwrap();
+        assert!(!map.footprint_collides(&robot.footprint, &s));
+        (map, s)
+    }
+
+    #[test]
+    fn an_in_place_turn_that_would_sweep_a_corner_into_an_obstacle_is_slowed_or_refused() {
+        let robot = jackal();
+        let dt = 0.1;
+        // 0.25 rad to the left: a full-speed left turn (and its braking)
+        // would reach it; a slower one stops short; turning right is free.
+        let (map, s) = corner_map(0.25);
+        assert_eq!(safe_turn(&map, &robot, &s, -4.0, dt), -4.0);
+        let w = safe_turn(&map, &robot, &s, 4.0, dt);
+        assert!(w > 0.0 && w < 4.0, "{w}");
+        let reach = w * dt + w * w / (2.0 * robot.limits.acc_w);
+        let end = RobotState { theta: reach, ..s };
+        assert!(!map.footprint_collides(&robot.footprint, &end));
+        // Right at the corner: no left turn at all.
+        let (map, s) = corner_map(0.03);
+        assert_eq!(safe_turn(&map, &robot, &s, 4.0, dt), 0.0);
+        assert_eq!(safe_turn(&map, &robot, &s, -4.0, dt), -4.0);
     }
 }
