@@ -238,6 +238,10 @@ pub struct FieldInfo {
     pub default: serde_json::Value,
     /// What it does.
     pub doc: String,
+    /// Its bounds, if it is a number with bounds (not serialised: the
+    /// registry's JSON stays as it was).
+    #[serde(skip)]
+    pub bound: Option<Bound>,
 }
 
 /// A doc string as shown outside rustdoc: its escaped brackets (`\[C\]`,
@@ -248,11 +252,14 @@ fn plain_doc(doc: &str) -> String {
 
 /// Calls `out(name, unit, doc)` for every leaf of `fields`, nested configs
 /// flattened to dotted names under `prefix`.
-fn flatten(fields: &[Field], prefix: &str, out: &mut dyn FnMut(String, &str, String)) {
+/// Receives one leaf field: dotted name, unit, doc, bounds.
+type LeafSink<'a> = dyn FnMut(String, &str, String, Option<Bound>) + 'a;
+
+fn flatten(fields: &[Field], prefix: &str, out: &mut LeafSink<'_>) {
     for f in fields {
         let name = join(prefix, f.name);
         match f.nested {
-            Nested::No => out(name, f.unit, plain_doc(f.doc)),
+            Nested::No => out(name, f.unit, plain_doc(f.doc), f.bound),
             Nested::Config(inner) => flatten(inner, &name, out),
             Nested::Of(inner) => {
                 for g in inner {
@@ -260,6 +267,7 @@ fn flatten(fields: &[Field], prefix: &str, out: &mut dyn FnMut(String, &str, Str
                         join(&name, g.name),
                         g.unit,
                         format!("{} of the {}", g.name, plain_doc(f.doc)),
+                        g.bound,
                     );
                 }
             }
@@ -272,7 +280,7 @@ fn flatten(fields: &[Field], prefix: &str, out: &mut dyn FnMut(String, &str, Str
 pub fn field_infos<T: Params>() -> Vec<FieldInfo> {
     let defaults = serde_json::to_value(T::default()).unwrap_or(serde_json::Value::Null);
     let mut out = Vec::new();
-    flatten(T::FIELDS, "", &mut |name, unit, doc| {
+    flatten(T::FIELDS, "", &mut |name, unit, doc, bound| {
         let default = name
             .split('.')
             .try_fold(&defaults, |v, k| v.get(k))
@@ -283,6 +291,7 @@ pub fn field_infos<T: Params>() -> Vec<FieldInfo> {
             unit: unit.to_string(),
             default,
             doc,
+            bound,
         });
     });
     out

@@ -219,3 +219,41 @@ fn batch_variants_of_an_apf_scenario_are_refused_as_such() {
         "{e}"
     );
 }
+
+#[test]
+fn every_numeric_planner_field_at_its_largest_allowed_value_ends_a_short_run() {
+    // Once improved-dwa with inflate_margin at its bound (10⁶ m) never
+    // ended: its start-snapping search walked rings of 10⁸ cells.
+    let (mut tried, mut ran) = (0, 0);
+    for p in planlab_core::planners::list() {
+        for f in &p.fields {
+            let (Some(bound), Some(_)) = (f.bound, f.default.as_f64()) else {
+                continue;
+            };
+            let mut tree: serde_json::Value = serde_json::from_str(DWA_DEMO).unwrap();
+            // Display, not fmt_num: "1000000" is also a valid integer.
+            let max = format!("{}", bound.max);
+            for (k, v) in [
+                ("local_planner.name", p.name.as_str()),
+                (&format!("local_planner.config.{}", f.name), max.as_str()),
+                ("sim.max_time", "1"),
+            ] {
+                set_json_path(&mut tree, k, v).unwrap();
+            }
+            let what = format!("{}.{} = {max}", p.name, f.name);
+            tried += 1;
+            let s = Scenario::from_value(&tree).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let mut no_files = |_: &str| Err::<Vec<u8>, String>("no files".into());
+            let grid = s.load_grid(&mut no_files).unwrap();
+            // A typed refusal is fine (a value legal alone may clash with
+            // another field); building and running must both end.
+            if let Ok(mut ep) = Episode::from_scenario(&s, grid) {
+                ran += 1;
+                let end = ep.run();
+                assert!(ep.time() <= 1.0 + 1e-9, "{what}: {end:?} at {}", ep.time());
+            }
+        }
+    }
+    // Not vacuous: most fields at their bound make a planner that runs.
+    assert!(tried > 200 && ran * 2 > tried, "{ran} of {tried} ran");
+}

@@ -167,7 +167,8 @@ pub fn free_ahead(map: &StaticMap, pos: DVec2, heading: DVec2, r: f64, max: f64)
 /// period `dt` and then braking at `decel`, stops within `room` metres:
 /// the largest v with v·dt + v²/(2·decel) ≤ room (0 when room ≤ 0).
 pub fn braking_speed(decel: f64, dt: f64, room: f64) -> f64 {
-    if !(room > 0.0) || !(decel > 0.0) {
+    // NaN counts as no room.
+    if room.is_nan() || decel.is_nan() || room <= 0.0 || decel <= 0.0 {
         return 0.0;
     }
     let dt = dt.max(0.0);

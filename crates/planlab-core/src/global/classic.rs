@@ -23,64 +23,129 @@ const NONE: u32 = u32::MAX;
 /// re-searches the same cells once per distinct f bound.
 pub const IDA_STAR_MAX_EXPANSIONS: usize = 2_000_000;
 
-/// Per-cell search state of one search direction, generation-stamped.
+/// Cells per page of a [`Nodes`] table.
+const PAGE: usize = 256;
+
+/// Search state of [`PAGE`] consecutive cells, valid for generation `gen`.
+#[derive(Debug)]
+struct Page {
+    gen: u32,
+    g: [f64; PAGE],
+    parent: [u32; PAGE],
+    /// Bit 0: seen this generation; bit 1: closed.
+    flags: [u8; PAGE],
+}
+
+const SEEN: u8 = 1;
+const CLOSED: u8 = 2;
+
+/// Per-cell search state of one search direction, in pages allocated when
+/// a search first reaches one of their cells and invalidated by a
+/// generation stamp: memory and reset cost follow the cells a search
+/// reaches, not the map's area (a search walled in after one expansion on
+/// a 10⁸-cell map needs a few pages, not gigabytes).
 #[derive(Debug, Default)]
 pub(crate) struct Nodes {
-    stamp: Vec<u32>,
+    pages: Vec<Option<Box<Page>>>,
     cur: u32,
-    g: Vec<f64>,
-    parent: Vec<u32>,
-    closed: Vec<bool>,
+    cells: usize,
 }
 
 impl Nodes {
     /// Forgets the previous search, for a grid of `n` cells.
     pub fn reset(&mut self, n: usize) {
-        if self.stamp.len() < n {
-            self.stamp.resize(n, 0);
-            self.g.resize(n, f64::INFINITY);
-            self.parent.resize(n, NONE);
-            self.closed.resize(n, false);
+        self.cells = n;
+        let want = n.div_ceil(PAGE);
+        if self.pages.len() < want {
+            self.pages.resize_with(want, || None);
         }
         self.cur = self.cur.wrapping_add(1);
         if self.cur == 0 {
-            self.stamp.fill(0);
+            for p in self.pages.iter_mut().flatten() {
+                p.gen = 0;
+            }
             self.cur = 1;
         }
     }
 
+    /// Cell `i`'s page when it holds this generation's state.
+    #[inline]
+    fn page(&self, i: usize) -> Option<&Page> {
+        match self.pages.get(i / PAGE) {
+            Some(Some(p)) if p.gen == self.cur => Some(p),
+            _ => None,
+        }
+    }
+
+    #[inline]
+    fn flags(&self, i: usize) -> u8 {
+        self.page(i).map_or(0, |p| p.flags[i % PAGE])
+    }
+
     #[inline]
     pub fn seen(&self, i: usize) -> bool {
-        self.stamp.get(i) == Some(&self.cur)
+        self.flags(i) & SEEN != 0
     }
 
     /// Cost from this direction's root; infinite if unseen.
     #[inline]
     pub fn g(&self, i: usize) -> f64 {
-        if self.seen(i) {
-            self.g[i]
-        } else {
-            f64::INFINITY
+        match self.page(i) {
+            Some(p) if p.flags[i % PAGE] & SEEN != 0 => p.g[i % PAGE],
+            _ => f64::INFINITY,
+        }
+    }
+
+    /// The cell cell `i` was reached from, [`NONE`] for a root or an unseen
+    /// cell.
+    #[inline]
+    pub fn parent(&self, i: usize) -> u32 {
+        match self.page(i) {
+            Some(p) if p.flags[i % PAGE] & SEEN != 0 => p.parent[i % PAGE],
+            _ => NONE,
         }
     }
 
     #[inline]
     pub fn closed(&self, i: usize) -> bool {
-        self.seen(i) && self.closed[i]
+        self.flags(i) == SEEN | CLOSED
+    }
+
+    /// Cell `i`'s page for writing, allocated or cleared for this
+    /// generation as needed.
+    #[inline]
+    fn page_mut(&mut self, i: usize) -> &mut Page {
+        let cur = self.cur;
+        let slot = &mut self.pages[i / PAGE];
+        let p = slot.get_or_insert_with(|| {
+            Box::new(Page {
+                gen: 0,
+                g: [f64::INFINITY; PAGE],
+                parent: [NONE; PAGE],
+                flags: [0; PAGE],
+            })
+        });
+        if p.gen != cur {
+            p.gen = cur;
+            p.flags = [0; PAGE];
+        }
+        p
     }
 
     /// Reaches cell `i` at cost `g` from `parent` (open, not closed).
     #[inline]
     pub fn set(&mut self, i: usize, g: f64, parent: u32) {
-        self.stamp[i] = self.cur;
-        self.g[i] = g;
-        self.parent[i] = parent;
-        self.closed[i] = false;
+        let p = self.page_mut(i);
+        let o = i % PAGE;
+        p.g[o] = g;
+        p.parent[o] = parent;
+        p.flags[o] = SEEN;
     }
 
+    /// Closes cell `i` (a cell already reached).
     #[inline]
     pub fn close(&mut self, i: usize) {
-        self.closed[i] = true;
+        self.page_mut(i).flags[i % PAGE] |= CLOSED;
     }
 
     /// The parent chain from `i` back to the root, root first.
@@ -88,8 +153,8 @@ impl Nodes {
         let mut out = vec![pos(width, i)];
         let mut c = i;
         // A chain longer than the table would be a cycle (a bug): stop.
-        while self.seen(c) && self.parent[c] != NONE && out.len() <= self.stamp.len() {
-            c = self.parent[c] as usize;
+        while self.parent(c) != NONE && out.len() <= self.cells {
+            c = self.parent(c) as usize;
             out.push(pos(width, c));
         }
         out.reverse();
@@ -605,6 +670,14 @@ impl ThetaStar {
     ) -> Result<Path, PlanError> {
         let w = grid.width();
         let diagonal = self.diagonal;
+        // Each line-of-sight test costs up to the map's side, so a search
+        // that must close every reachable cell to prove the goal
+        // unreachable would cost cells × side (minutes on a 2000² open
+        // map). A flood fill over the same moves, one bit a cell, settles
+        // reachability first in one visit a cell.
+        if prelude(grid, start, goal)?.is_none() && !reaches(grid, start, goal, diagonal) {
+            return Err(PlanError::Unreachable { expanded: 0 });
+        }
         let h = |p: GridPos| estimate(Heuristic::Euclidean, p, goal);
         let dist = |a: GridPos, b: GridPos| estimate(Heuristic::Euclidean, a, b);
         lowest_f_first(
@@ -615,7 +688,7 @@ impl ThetaStar {
             |_, chain| chain,
             |nodes, i, here, obs, offer| {
                 let g = nodes.g(i);
-                let grand = nodes.parent[i];
+                let grand = nodes.parent(i);
                 for_each_move(grid, here, diagonal, |q, c| {
                     if nodes.closed(index(w, q)) {
                         return;
@@ -641,6 +714,33 @@ impl ThetaStar {
     }
 }
 super::grid_planner_via_search!(ThetaStar);
+
+/// Whether `goal` can be reached from `start` by the moves `diagonal`
+/// allows (a depth-first flood over free cells, one bit of memory a cell,
+/// allocated zeroed so untouched pages cost nothing).
+fn reaches(grid: &PlanGrid, start: GridPos, goal: GridPos, diagonal: Diagonal) -> bool {
+    let w = grid.width();
+    let mut seen = vec![0u64; (w * grid.height()).div_ceil(64)];
+    let mark = |seen: &mut [u64], i: usize| {
+        let (word, bit) = (i / 64, 1u64 << (i % 64));
+        let fresh = seen[word] & bit == 0;
+        seen[word] |= bit;
+        fresh
+    };
+    mark(&mut seen, index(w, start));
+    let mut stack = vec![start];
+    while let Some(p) = stack.pop() {
+        if p == goal {
+            return true;
+        }
+        for_each_move(grid, p, diagonal, |q, _| {
+            if mark(&mut seen, index(w, q)) {
+                stack.push(q);
+            }
+        });
+    }
+    false
+}
 
 /// Jump Point Search on a 4-connected grid (the canonical-ordering rules of
 /// PathFinding.js's `JPFNeverMoveDiagonally`, after Harabor & Grastien
@@ -671,7 +771,7 @@ pub(crate) fn jps4<O: SearchObserver + ?Sized>(
         },
         |nodes, i, here, obs, offer| {
             let g = nodes.g(i);
-            let dirs: &[(i64, i64)] = match nodes.parent[i] {
+            let dirs: &[(i64, i64)] = match nodes.parent(i) {
                 NONE => &[(1, 0), (-1, 0), (0, 1), (0, -1)],
                 p => {
                     let from = pos(w, p as usize);

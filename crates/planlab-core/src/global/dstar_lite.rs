@@ -91,6 +91,58 @@ impl Ord for Queued {
     }
 }
 
+/// Cells per page of a [`Paged`] table.
+const PAGE: usize = 256;
+
+/// A per-cell table whose pages are allocated on the first write to one of
+/// their cells; unwritten cells read as the default. D* Lite's state then
+/// takes memory for the cells its searches reach, not for the whole map
+/// (three dense tables were 4 GB on a legal 10⁸-cell map).
+#[derive(Clone, Debug)]
+struct Paged<T> {
+    pages: Vec<Option<Box<[T]>>>,
+    default: T,
+    len: usize,
+}
+
+impl<T: Copy> Paged<T> {
+    fn new(len: usize, default: T) -> Self {
+        let mut pages = Vec::new();
+        pages.resize_with(len.div_ceil(PAGE), || None);
+        Self {
+            pages,
+            default,
+            len,
+        }
+    }
+
+    #[cfg(test)]
+    fn len(&self) -> usize {
+        self.len
+    }
+}
+
+impl<T: Copy> std::ops::Index<usize> for Paged<T> {
+    type Output = T;
+    #[inline]
+    fn index(&self, i: usize) -> &T {
+        assert!(i < self.len, "cell {i} outside a table of {}", self.len);
+        match &self.pages[i / PAGE] {
+            Some(p) => &p[i % PAGE],
+            None => &self.default,
+        }
+    }
+}
+
+impl<T: Copy> std::ops::IndexMut<usize> for Paged<T> {
+    #[inline]
+    fn index_mut(&mut self, i: usize) -> &mut T {
+        assert!(i < self.len, "cell {i} outside a table of {}", self.len);
+        let d = self.default;
+        &mut self.pages[i / PAGE].get_or_insert_with(|| vec![d; PAGE].into_boxed_slice())[i % PAGE]
+    }
+}
+
 /// Incremental shortest paths on a grid whose cells may change (module doc).
 #[derive(Clone, Debug)]
 pub struct DStarLite {
@@ -103,10 +155,10 @@ pub struct DStarLite {
     /// Start when `km` was last updated.
     last: GridPos,
     km: f64,
-    g: Vec<f64>,
-    rhs: Vec<f64>,
+    g: Paged<f64>,
+    rhs: Paged<f64>,
     /// The key a cell is queued with, if it is queued.
-    queued: Vec<Option<Key>>,
+    queued: Paged<Option<Key>>,
     queue: BinaryHeap<Queued>,
     /// Whether the goal's Open event was sent.
     announced: bool,
@@ -136,9 +188,9 @@ impl DStarLite {
             goal,
             last: start,
             km: 0.0,
-            g: vec![f64::INFINITY; n],
-            rhs: vec![f64::INFINITY; n],
-            queued: vec![None; n],
+            g: Paged::new(n, f64::INFINITY),
+            rhs: Paged::new(n, f64::INFINITY),
+            queued: Paged::new(n, None),
             queue: BinaryHeap::new(),
             announced: false,
         };

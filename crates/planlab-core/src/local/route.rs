@@ -33,27 +33,37 @@ pub struct Route {
 }
 
 /// Nearest cell to `p` that `grid` has free, searching rings of growing
-/// size up to `max_ring` cells; `p` itself when it is free.
+/// size up to `max_ring` cells; `p` itself when it is free. Each ring walks
+/// only its border, and no ring goes past the grid's larger side (beyond
+/// it every cell is off the grid), so the work is bounded by the map, not
+/// by `max_ring`.
 pub(crate) fn snap(grid: &PlanGrid, p: GridPos, max_ring: i64) -> Option<GridPos> {
     if grid.is_free(p.col as i64, p.row as i64) {
         return Some(p);
     }
     let (c0, r0) = (p.col as i64, p.row as i64);
-    for ring in 1..=max_ring {
+    let span = grid.width().max(grid.height()) as i64;
+    for ring in 1..=max_ring.min(span) {
         let mut best: Option<(i64, GridPos)> = None;
+        let mut visit = |dc: i64, dr: i64| {
+            let (c, r) = (c0 + dc, r0 + dr);
+            if c >= 0 && r >= 0 && grid.is_free(c, r) {
+                let d2 = dc * dc + dr * dr;
+                // Fixed scan order (rows, then columns) breaks ties
+                // deterministically.
+                if best.map_or(true, |(b, _)| d2 < b) {
+                    best = Some((d2, GridPos::new(c as u32, r as u32)));
+                }
+            }
+        };
         for dr in -ring..=ring {
-            for dc in -ring..=ring {
-                if dr.abs() != ring && dc.abs() != ring {
-                    continue;
+            if dr.abs() == ring {
+                for dc in -ring..=ring {
+                    visit(dc, dr);
                 }
-                let (c, r) = (c0 + dc, r0 + dr);
-                if c >= 0 && r >= 0 && grid.is_free(c, r) {
-                    let d2 = dc * dc + dr * dr;
-                    // Fixed scan order breaks ties deterministically.
-                    if best.map_or(true, |(b, _)| d2 < b) {
-                        best = Some((d2, GridPos::new(c as u32, r as u32)));
-                    }
-                }
+            } else {
+                visit(-ring, dr);
+                visit(ring, dr);
             }
         }
         if let Some((_, q)) = best {
@@ -129,6 +139,60 @@ pub(crate) fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
 mod tests {
     use super::super::testkit;
     use super::*;
+
+    /// The nearest free cell by scanning every ring's whole square (the
+    /// reference the border walk must agree with, ties included).
+    fn snap_by_squares(grid: &PlanGrid, p: GridPos, max_ring: i64) -> Option<GridPos> {
+        if grid.is_free(p.col as i64, p.row as i64) {
+            return Some(p);
+        }
+        let (c0, r0) = (p.col as i64, p.row as i64);
+        for ring in 1..=max_ring {
+            let mut best: Option<(i64, GridPos)> = None;
+            for dr in -ring..=ring {
+                for dc in -ring..=ring {
+                    let (c, r) = (c0 + dc, r0 + dr);
+                    let on_border = dr.abs() == ring || dc.abs() == ring;
+                    if on_border && c >= 0 && r >= 0 && grid.is_free(c, r) {
+                        let d2 = dc * dc + dr * dr;
+                        if best.map_or(true, |(b, _)| d2 < b) {
+                            best = Some((d2, GridPos::new(c as u32, r as u32)));
+                        }
+                    }
+                }
+            }
+            if let Some((_, q)) = best {
+                return Some(q);
+            }
+        }
+        None
+    }
+
+    #[test]
+    fn snap_walks_ring_borders_and_agrees_with_the_square_scan_ties_included() {
+        // Free cells on a sparse lattice: many equidistant candidates.
+        let grid = PlanGrid::from_fn(23, 17, |c, r| (c * 7 + r * 3) % 11 == 0);
+        for c in 0..23u32 {
+            for r in 0..17u32 {
+                let p = GridPos::new(c, r);
+                assert_eq!(snap(&grid, p, 30), snap_by_squares(&grid, p, 30), "{p:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn snap_with_a_huge_ring_on_a_blocked_map_stops_at_the_map_edge() {
+        // An inflation of 10⁶ m makes the ring 10⁸ cells: the search must be
+        // bounded by the map, not by the ring (it once scanned every ring's
+        // whole square: cubic, and never ended).
+        let grid = PlanGrid::from_fn(40, 30, |_, _| false);
+        assert_eq!(snap(&grid, GridPos::new(5, 5), 100_000_000), None);
+        let grid = PlanGrid::from_fn(40, 30, |c, r| c == 39 && r == 29);
+        assert_eq!(
+            snap(&grid, GridPos::new(0, 0), 100_000_000),
+            Some(GridPos::new(39, 29))
+        );
+    }
 
     #[test]
     fn key_points_route_around_a_wall_and_end_at_the_exact_goal() {
