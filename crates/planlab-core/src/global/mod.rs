@@ -278,8 +278,10 @@ pub struct PlanGrid {
     /// (width + 2) × (height + 2); `true` = passable.
     free: Vec<bool>,
     /// The same bitmap packed 64 cells a word, by rows and by columns, with
-    /// the stop masks of Jump Point Search; kept in step with `free`.
-    lines: search::LineBits,
+    /// the stop masks of Jump Point Search; built on JPS's first use (most
+    /// grids, e.g. the ones planners build every replan, never need it) and
+    /// then kept in step with `free`.
+    lines: std::sync::OnceLock<search::LineBits>,
 }
 
 impl PlanGrid {
@@ -300,20 +302,20 @@ impl PlanGrid {
                 free[(r + 1) * stride + c + 1] = f(c, r);
             }
         }
-        let lines = search::LineBits::new(&free, stride, height + 2);
         Self {
             width,
             height,
             stride,
             free,
-            lines,
+            lines: std::sync::OnceLock::new(),
         }
     }
 
     /// The bit-packed rows and columns (see [`search::LineBits`]).
     #[inline]
     pub(crate) fn lines(&self) -> &search::LineBits {
-        &self.lines
+        self.lines
+            .get_or_init(|| search::LineBits::new(&self.free, self.stride, self.height + 2))
     }
 
     /// Width in cells.
@@ -341,7 +343,9 @@ impl PlanGrid {
     pub fn set_free(&mut self, col: usize, row: usize, free: bool) {
         if col < self.width && row < self.height {
             self.free[(row + 1) * self.stride + col + 1] = free;
-            self.lines.set(col + 1, row + 1, free);
+            if let Some(lines) = self.lines.get_mut() {
+                lines.set(col + 1, row + 1, free);
+            }
         }
     }
 
