@@ -221,3 +221,30 @@ fn a_collision_is_seen_when_the_scans_had_marked_what_was_hit() {
         assert_eq!(r.collision_seen, None);
     }
 }
+
+#[test]
+fn the_readme_tables_runs_replay_to_their_trace_hashes() {
+    // docs/barn-runs-seed0.csv holds every run of the README's BARN table;
+    // a change to a planner or the simulation that alters them must come
+    // with a new sweep. One short successful run of each planner is
+    // replayed (columns: world, difficulty, planner, run, seed, outcome,
+    // time_s, …, trace_hash at 10).
+    let text = include_str!("../../../docs/barn-runs-seed0.csv");
+    let mut checked = std::collections::BTreeSet::new();
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let (planner, outcome, time) = (f[2], f[5], f[6].parse::<f64>().unwrap());
+        if outcome != "reached" || time > 25.0 || checked.contains(planner) {
+            continue;
+        }
+        let (id, run, seed) = (
+            f[0].parse().unwrap(),
+            f[3].parse().unwrap(),
+            f[4].parse().unwrap(),
+        );
+        let r = run::run_one(&world(id), planner, run, seed, &BarnOptions::default()).unwrap();
+        assert_eq!(format!("{:016x}", r.trace_hash), f[10], "{line}");
+        checked.insert(planner);
+    }
+    assert_eq!(checked.len(), run::PLANNERS.len(), "{checked:?}");
+}
