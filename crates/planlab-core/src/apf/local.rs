@@ -335,7 +335,29 @@ impl LocalPlanner for ApfLocal {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::barn::run::jackal;
+    use crate::world::{Drive, RobotLimits};
+
+    /// A Jackal-like rectangle (0.42 × 0.33 m, 4 rad/s, 25 rad/s²) — built
+    /// here, as `apf` sits below the BARN layer.
+    fn jackal() -> RobotSpec {
+        RobotSpec {
+            drive: Drive::Differential,
+            footprint: Footprint::Rectangle {
+                length: 0.42,
+                width: 0.33,
+            },
+            limits: RobotLimits {
+                v_max: 2.0,
+                v_min: -0.1,
+                vy_max: 0.0,
+                w_max: 4.0,
+                acc_v: 20.0,
+                acc_vy: 0.0,
+                acc_w: 25.0,
+            },
+            wheel_base: 0.37559,
+        }
+    }
     use crate::map::{Cell, OccupancyGrid, Pose2};
 
     #[test]
