@@ -16,19 +16,20 @@
 //!   buffer);
 //! - time and connection limits, see [`Limits`].
 
+use std::collections::HashMap;
 use std::convert::Infallible;
 use std::future::Future;
 use std::io;
 use std::net::{SocketAddr, ToSocketAddrs};
 use std::path::{Component, Path, PathBuf};
 use std::pin::Pin;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 use std::task::{Context, Poll};
 use std::time::Duration;
 
 use bytes::Bytes;
 use http_body_util::{combinators::UnsyncBoxBody, BodyExt, Full};
-use hyper::body::Incoming;
+use hyper::body::{Body as HttpBody, Frame, Incoming, SizeHint};
 use hyper::header::{self, HeaderValue};
 use hyper::server::conn::http1;
 use hyper::service::service_fn;
@@ -36,7 +37,7 @@ use hyper::{Method, Request, Response, StatusCode};
 use hyper_util::rt::{TokioIo, TokioTimer};
 use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
 use tokio::net::TcpStream;
-use tokio::sync::Semaphore;
+use tokio::sync::{Notify, OwnedSemaphorePermit, Semaphore, TryAcquireError};
 use tokio::time::Sleep;
 use tower_http::services::ServeFile;
 
@@ -59,9 +60,12 @@ pub struct Limits {
     /// Longest a response write may make no progress (a client that stopped
     /// reading) before the connection is dropped. Default 15 s.
     pub write_timeout: Duration,
-    /// Connections served at once; further ones wait in the listen backlog
-    /// until a slot frees, which the two timeouts bound. Default 64 (a
-    /// browser opens about 6 per host).
+    /// Connections served at once. When every slot is taken, one more
+    /// connection is accepted and the one idle longest (no request head yet,
+    /// or between requests) is closed to make room for it, or the next to
+    /// fall idle when none is; further ones wait in the listen backlog.
+    /// So idle sockets cannot hold a request back until their header
+    /// timeout. Default 64 (a browser opens about 6 per host).
     pub max_connections: usize,
 }
 
@@ -397,6 +401,203 @@ impl AsyncWrite for StallGuard {
     }
 }
 
+/// The connections being served and which of them are idle, so that a
+/// newcomer finding every slot taken can have an idle one closed
+/// ([`Conns::make_room`]).
+#[derive(Default)]
+struct Conns(Mutex<ConnTable>);
+
+#[derive(Default)]
+struct ConnTable {
+    next_id: u64,
+    /// Counts connections falling idle: an exact order, unlike a clock.
+    tick: u64,
+    live: HashMap<u64, Live>,
+    /// A newcomer waits and nothing was idle: close the next to fall idle.
+    waiting: bool,
+}
+
+struct Live {
+    /// The `tick` it last fell idle at (accepted counts); `None` while it
+    /// answers a request.
+    idle_since: Option<u64>,
+    /// Whether it has ever started answering a request.
+    answered: bool,
+    /// Whether it has been asked to close already.
+    closing: bool,
+    close: Arc<Notify>,
+}
+
+impl ConnTable {
+    fn close(&mut self, id: u64) {
+        if let Some(c) = self.live.get_mut(&id) {
+            c.closing = true;
+            c.close.notify_one();
+        }
+    }
+}
+
+impl Conns {
+    fn table(&self) -> std::sync::MutexGuard<'_, ConnTable> {
+        // Nothing panics while holding it; a poisoned table is still sound.
+        self.0.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Registers a connection just accepted (idle: no request yet).
+    fn open(self: &Arc<Self>) -> ConnMark {
+        let mut t = self.table();
+        let id = t.next_id;
+        t.next_id += 1;
+        t.tick += 1;
+        let close = Arc::new(Notify::new());
+        let live = Live {
+            idle_since: Some(t.tick),
+            answered: false,
+            closing: false,
+            close: Arc::clone(&close),
+        };
+        t.live.insert(id, live);
+        ConnMark {
+            conns: Arc::clone(self),
+            id,
+            close,
+        }
+    }
+
+    fn answering(&self, id: u64) {
+        if let Some(c) = self.table().live.get_mut(&id) {
+            c.idle_since = None;
+            c.answered = true;
+        }
+    }
+
+    fn idle(&self, id: u64) {
+        let mut t = self.table();
+        t.tick += 1;
+        let tick = t.tick;
+        let Some(c) = t.live.get_mut(&id) else {
+            return;
+        };
+        c.idle_since = Some(tick);
+        let closing = c.closing;
+        if t.waiting && !closing {
+            t.waiting = false;
+            t.close(id);
+        }
+    }
+
+    /// Every slot is taken and a newcomer waits: asks the connection idle
+    /// longest to close, or, when none is idle, the next to fall idle.
+    fn make_room(&self) {
+        let mut t = self.table();
+        let oldest = t
+            .live
+            .iter()
+            .filter(|(_, c)| !c.closing)
+            .filter_map(|(&id, c)| c.idle_since.map(|since| (since, id)))
+            .min();
+        match oldest {
+            Some((_, id)) => t.close(id),
+            None => t.waiting = true,
+        }
+    }
+
+    /// The newcomer has its slot.
+    fn room_made(&self) {
+        self.table().waiting = false;
+    }
+}
+
+/// A connection's entry in [`Conns`], removed on drop.
+struct ConnMark {
+    conns: Arc<Conns>,
+    id: u64,
+    /// Notified when the connection is to close for a newcomer.
+    close: Arc<Notify>,
+}
+
+impl ConnMark {
+    /// Marks the connection as answering a request until the returned mark
+    /// drops.
+    fn answering(&self) -> Answering {
+        self.conns.answering(self.id);
+        Answering {
+            conns: Arc::clone(&self.conns),
+            id: self.id,
+        }
+    }
+
+    fn ever_answered(&self) -> bool {
+        self.conns
+            .table()
+            .live
+            .get(&self.id)
+            .is_some_and(|c| c.answered)
+    }
+}
+
+impl Drop for ConnMark {
+    fn drop(&mut self) {
+        self.conns.table().live.remove(&self.id);
+    }
+}
+
+/// Its connection answers a request while this lives; it rides in the
+/// response body, which hyper drops once the body is written (or the
+/// connection ends).
+struct Answering {
+    conns: Arc<Conns>,
+    id: u64,
+}
+
+impl Drop for Answering {
+    fn drop(&mut self) {
+        self.conns.idle(self.id);
+    }
+}
+
+/// A response body carrying its connection's [`Answering`] mark.
+struct Marked {
+    body: Body,
+    _answering: Answering,
+}
+
+impl HttpBody for Marked {
+    type Data = Bytes;
+    type Error = io::Error;
+
+    fn poll_frame(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+    ) -> Poll<Option<Result<Frame<Bytes>, io::Error>>> {
+        Pin::new(&mut self.body).poll_frame(cx)
+    }
+
+    fn is_end_stream(&self) -> bool {
+        self.body.is_end_stream()
+    }
+
+    fn size_hint(&self) -> SizeHint {
+        self.body.size_hint()
+    }
+}
+
+/// A slot for a connection accepted while every slot was taken: an idle
+/// connection is asked to make room ([`Conns::make_room`]). `None` when the
+/// server is shutting down.
+async fn slot_for_newcomer(slots: &Arc<Semaphore>, conns: &Conns) -> Option<OwnedSemaphorePermit> {
+    let slot = match Arc::clone(slots).try_acquire_owned() {
+        Ok(slot) => slot,
+        Err(TryAcquireError::Closed) => return None,
+        Err(TryAcquireError::NoPermits) => {
+            conns.make_room();
+            Arc::clone(slots).acquire_owned().await.ok()?
+        }
+    };
+    conns.room_made();
+    Some(slot)
+}
+
 /// The addresses `host:port` names, all of them loopback, or an error.
 fn loopback_addrs(host: &str, port: u16) -> Result<Vec<SocketAddr>, String> {
     let addrs: Vec<SocketAddr> = (host, port)
@@ -422,10 +623,15 @@ async fn run(root: PathBuf, addrs: Vec<SocketAddr>, limits: Limits) -> Result<()
     outln!("serving {} on http://{addr}/", root.display());
     let root = Arc::new(root);
     let slots = Arc::new(Semaphore::new(limits.max_connections));
+    let conns = Arc::new(Conns::default());
     loop {
-        // Take a slot before accepting, so extra clients wait in the backlog.
-        let Ok(slot) = Arc::clone(&slots).acquire_owned().await else {
-            return Ok(());
+        // Take a free slot before accepting. With none free, accept one
+        // client anyway, to close an idle connection for it; the rest wait
+        // in the backlog.
+        let free = match Arc::clone(&slots).try_acquire_owned() {
+            Ok(slot) => Some(slot),
+            Err(TryAcquireError::NoPermits) => None,
+            Err(TryAcquireError::Closed) => return Ok(()),
         };
         let stream = match listener.accept().await {
             Ok((s, _)) => s,
@@ -436,20 +642,62 @@ async fn run(root: PathBuf, addrs: Vec<SocketAddr>, limits: Limits) -> Result<()
                 continue;
             }
         };
+        let slot = match free {
+            Some(slot) => slot,
+            None => match slot_for_newcomer(&slots, &conns).await {
+                Some(slot) => slot,
+                None => return Ok(()),
+            },
+        };
         let _ = stream.set_nodelay(true);
         let io = TokioIo::new(StallGuard {
             inner: stream,
             limit: limits.write_timeout,
             stalled: None,
         });
-        let root = Arc::clone(&root);
+        let mark = Arc::new(conns.open());
+        let service = {
+            let (root, mark) = (Arc::clone(&root), Arc::clone(&mark));
+            service_fn(move |req| {
+                let answering = mark.answering();
+                let root = Arc::clone(&root);
+                async move {
+                    let res = handle(req, root).await?;
+                    Ok::<_, Infallible>(res.map(|body| Marked {
+                        body,
+                        _answering: answering,
+                    }))
+                }
+            })
+        };
         let conn = http1::Builder::new()
             .timer(TokioTimer::new())
             .header_read_timeout(limits.header_timeout)
-            .serve_connection(io, service_fn(move |req| handle(req, Arc::clone(&root))));
+            .serve_connection(io, service);
         tokio::spawn(async move {
-            // Timeouts and hang-ups end connections; nothing to report.
-            let _ = conn.await;
+            {
+                let mut conn = std::pin::pin!(conn);
+                let mut to_close = std::pin::pin!(mark.close.notified());
+                // Served to its end (timeouts and hang-ups included: nothing
+                // to report), or asked to close for a newcomer.
+                let asked = std::future::poll_fn(|cx| {
+                    if conn.as_mut().poll(cx).is_ready() {
+                        return Poll::Ready(false);
+                    }
+                    to_close.as_mut().poll(cx).map(|()| true)
+                })
+                .await;
+                // Never answered: no response to finish, and a half-sent head
+                // would keep hyper waiting, so it is dropped. Otherwise hyper
+                // closes it: at once between requests, else after the
+                // response.
+                if asked && mark.ever_answered() {
+                    conn.as_mut().graceful_shutdown();
+                    let _ = conn.await;
+                }
+            }
+            // The socket is closed; its entry goes before its slot.
+            drop(mark);
             drop(slot);
         });
     }

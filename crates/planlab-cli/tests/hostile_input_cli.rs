@@ -566,3 +566,17 @@ fn scenario_names_are_printed_with_control_characters_escaped() {
         );
     }
 }
+
+#[test]
+fn a_set_path_deeper_than_the_limit_is_refused_in_one_line() {
+    // Before: 0.8 GB and a "recursion limit exceeded" at a line of a text
+    // the user never saw.
+    let demo = asset("scenarios/dwa-demo.json");
+    let deep = format!("{}=1", vec!["a"; 20_000].join("."));
+    let e = error_line(&planlab(&["run", &demo, "--set", &deep]), 1);
+    assert!(
+        e.contains("the path has 20000 names; at most 64 are allowed"),
+        "{e}"
+    );
+    assert!(e.len() < 300, "{e}");
+}

@@ -404,9 +404,20 @@ fn client_that_never_reads_blocks_no_one_and_is_dropped() {
 
 #[test]
 fn connections_over_the_cap_wait_for_a_slot() {
-    let srv = Server::start(&site("cap"), &[("PLANLAB_SERVE_MAX_CONNECTIONS", "2")]);
-    let idle1 = srv.connect();
-    let _idle2 = srv.connect();
+    // Both slots answer a download their clients do not read: busy, so
+    // neither is closed for a newcomer, which waits for one to end.
+    let root = site("cap");
+    std::fs::write(root.join("big.bin"), vec![7u8; BIG]).unwrap();
+    let srv = Server::start(&root, &[("PLANLAB_SERVE_MAX_CONNECTIONS", "2")]);
+    let mut busy = [srv.connect(), srv.connect()];
+    for b in &mut busy {
+        b.write_all(b"GET /big.bin HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+            .unwrap();
+        // The answer has begun: the server holds the request, not a head.
+        let mut first = [0u8; 12];
+        b.read_exact(&mut first).unwrap();
+        assert_eq!(&first, b"HTTP/1.1 200");
+    }
     let mut c = srv.connect();
     c.write_all(b"GET /data.json HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n")
         .unwrap();
@@ -417,11 +428,87 @@ fn connections_over_the_cap_wait_for_a_slot() {
         matches!(&r, Err(e) if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut)),
         "answered while both slots were taken: {r:?}"
     );
-    drop(idle1);
+    let [stopped, _still] = busy;
+    drop(stopped);
     c.set_read_timeout(Some(Duration::from_secs(3))).unwrap();
     let mut out = Vec::new();
     c.read_to_end(&mut out).unwrap();
     assert_eq!(Reply::parse(&out).status, 200);
+    drop(srv);
+    let _ = std::fs::remove_file(root.join("big.bin"));
+}
+
+/// Reads one reply on a kept-alive connection: the head, then as many body
+/// bytes as its Content-Length says.
+fn read_reply(s: &mut TcpStream) -> std::io::Result<Reply> {
+    let mut got = Vec::new();
+    let mut buf = [0u8; 1024];
+    loop {
+        if let Some(end) = got.windows(4).position(|w| w == b"\r\n\r\n") {
+            let head = Reply::parse(&got[..end + 4]);
+            let len: usize = head.header("content-length").unwrap().parse().unwrap();
+            if got.len() >= end + 4 + len {
+                return Ok(Reply::parse(&got));
+            }
+        }
+        let n = s.read(&mut buf)?;
+        if n == 0 {
+            return Err(ErrorKind::UnexpectedEof.into());
+        }
+        got.extend_from_slice(&buf[..n]);
+    }
+}
+
+#[test]
+fn idle_connections_holding_every_slot_are_closed_for_a_request() {
+    // Before: a request behind idle connections holding every slot waited
+    // for one's header timeout, here a minute, far past the 5 s reads.
+    let srv = Server::start(
+        &site("shed"),
+        &[
+            ("PLANLAB_SERVE_MAX_CONNECTIONS", "4"),
+            ("PLANLAB_SERVE_HEADER_TIMEOUT_MS", "60000"),
+        ],
+    );
+    let get = b"GET /data.json HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
+    // Idle longest first: silent since connected, half a request head, kept
+    // alive after an answered request, silent.
+    let mut silent = srv.connect();
+    let mut half = srv.connect();
+    half.write_all(b"GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+        .unwrap();
+    let mut kept = srv.connect();
+    kept.write_all(get).unwrap();
+    assert_eq!(read_reply(&mut kept).unwrap().status, 200);
+    let mut newest = srv.connect();
+    // Each request finds every slot taken (the one before it stays open),
+    // and the connection idle longest is closed for it.
+    let mut served = Vec::new();
+    for (name, idle) in [
+        ("silent", &mut silent),
+        ("half head", &mut half),
+        ("kept alive", &mut kept),
+    ] {
+        let mut c = srv.connect();
+        c.write_all(get).unwrap();
+        let reply = read_reply(&mut c).unwrap_or_else(|e| {
+            panic!("no answer while idle connections held every slot ({name} is oldest): {e}")
+        });
+        assert_eq!(reply.status, 200);
+        assert_eq!(reply.body, b"{}");
+        let r = idle.read(&mut [0u8; 64]);
+        assert!(closed(&r), "{name}: not closed for the request: {r:?}");
+        served.push(c);
+    }
+    // Only as many as were needed: the newest idle one is still open.
+    newest
+        .set_read_timeout(Some(Duration::from_millis(300)))
+        .unwrap();
+    let r = newest.read(&mut [0u8; 64]);
+    assert!(
+        matches!(&r, Err(e) if matches!(e.kind(), ErrorKind::WouldBlock | ErrorKind::TimedOut)),
+        "the newest idle connection was closed too: {r:?}"
+    );
 }
 
 #[test]

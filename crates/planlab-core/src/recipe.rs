@@ -391,6 +391,30 @@ mod tests {
         );
     }
 
+    #[test]
+    fn ten_thousand_set_edits_apply_to_one_tree_in_order() {
+        // Half the edits add a field each, half rewrite the same field: all
+        // land in the one tree, and the last write of a field wins.
+        let mut set = Vec::new();
+        for i in 0..5_000 {
+            set.push((format!("local_planner.config.k{i}"), i.to_string()));
+            set.push(("sim.dt".to_string(), format!("0.0{}", 1 + i % 9)));
+        }
+        let r = Recipe {
+            set,
+            ..Recipe::default()
+        };
+        let s = robot(&r, ROBOT);
+        let config = s.local_planner.unwrap().config;
+        let config = config.as_object().unwrap();
+        assert_eq!(config.len(), 5_000);
+        for i in 0..5_000 {
+            assert_eq!(config[&format!("k{i}")], serde_json::json!(i), "k{i}");
+        }
+        // 4999 % 9 = 4: the last dt written is 0.05.
+        assert_eq!(s.sim.unwrap().dt, 0.05);
+    }
+
     /// The arm scenario parsed from `text`, then `p` applied to the parsed
     /// config: what `planlab run --planner` and Python did before the
     /// recipe.

@@ -6,7 +6,7 @@
 use planlab_core::map::io::ros;
 use planlab_core::metrics::{resample, MAX_RESAMPLE_POINTS};
 use planlab_core::num::fmt_num;
-use planlab_core::scenario::{set_json_path, Scenario};
+use planlab_core::scenario::{set_json_path, Scenario, SET_PATH_MAX_NAMES};
 use planlab_core::sim::Episode;
 use std::time::Instant;
 
@@ -256,4 +256,31 @@ fn every_numeric_planner_field_at_its_largest_allowed_value_ends_a_short_run() {
     }
     // Not vacuous: most fields at their bound make a planner that runs.
     assert!(tried > 200 && ran * 2 > tried, "{ran} of {tried} ran");
+}
+
+#[test]
+fn a_set_path_deeper_than_the_limit_is_refused_in_one_line() {
+    // Before: `a.a.a…` 20 000 names deep built a tree as deep, and reading
+    // it printed every level indented (0.8 GB) before failing.
+    let deep = vec!["a"; 20_000].join(".");
+    let e = edited(&[(&deep, "1")]).unwrap_err();
+    assert!(
+        e.contains("the path has 20000 names; at most 64 are allowed"),
+        "{e}"
+    );
+    assert!(!e.contains('\n') && e.len() < 200, "{e}");
+    // The limit itself is allowed, one more is not, and a refused edit
+    // leaves the tree as it was.
+    assert_eq!(SET_PATH_MAX_NAMES, 64);
+    let path = |n: usize| vec!["a"; n].join(".");
+    let mut tree: serde_json::Value = serde_json::from_str(DWA_DEMO).unwrap();
+    let before = tree.clone();
+    let e = set_json_path(&mut tree, &path(65), "1").unwrap_err();
+    assert!(e.to_string().contains("65 names; at most 64"), "{e}");
+    assert_eq!(tree, before);
+    set_json_path(&mut tree, &path(64), "1").unwrap();
+    assert_eq!(
+        tree.pointer(&format!("/{}", path(64).replace('.', "/"))),
+        Some(&1.into())
+    );
 }

@@ -8,7 +8,7 @@ use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::{MapError, OccupancyGrid};
 use planlab_core::metrics::{EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
 use planlab_core::scenario::{
-    default_endpoints, MapSpec, Scenario, ScenarioError, ENDPOINT_MARGIN_M,
+    default_endpoints, set_json_path, MapSpec, Scenario, ScenarioError, ENDPOINT_MARGIN_M,
 };
 use planlab_core::sim::{Episode, Outcome};
 use planlab_core::world::{MoverSpec, Placement, RobotSpec, StaticMap};
@@ -258,4 +258,48 @@ fn metrics_csv_holds_the_run_metrics() {
         get("max_turn_step_rad").parse::<f64>().unwrap(),
         m.max_turn_step_rad
     );
+}
+
+#[test]
+fn a_tree_reads_as_its_text_does() {
+    // `from_value` reads an edited tree directly, not its pretty print: the
+    // same scenario for every robot and APF preset, and for a tree that
+    // does not read, the message its print gives (line numbers included).
+    let mut presets = 0;
+    for entry in std::fs::read_dir(ASSETS).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().and_then(|e| e.to_str()) != Some("json") {
+            continue;
+        }
+        let text = String::from_utf8(read(path.to_str().unwrap())).unwrap();
+        let tree: serde_json::Value = serde_json::from_str(&text).unwrap();
+        if tree.get("arm").is_some() {
+            continue;
+        }
+        let from_text = Scenario::from_json(&text).unwrap();
+        assert_eq!(
+            Scenario::from_value(&tree).unwrap(),
+            from_text,
+            "{}",
+            path.display()
+        );
+        presets += 1;
+    }
+    assert!(presets > 10, "{presets} presets");
+    let demo = String::from_utf8(read(&format!("{ASSETS}/dwa-demo.json"))).unwrap();
+    for (path, value) in [
+        ("sim.dt", "-1"),
+        ("sim.dt", "\"fast\""),
+        ("sim.dtt", "0.1"),
+        ("start.col", "1.5"),
+        ("movers.0.radius", "[1]"),
+        ("version", "2"),
+        ("goal.col", "100000"),
+    ] {
+        let mut tree: serde_json::Value = serde_json::from_str(&demo).unwrap();
+        set_json_path(&mut tree, path, value).unwrap();
+        let printed = Scenario::from_json(&serde_json::to_string_pretty(&tree).unwrap());
+        let e = Scenario::from_value(&tree).expect_err(path).to_string();
+        assert_eq!(e, printed.expect_err(path).to_string(), "{path}={value}");
+    }
 }

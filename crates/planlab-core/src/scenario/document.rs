@@ -136,19 +136,32 @@ pub struct Scenario {
     pub perception: Option<crate::sim::PerceptionSpec>,
 }
 
+/// Most names in a [`set_json_path`] path. No scenario field is nested
+/// more than 6 deep (`movers.0.motion.points.0.0`); the bound keeps a
+/// hostile path (`a.a.a…` 20 000 deep) from building a tree as deep.
+pub const SET_PATH_MAX_NAMES: usize = 64;
+
 /// Sets the value at dotted `path` (`sim.dt`, `movers.0.radius`) in a
 /// scenario's JSON tree, before it is parsed: what `planlab run --set` and
 /// the reproduction presets use. `value` is parsed as JSON (`0.5`, `true`,
 /// `{"k": 1}`, `[1, 2]`), else taken as a string (`astar`). Missing object
-/// keys along the way are created; array indices must exist. Errors name
-/// the path.
+/// keys along the way are created; array indices must exist; a path has at
+/// most [`SET_PATH_MAX_NAMES`] names. Errors name the path (its start, when
+/// it is long).
 pub fn set_json_path(
     root: &mut serde_json::Value,
     path: &str,
     value: &str,
 ) -> Result<(), ScenarioError> {
     use serde_json::Value;
-    let bad = |why: String| ScenarioError::Invalid(format!("--set {path}: {why}"));
+    let shown = abbreviated(path);
+    let bad = |why: String| ScenarioError::Invalid(format!("--set {shown}: {why}"));
+    let names = path.split('.').count();
+    if names > SET_PATH_MAX_NAMES {
+        return Err(bad(format!(
+            "the path has {names} names; at most {SET_PATH_MAX_NAMES} are allowed"
+        )));
+    }
     let parts: Vec<&str> = path.split('.').collect();
     if path.is_empty() || parts.iter().any(|p| p.is_empty()) {
         return Err(bad(
@@ -212,6 +225,20 @@ pub fn set_json_path(
         done.push_str(part);
     }
     Ok(())
+}
+
+/// `path` for an error message: whole up to 80 bytes, else its start and `…`
+/// (an argument can be megabytes long; a message stays one short line).
+fn abbreviated(path: &str) -> std::borrow::Cow<'_, str> {
+    const MAX: usize = 80;
+    if path.len() <= MAX {
+        return path.into();
+    }
+    let mut end = MAX;
+    while !path.is_char_boundary(end) {
+        end -= 1;
+    }
+    format!("{}…", &path[..end]).into()
 }
 
 /// Chooses local planner `name` in a scenario's JSON tree: its config is
@@ -319,15 +346,14 @@ fn json_path_at(text: &str, line: usize, column: usize) -> String {
     path
 }
 
-/// Refuses fields the typed parse ignored. Sections defined elsewhere (the
-/// planner options) need not opt into `deny_unknown_fields`: every key of the
-/// input must reappear when the parsed scenario is written back, otherwise
-/// it was not read. Reports the dotted path and the line of the key.
-fn check_no_unknown_fields(
-    text: &str,
+/// The first field the typed parse ignored, as its dotted path and what is
+/// wrong with it. Sections defined elsewhere (the planner options) need not
+/// opt into `deny_unknown_fields`: every key of the input must reappear when
+/// the parsed scenario is written back, otherwise it was not read.
+fn unread_field(
     input: &serde_json::Value,
     parsed: &Scenario,
-) -> Result<(), ScenarioError> {
+) -> Result<Option<(String, &'static str)>, ScenarioError> {
     use serde_json::Value;
     /// The dotted path of the first problem and what it is.
     fn walk(input: &Value, known: &Value, path: &str) -> Option<(String, &'static str)> {
@@ -357,7 +383,17 @@ fn check_no_unknown_fields(
         }
     }
     let known = serde_json::to_value(parsed)?;
-    let Some((path, what)) = walk(input, &known, "") else {
+    Ok(walk(input, &known, ""))
+}
+
+/// Refuses fields the typed parse ignored ([`unread_field`]), reporting the
+/// dotted path and the line of the key in `text`.
+fn check_no_unknown_fields(
+    text: &str,
+    input: &serde_json::Value,
+    parsed: &Scenario,
+) -> Result<(), ScenarioError> {
+    let Some((path, what)) = unread_field(input, parsed)? else {
         return Ok(());
     };
     let key = path.rsplit('.').next().unwrap_or(&path);
@@ -478,8 +514,26 @@ impl Scenario {
 
     /// Reads a scenario from an already parsed JSON tree (after
     /// [`set_json_path`] edits), with the same checks and messages as
-    /// [`Scenario::from_json`].
+    /// [`Scenario::from_json`]; a message with a line points at the tree's
+    /// pretty print.
     pub fn from_value(value: &serde_json::Value) -> Result<Scenario, ScenarioError> {
+        // Straight from the tree when it reads cleanly: printing it and
+        // parsing the text again costs time and memory on every run (the
+        // floats come out the same: serde_json's `float_roundtrip`). Only a
+        // document that does not parse is printed, once, for a message that
+        // names its line.
+        let version_ok = !matches!(
+            value.get("version").and_then(serde_json::Value::as_u64),
+            Some(v) if v != u64::from(SCENARIO_VERSION)
+        );
+        if value.is_object() && version_ok {
+            if let Ok(s) = Scenario::deserialize(value) {
+                if unread_field(value, &s)?.is_none() {
+                    s.validate()?;
+                    return Ok(s);
+                }
+            }
+        }
         Scenario::from_json(&serde_json::to_string_pretty(value)?)
     }
 

@@ -36,6 +36,7 @@ pub use arm::{ArmScenario, ARM_SCENARIO_VERSION};
 pub use build::{default_endpoints, ENDPOINT_MARGIN_M};
 pub use document::{
     set_json_path, set_planner_name, Scenario, ScenarioPoint, WorldPoint, SCENARIO_VERSION,
+    SET_PATH_MAX_NAMES,
 };
 
 use serde_json::Value;
