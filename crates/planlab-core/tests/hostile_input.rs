@@ -284,3 +284,16 @@ fn a_set_path_deeper_than_the_limit_is_refused_in_one_line() {
         Some(&1.into())
     );
 }
+
+#[test]
+fn a_scripted_mover_sample_time_beyond_1e6_s_is_refused() {
+    // Coordinates were bounded, times were not: 10³⁰⁰ s was accepted.
+    let script = r#"{"model": "scripted", "samples": [{"t": 0, "x": 8, "y": 8}, {"t": 1e300, "x": 9, "y": 8}]}"#;
+    let e = edited(&[("movers.0.motion", script)]).unwrap_err();
+    assert!(
+        e.contains("sample 1 time 1e300 s: times must be finite, within ±1e6 s"),
+        "{e}"
+    );
+    let script = r#"{"model": "scripted", "samples": [{"t": 0, "x": 8, "y": 8}, {"t": 1e6, "x": 9, "y": 8}]}"#;
+    assert!(edited(&[("movers.0.motion", script)]).is_ok());
+}

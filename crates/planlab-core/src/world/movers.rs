@@ -119,10 +119,12 @@ impl MoverSpec {
                 }
                 for (i, s) in samples.iter().enumerate() {
                     check_point(&format!("{who} sample {i}"), [s.x, s.y])?;
-                    if !s.t.is_finite() || (i > 0 && s.t <= samples[i - 1].t) {
+                    let late = s.t.abs() > crate::num::MAX_PARAM;
+                    if !s.t.is_finite() || late || (i > 0 && s.t <= samples[i - 1].t) {
                         return Err(WorldError::InvalidParameter(format!(
-                            "{who} sample {i} time {}: times must be finite and strictly increasing",
-                            s.t
+                            "{who} sample {i} time {} s: times must be finite, within ±{} s and strictly increasing",
+                            crate::num::fmt_num(s.t),
+                            crate::num::fmt_num(crate::num::MAX_PARAM)
                         )));
                     }
                 }
