@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Installs whatever planlab's build and tests need and is missing. Idempotent:
-# every step checks first. Usage: scripts/setup.sh [--browser]
+# every step checks first. Usage: scripts/setup.sh [--browser | --serve]
 #   --browser  also install Chromium + ChromeDriver (needed by the tests only).
+#   --serve    only what building and serving the playground needs (Rust,
+#              wasm-pack, wasm-bindgen, Node's packages): no Python
+#              environment, no browser (scripts/serve.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -51,6 +54,17 @@ if [ ! -f web/node_modules/.package-lock.json ] || [ web/package-lock.json -nt w
   (cd web && npm ci --no-audit --no-fund)
 fi
 
+MODE="${1:-}"
+case "$MODE" in
+  ""|--browser|--serve) ;;
+  *) echo "setup.sh: unknown option $MODE (use --browser or --serve)" >&2; exit 2 ;;
+esac
+
+if [ "$MODE" = "--serve" ]; then
+  log "set-up for serving complete"
+  exit 0
+fi
+
 # The Python package's virtual environment: .venv at the root (git-ignored)
 # with the pinned dev requirements of crates/planlab-py; pip runs only when
 # the venv is new or the requirements file changed since the last install.
@@ -74,7 +88,7 @@ if ! cmp -s "$PY_REQ" .venv/.requirements-dev.txt; then
   cp "$PY_REQ" .venv/.requirements-dev.txt
 fi
 
-if [ "${1:-}" = "--browser" ]; then
+if [ "$MODE" = "--browser" ]; then
   if ! command -v chromium >/dev/null 2>&1 || ! command -v chromedriver >/dev/null 2>&1; then
     log "installing Chromium and ChromeDriver (Debian packages)"
     $SUDO apt-get update -qq

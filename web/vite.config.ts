@@ -1,6 +1,7 @@
 import { defineConfig, type Plugin } from 'vite';
-import { existsSync, readdirSync, readFileSync } from 'node:fs';
-import { resolve } from 'node:path';
+import { existsSync, readdirSync, readFileSync, renameSync, statSync, writeFileSync } from 'node:fs';
+import { extname, resolve } from 'node:path';
+import { brotliCompressSync, constants as zlibConstants, gzipSync } from 'node:zlib';
 import { fileURLToPath } from 'node:url';
 
 const here = fileURLToPath(new URL('.', import.meta.url));
@@ -112,10 +113,61 @@ function reproduceResults(): Plugin {
 // The served site is web/dist and nothing outside it, so the preset maps in
 // ../assets are copied in as the public dir (served at ./maps/...), and the
 // wasm module from ./pkg is bundled by Vite through its `new URL(...)` import.
+/** File types worth compressing (text and wasm; images are compressed already). */
+const COMPRESSIBLE = new Set(['.html', '.js', '.mjs', '.css', '.json', '.jsonl', '.wasm', '.svg', '.map', '.scen', '.pgm', '.yaml', '.yml', '.txt', '.md', '.world', '.csv']);
+
+/**
+ * Precompresses the built site: beside every compressible file of at least
+ * 1 KiB, `NAME.br` (brotli, quality 11) and `NAME.gz` (gzip, level 9) when
+ * they are smaller than the file. `planlab serve` sends them to browsers
+ * that accept them (tower-http's precompressed ServeFile), so a page's
+ * first load travels compressed with no work per request. Node's own zlib
+ * does the compressing: no extra dependency.
+ */
+function precompress(): Plugin {
+  let outDir = '';
+  return {
+    name: 'planlab-precompress',
+    apply: 'build',
+    configResolved(config) {
+      outDir = resolve(config.root, config.build.outDir);
+    },
+    closeBundle() {
+      const walk = (dir: string): string[] =>
+        readdirSync(dir, { withFileTypes: true }).flatMap((e) => {
+          const p = resolve(dir, e.name);
+          return e.isDirectory() ? walk(p) : e.isFile() ? [p] : [];
+        });
+      let before = 0;
+      let after = 0;
+      for (const file of walk(outDir)) {
+        if (!COMPRESSIBLE.has(extname(file).toLowerCase()) || statSync(file).size < 1024) continue;
+        const body = readFileSync(file);
+        const br = brotliCompressSync(body, {
+          params: {
+            [zlibConstants.BROTLI_PARAM_QUALITY]: 11,
+            [zlibConstants.BROTLI_PARAM_SIZE_HINT]: body.length,
+          },
+        });
+        const gz = gzipSync(body, { level: 9 });
+        for (const [ext, packed] of [['.br', br], ['.gz', gz]] as const) {
+          if (packed.length >= body.length) continue;
+          // Written whole, then renamed: a server never sends half a file.
+          writeFileSync(file + ext + '.tmp', packed);
+          renameSync(file + ext + '.tmp', file + ext);
+        }
+        before += body.length;
+        after += Math.min(body.length, br.length);
+      }
+      console.log(`precompressed ${(before / 1e6).toFixed(2)} MB to ${(after / 1e6).toFixed(2)} MB (brotli)`);
+    },
+  };
+}
+
 export default defineConfig({
   base: './',
   publicDir: resolve(here, '../assets'),
-  plugins: [robotPresets(), gallery(), reproduceResults()],
+  plugins: [robotPresets(), gallery(), reproduceResults(), precompress()],
   build: {
     outDir: 'dist',
     emptyOutDir: true,

@@ -1,8 +1,9 @@
 // First-load size of the built pages: what a browser actually transfers when
 // it opens a page with an empty cache, from Playwright's network events.
 // Shared by tests/e2e/size.test.mjs (the bar) and scripts/bench-browser.mjs
-// (the report). Sizes are the uncompressed bodies (the response body as
-// the page sees it); the static server compresses nothing anyway.
+// (the report). `bytes` are the decoded bodies (what the page sees), `sent`
+// what travelled on the wire: `planlab serve` sends the build's .br/.gz
+// twins to a browser that accepts them.
 
 import fs from 'node:fs';
 import path from 'node:path';
@@ -37,8 +38,9 @@ function kindOf(url, contentType) {
  * Opens `page` (a file name under web/dist) in a fresh browser page with the
  * cache disabled, waits until the network is idle, and sums the bodies of
  * every response by kind. Returns
- * `{ page, wasm, js, css, html, other, firstLoad, files: [{url, kind, bytes}] }`
- * where `firstLoad = wasm + js + css` (bytes).
+ * `{ page, wasm, js, css, html, other, firstLoad, sentFirstLoad, files:
+ * [{url, kind, bytes, sent, encoding}] }` where `firstLoad = wasm + js +
+ * css` (decoded bytes) and `sentFirstLoad` the same files' wire bytes.
  */
 export async function measureFirstLoad(session, page) {
   const tab = await session.context.newPage();
@@ -60,7 +62,22 @@ export async function measureFirstLoad(session, page) {
           const rel = decodeURIComponent(new URL(url).pathname).replace(/^\/+/, '') || 'index.html';
           bytes = fs.statSync(path.join(DIST, rel)).size;
         }
-        files.push({ url: url.slice(session.base.length), kind, bytes });
+        const encoding = r.headers()['content-encoding'] ?? null;
+        // Wire size of the body (compressed when it travelled so). Chromium
+        // reports 0 for a body another tab already fetched; that body is
+        // the file's twin for its encoding, so its size is read on disk.
+        const twin = () => {
+          const rel = decodeURIComponent(new URL(url).pathname).replace(/^\/+/, '') || 'index.html';
+          const ext = { br: '.br', gzip: '.gz' }[encoding] ?? '';
+          return fs.statSync(path.join(DIST, rel + ext)).size;
+        };
+        const reported = await r
+          .request()
+          .sizes()
+          .then((z) => z.responseBodySize)
+          .catch(() => 0);
+        const sent = reported > 0 ? reported : twin();
+        files.push({ url: url.slice(session.base.length), kind, bytes, sent, encoding });
       })(),
     );
   });
@@ -71,6 +88,7 @@ export async function measureFirstLoad(session, page) {
   const sum = (k) => files.filter((f) => f.kind === k).reduce((a, f) => a + f.bytes, 0);
   const out = { page, wasm: sum('wasm'), js: sum('js'), css: sum('css'), html: sum('html'), other: sum('other') };
   out.firstLoad = out.wasm + out.js + out.css;
+  out.sentFirstLoad = files.filter((f) => ['wasm', 'js', 'css'].includes(f.kind)).reduce((a, f) => a + f.sent, 0);
   out.files = files.sort((a, b) => b.bytes - a.bytes);
   return out;
 }

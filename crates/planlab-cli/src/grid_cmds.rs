@@ -4,11 +4,12 @@ use crate::load;
 use planlab_core::global::plan::{
     build_planner, plan_on_map, Algorithm, GridPlanError, GridPlanOptions,
 };
+use planlab_core::global::posthoc::{posthoc_trace, PosthocError, DEFAULT_EVENT_LIMIT};
 use planlab_core::global::{GridPos, PlanError, PlanGrid};
 use planlab_core::map::io::movingai;
 use planlab_core::map::OccupancyGrid;
 use serde_json::json;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Parses `C,R` into a cell.
@@ -126,19 +127,49 @@ pub struct PlanArgs {
     pub options: GridPlanOptions,
     /// JSON output.
     pub json: bool,
+    /// Also write the search as a Posthoc trace here.
+    pub trace_posthoc: Option<PathBuf>,
 }
 
 /// Plans once on any supported map file and prints the result.
 pub fn plan(map_path: &Path, grid: &OccupancyGrid, args: &PlanArgs) -> Result<(), String> {
-    let t = Instant::now();
-    let result = plan_on_map(grid, args.start, args.goal, &args.options).map_err(|e| match e {
+    if let Some(out) = &args.trace_posthoc {
+        crate::output::refuse_input("--trace-posthoc", out, &[map_path.to_path_buf()])?;
+    }
+    let say = |e: GridPlanError| {
+        match e {
         // The core names its option; here it is a flag.
         GridPlanError::Plan(PlanError::UnknownCell { which, col, row }) => format!(
             "{which} ({col}, {row}) is an unknown cell, and unknown cells are blocked unless --allow-unknown is given"
         ),
         e => e.to_string(),
-    })?;
+    }
+    };
+    let t = Instant::now();
+    let result = plan_on_map(grid, args.start, args.goal, &args.options).map_err(say)?;
     let micros = t.elapsed().as_secs_f64() * 1e6;
+    if let Some(out) = &args.trace_posthoc {
+        // Searched again, observed: the timing above stays the plain search's.
+        let (trace, _) = posthoc_trace(
+            grid,
+            args.start,
+            args.goal,
+            &args.options,
+            DEFAULT_EVENT_LIMIT,
+        )
+        .map_err(|e| match e {
+            PosthocError::Plan(e) => say(e),
+            e => format!("--trace-posthoc: {e}"),
+        })?;
+        let text = serde_json::to_vec(&trace).map_err(|e| e.to_string())?;
+        crate::output::write_atomically(out, &text)?;
+        eprintln!(
+            "planlab: Posthoc trace ({} events, {} expansions) written to {}",
+            trace.events.len(),
+            trace.count("expanding"),
+            out.display()
+        );
+    }
     let cells = |v: &[GridPos]| v.iter().map(|p| [p.col, p.row]).collect::<Vec<_>>();
     if args.json {
         let mut out = json!({

@@ -238,6 +238,10 @@ enum Command {
         /// JSON output.
         #[arg(long)]
         json: bool,
+        /// Also write the search as a Posthoc search trace (format 1.4.0,
+        /// JSON; open it in ShortestPathLab's Posthoc with the map).
+        #[arg(long, value_name = "FILE")]
+        trace_posthoc: Option<PathBuf>,
     },
     /// Run one simulated episode of a scenario .json and print its metrics
     /// (an arm scenario, with an `arm` section, runs the arm episode;
@@ -617,6 +621,7 @@ fn run(cli: Cli) -> Result<(), String> {
             bottom_up,
             epsilon,
             json,
+            trace_posthoc,
         } => {
             let (grid, scenario) = load::load_any(&map)?;
             // Flags override the scenario's planner section, which overrides
@@ -660,6 +665,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 goal: endpoint(goal, "goal", scenario.as_ref().map(|s| s.goal.pos()))?,
                 options,
                 json,
+                trace_posthoc,
             };
             grid_cmds::plan(&map, &grid, &args)
         }

@@ -6,6 +6,10 @@
 //!
 //! - loopback only: a `--host` that resolves to anything else is refused;
 //! - GET and HEAD only (405 otherwise), `.wasm` as `application/wasm`;
+//! - a file's precompressed twin `NAME.br` or `NAME.gz` (written by the
+//!   site build) is sent instead when the request accepts that encoding,
+//!   with `Content-Encoding` and `Vary: accept-encoding`: compression costs
+//!   nothing per request and needs no compressor in the server;
 //! - nothing outside the site folder: paths are percent-decoded, `..`, roots
 //!   and NUL/backslash are refused, and the resolved file must stay under the
 //!   canonical root, so symlinks cannot escape either (404 in every case);
@@ -287,7 +291,11 @@ async fn respond(req: Request<Incoming>, root: Arc<PathBuf>) -> Response<Body> {
         Target::File(path) => {
             // A valid multi-range is answered with the whole file (allowed by
             // RFC 9110) instead of tower-http's 416.
+            // `NAME.br`/`NAME.gz` beside a file (the site build writes
+            // them) go to clients that accept them, with `Vary`.
             let served = ServeFile::new(&path)
+                .precompressed_br()
+                .precompressed_gzip()
                 .ignore_multi_range_requests(true)
                 .try_call(req)
                 .await;

@@ -425,3 +425,69 @@ fn inflation_blocking_the_start_is_explained() {
     ]);
     assert_error(&o, "after inflation");
 }
+
+#[test]
+fn plan_writes_a_posthoc_trace_that_replays_to_its_expanded_count() {
+    let map = data("movingai/dao/arena.map");
+    let out = temp_file("arena-astar.trace.json", b"old");
+    for algo in ["astar", "jps", "theta-star"] {
+        let o = planlab(&[
+            "plan",
+            s(&map),
+            "--start",
+            "3,3",
+            "--goal",
+            "45,40",
+            "--algo",
+            algo,
+            "--json",
+            "--trace-posthoc",
+            s(&out),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let plan: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+        let trace: Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+        assert_eq!(trace["version"], "1.4.0");
+        let events = trace["events"].as_array().unwrap();
+        let count = |k: &str| events.iter().filter(|e| e["type"] == k).count() as u64;
+        assert_eq!(
+            count("expanding"),
+            plan["expanded"].as_u64().unwrap(),
+            "{algo}"
+        );
+        assert_eq!(
+            count("source") + count("destination") + count("end"),
+            3,
+            "{algo}"
+        );
+        assert_eq!(events[0]["x"], 3);
+        assert!(stderr(&o).contains("Posthoc trace"), "{}", stderr(&o));
+    }
+    // Never over its own input; a failed plan writes nothing.
+    let before = std::fs::read(&map).unwrap();
+    let o = planlab(&[
+        "plan",
+        s(&map),
+        "--start",
+        "3,3",
+        "--goal",
+        "45,40",
+        "--trace-posthoc",
+        s(&map),
+    ]);
+    assert_error(&o, "that is an input of the run");
+    assert_eq!(std::fs::read(&map).unwrap(), before);
+    let fresh = out.with_file_name("never.trace.json");
+    let o = planlab(&[
+        "plan",
+        s(&map),
+        "--start",
+        "0,0",
+        "--goal",
+        "45,40",
+        "--trace-posthoc",
+        s(&fresh),
+    ]);
+    assert_error(&o, "inside an obstacle");
+    assert!(!fresh.exists());
+}

@@ -220,6 +220,56 @@ fn files_are_served_with_their_types() {
 }
 
 #[test]
+fn precompressed_twins_go_to_clients_that_accept_them() {
+    let root = site("precompressed");
+    // The server sends a twin as it is: marker bodies show which file went.
+    std::fs::write(root.join("big.js"), b"export const plain = 1;").unwrap();
+    std::fs::write(root.join("big.js.br"), b"BROTLI-TWIN").unwrap();
+    std::fs::write(root.join("big.js.gz"), b"GZIP-TWIN").unwrap();
+    std::fs::write(root.join("pkg/a.wasm.gz"), b"GZIP-WASM").unwrap();
+    let srv = Server::start(&root, &[]);
+    for (accept, body, encoding) in [
+        (
+            "Accept-Encoding: gzip, deflate, br\r\n",
+            &b"BROTLI-TWIN"[..],
+            Some("br"),
+        ),
+        ("Accept-Encoding: gzip\r\n", b"GZIP-TWIN", Some("gzip")),
+        (
+            "Accept-Encoding: br;q=0, gzip;q=1\r\n",
+            b"GZIP-TWIN",
+            Some("gzip"),
+        ),
+        ("", b"export const plain = 1;", None),
+        (
+            "Accept-Encoding: identity\r\n",
+            b"export const plain = 1;",
+            None,
+        ),
+    ] {
+        let r = srv.get("/big.js", accept);
+        assert_eq!(r.status, 200, "{accept:?}");
+        assert_eq!(r.body, body, "{accept:?}");
+        assert_eq!(r.header("content-encoding"), encoding, "{accept:?}");
+        // The type is the file's own, never the twin's.
+        assert_eq!(
+            r.header("content-type"),
+            Some("text/javascript; charset=utf-8")
+        );
+        assert_eq!(r.header("vary"), Some("accept-encoding"), "{accept:?}");
+    }
+    // Only a gzip twin: a client accepting br too gets gzip.
+    let wasm = srv.get("/pkg/a.wasm", "Accept-Encoding: br, gzip\r\n");
+    assert_eq!(wasm.body, b"GZIP-WASM");
+    assert_eq!(wasm.header("content-encoding"), Some("gzip"));
+    assert_eq!(wasm.header("content-type"), Some("application/wasm"));
+    // No twin at all: the file itself, unencoded.
+    let css = srv.get("/style.css", "Accept-Encoding: br, gzip\r\n");
+    assert_eq!(css.body, b"body{}");
+    assert_eq!(css.header("content-encoding"), None);
+}
+
+#[test]
 fn range_returns_exactly_the_bytes() {
     let srv = Server::start(&site("range"), &[]);
     let nums = nums();

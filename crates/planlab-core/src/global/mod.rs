@@ -13,6 +13,7 @@ pub mod events;
 pub mod jps;
 pub mod keypoints;
 pub mod plan;
+pub mod posthoc;
 pub mod safe_astar;
 pub mod search;
 
