@@ -320,3 +320,23 @@ test('wheel zoom and right-drag pan keep clicks on the right cell', async () => 
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('"Save Posthoc trace" saves the search as a Posthoc 1.4.0 trace that replays to the expanded count', async () => {
+  const { page, problems } = await openPage(session);
+  await setEndpoints(page, ROW.start, ROW.goal);
+  const expanded = await metric(page, 'expanded');
+  const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#save-posthoc')]);
+  assert.equal(dl.suggestedFilename(), 'arena-astar.trace.json');
+  const file = await dl.path();
+  const trace = JSON.parse(fs.readFileSync(file, 'utf8'));
+  assert.equal(trace.version, '1.4.0');
+  const count = (k) => trace.events.filter((e) => e.type === k).length;
+  assert.equal(count('expanding'), expanded, 'expanding events = the page\'s expanded count');
+  assert.deepEqual([trace.events[0].type, trace.events[0].x, trace.events[0].y], ['source', ...ROW.start]);
+  const end = trace.events.at(-1);
+  assert.equal(end.type, 'end');
+  near(end.g, ROW.optimal, 1e-3, 'g at the end event');
+  assert.equal(await errorText(page), null);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

@@ -14,6 +14,7 @@ use planlab_core::global::plan::{
     build_observed_planner, plan_grid_for, plan_on_grid_observed, GridPlan, GridPlanError,
     GridPlanOptions,
 };
+use planlab_core::global::posthoc::PosthocRecorder;
 use planlab_core::global::{
     supercover, GridPos, ObservedGridPlanner, PlanError, PlanGrid, SearchEvent, SearchObserver,
 };
@@ -230,6 +231,31 @@ impl PlanSession {
             &mut events,
         )?;
         Ok(RecordedPlan::new(PlanResult { plan }, events))
+    }
+}
+
+#[wasm_bindgen]
+impl PlanSession {
+    /// Plans and returns the search as a Posthoc search trace (format
+    /// 1.4.0, JSON text; the core's `global::posthoc`): what the grid
+    /// page's "Posthoc" button saves.
+    #[wasm_bindgen(js_name = posthocTrace)]
+    pub fn posthoc_trace(
+        &mut self,
+        start_col: u32,
+        start_row: u32,
+        goal_col: u32,
+        goal_row: u32,
+    ) -> Result<String, JsError> {
+        let (start, goal) = (
+            GridPos::new(start_col, start_row),
+            GridPos::new(goal_col, goal_row),
+        );
+        let mut rec =
+            PosthocRecorder::new(self.map.width(), start, goal, &self.options, EVENT_LIMIT);
+        self.plan_observed(start, goal, &mut rec)?;
+        let trace = rec.finish()?;
+        serde_json::to_string(&trace).map_err(|e| JsError::new(&e.to_string()))
     }
 }
 

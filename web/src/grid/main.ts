@@ -22,6 +22,7 @@ import { installScenario, loadFiles, loadPreset, type MapHost } from '../shell/g
 import { describeSearch } from './inspect';
 import { clearMetrics, showMetrics } from './metrics';
 import { Driver } from './drive';
+import { download } from '../shell/download';
 import { TOOL_HINTS, type Tool } from './tools';
 
 const CELL_NAMES = ['free', 'occupied', 'unknown'];
@@ -37,6 +38,7 @@ const ui = {
   mapRes: el('map-resolution'),
   reset: el<HTMLButtonElement>('reset-map'),
   fitView: el<HTMLButtonElement>('fit-view'),
+  savePosthoc: el<HTMLButtonElement>('save-posthoc'),
   tools: Array.from(document.querySelectorAll<HTMLButtonElement>('#tools [data-tool]')),
   error: el('error'),
   canvas: el<HTMLCanvasElement>('map-canvas'),
@@ -350,6 +352,21 @@ ui.reset.addEventListener(
   }),
 );
 ui.fitView.addEventListener('click', () => view.fit());
+ui.savePosthoc.addEventListener('click', () => {
+  if (!map || !start || !goal) {
+    showError('Place the start and the goal first: the trace is of the search between them.');
+    return;
+  }
+  const opts = readOptions();
+  try {
+    const text = session.posthoc(start, goal, opts);
+    const stem = (ui.mapName.textContent || 'map').replace(/\.[^.]*$/, '').replace(/[^A-Za-z0-9_-]+/g, '-');
+    download(`${stem}-${String(opts.algorithm ?? 'astar')}.trace.json`, text, 'application/json');
+    clearError();
+  } catch (e) {
+    showError(messageOf(e));
+  }
+});
 
 // -------------------------------------------------------------------- boot
 async function boot(): Promise<void> {

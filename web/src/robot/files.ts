@@ -15,6 +15,7 @@ import { sceneSvg } from './svg';
 import type { MapInfo, Scene } from '../scene/view';
 import './files.css';
 import { messageOf } from '../shell/dom';
+import { download } from '../shell/download';
 
 /** What the page lends the Files menu. */
 export interface FilesHost {
@@ -45,21 +46,6 @@ export function slug(name: string): string {
   return s.slice(0, 60) || 'scenario';
 }
 
-/** Saves `data` as a download named `name`. */
-export function download(name: string, data: Blob | string, type = 'application/octet-stream'): void {
-  const blob = typeof data === 'string' ? new Blob([data], { type }) : data;
-  const url = URL.createObjectURL(blob);
-  const a = document.createElement('a');
-  a.href = url;
-  a.download = name;
-  a.rel = 'noopener';
-  a.style.display = 'none';
-  document.body.append(a);
-  a.click();
-  a.remove();
-  // Revoking at once can cancel the download in some browsers.
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
-}
 
 /** A bare map as a scenario (default start/goal from the core); frees `map`. */
 function bareMap(map: MapHandle, label: string): { text: string; label: string; files: Record<string, Uint8Array> } {

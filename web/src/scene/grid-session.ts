@@ -89,6 +89,15 @@ export class GridSession {
     return this.unpack(rec, performance.now() - t0, opts, record);
   }
 
+  /** The search `plan` would run with `opts`, as a Posthoc trace (JSON
+   *  text); D* Lite's is a fresh search's. Throws the core's error. */
+  posthoc(start: Cell, goal: Cell, opts: Record<string, unknown>): string {
+    const s = this.s;
+    if (!s) throw new Error('no map loaded');
+    s.setOptions(opts);
+    return s.posthocTrace(start[0], start[1], goal[0], goal[1]);
+  }
+
   /** D* Lite: a new search for a new goal or options, else a repair of
    *  the kept one (after edits or a moved start). */
   private planDStar(s: PlanSession, map: MapHandle, start: Cell, goal: Cell, opts: Record<string, unknown>, record: boolean): Planned {

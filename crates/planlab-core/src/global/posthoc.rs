@@ -111,8 +111,13 @@ impl PosthocTrace {
     }
 }
 
-/// Turns planlab's search events into Posthoc's as they come (module doc).
-struct Recorder {
+/// Turns planlab's search events into Posthoc's as they come (module doc):
+/// pass it as the observer of a plan, then [`PosthocRecorder::finish`].
+/// [`posthoc_trace`] does both; the grid page's session, which keeps its
+/// own planning grid, uses it directly.
+#[derive(Debug, Clone)]
+pub struct PosthocRecorder {
+    goal: GridPos,
     width: u64,
     /// The weight on h in `f`, or `None` for f = h (greedy best-first).
     weight: Option<f64>,
@@ -125,7 +130,78 @@ struct Recorder {
     overflow: bool,
 }
 
-impl Recorder {
+impl PosthocRecorder {
+    /// A recorder for a search from `start` to `goal` on a map `width`
+    /// cells wide, planned with `options`, keeping at most `limit` events.
+    pub fn new(
+        width: usize,
+        start: GridPos,
+        goal: GridPos,
+        options: &GridPlanOptions,
+        limit: usize,
+    ) -> Self {
+        let weight = match options.algorithm {
+            Algorithm::AStar => Some(options.weight),
+            Algorithm::Greedy => None,
+            _ => Some(1.0),
+        };
+        let mut rec = Self {
+            goal,
+            width: width as u64,
+            weight,
+            limit,
+            events: Vec::new(),
+            known: HashMap::new(),
+            expanding: None,
+            overflow: false,
+        };
+        for (kind, p) in [("source", start), ("destination", goal)] {
+            let e = PosthocEvent {
+                kind,
+                id: rec.id(p),
+                p_id: None,
+                g: None,
+                f: None,
+                x: p.col,
+                y: p.row,
+            };
+            rec.push(e);
+        }
+        rec
+    }
+
+    /// The trace of the search observed (an `end` event when it reached the
+    /// goal); [`PosthocError::TooLarge`] when it outgrew the limit.
+    pub fn finish(mut self) -> Result<PosthocTrace, PosthocError> {
+        self.close_expanding();
+        if self.known.contains_key(&self.id(self.goal)) {
+            let e = self.about("end", self.goal);
+            self.push(e);
+        }
+        if self.overflow {
+            return Err(PosthocError::TooLarge { limit: self.limit });
+        }
+        Ok(PosthocTrace {
+            version: POSTHOC_VERSION,
+            views: serde_json::json!({
+                "main": [{
+                    "$": "rect",
+                    "width": 1,
+                    "height": 1,
+                    "x": "${{ $.x }}",
+                    "y": "${{ $.y }}",
+                    "fill": "${{ color[$.type] }}",
+                }]
+            }),
+            pivot: serde_json::json!({
+                "x": "${{ $.x + 0.5 }}",
+                "y": "${{ $.y + 0.5 }}",
+                "scale": 1,
+            }),
+            events: self.events,
+        })
+    }
+
     fn id(&self, p: GridPos) -> u64 {
         u64::from(p.row) * self.width + u64::from(p.col)
     }
@@ -175,7 +251,7 @@ impl<A, B, C> Unzip3<A, B, C> for Option<(A, B, C)> {
     }
 }
 
-impl SearchObserver for Recorder {
+impl SearchObserver for PosthocRecorder {
     fn event(&mut self, e: SearchEvent) {
         match e {
             SearchEvent::Open { cell, parent, g, h } => {
@@ -220,59 +296,7 @@ pub fn posthoc_trace(
     options: &GridPlanOptions,
     limit: usize,
 ) -> Result<(PosthocTrace, GridPlan), PosthocError> {
-    let weight = match options.algorithm {
-        Algorithm::AStar => Some(options.weight),
-        Algorithm::Greedy => None,
-        _ => Some(1.0),
-    };
-    let mut rec = Recorder {
-        width: map.width() as u64,
-        weight,
-        limit,
-        events: Vec::new(),
-        known: HashMap::new(),
-        expanding: None,
-        overflow: false,
-    };
-    for (kind, p) in [("source", start), ("destination", goal)] {
-        let e = PosthocEvent {
-            kind,
-            id: rec.id(p),
-            p_id: None,
-            g: None,
-            f: None,
-            x: p.col,
-            y: p.row,
-        };
-        rec.push(e);
-    }
+    let mut rec = PosthocRecorder::new(map.width(), start, goal, options, limit);
     let plan = plan_on_map_observed(map, start, goal, options, &mut rec)?;
-    rec.close_expanding();
-    if rec.known.contains_key(&rec.id(goal)) {
-        let e = rec.about("end", goal);
-        rec.push(e);
-    }
-    if rec.overflow {
-        return Err(PosthocError::TooLarge { limit });
-    }
-    let trace = PosthocTrace {
-        version: POSTHOC_VERSION,
-        views: serde_json::json!({
-            "main": [{
-                "$": "rect",
-                "width": 1,
-                "height": 1,
-                "x": "${{ $.x }}",
-                "y": "${{ $.y }}",
-                "fill": "${{ color[$.type] }}",
-            }]
-        }),
-        pivot: serde_json::json!({
-            "x": "${{ $.x + 0.5 }}",
-            "y": "${{ $.y + 0.5 }}",
-            "scale": 1,
-        }),
-        events: rec.events,
-    };
-    Ok((trace, plan))
+    Ok((rec.finish()?, plan))
 }
