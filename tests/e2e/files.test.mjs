@@ -394,3 +394,28 @@ test('a share link reproduces the scenario and the trace in a new page', async (
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('MCAP: the page saves the run as an MCAP file with the same messages as planlab run --mcap', async () => {
+  const { page, problems } = await openRobot();
+  const json = await save(page, '#save-json');
+  const mcap = await save(page, '#save-mcap');
+  assert.match(mcap.name, /\.mcap$/);
+  const MAGIC = Buffer.from([0x89, 0x4d, 0x43, 0x41, 0x50, 0x30, 0x0d, 0x0a]);
+  assert.deepEqual(mcap.bytes.subarray(0, 8), MAGIC, 'MCAP magic at the start');
+  assert.deepEqual(mcap.bytes.subarray(-8), MAGIC, 'and at the end (a finished file)');
+  for (const s of ['/robot/pose', '/plan/global', '/movers', 'foxglove.PoseInFrame', 'foxglove.Grid']) {
+    assert.ok(mcap.bytes.includes(Buffer.from(s)), `${s} in the file`);
+  }
+  // The CLI on the saved scenario writes the same records (their order in
+  // the summary is the writer's hash order, so compare sizes, not bytes).
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'planlab-mcap-'));
+  const scen = path.join(dir, 'saved.json');
+  fs.writeFileSync(scen, json.bytes);
+  const out = path.join(dir, 'cli.mcap');
+  const run = spawnSync(CLI, ['run', scen, '--mcap', out, '--json'], { encoding: 'utf8', timeout: 180_000 });
+  assert.equal(run.status, 0, run.stderr);
+  assert.equal(fs.statSync(out).size, mcap.bytes.length);
+  assert.equal(await errorText(page), null);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

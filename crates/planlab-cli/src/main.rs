@@ -280,6 +280,10 @@ enum Command {
         /// Write the per-step trace as CSV to this file.
         #[arg(long, value_name = "FILE.csv")]
         trace: Option<PathBuf>,
+        /// Write the run as an MCAP file (Foxglove schemas, JSON): pose,
+        /// laser scan, global and local paths, movers and the map per step.
+        #[arg(long, value_name = "FILE.mcap")]
+        mcap: Option<PathBuf>,
     },
     /// List the local planners with their config fields, units and defaults.
     Planners {
@@ -481,6 +485,7 @@ fn run(cli: Cli) -> Result<(), String> {
             set,
             json,
             trace,
+            mcap,
         } => sim_cmds::run(
             &scenario,
             &sim_cmds::RunArgs {
@@ -489,6 +494,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 set: &set,
                 json,
                 trace: trace.as_deref(),
+                mcap: mcap.as_deref(),
                 variant: variant.map(|k| (k, jitter)),
             },
         ),

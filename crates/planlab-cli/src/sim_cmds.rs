@@ -39,6 +39,8 @@ pub struct RunArgs<'a> {
     pub json: bool,
     /// Write the per-step trace CSV here.
     pub trace: Option<&'a Path>,
+    /// Write the run as an MCAP file here (robot episodes).
+    pub mcap: Option<&'a Path>,
     /// Run `planlab batch`'s variant K (with `seed` as the batch seed and
     /// this jitter) instead of the scenario as written.
     pub variant: Option<(u32, f64)>,
@@ -230,10 +232,26 @@ pub fn run(path: &Path, args: &RunArgs<'_>) -> Result<(), String> {
     if let Some(t) = args.trace {
         crate::output::refuse_input("--trace", t, &inputs)?;
     }
-    let done = scenario
-        .start(grid)
-        .and_then(AnyRun::run)
-        .map_err(|e| at(&e))?;
+    if let Some(m) = args.mcap {
+        crate::output::refuse_input("--mcap", m, &inputs)?;
+    }
+    let started = scenario.start(grid).map_err(|e| at(&e))?;
+    let done = match (started, args.mcap) {
+        (AnyRun::Robot(mut ep), Some(out)) => {
+            // The same steps as `run`, logged as they happen.
+            let (bytes, _) = planlab_mcap::record_episode(&mut ep).map_err(|e| at(&e))?;
+            crate::output::write_atomically(out, &bytes)?;
+            let m = EpisodeMetrics::of_episode(&ep);
+            FinishedRun::Robot(ep, m)
+        }
+        (_, Some(_)) => {
+            return Err(format!(
+                "--mcap: {} is not a robot episode (APF and arm runs have no MCAP export)",
+                path.display()
+            ))
+        }
+        (run, None) => run.run().map_err(|e| at(&e))?,
+    };
     let hash = done.trace_hash();
     // The name comes from the file: escape sequences in it must not reach
     // the terminal (JSON output escapes them itself).

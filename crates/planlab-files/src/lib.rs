@@ -4,6 +4,7 @@
 //! both refuse devices, folders and oversized files the same way.
 
 pub mod barn;
+pub mod output;
 
 use planlab_core::map::io::{movingai, ros};
 use planlab_core::map::{OccupancyGrid, MAX_CELLS};

@@ -596,14 +596,17 @@ impl Scenario {
     /// `set` edits: `{"sim.dt": 0.05}`). Returns a dict: `scenario`,
     /// `planner`, `seed`, `steps`, `trace_hash` (hex, `planlab run`'s),
     /// `metrics` (dict) and `trace` (dict of 1-D arrays; APF and arm runs:
-    /// `path`, an (n, 3) array of points).
-    #[pyo3(signature = (planner = None, seed = None, set = None))]
+    /// `path`, an (n, 3) array of points). `mcap`: also write a robot
+    /// episode as an MCAP file there (`planlab run --mcap`: Foxglove
+    /// schemas, JSON; pose, scan, paths, movers and map per step).
+    #[pyo3(signature = (planner = None, seed = None, set = None, mcap = None))]
     fn run<'py>(
         &self,
         py: Python<'py>,
         planner: Option<&str>,
         seed: Option<u64>,
         set: Option<&Bound<'py, PyDict>>,
+        mcap: Option<PathBuf>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let recipe = Recipe {
             planner: planner.map(str::to_string),
@@ -613,9 +616,28 @@ impl Scenario {
         };
         let (scenario, grid) = self.edited(&recipe)?;
         // Other Python threads run meanwhile.
-        let done = py
-            .detach(|| scenario.start(grid).and_then(AnyRun::run))
-            .map_err(err::<ScenarioError>)?;
+        let done = match &mcap {
+            None => py
+                .detach(|| scenario.start(grid).and_then(AnyRun::run))
+                .map_err(err::<ScenarioError>)?,
+            Some(out) => {
+                let run = scenario.start(grid).map_err(err::<ScenarioError>)?;
+                let AnyRun::Robot(mut ep) = run else {
+                    return Err(err::<ScenarioError>(format!(
+                        "mcap: {} runs have no MCAP export; only robot episodes",
+                        scenario.kind().name()
+                    )));
+                };
+                let bytes = py
+                    .detach(|| planlab_mcap::record_episode(&mut ep))
+                    .map_err(err::<ScenarioError>)?
+                    .0;
+                planlab_files::output::write_atomically(out, &bytes)
+                    .map_err(pyo3::exceptions::PyOSError::new_err)?;
+                let m = EpisodeMetrics::of_episode(&ep);
+                FinishedRun::Robot(ep, m)
+            }
+        };
         let d = PyDict::new(py);
         d.set_item("scenario", scenario.name())?;
         d.set_item("trace_hash", format!("{:016x}", done.trace_hash()))?;

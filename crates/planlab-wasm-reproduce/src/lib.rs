@@ -9,7 +9,8 @@
 //! JSON) and the path and arm runs: linked into the playground module it
 //! would break the pages' 1.5 MB first-load budget, so the pages load this
 //! module only when a variant link asks for it. `planlab-wasm` re-exports it
-//! (feature `reproduce`, on by default) for its browser tests.
+//! (feature `reproduce`, on by default) for its browser tests. For the same
+//! reason it also holds the robot page's MCAP export ([`scenario_mcap`]).
 
 use planlab_core::reproduce::{self, VariantScene, MAX_VARIANTS};
 use serde::Serialize;
@@ -121,6 +122,35 @@ pub fn reproduce_variant_info(id: &str, k: u32, seed: u64) -> Result<String, JsE
 #[wasm_bindgen(js_name = maxVariants)]
 pub fn max_variants() -> u32 {
     MAX_VARIANTS
+}
+
+/// The run of a robot scenario (self-contained JSON with an inline map, as
+/// the robot page's Files menu saves it) as an MCAP file: the messages of
+/// `planlab run SCENARIO --mcap FILE` (`planlab-mcap`). Here, not in the
+/// playground module, because the pages load this module only on demand:
+/// the MCAP writer stays out of their first load.
+#[wasm_bindgen(js_name = scenarioMcap)]
+pub fn scenario_mcap(json: &str) -> Result<Vec<u8>, JsError> {
+    mcap_of(json).map_err(js)
+}
+
+/// [`scenario_mcap`] with a plain error.
+pub fn mcap_of(json: &str) -> Result<Vec<u8>, String> {
+    use planlab_core::scenario::{AnyRun, AnyScenario};
+    let s = AnyScenario::from_json(json).map_err(|e| e.to_string())?;
+    let grid = s
+        .load_grid(&mut |p| {
+            Err(format!(
+                "the page cannot read `{p}`: save the scenario with its map inline"
+            ))
+        })
+        .map_err(|e| e.to_string())?;
+    match s.start(grid).map_err(|e| e.to_string())? {
+        AnyRun::Robot(mut ep) => planlab_mcap::record_episode(&mut ep)
+            .map(|(bytes, _)| bytes)
+            .map_err(|e| e.to_string()),
+        _ => Err("only robot episodes have an MCAP export".into()),
+    }
 }
 
 #[cfg(test)]

@@ -128,6 +128,7 @@ export class FilesMenu {
     on('save-metrics', () => this.saveMetrics());
     on('save-png', () => this.savePng());
     on('save-svg', () => this.saveSvg());
+    on('save-mcap', () => this.saveMcap());
     on('share-link', () => this.copyLink());
     const input = byId<HTMLInputElement>('file-input');
     input?.addEventListener('change', () => {
@@ -259,6 +260,18 @@ export class FilesMenu {
       map.free();
     }
     download(this.file('.svg'), sceneSvg(info, this.host.scene(), this.name, sim.time), 'image/svg+xml');
+  }
+
+  /** The scenario in force, run from its start to its end, as an MCAP file
+   *  (the on-demand module's writer: it is not in the page's first load). */
+  async saveMcap(): Promise<void> {
+    const text = this.scenarioJson();
+    const m = await import('../../pkg-reproduce/planlab_wasm_reproduce.js');
+    await m.default();
+    const bytes = m.scenarioMcap(text);
+    // A copy backed by a plain ArrayBuffer, as Blob's type asks.
+    download(this.file('.mcap'), new Blob([new Uint8Array(bytes)], { type: 'application/octet-stream' }));
+    this.host.clearError();
   }
 
   /** Puts the share link in the page (and on the clipboard when allowed). */
