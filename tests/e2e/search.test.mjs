@@ -324,8 +324,16 @@ test('Drive: the robot follows the D* Lite path, a wall painted ahead of it is r
   const around = await pathCells(page);
   assert.ok(!around.some(([c, r]) => c === mc && r === mr), 'the repaired path avoids the wall');
   await page.screenshot({ path: path.join(REPO, 'docs/grid-drive.png') });
-  // Drives on round the wall to the goal.
+  // Drives on round the wall to the goal; the repair's figures and its
+  // search in the player stay until the next edit (each step's own repair,
+  // a moved start, expands next to nothing).
+  const seq = Number(await page.getAttribute('body', 'data-plan-seq'));
+  const steps = await page.textContent('#count-step');
   await page.click('#drive');
+  await page.waitForFunction((k) => Number(document.body.dataset.planSeq) >= k + 3, seq);
+  assert.deepEqual((await page.getAttribute('body', 'data-repair')).split(',').map(Number), [repaired, freshAStar]);
+  assert.match(await page.textContent('#status'), new RegExp(`D\\* Lite repair: ${repaired.toLocaleString('en-US')} cells expanded .* after the last edit`));
+  assert.equal(await page.textContent('#count-step'), steps, 'the player still holds the repair');
   await page.waitForFunction(() => document.body.dataset.driving === 'false', null, { timeout: 60_000 });
   assert.equal(await page.getAttribute('#map-canvas', 'data-start'), ROW2.goal.join(','));
   assert.equal(await errorText(page), null);

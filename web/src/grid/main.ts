@@ -61,6 +61,9 @@ let start: Cell | null = null;
 let goal: Cell | null = null;
 let tool: Tool = 'start';
 let mapVersion = 0;
+/** The D* Lite repair on screen and the map version it repaired (replan
+ *  keeps it while only the start moves). */
+let keptRepair: { expanded: number; freshAStar: number; version: number } | null = null;
 let inflationKey = '';
 let inflation: Uint8Array | null = null;
 let planSeq = 0;
@@ -152,13 +155,20 @@ function replan(): void {
     return;
   }
   const { result: res, playback, ms, repair, truncated } = planned;
+  // D* Lite while driving: a moved start alone re-expands next to nothing,
+  // so the repair of the last edit (its figures and its search in the
+  // player) stays on screen until the next edit or a fresh search.
+  const keep = !!repair && keptRepair !== null && keptRepair.version === mapVersion;
+  if (!repair) keptRepair = null;
+  else if (!keep) keptRepair = { ...repair, version: mapVersion };
   try {
     const path = res.path();
     const keyPoints = res.keyPoints();
     const featureNodes = res.featureNodes();
     const safety = res.safety();
     view.show(new DrawList(res.draw(map, PLAN_LAYERS)), PLAN_LAYERS);
-    player.load(playback);
+    if (keep) playback?.free();
+    else player.load(playback);
     clearError();
     ui.body.dataset.state = 'ok';
     showMetrics(res, opts, ms, keyPoints, featureNodes);
@@ -167,11 +177,15 @@ function replan(): void {
     currentPath = Array.from({ length: path.length / 2 }, (_, i): Cell => [path[2 * i], path[2 * i + 1]]);
     let status = `Path found: ${res.pathLen} cells, ${res.lengthM.toFixed(2)} m`;
     if (safety.length) status += ` · min safety index ${safety.reduce((a, b) => Math.min(a, b), Infinity).toFixed(2)}/10`;
-    if (repair) status += ` · D* Lite repair: ${repair.expanded.toLocaleString('en-US')} cells expanded (a fresh A*: ${repair.freshAStar.toLocaleString('en-US')})`;
+    const shown = keep ? keptRepair : repair;
+    if (shown) {
+      status += ` · D* Lite repair: ${shown.expanded.toLocaleString('en-US')} cells expanded (a fresh A*: ${shown.freshAStar.toLocaleString('en-US')})`;
+      if (keep && repair) status += ` after the last edit; moving the start since: ${repair.expanded.toLocaleString('en-US')}`;
+    }
     if (truncated) status += ` · the search recording stopped at ${playback?.n.toLocaleString('en-US')} events`;
     const note = inflationNote(Number(opts.inflate_m), map.resolution);
     if (note) status += ` · note: ${note}`;
-    ui.body.dataset.repair = repair ? `${repair.expanded},${repair.freshAStar}` : '';
+    ui.body.dataset.repair = shown ? `${shown.expanded},${shown.freshAStar}` : '';
     ui.status.textContent = status;
   } finally {
     res.free();
