@@ -1,5 +1,5 @@
 import { defineConfig, type Plugin } from 'vite';
-import { existsSync, readdirSync, readFileSync, renameSync, statSync, writeFileSync } from 'node:fs';
+import { copyFileSync, existsSync, mkdirSync, readdirSync, readFileSync, renameSync, statSync, writeFileSync } from 'node:fs';
 import { extname, resolve } from 'node:path';
 import { brotliCompressSync, constants as zlibConstants, gzipSync } from 'node:zlib';
 import { fileURLToPath } from 'node:url';
@@ -113,6 +113,27 @@ function reproduceResults(): Plugin {
 // The served site is web/dist and nothing outside it, so the preset maps in
 // ../assets are copied in as the public dir (served at ./maps/...), and the
 // wasm module from ./pkg is bundled by Vite through its `new URL(...)` import.
+/**
+ * Copies docs/algorithms.md into the site as `docs/algorithms.md`: the
+ * pages' help cites it (the core's planner descriptions name its
+ * sections) and links there, so the citation is not a 404 on the site.
+ */
+function algorithmNotes(): Plugin {
+  let outDir = '';
+  const src = resolve(here, '../docs/algorithms.md');
+  return {
+    name: 'planlab-algorithm-notes',
+    apply: 'build',
+    configResolved(config) {
+      outDir = resolve(config.root, config.build.outDir);
+    },
+    closeBundle() {
+      mkdirSync(resolve(outDir, 'docs'), { recursive: true });
+      copyFileSync(src, resolve(outDir, 'docs/algorithms.md'));
+    },
+  };
+}
+
 /** File types worth compressing (text and wasm; images are compressed already). */
 const COMPRESSIBLE = new Set(['.html', '.js', '.mjs', '.css', '.json', '.jsonl', '.wasm', '.svg', '.map', '.scen', '.pgm', '.yaml', '.yml', '.txt', '.md', '.world', '.csv']);
 
@@ -167,7 +188,7 @@ function precompress(): Plugin {
 export default defineConfig({
   base: './',
   publicDir: resolve(here, '../assets'),
-  plugins: [robotPresets(), gallery(), reproduceResults(), precompress()],
+  plugins: [robotPresets(), gallery(), reproduceResults(), algorithmNotes(), precompress()],
   build: {
     outDir: 'dist',
     emptyOutDir: true,

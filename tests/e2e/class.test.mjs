@@ -243,6 +243,15 @@ test('plain-language planner help beside the paper; "What am I looking at?" on r
   });
   assert.equal(help.name, 'improved-dwa');
   assert.match(help.paper, /\[T\] Wu 2022/);
+  // Its citations of the algorithm notes are links that the site serves.
+  const docs = await page.$$eval('.help-doc', (as) => as.map((a) => a.href));
+  assert.ok(docs.length > 0, 'the help links docs/algorithms.md');
+  const served = await page.evaluate(async (u) => {
+    const r = await fetch(u);
+    return { status: r.status, text: (await r.text()).slice(0, 200) };
+  }, docs[0]);
+  assert.equal(served.status, 200, docs[0]);
+  assert.match(served.text, /^# /);
   assert.match(help.plain, /A\* finds a route/);
   assert.match(help.plain, /Watch/);
   await page.keyboard.press('Escape');

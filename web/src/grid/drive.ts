@@ -59,7 +59,7 @@ export class Driver {
   }
 
   private show(): void {
-    this.button.textContent = this.running ? '⏸ Stop driving' : '▶ Drive along the path';
+    this.button.textContent = this.running ? '■ Stop driving' : '▶ Drive along the path';
     this.button.setAttribute('aria-pressed', String(this.running));
     document.body.dataset.driving = String(this.running);
   }

@@ -66,11 +66,31 @@ function h<K extends keyof HTMLElementTagNameMap>(tag: K, cls = '', text?: strin
 }
 
 /** Text with `code` spans. */
+/** The site's copy of the algorithm notes (the build copies
+ *  docs/algorithms.md there): the help's citations of it are links. */
+const ALGORITHMS_DOC = 'docs/algorithms.md';
+
+/** `text` with every mention of the algorithm notes as a link to them. */
+function linked(text: string): Node[] {
+  return text.split(ALGORITHMS_DOC).flatMap((part, i) => {
+    const out: Node[] = [];
+    if (i > 0) {
+      const a = h('a', 'help-doc', ALGORITHMS_DOC);
+      a.href = ALGORITHMS_DOC;
+      a.target = '_blank';
+      a.rel = 'noopener';
+      out.push(a);
+    }
+    if (part) out.push(document.createTextNode(part));
+    return out;
+  });
+}
+
 function rich(tag: 'p' | 'span', text: string, cls = ''): HTMLElement {
   const e = h(tag, cls);
   text.split('`').forEach((part, i) => {
     if (!part) return;
-    e.append(i % 2 ? h('code', '', part) : document.createTextNode(part));
+    e.append(...(i % 2 ? [h('code', '', part)] : linked(part)));
   });
   return e;
 }
@@ -248,7 +268,9 @@ function build(dialog: HTMLElement, c: HelpContent): void {
       d.dataset.planner = p.name;
       if (p.name === c.current || (!c.current && c.planners.length === 1)) d.open = true;
       const s = h('summary');
-      s.append(h('b', '', p.name), h('span', 'help-paper', p.paper));
+      const paper = h('span', 'help-paper');
+      paper.append(...linked(p.paper));
+      s.append(h('b', '', p.name), paper);
       d.append(s);
       if (p.plain) d.append(rich('p', p.plain, 'help-plain'));
       d.append(rich('p', p.summary, p.plain ? 'help-technical' : ''));
