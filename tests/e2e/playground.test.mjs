@@ -340,3 +340,20 @@ test('"Save Posthoc trace" saves the search as a Posthoc 1.4.0 trace that replay
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('a long error is shown whole, over the map, without moving it', async () => {
+  const { page, problems } = await openPage(session);
+  const box = () => page.$eval('#map-canvas', (c) => JSON.stringify(c.getBoundingClientRect()));
+  const before = await box();
+  const name = `${'a-map-with-a-very-long-name-'.repeat(8)}end.map`;
+  await page.setInputFiles('#file-input', { name, mimeType: 'text/plain', buffer: Buffer.from('type octile\nheight x\n') });
+  await page.waitForFunction(() => !document.querySelector('#error').hidden);
+  const e = await page.$eval('#error', (el) => ({ text: el.textContent, sw: el.scrollWidth, cw: el.clientWidth, sh: el.scrollHeight, ch: el.clientHeight, lines: Math.round(el.getBoundingClientRect().height / 20) }));
+  assert.ok(e.text.includes('end.map'), `the whole message, to its end: ${e.text}`);
+  assert.ok(e.sw <= e.cw + 1 && e.sh <= e.ch + 1, `nothing clipped: ${JSON.stringify(e)}`);
+  assert.ok(e.lines >= 2, `wrapped over lines: ${JSON.stringify(e)}`);
+  assert.equal(await box(), before, 'the map did not move');
+  await screenshot(page, 'long-error.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
