@@ -187,7 +187,14 @@ test('ROS yaml+pgm opened from disk; malformed files show errors', async () => {
   // The yaml without its pgm.
   await page.setInputFiles('#file-input', [path.join(ROS_DIR, 'map.yaml')]);
   await page.waitForFunction(() => !document.getElementById('error').hidden);
-  assert.match(await errorText(page), /select the \.yaml and the \.pgm/);
+  assert.match(await errorText(page), /open the \.yaml together with its \.pgm/);
+  // The yaml with another map's image: said, not loaded.
+  await page.setInputFiles('#file-input', [
+    { name: 'map.yaml', mimeType: 'application/x-yaml', buffer: fs.readFileSync(path.join(ROS_DIR, 'map.yaml')) },
+    { name: 'other.pgm', mimeType: 'image/x-portable-graymap', buffer: fs.readFileSync(path.join(ROS_DIR, 'map.pgm')) },
+  ]);
+  await page.waitForFunction(() => /other\.pgm/.test(document.getElementById('error').textContent));
+  assert.match(await errorText(page), /names the image "map\.pgm", but the \.pgm opened is other\.pgm/);
   // A malformed pgm.
   await page.setInputFiles('#file-input', [
     { name: 'map.yaml', mimeType: 'application/x-yaml', buffer: fs.readFileSync(path.join(ROS_DIR, 'map.yaml')) },
@@ -354,6 +361,25 @@ test('a long error is shown whole, over the map, without moving it', async () =>
   assert.ok(e.lines >= 2, `wrapped over lines: ${JSON.stringify(e)}`);
   assert.equal(await box(), before, 'the map did not move');
   await screenshot(page, 'long-error.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('a map dropped on the grid canvas opens as if picked', async () => {
+  const { page, problems } = await openPage(session);
+  const text = fs.readFileSync(path.join(DATA, 'movingai/dao/arena.map'), 'utf8');
+  const dt = await page.evaluateHandle((t) => {
+    const d = new DataTransfer();
+    d.items.add(new File([t], 'dropped-arena.map', { type: 'text/plain' }));
+    return d;
+  }, text);
+  await afterReplan(page, async () => {
+    await page.dispatchEvent('#canvas-wrap', 'dragenter', { dataTransfer: dt });
+    await page.dispatchEvent('#canvas-wrap', 'dragover', { dataTransfer: dt });
+    await page.dispatchEvent('#canvas-wrap', 'drop', { dataTransfer: dt });
+  });
+  assert.equal(await page.textContent('#map-name'), 'dropped-arena.map');
+  assert.equal(await errorText(page), null);
   assert.deepEqual(problems, []);
   await page.close();
 });

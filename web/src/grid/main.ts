@@ -22,7 +22,7 @@ import { installScenario, loadFiles, loadPreset, type MapHost } from '../shell/g
 import { describeSearch } from './inspect';
 import { clearMetrics, showMetrics } from './metrics';
 import { Driver } from './drive';
-import { download } from '../shell/download';
+import { download, onFileDrop } from '../shell/download';
 import { TOOL_HINTS, type Tool } from './tools';
 
 const CELL_NAMES = ['free', 'occupied', 'unknown'];
@@ -351,6 +351,13 @@ ui.file.addEventListener(
       // Lets the same file be picked again after fixing it.
       ui.file.value = '';
     }
+  }),
+);
+// A map dropped on the canvas opens as if picked with the file button.
+onFileDrop(
+  el('canvas-wrap'),
+  guard(async (files: File[]) => {
+    if (await loadFiles(maps, files)) ui.preset.value = '';
   }),
 );
 ui.reset.addEventListener(

@@ -9,13 +9,13 @@
 
 import { MapHandle, rosImageName, scenarioForMap, type SimHandle } from '../../pkg/planlab_wasm.js';
 import { decodeScenarioHash, shareLink } from '../shell/share';
-import { checkSizes } from '../shell/scenario-files';
+import { checkSizes, rosImageFile } from '../shell/scenario-files';
 import { showOpened } from '../shell/preset-select';
 import { sceneSvg } from './svg';
 import type { MapInfo, Scene } from '../scene/view';
 import './files.css';
 import { messageOf } from '../shell/dom';
-import { download } from '../shell/download';
+import { download, onFileDrop } from '../shell/download';
 
 /** What the page lends the Files menu. */
 export interface FilesHost {
@@ -33,7 +33,6 @@ export interface FilesHost {
 
 const lower = (f: { name: string }) => f.name.toLowerCase();
 const stem = (name: string) => name.replace(/^.*[\\/]/, '').replace(/\.[^.]*$/, '');
-const baseName = (p: string) => p.split(/[\\/]/).pop() ?? p;
 
 /** A file name made of the scenario's name: letters, digits, - and _. */
 export function slug(name: string): string {
@@ -80,11 +79,7 @@ export async function scenarioFromFiles(picked: File[]): Promise<{ text: string;
     } catch (e) {
       throw new Error(`${yaml.name}: ${messageOf(e)}`);
     }
-    const pgms = picked.filter((f) => lower(f).endsWith('.pgm'));
-    const pgm = pgms.find((f) => f.name === baseName(image)) ?? (pgms.length === 1 ? pgms[0] : undefined);
-    if (!pgm) {
-      throw new Error(`${yaml.name} refers to the image ${baseName(image)}: open the .yaml together with its .pgm (select both, or drop both).`);
-    }
+    const pgm = rosImageFile(yaml.name, image, picked.filter((f) => lower(f).endsWith('.pgm')));
     let map: MapHandle;
     try {
       map = MapHandle.fromRos(text, await bytes(pgm));
@@ -136,7 +131,7 @@ export class FilesMenu {
       input.value = '';
       if (picked.length) void this.run(() => this.open(picked));
     });
-    this.dropTarget(byId('canvas-wrap') ?? host.canvas);
+    onFileDrop(byId('canvas-wrap') ?? host.canvas, (picked) => void this.run(() => this.open(picked)));
     // A share link pasted into this tab changes only the hash.
     window.addEventListener('hashchange', () => void this.run(() => this.loadFromHash().then(() => undefined)));
   }
@@ -178,25 +173,6 @@ export class FilesMenu {
     this.noteLoaded(text, label);
     showOpened(document.getElementById('preset') as HTMLSelectElement | null, label);
     document.body.dataset.opened = label;
-  }
-
-  private dropTarget(el: HTMLElement): void {
-    const over = (ev: DragEvent) => {
-      if (!ev.dataTransfer?.types.includes('Files')) return;
-      ev.preventDefault();
-      ev.dataTransfer.dropEffect = 'copy';
-      el.classList.add('dropping');
-    };
-    el.addEventListener('dragenter', over);
-    el.addEventListener('dragover', over);
-    el.addEventListener('dragleave', () => el.classList.remove('dropping'));
-    el.addEventListener('drop', (ev) => {
-      el.classList.remove('dropping');
-      const picked = Array.from(ev.dataTransfer?.files ?? []);
-      if (!picked.length) return;
-      ev.preventDefault();
-      void this.run(() => this.open(picked));
-    });
   }
 
   /** The episode in force as scenario JSON (what Save and Share use). */

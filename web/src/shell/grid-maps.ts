@@ -5,7 +5,7 @@
 // errors name the file.
 
 import { MapHandle, ScenarioHandle, rosImageName } from '../../pkg-grid/planlab_wasm.js';
-import { checkSizes, fetchBytes, fetchText } from '../shell/scenario-files';
+import { checkSizes, fetchBytes, fetchText, rosImageFile } from '../shell/scenario-files';
 import { messageOf } from '../shell/dom';
 import type { Cell } from './cells';
 
@@ -94,7 +94,7 @@ const ext = (f: File) => f.name.toLowerCase().split('.').pop() ?? '';
 
 /** Reads picked files: one `.map`, a ROS `.yaml` + `.pgm`, a `.txt` or a
  *  scenario `.json` (+ its map files); false when nothing was picked. */
-export async function loadFiles(host: MapHost, list: FileList | null): Promise<boolean> {
+export async function loadFiles(host: MapHost, list: FileList | File[] | null): Promise<boolean> {
   const files = Array.from(list ?? []);
   if (!files.length) return false;
   checkSizes(files);
@@ -124,15 +124,7 @@ export async function loadFiles(host: MapHost, list: FileList | null): Promise<b
     name = yaml.name;
     const yamlText = await yaml.text();
     const image = await named(yaml.name, () => rosImageName(yamlText));
-    const base = image.split(/[\\/]/).pop() ?? image;
-    const pgm = pgms.length === 1 ? pgms[0] : pgms.find((f) => f.name === base);
-    if (!pgm) {
-      throw new Error(
-        pgms.length
-          ? `${yaml.name} names the image "${image}", but none of the opened .pgm files is called ${base}.`
-          : `${yaml.name} needs its image "${image}": select the .yaml and the .pgm file together.`,
-      );
-    }
+    const pgm = rosImageFile(yaml.name, image, pgms);
     const bytes = new Uint8Array(await pgm.arrayBuffer());
     m = await named(`${yaml.name} + ${pgm.name}`, () => MapHandle.fromRos(yamlText, bytes));
   } else if (movingai) {

@@ -27,6 +27,20 @@ export function checkSizes(picked: File[]): void {
   }
 }
 
+/** The .pgm among `pgms` that a ROS yaml named `yamlName` refers to as
+ *  `image` (by base name); a one-line error when it is missing or when the
+ *  only one opened has another name (it may be another map's image). */
+export function rosImageFile(yamlName: string, image: string, pgms: File[]): File {
+  const base = image.split(/[\\/]/).pop() ?? image;
+  const pgm = pgms.find((f) => f.name === base);
+  if (pgm) return pgm;
+  if (pgms.length) {
+    const names = pgms.map((f) => f.name).join(', ');
+    throw new Error(`${yamlName} names the image "${base}", but the .pgm opened is ${names}: open the image it names (or rename the file to ${base} if it is that image).`);
+  }
+  throw new Error(`${yamlName} needs its image "${base}": open the .yaml together with its .pgm (select both, or drop both).`);
+}
+
 export async function fetchText(url: URL): Promise<string> {
   const r = await fetch(url);
   if (!r.ok) throw new Error(`cannot load ${url.pathname}: HTTP ${r.status}`);
