@@ -122,6 +122,9 @@ test('after Replay the note does not squeeze the timeline (one line, slider ≥ 
     };
   });
   assert.match(m.note, /replay identical/);
+  // The hash in the form `planlab run` and the compare page print: hex.
+  const dec = await page.getAttribute('body', 'data-trace-hash');
+  assert.match(m.note, new RegExp(`trace hash ${BigInt(dec).toString(16).padStart(16, '0')}\\)`));
   assert.equal(new Set(m.tops).size, 1, `buttons on one line: ${m.tops}`);
   assert.ok(Math.max(...m.heights) < 30, `no button wraps: ${m.heights}`);
   assert.ok(m.slider >= 300, `slider ${m.slider} px`);

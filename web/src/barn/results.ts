@@ -5,7 +5,7 @@
 
 import { barnScore } from '../../pkg/planlab_wasm.js';
 import type { Lane } from '../compare/lane';
-import { hexHash } from '../compare/render';
+import { hexHash } from '../shell/hash';
 
 export interface BarnResult {
   outcome: string;

@@ -8,15 +8,9 @@ import { LANE_COLOURS, type Lane } from './lane';
 import { ROWS, cellText, tableCsv, winners } from './table';
 import { describeOutcome, shortOutcome } from '../shell/outcome';
 
-/** The trace hash (decimal u64) as 16 hex digits, as `planlab run` prints it. */
-export function hexHash(dec: string | null): string {
-  if (!dec) return '';
-  try {
-    return BigInt(dec).toString(16).padStart(16, '0');
-  } catch {
-    return dec;
-  }
-}
+import { hexHash } from '../shell/hash';
+
+export { hexHash };
 
 /** The outcome in words (`speed`: the robot's at the end, m/s). */
 export function describe(o: string, speed = 0): string {

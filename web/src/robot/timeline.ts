@@ -20,6 +20,7 @@
 //   (goal, movers, planner) always go to the live end of the run: making
 //   one while a past frame is shown returns the view to the live end.
 
+import { hexHash } from '../shell/hash';
 import type { SimHandle } from '../../pkg/planlab_wasm.js';
 import type { RobotView } from '../scene/view';
 import type { SeriesPlots } from './plots';
@@ -409,7 +410,7 @@ export class Timeline {
     this.root.dataset.replayMatch = String(ok);
     this.replayBtn.classList.toggle('ok', ok);
     this.replayBtn.classList.toggle('bad', !ok);
-    this.note.textContent = ok ? `✓ replay identical (trace hash ${got})` : `✗ replay differs: ${got} ≠ ${hash}`;
+    this.note.textContent = ok ? `✓ replay identical (trace hash ${hexHash(got)})` : `✗ replay differs: ${hexHash(got)} ≠ ${hexHash(hash)}`;
     this.stopPlayback();
     // The replay ends at the run's end: back to the live view of it.
     this.seek(Infinity);
