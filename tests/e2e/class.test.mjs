@@ -278,3 +278,20 @@ test('plain-language planner help beside the paper; "What am I looking at?" on r
   assert.match((await c.page.textContent('.help-planner[open] .help-plain')) ?? '', /imagines driving/);
   await c.page.close();
 });
+
+test('after » To end the plots\' cursors stand at the end of the run', async () => {
+  const { page, problems } = await openRobotPage(session, 'robot.html');
+  await page.click('#to-end');
+  await page.waitForFunction(() => document.body.dataset.state === 'done', null, { timeout: 150_000 });
+  const steps = Number(await page.getAttribute('body', 'data-steps'));
+  await page.waitForFunction(
+    (n) => Object.values(window.planlabTimeline.plotCursors()).every((r) => r === n),
+    steps,
+    { timeout: 5_000 },
+  ).catch(() => {});
+  const rows = await page.evaluate(() => window.planlabTimeline.plotCursors());
+  assert.ok(Object.keys(rows).length >= 2, JSON.stringify(rows));
+  for (const [k, r] of Object.entries(rows)) assert.equal(r, steps, `${k} cursor at row ${r} of ${steps}`);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

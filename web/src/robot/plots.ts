@@ -332,7 +332,9 @@ export class SeriesPlots {
     this.lastDraw = now;
     this.dirty = false;
     this.plots.forEach((p, i) => p?.setData(this.data(i)));
-    this.placeCursors();
+    // uPlot applies new data's scales in a microtask: placed now, a cursor
+    // would be put by the old x range (after "» To end": at 7 s of 27).
+    queueMicrotask(() => this.placeCursors());
   }
 
   /** Row the marker and cursors show: the timeline's frame or the end. */
