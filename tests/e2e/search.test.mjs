@@ -361,6 +361,9 @@ test('the race plays 2+ planners to a table with winners', async () => {
   await page.waitForFunction(() => document.body.dataset.raceState === 'ready', null, { timeout: 30_000 });
   const lanes = await page.$$eval('.lane', (ls) => ls.map((l) => l.dataset.algorithm));
   assert.ok(lanes.length >= 2, `lanes ${lanes}`);
+  // Before the race no lane's result is given away.
+  const before = await page.$$eval('#race-table tbody tr', (trs) => trs.map((tr) => [tr.cells[4].textContent, tr.cells[5].textContent]));
+  assert.ok(before.every(([c, n]) => c === '—' && n === '—'), `costs before the race: ${JSON.stringify(before)}`);
   await page.click('#race-go');
   await page.waitForFunction(() => document.body.dataset.raceState === 'racing');
   // Mid-race every lane has played the same number of events (or finished).
@@ -378,10 +381,17 @@ test('the race plays 2+ planners to a table with winners', async () => {
   const winner = await page.getAttribute('#race-winner', 'data-expanded');
   assert.ok(winner && winner !== 'dijkstra', `fewest expanded: ${winner}`);
   assert.match(await page.textContent('#race-winner'), /Fewest expanded: .+ · Lowest cost: /);
+  // JPS's few expansions come with its line scans, said beside them.
+  if (winner.includes('jps')) assert.match(await page.textContent('#race-winner'), /line checks/);
   // A lane that needs fewer events finishes at an earlier frame.
   const frames = rows.filter((r) => r[6] !== '—').map((r) => [Number(r[3]), Number(r[6])]).sort((a, b) => a[0] - b[0]);
   assert.ok(frames.length >= 2, 'two lanes finished');
   assert.ok(frames[0][1] <= frames.at(-1)[1]);
+  // Race again and Finish at once: the status says it is over.
+  await page.click('#race-go');
+  await page.click('#race-finish');
+  assert.equal(await page.getAttribute('body', 'data-race-state'), 'finished');
+  assert.doesNotMatch(await page.textContent('#status'), /Racing/);
   assert.deepEqual(problems, []);
   await page.close();
 });

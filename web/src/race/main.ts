@@ -195,6 +195,7 @@ function finish(): void {
     showLane(l);
   }
   ui.body.dataset.raceState = 'finished';
+  ui.status.textContent = 'Finished: every lane played to its end at once (no frame counts).';
   showTable();
 }
 
@@ -212,13 +213,16 @@ function showTable(): void {
     const p = l.playback;
     const end = p ? p.counters() : null;
     const expandedEnd = p ? p.counters(p.n).expanded : NaN;
+    // A lane's result is told once its search has played out, not before
+    // the race shows it.
+    const told = finished || l.doneAt !== null;
     const cells: [string, boolean][] = [
       [plannerLabel(l.algorithm), false],
       [end ? String(end.expanded) : '—', finished && expandedEnd === fewest],
       [end ? String(end.open) : '—', false],
       [p ? String(p.n) : '—', false],
-      [l.error ? 'error (see the lane)' : Number.isFinite(l.cost) ? l.cost.toFixed(4) : '—', finished && Math.abs(l.cost - cheapest) < 1e-9],
-      [l.error ? '—' : String(l.pathLen), false],
+      [l.error ? 'error (see the lane)' : told && Number.isFinite(l.cost) ? l.cost.toFixed(4) : '—', finished && Math.abs(l.cost - cheapest) < 1e-9],
+      [l.error || !told ? '—' : String(l.pathLen), false],
       [l.doneAt === null ? '—' : String(l.doneAt), false],
     ];
     for (const [text, best] of cells) {
@@ -234,7 +238,10 @@ function showTable(): void {
   const names = (xs: Lane[]) => xs.map((l) => plannerLabel(l.algorithm)).join(', ');
   const byExpanded = ok.filter((l) => l.playback!.counters(l.playback!.n).expanded === fewest);
   const byCost = ok.filter((l) => Math.abs(l.cost - cheapest) < 1e-9);
-  ui.winner.textContent = `Fewest expanded: ${names(byExpanded)} (${fewest}) · Lowest cost: ${names(byCost)} (${cheapest.toFixed(4)})`;
+  // JPS and Theta* expand few cells but scan lines between them: said.
+  const lines = byExpanded.map((l) => l.playback!.counters(l.playback!.n).lines);
+  const scans = lines.some((n) => n > 0) ? `, with ${lines.join(' / ')} line checks` : '';
+  ui.winner.textContent = `Fewest expanded: ${names(byExpanded)} (${fewest}${scans}) · Lowest cost: ${names(byCost)} (${cheapest.toFixed(4)})`;
   ui.winner.dataset.expanded = byExpanded.map((l) => l.algorithm).join(',');
   ui.winner.dataset.cost = byCost.map((l) => l.algorithm).join(',');
 }
