@@ -295,3 +295,22 @@ test('after » To end the plots\' cursors stand at the end of the run', async ()
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('at t = 0 the robot is drawn on top of the start marker', async () => {
+  const { page, problems } = await openRobotPage(session, 'robot.html');
+  const [x, y] = await page.evaluate(() => window.planlabRobot.state());
+  const at = await page.evaluate(([wx, wy]) => window.planlabRobot.toScreen(wx, wy), [x, y]);
+  // The pixel at the robot's centre is the robot's (its body or heading
+  // line), not the marker's green (#16a34a) drawn over it.
+  const rgb = await page.evaluate(({ sx, sy }) => {
+    const c = document.getElementById('sim-canvas');
+    const r = c.getBoundingClientRect();
+    const k = c.width / r.width;
+    const d = c.getContext('2d').getImageData(Math.round((sx - r.left) * k), Math.round((sy - r.top) * k), 1, 1).data;
+    return [d[0], d[1], d[2]];
+  }, { sx: at.x, sy: at.y });
+  const green = rgb[1] > rgb[0] + 30 && rgb[1] > rgb[2] + 20;
+  assert.ok(!green, `pixel at the robot ${rgb} is the S marker's green: the marker hides the robot`);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

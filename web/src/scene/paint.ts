@@ -365,14 +365,21 @@ export class Painter {
     ctx.fillText(label, x, y + 0.5);
   }
 
-  /** Start, goal, and the goal steered to when it is a subgoal or virtual. */
+  /** The start marker (painted before the robot, so a robot at its start
+   *  is seen on top of it). */
+  startMarker(): void {
+    const f = this.S.frame;
+    if (f.of(Layer.Goals).count(Layer.Goals) === 0) return;
+    const [sx, sy] = this.toScreen(...f.goal(0));
+    this.marker(sx, sy, COLORS.start, 'S', 7);
+  }
+
+  /** The goal marker and the goal steered to (the start: startMarker). */
   goals(): void {
     const f = this.S.frame;
     const d = f.of(Layer.Goals);
     if (d.count(Layer.Goals) === 0) return;
     const ctx = this.ctx;
-    const [sx, sy] = this.toScreen(...f.goal(0));
-    this.marker(sx, sy, COLORS.start, 'S', 7);
     const [gx, gy] = this.toScreen(...f.goal(1));
     this.marker(gx, gy, COLORS.goal, 'G', 10);
     if (!this.S.show.subgoal) return;

@@ -322,6 +322,10 @@ export class RobotView {
     if (S.show.fan) p.fan();
     const lidarOn = S.show.lidar && S.frame.hasRays();
     if (lidarOn) p.lidar();
+    // The start marker under the robot, which stands on it at t = 0.
+    this.screenTransform();
+    p.startMarker();
+    this.worldTransform();
     p.robot();
 
     // Screen-space layers: markers and labels stay readable at any zoom.
