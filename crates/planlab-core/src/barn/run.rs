@@ -372,22 +372,49 @@ impl MeanCi {
     /// [`BOOTSTRAP_RESAMPLES`] resamples drawn with a fixed seed (so the
     /// figures repeat); `None` for no values.
     pub fn of(values: &[f64]) -> Option<MeanCi> {
-        let n = values.len();
-        if n == 0 {
-            return None;
-        }
+        let groups: Vec<Vec<f64>> = values.iter().map(|&v| vec![v]).collect();
+        MeanCi::of_clusters(&groups)
+    }
+
+    /// The mean of all values of `groups` with a cluster bootstrap
+    /// interval: each resample draws whole groups (a benchmark's worlds
+    /// with all their runs) with replacement, so runs of one world are not
+    /// taken for independent draws. With one value per group this is
+    /// [`MeanCi::of`]; `None` for no values.
+    pub fn of_clusters(groups: &[Vec<f64>]) -> Option<MeanCi> {
         // Sorted first, so the same runs give the same interval in any
         // order (a sweep's CSV rows, merged chunks).
-        let mut values = values.to_vec();
-        values.sort_by(f64::total_cmp);
-        let mean = values.iter().sum::<f64>() / n as f64;
+        let mut groups: Vec<Vec<f64>> = groups
+            .iter()
+            .filter(|g| !g.is_empty())
+            .map(|g| {
+                let mut g = g.clone();
+                g.sort_by(f64::total_cmp);
+                g
+            })
+            .collect();
+        groups.sort_by(|a, b| {
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| x.total_cmp(y))
+                .find(|o| o.is_ne())
+                .unwrap_or(a.len().cmp(&b.len()))
+        });
+        let w = groups.len();
+        if w == 0 {
+            return None;
+        }
+        let sums: Vec<(f64, usize)> = groups.iter().map(|g| (g.iter().sum(), g.len())).collect();
+        let total = sums.iter().map(|s| s.1).sum::<usize>();
+        let mean = sums.iter().map(|s| s.0).sum::<f64>() / total as f64;
         let mut rng = Rng::new(0xB00_757A9);
         let mut means: Vec<f64> = (0..BOOTSTRAP_RESAMPLES)
             .map(|_| {
-                let s: f64 = (0..n)
-                    .map(|_| values[(rng.next_u64() % n as u64) as usize])
-                    .sum();
-                s / n as f64
+                let (s, c) = (0..w).fold((0.0, 0usize), |(s, c), _| {
+                    let g = sums[(rng.next_u64() % w as u64) as usize];
+                    (s + g.0, c + g.1)
+                });
+                s / c as f64
             })
             .collect();
         means.sort_by(f64::total_cmp);
@@ -404,7 +431,10 @@ impl MeanCi {
 pub struct BarnStats {
     /// Runs counted.
     pub runs: u32,
-    /// Success rate with its Wilson interval.
+    /// Worlds the runs were on.
+    pub worlds: u32,
+    /// Success rate with its Wilson interval (over worlds: see
+    /// [`Share::clustered`]).
     pub success: Share,
     /// Collision rate.
     pub collision: Share,
@@ -416,7 +446,8 @@ pub struct BarnStats {
     pub collisions_unclassified: u32,
     /// Mean time of the successful runs, s.
     pub mean_time: Option<f64>,
-    /// Mean score with its bootstrap interval.
+    /// Mean score with its bootstrap interval (resampling worlds: see
+    /// [`MeanCi::of_clusters`]).
     pub score: Option<MeanCi>,
 }
 
@@ -425,12 +456,29 @@ impl BarnStats {
     pub fn of<'a>(runs: impl IntoIterator<Item = &'a BarnRun> + Clone) -> BarnStats {
         let all: Vec<&BarnRun> = runs.into_iter().collect();
         let times: Vec<f64> = all.iter().filter(|r| r.success()).map(|r| r.time).collect();
-        let scores: Vec<f64> = all.iter().map(|r| r.score).collect();
+        // Runs of one world are not independent draws: the intervals
+        // resample worlds.
+        let mut by_world = std::collections::BTreeMap::<u32, Vec<&BarnRun>>::new();
+        for r in &all {
+            by_world.entry(r.world).or_default().push(r);
+        }
+        let share = |hit: &dyn Fn(&BarnRun) -> bool| {
+            let groups: Vec<(u32, u32)> = by_world
+                .values()
+                .map(|rs| (rs.iter().filter(|r| hit(r)).count() as u32, rs.len() as u32))
+                .collect();
+            Share::clustered(&groups)
+        };
+        let scores: Vec<Vec<f64>> = by_world
+            .values()
+            .map(|rs| rs.iter().map(|r| r.score).collect())
+            .collect();
         BarnStats {
             runs: all.len() as u32,
-            success: Share::of(all.iter().map(|r| r.success())),
-            collision: Share::of(all.iter().map(|r| r.outcome == Outcome::Collision)),
-            timeout: Share::of(all.iter().map(|r| r.outcome == Outcome::Timeout)),
+            worlds: by_world.len() as u32,
+            success: share(&|r| r.success()),
+            collision: share(&|r| r.outcome == Outcome::Collision),
+            timeout: share(&|r| r.outcome == Outcome::Timeout),
             collisions_seen: all
                 .iter()
                 .filter(|r| r.collision_seen == Some(true))
@@ -440,7 +488,7 @@ impl BarnStats {
                 .filter(|r| r.outcome == Outcome::Collision && r.collision_seen.is_none())
                 .count() as u32,
             mean_time: (!times.is_empty()).then(|| times.iter().sum::<f64>() / times.len() as f64),
-            score: MeanCi::of(&scores),
+            score: MeanCi::of_clusters(&scores),
         }
     }
 }

@@ -48,6 +48,44 @@ impl Share {
         }
         Share::new(k, n)
     }
+
+    /// The share of successes in runs that come in clusters (a
+    /// benchmark's worlds, each run several times): `groups` holds each
+    /// cluster's (successes, runs). The rate is k / n over all runs; the
+    /// Wilson interval is taken at the effective sample size n / deff, with
+    /// deff the design effect of the ratio estimator (Kish 1965), kept
+    /// between the number of clusters and n — runs of one world tend to
+    /// agree, and counting them as independent trials would narrow the
+    /// interval falsely. With no variation to estimate deff from (rate 0
+    /// or 1) each cluster counts once. With one run per cluster this is
+    /// [`Share::new`].
+    pub fn clustered(groups: &[(u32, u32)]) -> Share {
+        let groups: Vec<(f64, f64)> = groups
+            .iter()
+            .filter(|g| g.1 > 0)
+            .map(|&(k, m)| (f64::from(k.min(m)), f64::from(m)))
+            .collect();
+        let k: f64 = groups.iter().map(|g| g.0).sum();
+        let n: f64 = groups.iter().map(|g| g.1).sum();
+        let w = groups.len() as f64;
+        let share = Share::new(k as u32, n as u32);
+        if groups.iter().all(|g| g.1 == 1.0) {
+            return share;
+        }
+        let p = k / n;
+        let n_eff = if k == 0.0 || k == n || w < 2.0 {
+            w
+        } else {
+            let var = w / (w - 1.0) * groups.iter().map(|g| (g.0 - p * g.1).powi(2)).sum::<f64>()
+                / (n * n);
+            let deff = var / (p * (1.0 - p) / n);
+            (n / deff).clamp(w, n)
+        };
+        Share {
+            ci95: wilson_f(p * n_eff, n_eff),
+            ..share
+        }
+    }
 }
 
 /// Wilson score 95 % interval of a binomial proportion k / n (Wilson
@@ -55,10 +93,14 @@ impl Share {
 /// z·√(k(n−k)/n + z²/4)/(n + z²). Unlike the normal interval it stays
 /// inside [0, 1] and is not empty at k = 0 or k = n.
 pub fn wilson(k: u32, n: u32) -> [f64; 2] {
-    if n == 0 {
+    wilson_f(f64::from(k.min(n)), f64::from(n))
+}
+
+/// [`wilson`] for an effective (fractional) count: k successes of n, 0 ≤ k ≤ n.
+fn wilson_f(k: f64, n: f64) -> [f64; 2] {
+    if n <= 0.0 {
         return [0.0, 1.0];
     }
-    let (k, n) = (f64::from(k.min(n)), f64::from(n));
     let z2 = Z95 * Z95;
     let centre = (k + z2 / 2.0) / (n + z2);
     let half = Z95 * (k * (n - k) / n + z2 / 4.0).sqrt() / (n + z2);
@@ -148,6 +190,35 @@ pub fn median_rank(n: usize) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn clustered_share_with_one_run_per_cluster_is_the_plain_wilson_interval() {
+        let groups: Vec<(u32, u32)> = (0..40).map(|i| (u32::from(i % 3 == 0), 1)).collect();
+        assert_eq!(Share::clustered(&groups), Share::new(14, 40));
+        assert_eq!(Share::clustered(&[]), Share::new(0, 0));
+    }
+
+    #[test]
+    fn clustered_share_of_worlds_whose_runs_agree_counts_each_world_once() {
+        // 30 worlds succeeded on all 3 runs, 10 failed all 3: the runs
+        // add nothing, so the interval is that of 30 / 40 worlds.
+        let mut groups = vec![(3, 3); 30];
+        groups.extend([(0, 3); 10]);
+        let s = Share::clustered(&groups);
+        assert_eq!((s.k, s.n), (90, 120));
+        assert_eq!(s.rate, 0.75);
+        let want = wilson(30, 40);
+        assert!((s.ci95[0] - want[0]).abs() < 1e-12 && (s.ci95[1] - want[1]).abs() < 1e-12);
+        // Independent-looking runs (every world 2 of 3, i.e. no world
+        // effect) narrow it towards the interval of 120 trials.
+        let mixed = Share::clustered(&[(2, 3); 40]);
+        let runs = wilson(80, 120);
+        assert!(mixed.ci95[1] - mixed.ci95[0] <= wilson(27, 40)[1] - wilson(27, 40)[0]);
+        assert!(mixed.ci95[1] - mixed.ci95[0] >= runs[1] - runs[0] - 1e-12);
+        // No variation to estimate from: each world once.
+        let none = Share::clustered(&[(0, 3); 40]);
+        assert_eq!(none.ci95, wilson(0, 40));
+    }
 
     #[test]
     fn wilson_matches_hand_computed_cases() {
