@@ -314,3 +314,70 @@ test('at t = 0 the robot is drawn on top of the start marker', async () => {
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+/** Every visible control's text in the page, whole: a value cut with "…",
+ *  a menu narrower than its chosen entry, or anything past the window's
+ *  right edge is listed. */
+function cutControls(page) {
+  return page.evaluate(() => {
+    const ctx = document.createElement('canvas').getContext('2d');
+    const out = [];
+    for (const e of document.querySelectorAll('button, select, .metric b, .metric span, dt, dd, .speed')) {
+      if (!e.getClientRects().length || e.closest('[hidden], .help-backdrop')) continue;
+      const s = getComputedStyle(e);
+      if (s.visibility === 'hidden') continue;
+      const r = e.getBoundingClientRect();
+      const name = `${e.id || e.tagName.toLowerCase()} "${(e.textContent || '').trim().slice(0, 20)}"`;
+      if (s.overflowX !== 'visible' && e.tagName !== 'SELECT' && e.scrollWidth > e.clientWidth + 1) out.push(`${name} cut (${e.scrollWidth} > ${e.clientWidth})`);
+      if (e.tagName === 'SELECT' && e.selectedOptions[0]) {
+        ctx.font = s.font;
+        const w = ctx.measureText(e.selectedOptions[0].textContent).width;
+        if (e.clientWidth < w) out.push(`${name} menu ${e.clientWidth} px < its entry ${Math.round(w)} px`);
+      }
+      if (r.right > innerWidth + 1 || r.left < -1) out.push(`${name} outside the window (${Math.round(r.left)}–${Math.round(r.right)})`);
+    }
+    return out;
+  });
+}
+
+test('presentation mode makes the map larger on every page with a map and cuts no control, at 1366×768 and 1440×900', async () => {
+  const pages = [
+    ['index.html', '#map-canvas'],
+    ['race.html', '.lane-canvas canvas'],
+    ['robot.html', '#sim-canvas'],
+    ['compare.html?scenario=T-fig3-2.json&planners=dwa,improved-dwa', '#lane-canvas-0'],
+    ['barn.html', '#lane-canvas-0'],
+    ['apf.html?scenario=T-fig4-6.json', '#view'],
+    ['arm.html?scenario=T-tab5-3.json', '#view canvas'],
+  ];
+  const settle = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(() => setTimeout(r, 300)))));
+  for (const [width, height] of [[1366, 768], [1440, 900]]) {
+    for (const [url, canvas] of pages) {
+      const { page, problems } = await watchedPage(session);
+      await page.setViewportSize({ width, height });
+      await page.goto(session.base + url);
+      await page.waitForFunction(() => document.body.dataset.state && document.body.dataset.state !== 'loading', null, { timeout: 30_000 });
+      await settle(page);
+      const where = `${url} at ${width}×${height}`;
+      const normal = await page.locator(canvas).first().boundingBox();
+      await page.keyboard.press('p');
+      await settle(page);
+      const large = await page.locator(canvas).first().boundingBox();
+      assert.ok(large.width > normal.width && large.height > normal.height, `${where}: map ${normal.width}×${normal.height} → ${large.width}×${large.height} in presentation mode`);
+      assert.deepEqual(await cutControls(page), [], `${where}: controls cut in presentation mode`);
+      assert.ok(await page.evaluate(() => document.documentElement.scrollWidth <= innerWidth), `${where}: no sideways scrolling`);
+      if (url === 'index.html') {
+        // What the class reads: the cost, the speed menu, the counters, all
+        // inside the window.
+        for (const sel of ['#metric-cost', '#speed', '#count-f', '#count-lines', '.counters dt:nth-of-type(4)', '.counters dt:nth-of-type(5)']) {
+          const b = await page.locator(sel).boundingBox();
+          assert.ok(b && b.x >= 0 && b.y >= 0 && b.x + b.width <= width && b.y + b.height <= height, `${where}: ${sel} at ${JSON.stringify(b)}`);
+        }
+        if (width === 1366) await screenshot(page, 'class-grid-present-1366.png');
+      }
+      await page.keyboard.press('p');
+      assert.deepEqual(problems, [], where);
+      await page.close();
+    }
+  }
+});

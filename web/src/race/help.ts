@@ -14,6 +14,8 @@ export function raceHelp(core: CorePlanner[] = []): HelpContent {
       { name: 'Diagonal moves', unit: '', default: 'no corner cutting', doc: 'The move rule of every lane; a planner that refuses it says so in its lane.' },
     ],
     shortcuts: [
+      { keys: 'Space', action: 'race (from the start)' },
+      { keys: 'F', action: 'finish: every lane played to its end' },
       { keys: 'click', action: 'move the start (every lane replans)' },
       { keys: 'Shift + click', action: 'move the goal' },
       { keys: 'wheel / right drag', action: 'zoom / pan every lane' },

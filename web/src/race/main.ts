@@ -16,6 +16,7 @@ import { GRID_PLANNERS, plannerLabel } from '../shell/grid-planners';
 import { el, errorBanner, messageOf } from '../shell/dom';
 import { panZoom } from '../shell/canvas-input';
 import { installShell } from '../shell/help';
+import { installKeys } from '../shell/keys';
 import { raceHelp } from './help';
 import type { CorePlanner } from '../shell/help-content';
 
@@ -135,7 +136,7 @@ function replan(): void {
     showLane(l);
   }
   ui.body.dataset.raceState = 'ready';
-  ui.status.textContent = start && goal ? `${lanes.length} planners ready: press Race.` : 'Click a map to place the start, Shift+click for the goal.';
+  ui.status.textContent = start && goal ? `${lanes.length} planners ready: press Race (Space).` : 'Click a map to place the start, Shift+click for the goal.';
   showTable();
 }
 
@@ -277,6 +278,8 @@ ui.lanes.addEventListener(
 );
 ui.go.addEventListener('click', guard(go));
 ui.finish.addEventListener('click', guard(finish));
+// Keys too: in presentation mode the panel with these buttons is folded.
+installKeys({ ' ': guard(go), f: guard(finish) });
 for (const p of pickers) p.addEventListener('change', guard(buildLanes));
 ui.diagonal.addEventListener('change', guard(replan));
 ui.preset.addEventListener('change', guard(() => loadPreset(host, ui.preset.value)));
