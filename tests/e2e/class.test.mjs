@@ -381,3 +381,31 @@ test('presentation mode makes the map larger on every page with a map and cuts n
     }
   }
 });
+
+test('opening "What am I looking at?" on the robot page keeps the map at least 80 % of its area, legend inside the window (1366×768, 1440×900)', async () => {
+  for (const [width, height] of [[1366, 768], [1440, 900]]) {
+    const { page, problems } = await watchedPage(session);
+    await page.setViewportSize({ width, height });
+    await page.goto(`${session.base}robot.html?scenario=T-fig3-2.json`);
+    await page.waitForFunction(() => ['ready', 'error'].includes(document.body.dataset.state), null, { timeout: 30_000 });
+    const area = async () => {
+      await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(() => setTimeout(r, 200)))));
+      const b = await page.locator('#sim-canvas').boundingBox();
+      return b.width * b.height;
+    };
+    const closed = await area();
+    await page.click('#explain summary');
+    const open = await area();
+    assert.ok(open >= 0.8 * closed, `${width}×${height}: map ${Math.round(closed)} px² closed, ${Math.round(open)} px² with the legend open`);
+    // The legend itself is on screen and shows its entries.
+    const g = await page.locator('#explain .explain-grid').boundingBox();
+    assert.ok(g && g.y >= 0 && g.y + g.height <= height && g.height > 100, `legend at ${JSON.stringify(g)}`);
+    assert.ok(await page.isVisible('#explain li >> text=Chosen rollout'));
+    if (width === 1366) await screenshot(page, 'class-robot-legend-open.png');
+    // It closes again from its summary.
+    await page.click('#explain summary');
+    assert.equal(await page.isVisible('#explain .explain-grid'), false);
+    assert.deepEqual(problems, []);
+    await page.close();
+  }
+});
