@@ -279,3 +279,50 @@ test('generate: a seeded maze is the same map twice and the same as planlab gene
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('the Preset menu says what is shown: generated map, edited map, opened file; undo puts the name back', async () => {
+  const { page, problems } = await openRobot();
+  const shown = () => page.evaluate(() => {
+    const s = document.getElementById('preset');
+    return { value: s.value, text: s.selectedOptions[0]?.textContent };
+  });
+  const preset = await shown();
+  assert.equal(preset.value, PRESET);
+  assert.match(preset.text, /^\[T\] Fig 3-2/);
+  // Generate: the preset's name no longer stands for the map.
+  await page.selectOption('#gen-kind', 'maze');
+  await page.fill('#gen-seed', '7');
+  await page.click('#generate');
+  await page.waitForFunction(() => document.body.dataset.generatedHash);
+  assert.deepEqual(await shown(), { value: '', text: 'Generated: maze, seed 7' });
+  // An edit of the generated map says so.
+  await page.click('#tool-rect');
+  await drag(page, [4.0, 3.0], [4.4, 3.4]);
+  assert.equal(await errorText(page), null);
+  assert.deepEqual(await shown(), { value: '', text: 'Edited: generated maze, seed 7' });
+  // Undo walks the name back with the map.
+  await key(page, 'Control+z');
+  assert.deepEqual(await shown(), { value: '', text: 'Generated: maze, seed 7' });
+  await key(page, 'Control+z');
+  assert.deepEqual(await shown(), preset);
+  // Moving the goal of the preset is an edit too; picking the preset again
+  // reloads it as it was.
+  await page.click('#tool-goal');
+  await clickWorld(page, [9.0, 2.0]);
+  assert.deepEqual(await shown(), { value: '', text: `Edited: ${preset.text}` });
+  // The compare link still opens its preset.
+  await page.dispatchEvent('#compare-link', 'pointerenter');
+  assert.match(await page.getAttribute('#compare-link', 'href'), /scenario=T-fig3-2\.json/);
+  const seq = () => page.evaluate(() => Number(document.body.dataset.loadSeq ?? 0));
+  const k = await seq();
+  await page.selectOption('#preset', PRESET);
+  await page.waitForFunction((k) => Number(document.body.dataset.loadSeq) > k, k, { timeout: 30_000 });
+  assert.deepEqual(await shown(), preset);
+  // A file opened: its name.
+  const n = await seq();
+  await page.setInputFiles('#file-input', { name: 'mine.json', mimeType: 'application/json', buffer: fs.readFileSync(path.join(REPO, 'assets/scenarios', PRESET)) });
+  await page.waitForFunction((k) => Number(document.body.dataset.loadSeq) > k, n, { timeout: 30_000 });
+  assert.deepEqual(await shown(), { value: '', text: 'Opened: mine.json' });
+  assert.deepEqual(problems, []);
+  await page.close();
+});

@@ -10,7 +10,9 @@ const planner = document.getElementById('planner') as HTMLSelectElement | null;
 /** The compare page URL for what the robot page shows now. */
 function compareHref(): string {
   const q = new URLSearchParams();
-  if (preset?.value) q.set('scenario', preset.value);
+  // An edited preset: its preset (the compare page has no edits of it).
+  const scenario = preset?.value || preset?.dataset.from;
+  if (scenario) q.set('scenario', scenario);
   const current = planner?.value || 'dwa';
   // Baseline DWA against the planner in use; improved DWA against DWA.
   const other = current === 'dwa' ? 'improved-dwa' : 'dwa';

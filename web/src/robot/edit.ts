@@ -11,6 +11,10 @@ import type { RobotView } from '../scene/view';
 import { Layer, drawnFrame, mask, type Frame } from '../scene/draw';
 import { History, type Snapshot } from './history';
 import { el, messageOf } from '../shell/dom';
+import { restoreShown, showEdited, showGenerated, shownLabel } from '../shell/preset-select';
+
+/** The Preset select, which says what is shown (edits change its entry). */
+const presetSelect = () => document.getElementById('preset') as HTMLSelectElement | null;
 
 /** The handle's path and goals now, as the core draws them. */
 function drawnNow(sim: SimHandle | null): Frame | null {
@@ -255,7 +259,8 @@ export class Editor {
     if (!sim) return null;
     const m = sim.map();
     try {
-      return { state: sim.editState(), cells: m.cells(), label };
+      const select = presetSelect();
+      return { state: sim.editState(), cells: m.cells(), label, shown: select ? shownLabel(select) : undefined };
     } finally {
       m.free();
     }
@@ -270,6 +275,7 @@ export class Editor {
     const before = this.snapshot(label);
     edit();
     if (before) this.history.push(before);
+    showEdited(presetSelect());
     if (restarts) {
       this.dirty = true;
       this.host.refresh();
@@ -291,6 +297,8 @@ export class Editor {
       this.history.cancel(kind, target);
       throw e;
     }
+    const select = presetSelect();
+    if (select && target.shown) restoreShown(select, target.shown);
     this.dirty = true;
     this.host.refresh();
     this.host.clearError();
@@ -421,6 +429,7 @@ export class Editor {
       throw new Error(`Generate: ${messageOf(e)}`);
     }
     document.body.dataset.generatedHash = hash;
+    showGenerated(presetSelect(), `${settings.kind}, seed ${settings.seed}`);
     const d = el('scenario-description');
     d.textContent = `Generated ${settings.kind} map, seed ${settings.seed} (grid hash ${hash}); the same as planlab generate ${settings.kind} --width ${settings.width_m} --height ${settings.height_m} --resolution ${settings.resolution} --seed ${settings.seed}${settings.kind === 'random' ? ` --density ${settings.density}` : ` --corridor ${settings.corridor_m}`}.`;
     d.title = d.textContent;

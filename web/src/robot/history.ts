@@ -6,6 +6,8 @@
 // way, generators and map-size changes included; 100 snapshots of a
 // 200 × 200 map are 4 MB.
 
+import type { ShownLabel } from '../shell/preset-select';
+
 export interface Snapshot {
   /** SimHandle.editState() JSON. */
   state: string;
@@ -13,6 +15,8 @@ export interface Snapshot {
   cells: Uint8Array;
   /** What the edit was, for the button tooltips. */
   label: string;
+  /** What the Preset select said then (undo puts the name back). */
+  shown?: ShownLabel;
 }
 
 export class History<T extends { label: string }> {
