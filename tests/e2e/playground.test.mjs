@@ -383,3 +383,37 @@ test('a map dropped on the grid canvas opens as if picked', async () => {
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('safe A*\'s cost says it comes from 24-neighbour moves and is not comparable with A*; A*\'s says nothing', async () => {
+  const { page, problems } = await openPage(session);
+  const note = () => page.evaluate(() => {
+    const n = document.getElementById('metric-cost-note');
+    return n && !n.hidden && n.getClientRects().length ? n.textContent : null;
+  });
+  const cost = () => page.evaluate(() => Number(document.getElementById('metric-cost').dataset.value));
+  assert.equal(await page.inputValue('#algorithm'), 'astar');
+  assert.equal(await note(), null, 'A* on 8 neighbours: no note');
+  const astar = await cost();
+  await afterReplan(page, () => page.selectOption('#algorithm', 'safe-astar'));
+  // The case a class saw: safe A* cheaper than the "optimal" A*.
+  assert.ok(await cost() < astar, `safe A* ${await cost()} vs A* ${astar}`);
+  assert.match(await note(), /24-neighbourhood moves: not comparable with A\*/);
+  assert.match(await page.getAttribute('#metric-cost-note', 'title'), /5×5 block/);
+  // Safe A* on 8 neighbours: comparable, no note.
+  await afterReplan(page, () => page.selectOption('#safe-neighbourhood', '8'));
+  assert.equal(await note(), null);
+  await afterReplan(page, () => page.selectOption('#safe-neighbourhood', '24'));
+  assert.match(await note(), /24-neighbourhood/);
+  // Theta*'s any-angle path too; back to A*: gone.
+  await afterReplan(page, () => page.selectOption('#algorithm', 'theta-star'));
+  assert.match(await note(), /any-angle/);
+  await afterReplan(page, () => page.selectOption('#algorithm', 'astar'));
+  assert.equal(await note(), null);
+  // The help says it beside safe A*.
+  await page.click('#help-button');
+  const help = await page.textContent('.help-planner[data-planner="Safe A* (Ge & Li)"]');
+  assert.match(help, /not comparable with A\*'s: it moves to any of the 24 cells/);
+  await page.keyboard.press('Escape');
+  assert.deepEqual(problems, []);
+  await page.close();
+});

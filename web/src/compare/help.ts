@@ -15,7 +15,7 @@ export function compareHelp(planners: PlannerInfo[], current: string | undefined
       paper: p.paper,
       summary: p.summary,
       plain: p.plain,
-      params: p.fields.map((f) => ({ name: f.name, unit: f.unit, default: f.default, doc: f.doc })),
+      params: p.fields.map((f) => ({ name: f.name, label: f.label, unit: f.unit, default: f.default, doc: f.doc })),
     })),
     current,
     params: [

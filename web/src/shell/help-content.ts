@@ -14,7 +14,7 @@ export interface RegistryPlanner {
   summary: string;
   /** Plain words for a beginner (core `planners::plain_words`). */
   plain?: string;
-  fields: { name: string; unit: string; default: unknown; doc: string }[];
+  fields: { name: string; label?: string; unit: string; default: unknown; doc: string }[];
 }
 
 /** The robot page: every registered local planner with its fields. */
@@ -29,7 +29,7 @@ export function robotHelp(planners: RegistryPlanner[], current: string): HelpCon
         paper: p.paper,
         summary: p.summary,
         plain: p.plain,
-        params: p.fields.map((f) => ({ name: f.name, unit: f.unit, default: f.default, doc: f.doc })),
+        params: p.fields.map((f) => ({ name: f.name, label: f.label, unit: f.unit, default: f.default, doc: f.doc })),
       }),
     ),
     current,
@@ -93,13 +93,21 @@ const GRID_EXTRAS = GRID_PLANNERS.slice(-2);
 /** The grid planners' help: the core's reference and plain-language
  *  summary for each (`Algorithm::ALL`), then key points and Bottom-Up;
  *  without the core's list, the fixed entries above. */
+/** Planners whose moves are not A*'s 8 neighbours: their cost is not
+ *  comparable (the grid page says so under the cost too). */
+const COST_NOTES: Record<string, string> = {
+  'safe-astar':
+    " Its cost is not comparable with A*'s: it moves to any of the 24 cells of the 5×5 block (knight-like moves of length √5 too), so its path can cost less than 8-connected A*'s optimum (which is optimal over 8 neighbours only).",
+  'theta-star': " Its cost is not comparable with A*'s: its segments run at any angle, so it can cost less than 8-connected A*'s optimum.",
+};
+
 export function gridPlannerHelp(core: CorePlanner[] = []): HelpPlanner[] {
   if (!core.length) return GRID_PLANNERS;
   return [
     ...core.map((p) => ({
       name: plannerLabel(p.name),
       paper: p.reference,
-      summary: `${p.summary}${p.optimal ? '' : ' (Not optimal: its path can be longer than the shortest.)'}`,
+      summary: `${p.summary}${p.optimal ? '' : ' (Not optimal: its path can be longer than the shortest.)'}${COST_NOTES[p.name] ?? ''}`,
     })),
     ...GRID_EXTRAS,
   ];
@@ -117,7 +125,7 @@ export function gridHelp(core: CorePlanner[] = []): HelpContent {
       { name: 'Weight', unit: '—', default: 1, doc: 'w in f = g + w·h; above 1 the search is faster and the path at most w times longer.' },
       { name: 'Diagonal moves', unit: '', default: 'no corner cutting', doc: 'Never (4-connected), no corner cutting (both orthogonal neighbours free), one side free, or always.' },
       { name: 'Safety weight ε', unit: '—', default: 100, doc: '[S] §1: weight of the safety term L in h′ = h + ε·L; 0 gives plain A* over the 24-neighbourhood.' },
-      { name: 'Neighbourhood', unit: 'cells', default: 24, doc: '[S] §1: successors of a cell: the 5×5 block (24), 8 or 4; a move must cross free cells only.' },
+      { name: 'Neighbourhood', unit: 'cells', default: 24, doc: "[S] §1: successors of a cell: the 5×5 block (24), 8 or 4; a move must cross free cells only. With 24 (or 4) the cost is not comparable with A*'s, which is the optimum over 8 neighbours only: knight-like moves (length √5) can make safe A*'s path cheaper than A*'s; the card under the cost says so." },
       { name: 'Inflate radius', unit: 'm', default: 0, doc: 'Grows walls by the robot radius before planning, so the path keeps that clearance.' },
       { name: 'Allow unknown', unit: '', default: false, doc: 'Plan through unknown (?) cells.' },
       { name: 'Bottom-Up ε', unit: 'cells', default: 1, doc: '[S] §4.1: largest perpendicular error a merged segment may have.' },

@@ -24,6 +24,8 @@ export interface HelpPlanner {
 /** One parameter: name, unit, default and what it does. */
 export interface HelpParam {
   name: string;
+  /** Its name in plain words, shown above the config name. */
+  label?: string;
   unit: string;
   default?: unknown;
   doc: string;
@@ -111,7 +113,10 @@ function paramTable(params: HelpParam[]): HTMLTableElement {
   for (const p of params) {
     const tr = h('tr');
     tr.dataset.param = p.name;
-    tr.append(h('td', 'pname', p.name), h('td', 'punit', p.unit || '—'), h('td', 'pdef', fmtDefault(p.default)));
+    const name = h('td', 'pname');
+    if (p.label) name.append(h('span', 'plabel', p.label), h('code', 'pconfig', p.name));
+    else name.textContent = p.name;
+    tr.append(name, h('td', 'punit', p.unit || '—'), h('td', 'pdef', fmtDefault(p.default)));
     const td = h('td', 'pdoc');
     td.append(rich('span', p.doc));
     tr.append(td);

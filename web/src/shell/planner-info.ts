@@ -5,6 +5,8 @@
 export interface FieldInfo {
   name: string;
   unit: string;
+  /** Its name in plain words (`heading weight α`); `name` is the config's. */
+  label?: string;
   default: unknown;
   doc: string;
   /** Added by the wasm layer from the default's JSON type. */
