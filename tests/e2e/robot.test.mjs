@@ -308,3 +308,35 @@ test('frame time on the crowded scene (20 movers, DWA 20 × 40 samples)', async 
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('every parameter on the panel has a plain-language name; the symbol and config name stay in its tooltip and the help', async () => {
+  const { page, problems } = await openRobot();
+  const params = () => page.$$eval('#params .param', (els) => els.map((e) => ({ field: e.dataset.field, shown: (e.querySelector('.label b') ?? e.querySelector('label.check'))?.textContent.trim(), title: e.title })));
+  const dwa = Object.fromEntries((await params()).map((p) => [p.field, p]));
+  assert.equal(dwa.alpha.shown, 'heading weight α');
+  assert.equal(dwa.beta.shown, 'clearance weight β');
+  assert.equal(dwa.gamma.shown, 'speed weight γ');
+  assert.equal(dwa.v_res.shown, 'speed resolution');
+  assert.match(dwa.alpha.title, /^heading weight α — alpha: α, heading weight/);
+  assert.match(dwa.v_res.title, /v_res/);
+  // No planner shows a bare config name (alpha, v_res, acc_lim_x …) as a
+  // field's name.
+  const planners = await page.$$eval('#planner option', (os) => os.map((o) => o.value));
+  const bare = [];
+  for (const name of planners) {
+    await page.selectOption('#planner', name);
+    await page.waitForFunction((n) => window.planlabRobot.plannerChoice().name === n, name);
+    for (const p of await params()) {
+      const leaf = p.field.split('.').pop();
+      if (!p.shown || p.shown === leaf || /^[a-z]+(_[a-z0-9]+)+$/.test(p.shown)) bare.push(`${name}: ${p.field} shown as ${p.shown}`);
+    }
+  }
+  assert.deepEqual(bare, []);
+  // The help's table: the plain name over the config name.
+  await page.selectOption('#planner', 'dwa');
+  await page.click('#help-button');
+  const row = await page.$eval('.help-planner[open] tr[data-param="alpha"] .pname', (td) => ({ label: td.querySelector('.plabel')?.textContent, config: td.querySelector('.pconfig')?.textContent }));
+  assert.deepEqual(row, { label: 'heading weight α', config: 'alpha' });
+  assert.deepEqual(problems, []);
+  await page.close();
+});

@@ -373,7 +373,13 @@ pub fn planners(json: bool) -> Result<(), String> {
             } else {
                 format!(" {}", f.unit)
             };
-            emit(&(format!("  {:<w$}  {:>10}{unit:<7}  {}", f.name, default, f.doc) + "\n"))?;
+            // The plain name first, then the doc (with the paper's symbol).
+            let doc = if f.label.is_empty() {
+                f.doc.clone()
+            } else {
+                format!("{} — {}", f.label, f.doc)
+            };
+            emit(&(format!("  {:<w$}  {:>10}{unit:<7}  {doc}", f.name, default) + "\n"))?;
         }
         emit("\n")?;
     }

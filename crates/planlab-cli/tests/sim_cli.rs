@@ -275,9 +275,16 @@ fn planners_lists_fields_with_units_and_defaults() {
         .unwrap();
     assert_eq!(k_w["unit"], "1/s");
     assert_eq!(k_w["default"], 1.5);
+    // The plain-words name beside the config name.
+    assert_eq!(k_w["label"], "heading gain k_w");
     let text = stdout(&planlab(&["planners"]));
     assert!(
         text.contains("pursuit — ") && text.contains("k_w") && text.contains("1/s"),
+        "{text}"
+    );
+    assert!(
+        text.lines().any(|l| l.trim_start().starts_with("alpha ")
+            && l.contains("heading weight α — α, heading weight")),
         "{text}"
     );
 }

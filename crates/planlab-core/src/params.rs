@@ -14,14 +14,16 @@
 //!     /// Settings of …
 //!     #[derive(Debug, Clone, Copy, PartialEq)]
 //!     pub struct PursuitConfig {
-//!         pub k_w: f64 = 1.5, "1/s" [> 0.0] "heading gain: ω = k_w · heading error";
+//!         pub k_w: f64 = 1.5, "1/s" [> 0.0] label "heading gain k_w" "heading gain: ω = k_w · heading error";
 //!         pub brake_fraction: f64 = 0.8, "1" [> 0.0, <= 1.0] "share of …";
 //!         pub dwa: DwaConfig = DwaConfig::default(), "" [nested] "the DWA engine";
 //!     }
 //! }
 //! ```
 //!
-//! Each line is `name: type = default, "unit" [bound] "doc";` with the bound
+//! Each line is `name: type = default, "unit" [bound] label "label" "doc";`
+//! (the label, the field's name in plain words for the panels, may be left
+//! out; every planner field has one) with the bound
 //! one of `[]` (none), `[> min]`, `[>= min]`, either followed by `, <= max`
 //! (else at most [`MAX_PARAM`]), `[nested]` (a config whose fields are
 //! listed under `name.` with their own docs) or `[nested of]` (the same,
@@ -196,6 +198,9 @@ pub struct Field {
     pub name: &'static str,
     /// Unit ("m", "m/s", "rad", "1" …; empty for words and nested configs).
     pub unit: &'static str,
+    /// Its name in plain words for the panels (`heading weight α`); empty
+    /// when not given.
+    pub label: &'static str,
     /// What it does.
     pub doc: &'static str,
     /// Bounds checked by [`Params::check_bounds`], if any.
@@ -234,6 +239,11 @@ pub struct FieldInfo {
     pub name: String,
     /// Unit ("m", "m/s", "rad", "1" …).
     pub unit: String,
+    /// Its name in plain words (`heading weight α`; a weight set's field
+    /// adds the set's: `heading weight α, deceleration`); the config name
+    /// stays `name`, the one papers and scenario files use.
+    #[serde(default)]
+    pub label: String,
     /// Default value (the paper's).
     pub default: serde_json::Value,
     /// What it does.
@@ -250,22 +260,28 @@ fn plain_doc(doc: &str) -> String {
     doc.replace("\\[", "[").replace("\\]", "]")
 }
 
-/// Calls `out(name, unit, doc)` for every leaf of `fields`, nested configs
-/// flattened to dotted names under `prefix`.
-/// Receives one leaf field: dotted name, unit, doc, bounds.
-type LeafSink<'a> = dyn FnMut(String, &str, String, Option<Bound>) + 'a;
+/// Calls `out(name, unit, label, doc)` for every leaf of `fields`, nested
+/// configs flattened to dotted names under `prefix`.
+/// Receives one leaf field: dotted name, unit, label, doc, bounds.
+type LeafSink<'a> = dyn FnMut(String, &str, String, String, Option<Bound>) + 'a;
 
 fn flatten(fields: &[Field], prefix: &str, out: &mut LeafSink<'_>) {
     for f in fields {
         let name = join(prefix, f.name);
         match f.nested {
-            Nested::No => out(name, f.unit, plain_doc(f.doc), f.bound),
+            Nested::No => out(name, f.unit, f.label.to_string(), plain_doc(f.doc), f.bound),
             Nested::Config(inner) => flatten(inner, &name, out),
             Nested::Of(inner) => {
                 for g in inner {
+                    let label = match (g.label, f.label) {
+                        ("", _) => String::new(),
+                        (l, "") => l.to_string(),
+                        (l, set) => format!("{l}, {set}"),
+                    };
                     out(
                         join(&name, g.name),
                         g.unit,
+                        label,
                         format!("{} of the {}", g.name, plain_doc(f.doc)),
                         g.bound,
                     );
@@ -280,7 +296,7 @@ fn flatten(fields: &[Field], prefix: &str, out: &mut LeafSink<'_>) {
 pub fn field_infos<T: Params>() -> Vec<FieldInfo> {
     let defaults = serde_json::to_value(T::default()).unwrap_or(serde_json::Value::Null);
     let mut out = Vec::new();
-    flatten(T::FIELDS, "", &mut |name, unit, doc, bound| {
+    flatten(T::FIELDS, "", &mut |name, unit, label, doc, bound| {
         let default = name
             .split('.')
             .try_fold(&defaults, |v, k| v.get(k))
@@ -289,6 +305,7 @@ pub fn field_infos<T: Params>() -> Vec<FieldInfo> {
         out.push(FieldInfo {
             name,
             unit: unit.to_string(),
+            label,
             default,
             doc,
             bound,
@@ -347,7 +364,7 @@ macro_rules! params {
             $(
                 $(#[$fattr:meta])*
                 $fvis:vis $field:ident : $ty:ty = $default:expr, $unit:literal
-                    [$($bound:tt)*] $doc:literal;
+                    [$($bound:tt)*] $(label $label:literal)? $doc:literal;
             )*
         }
     ) => {
@@ -380,6 +397,7 @@ macro_rules! params {
                     $crate::params::Field {
                         name: stringify!($field),
                         unit: $unit,
+                        label: concat!("" $(, $label)?),
                         doc: $doc,
                         bound: $crate::params::bound_of!($($bound)*),
                         nested: $crate::params::nested_of!($ty; $($bound)*),

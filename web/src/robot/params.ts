@@ -137,11 +137,14 @@ export class ParamPanel {
     const wrap = document.createElement('div');
     wrap.className = 'param';
     wrap.dataset.field = f.name;
-    wrap.title = `${f.name}: ${f.doc}${f.unit ? ` [${f.unit}]` : ''} (paper: ${JSON.stringify(f.default)})`;
+    // The plain name on the panel; the config name (and in the doc the
+    // paper's symbol) in the tooltip, so a paper's table can still be matched.
+    const shown = f.label || short;
+    wrap.title = `${f.label ? `${f.label} — ` : ''}${f.name}: ${f.doc}${f.unit ? ` [${f.unit}]` : ''} (paper: ${JSON.stringify(f.default)})`;
     const label = document.createElement('div');
     label.className = 'label';
     const name = document.createElement('b');
-    name.textContent = short;
+    name.textContent = shown;
     name.style.fontWeight = '500';
     const unit = document.createElement('span');
     unit.className = 'unit';
@@ -165,7 +168,8 @@ export class ParamPanel {
         markChanged();
         this.onChange(this.config());
       });
-      l.append(box, ` ${short}`);
+      box.setAttribute('aria-label', `${shown} (${f.name})`);
+      l.append(box, ` ${shown}`);
       wrap.append(l);
       markChanged();
       return wrap;
@@ -180,12 +184,12 @@ export class ParamPanel {
       range.min = String(min);
       range.max = String(max);
       range.step = String(step);
-      range.setAttribute('aria-label', `${f.name} slider`);
+      range.setAttribute('aria-label', `${shown} (${f.name}) slider`);
       const box = document.createElement('input');
       box.type = 'number';
       box.id = id;
       box.step = kind === 'int' ? '1' : 'any';
-      box.setAttribute('aria-label', f.name);
+      box.setAttribute('aria-label', `${shown} (${f.name})`);
       const cur = this.values.get(f.name);
       const v = typeof cur === 'number' ? cur : d;
       range.value = String(v);

@@ -129,44 +129,44 @@ crate::params::params! {
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct ApfConfig {
         pub mode: ApfMode = ApfMode::SamplingPrediction, "" []
-            "basic | sampling | sampling-prediction";
+            label "method" "basic | sampling | sampling-prediction";
         /// Force units per m.
-        pub k_a: f64 = 5.0, "1/m" [> 0.0] "attraction gain k_a (eq 4-1)";
-        pub rho: f64 = 1.0, "m" [> 0.0] "quadratic attraction within ρ of the goal, conic beyond";
+        pub k_a: f64 = 5.0, "1/m" [> 0.0] label "attraction gain k_a" "attraction gain k_a (eq 4-1)";
+        pub rho: f64 = 1.0, "m" [> 0.0] label "attraction switch distance ρ" "quadratic attraction within ρ of the goal, conic beyond";
         /// Force units·m³.
-        pub k_r: f64 = 0.002, "m³" [>= 0.0] "repulsion gain k_r (eq 4-3)";
-        pub p0: f64 = 0.15, "m" [> 0.0] "repulsion range p₀ beyond an obstacle's surface";
+        pub k_r: f64 = 0.002, "m³" [>= 0.0] label "repulsion gain k_r" "repulsion gain k_r (eq 4-3)";
+        pub p0: f64 = 0.15, "m" [> 0.0] label "repulsion range p₀" "repulsion range p₀ beyond an obstacle's surface";
         /// \[T\] §5.3.3.
-        pub step: f64 = 0.04, "m" [> 0.0] "step length d per planning step";
+        pub step: f64 = 0.04, "m" [> 0.0] label "step length d" "step length d per planning step";
         /// Eq 4-5.
-        pub alpha: f64 = 0.3, "1" [>= 0.0] "attraction weight α of the sampling cost";
+        pub alpha: f64 = 0.3, "1" [>= 0.0] label "attraction weight α" "attraction weight α of the sampling cost";
         /// Eq 4-5.
-        pub beta: f64 = 0.7, "1" [>= 0.0] "repulsion weight β of the sampling cost";
+        pub beta: f64 = 0.7, "1" [>= 0.0] label "repulsion weight β" "repulsion weight β of the sampling cost";
         /// Sampling modes only.
         pub relative_distance: bool = true, "" []
-            "β = 0 while the goal is nearer than every obstacle (§4.2.2)";
+            label "relative distance rule" "β = 0 while the goal is nearer than every obstacle (§4.2.2)";
         pub sample_step: f64 = 15f64.to_radians(), "rad" [> 0.0]
-            "spacing of the sampled directions (15°)";
+            label "sampling step" "spacing of the sampled directions (15°)";
         /// From the resultant; at most π.
         pub sample_half_range: f64 = 90f64.to_radians(), "rad" [>= 0.0]
-            "largest sampled deviation (90°)";
+            label "sampling half-range" "largest sampled deviation (90°)";
         /// Instead of the vertical plane of the force (beyond the thesis).
-        pub hemisphere: bool = false, "" [] "3D: sample the whole hemisphere";
+        pub hemisphere: bool = false, "" [] label "whole hemisphere (3D)" "3D: sample the whole hemisphere";
         /// Prediction mode only.
         pub predictor: predict::PredictorKind = predict::PredictorKind::ConstantVelocity, "" []
-            "constant-velocity | rnn";
-        pub predict_dt: f64 = 0.5, "s" [> 0.0] "time to t+1 and between t+1 and t+2";
-        pub predict_scale: f64 = 0.75, "1" [> 0.0] "virtual range scale s (t+1) and s² (t+2)";
+            label "obstacle motion predictor" "constant-velocity | rnn";
+        pub predict_dt: f64 = 0.5, "s" [> 0.0] label "prediction step" "time to t+1 and between t+1 and t+2";
+        pub predict_scale: f64 = 0.75, "1" [> 0.0] label "prediction range scale s" "virtual range scale s (t+1) and s² (t+2)";
         /// 0.75 at t+1, 0.5 at t+2.
         pub predict_gains: [f64; 2] = [0.75, 0.5], "1" []
-            "virtual repulsion at the predicted centre / attraction (t+1, t+2)";
+            label "prediction gains" "virtual repulsion at the predicted centre / attraction (t+1, t+2)";
         /// They stay plain obstacles.
         pub predict_min_motion: f64 = 0.005, "m" [>= 0.0]
-            "no virtual copies for obstacles predicted to move less";
+            label "least predicted motion" "no virtual copies for obstacles predicted to move less";
         /// 0 = a point.
-        pub robot_radius: f64 = 0.0, "m" [>= 0.0] "robot radius; distances to its surface";
+        pub robot_radius: f64 = 0.0, "m" [>= 0.0] label "robot radius" "robot radius; distances to its surface";
         /// The exact local minimum of \[T\] Fig 4-1; force units.
-        pub stall_force: f64 = 1e-9, "1" [>= 0.0] "basic APF stands still below this resultant";
+        pub stall_force: f64 = 1e-9, "1" [>= 0.0] label "stall force" "basic APF stands still below this resultant";
     }
 }
 

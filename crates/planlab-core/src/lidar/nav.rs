@@ -51,28 +51,28 @@ crate::params::params! {
     /// \[L\] Table 1 navigation parameters (defaults) and the switches of §3.4.
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct LidarNavConfig {
-        pub t_gap: f64 = 1.4, "m" [>= 0.0] "T_gap: weak edges and gap widths";
+        pub t_gap: f64 = 1.4, "m" [>= 0.0] label "gap threshold T_gap" "T_gap: weak edges and gap widths";
         pub theta_range: f64 = std::f64::consts::FRAC_PI_2, "rad" [>= 0.0]
-            "θ_range: Algorithm 1 looks this far past a rising edge";
-        pub d_oe: f64 = 0.5, "m" [>= 0.0] "d_oe: obstacle expansion (eq 1)";
-        pub d_te: f64 = 0.5, "m" [>= 0.0] "d_te: temporary goal offset beyond an OP end";
-        pub t_do: f64 = 4.0, "m" [>= 0.0] "T_do (eq 4): switch when the blocking OP is nearer";
+            label "edge search angle θ_range" "θ_range: Algorithm 1 looks this far past a rising edge";
+        pub d_oe: f64 = 0.5, "m" [>= 0.0] label "obstacle expansion d_oe" "d_oe: obstacle expansion (eq 1)";
+        pub d_te: f64 = 0.5, "m" [>= 0.0] label "temporary goal offset d_te" "d_te: temporary goal offset beyond an OP end";
+        pub t_do: f64 = 4.0, "m" [>= 0.0] label "switch distance T_do" "T_do (eq 4): switch when the blocking OP is nearer";
         pub t_theta_o: f64 = 0.6 * std::f64::consts::PI, "rad" [>= 0.0]
-            "T_θo (eq 4): … or wider than this";
-        pub t_dc: f64 = 0.3, "m" [>= 0.0] "T_dc: hold when the candidates' costs differ by less";
-        pub t_h: f64 = 3.0, "s" [>= 0.0] "t_h: hold period";
-        pub max_iterations: u32 = 3, "1" [] "most re-selections of a blocked temporary goal";
+            label "switch angle T_θo" "T_θo (eq 4): … or wider than this";
+        pub t_dc: f64 = 0.3, "m" [>= 0.0] label "hold cost difference T_dc" "T_dc: hold when the candidates' costs differ by less";
+        pub t_h: f64 = 3.0, "s" [>= 0.0] label "hold period t_h" "t_h: hold period";
+        pub max_iterations: u32 = 3, "1" [] label "most re-selections" "most re-selections of a blocked temporary goal";
         /// Extra condition 1.
         pub switch_condition: bool = true, "bool" []
-            "apply eq 4 before switching to a temporary goal";
+            label "switch condition (eq 4)" "apply eq 4 before switching to a temporary goal";
         /// Extra condition 2.
-        pub hold: bool = true, "bool" [] "apply the hold period";
+        pub hold: bool = true, "bool" [] label "hold period on" "apply the hold period";
         /// 0 = to the point itself. **Decision**: a temporary goal is a
         /// waypoint to pass, not a place to stop; a DWA heading critic aimed
         /// at a point closer than its rollouts reach makes the robot circle
         /// it.
         pub lookahead: f64 = 3.0, "m" [>= 0.0]
-            "steer to a temporary goal at least this far along its bearing";
+            label "look-ahead distance" "steer to a temporary goal at least this far along its bearing";
     }
 }
 

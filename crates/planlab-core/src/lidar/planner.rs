@@ -32,8 +32,8 @@ crate::params::params! {
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct LocalMapConfig {
         /// Must exceed the motion planner's reach; its edge counts as a wall.
-        pub half_size: f64 = 5.0, "m" [> 0.0] "half side of the scan's local map (robot frame)";
-        pub resolution: f64 = 0.05, "m" [> 0.0] "cell size of the scan's local map";
+        pub half_size: f64 = 5.0, "m" [> 0.0] label "local map half size" "half side of the scan's local map (robot frame)";
+        pub resolution: f64 = 0.05, "m" [> 0.0] label "local map cell size" "cell size of the scan's local map";
     }
 }
 

@@ -77,30 +77,30 @@ crate::params::params! {
         /// 0.05: OMPL's RRT default; LaValle & Kuffner 2001 bias toward the
         /// goal by a few per cent.
         pub goal_bias: f64 = 0.05, "1" [>= 0.0, <= 1.0]
-            "probability a sample is the goal (OMPL's RRT default 0.05)";
+            label "goal bias" "probability a sample is the goal (OMPL's RRT default 0.05)";
         /// 1.0: "a few robot radii", ≈ 3.3 × \[L\]'s 0.3 m robot.
         pub step: f64 = 1.0, "m" [> 0.0]
-            "RRT step ε: most a new node extends toward its sample (a few robot radii)";
-        pub max_iterations: u32 = 5000, "1" [] "samples per plan before it fails";
+            label "RRT step ε" "RRT step ε: most a new node extends toward its sample (a few robot radii)";
+        pub max_iterations: u32 = 5000, "1" [] label "samples per plan" "samples per plan before it fails";
         /// 0.1: the \[L\] presets' map cells; below a millimetre the cell
         /// bound would coarsen it anyway.
-        pub memory_resolution: f64 = 0.1, "m" [>= 1e-3] "cell size of the scan's memory grid";
+        pub memory_resolution: f64 = 0.1, "m" [>= 1e-3] label "memory grid cell size" "cell size of the scan's memory grid";
         pub memory_margin: f64 = 5.0, "m" [>= 0.0]
-            "memory grid and sampling domain reach this far beyond robot and goal";
+            label "memory grid margin" "memory grid and sampling domain reach this far beyond robot and goal";
         /// 0.5: \[L\]'s d_oe, as `tangent-bug` and `rs-apf` use.
         pub margin: f64 = 0.5, "m" [>= 0.0]
-            "the path keeps footprint radius + this from what the scan has shown";
+            label "clearance margin" "the path keeps footprint radius + this from what the scan has shown";
         /// 3: as `tangent-bug` and `rs-apf`.
         pub lookahead: f64 = 3.0, "m" [>= 0.0]
-            "the DWA steers this far along the waypoint's bearing";
-        pub waypoint_tolerance: f64 = 0.5, "m" [> 0.0] "a waypoint this near is passed";
+            label "look-ahead distance" "the DWA steers this far along the waypoint's bearing";
+        pub waypoint_tolerance: f64 = 0.5, "m" [> 0.0] label "waypoint tolerance" "a waypoint this near is passed";
         pub deviation: f64 = 1.0, "m" [> 0.0]
-            "replan when the robot is farther than this from its leg";
+            label "replan deviation" "replan when the robot is farther than this from its leg";
         pub progress_time: f64 = 5.0, "s" [> 0.0]
-            "replan when the remaining length has not shrunk by progress_distance for this long";
+            label "no-progress time" "replan when the remaining length has not shrunk by progress_distance for this long";
         pub progress_distance: f64 = 0.5, "m" [>= 0.0]
-            "progress that resets the progress_time clock";
-        pub retry_time: f64 = 1.0, "s" [>= 0.0] "wait after a failed plan before the next";
+            label "progress distance" "progress that resets the progress_time clock";
+        pub retry_time: f64 = 1.0, "s" [>= 0.0] label "retry wait" "wait after a failed plan before the next";
         /// [`peer_dwa`].
         pub motion: DwaConfig = peer_dwa(), "" [nested]
             "the baseline DWA driving toward the waypoint";

@@ -59,11 +59,11 @@ crate::params::params! {
             "the local map built from the scan for the motion planner";
         /// Path segments and wall following keep this clear of the hit points.
         pub margin: f64 = 0.5, "m" [>= 0.0]
-            "segments and wall following keep footprint radius + this from hits";
+            label "clearance margin" "segments and wall following keep footprint radius + this from hits";
         /// Steps toward the goal.
         pub stall_steps: u32 = 3, "1" []
-            "virtual steps without progress before following the obstacle";
-        pub lookahead: f64 = 3.0, "m" [>= 0.0] "the DWA steers this far along the target's bearing";
+            label "stall steps" "virtual steps without progress before following the obstacle";
+        pub lookahead: f64 = 3.0, "m" [>= 0.0] label "look-ahead distance" "the DWA steers this far along the target's bearing";
         /// [`peer_dwa`].
         pub motion: DwaConfig = peer_dwa(), "" [nested]
             "the baseline DWA driving toward the target";

@@ -89,12 +89,12 @@ crate::params::params! {
     /// Settings of the simulated LiDAR.
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct LidarConfig {
-        pub beams: u32 = 360, "1" [] "number of beams n over 360°";
+        pub beams: u32 = 360, "1" [] label "beam count n" "number of beams n over 360°";
         /// \[L\] Table 1: 10.
-        pub range: f64 = 10.0, "m" [> 0.0] "range limit d_lidar";
+        pub range: f64 = 10.0, "m" [> 0.0] label "range d_lidar" "range limit d_lidar";
         /// Standard deviation.
-        pub noise_std: f64 = 0.0, "m" [>= 0.0] "Gaussian range noise σ (0 = exact)";
-        pub noise_seed: u64 = 0, "1" [] "seed of the noise stream";
+        pub noise_std: f64 = 0.0, "m" [>= 0.0] label "range noise σ" "Gaussian range noise σ (0 = exact)";
+        pub noise_seed: u64 = 0, "1" [] label "noise seed" "seed of the noise stream";
     }
 }
 

@@ -62,18 +62,18 @@ crate::params::params! {
             "the local map built from the scan for the motion planner";
         /// Adjacent beams.
         pub t_jump: f64 = 1.0, "m" [> 0.0]
-            "adjacent ranges differing by more mark a tangent-graph endpoint";
+            label "range jump threshold" "adjacent ranges differing by more mark a tangent-graph endpoint";
         /// 0.5: \[L\]'s d_oe, the same safety expansion; at 0.2 the robot
         /// grazes corners and its DWA, braking for the wall, stalls there.
         pub margin: f64 = 0.5, "m" [>= 0.0]
-            "endpoints and the goal ray are for a disc of footprint radius + this";
+            label "clearance margin" "endpoints and the goal ray are for a disc of footprint radius + this";
         /// Compared with its best of the motion-to-goal phase.
         pub h_tolerance: f64 = 0.2, "m" [>= 0.0]
-            "boundary following once d(x,O)+d(O,goal) exceeds its best by this";
+            label "boundary-following tolerance" "boundary following once d(x,O)+d(O,goal) exceeds its best by this";
         /// Between the footprint and the followed obstacle.
-        pub follow_clearance: f64 = 0.3, "m" [>= 0.0] "clearance kept to the followed obstacle";
+        pub follow_clearance: f64 = 0.3, "m" [>= 0.0] label "wall-following clearance" "clearance kept to the followed obstacle";
         pub lookahead: f64 = 3.0, "m" [>= 0.0]
-            "the DWA steers this far along the target's bearing (along the wall when following)";
+            label "look-ahead distance" "the DWA steers this far along the target's bearing (along the wall when following)";
         /// [`peer_dwa`].
         pub motion: DwaConfig = peer_dwa(), "" [nested]
             "the baseline DWA under the navigator";

@@ -71,27 +71,27 @@ crate::params::params! {
     pub struct DualConfig {
         /// The DWA engine (\[S\] §5: α 0.05, β 0.5, γ 0.1, Δt 0.1 s).
         pub dwa: DwaConfig = s_dwa(), "" [nested] "the DWA engine";
-        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] "safe A* inflation beyond the footprint radius";
+        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] label "inflation margin" "safe A* inflation beyond the footprint radius";
         /// Safe A\*'s L(n) = k/s (\[S\] eq 1).
         pub safe_epsilon: f64 = SafeAStarConfig::default().epsilon, "cells" [>= 0.0]
-            "ε, weight of safe A*'s safety term";
+            label "safety weight ε" "ε, weight of safe A*'s safety term";
         /// r of the (2r+1)² window.
         pub safe_window: u32 = SafeAStarConfig::default().window_radius, "cells" []
-            "half-size of safe A*'s evaluation window";
-        pub switch_radius: f64 = 0.5, "m" [> 0.0] "take the next temporary goal within this";
+            label "safety window" "half-size of safe A*'s evaluation window";
+        pub switch_radius: f64 = 0.5, "m" [> 0.0] label "switch radius" "take the next temporary goal within this";
         /// \[S\] §4.1; divided by the map's resolution for the grid path.
         pub bottom_up_error: f64 = 1.0, "m" [>= 0.0]
-            "Bottom-Up maximum merge error (feature nodes)";
+            label "Bottom-Up error" "Bottom-Up maximum merge error (feature nodes)";
         /// d of \[S\] eq 12; not at the final goal.
         pub hold_distance: f64 = 3.0, "m" [>= 0.0]
-            "d: hold the speed within this of a temporary goal";
+            label "speed-hold distance d" "d: hold the speed within this of a temporary goal";
         /// A Decision (module doc).
-        pub hold_min_speed: f64 = 0.3, "m/s" [>= 0.0] "hold only a previous speed at least this";
+        pub hold_min_speed: f64 = 0.3, "m/s" [>= 0.0] label "least held speed" "hold only a previous speed at least this";
         /// False: the normal window always.
-        pub dual_velocity: bool = true, "bool" [] "apply the dual velocity model";
+        pub dual_velocity: bool = true, "bool" [] label "dual velocity model" "apply the dual velocity model";
         /// \[S\] §4.2; above π: never.
         pub detour_angle: f64 = std::f64::consts::FRAC_PI_2, "rad" [>= 0.0]
-            "θa at or above this switches to the next temporary goal";
+            label "detour angle θa" "θa at or above this switches to the next temporary goal";
     }
 }
 
@@ -102,12 +102,12 @@ crate::params::params! {
     pub struct PreliminaryConfig {
         /// The DWA engine (\[S\] §5 weights).
         pub dwa: DwaConfig = s_dwa(), "" [nested] "the DWA engine";
-        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] "safe A* inflation beyond the footprint radius";
+        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] label "inflation margin" "safe A* inflation beyond the footprint radius";
         pub safe_epsilon: f64 = SafeAStarConfig::default().epsilon, "cells" [>= 0.0]
-            "ε, weight of safe A*'s safety term";
+            label "safety weight ε" "ε, weight of safe A*'s safety term";
         pub safe_window: u32 = SafeAStarConfig::default().window_radius, "cells" []
-            "half-size of safe A*'s evaluation window";
-        pub switch_radius: f64 = 0.5, "m" [> 0.0] "take the next temporary goal within this";
+            label "safety window" "half-size of safe A*'s evaluation window";
+        pub switch_radius: f64 = 0.5, "m" [> 0.0] label "switch radius" "take the next temporary goal within this";
     }
 }
 

@@ -48,9 +48,9 @@ crate::params::params! {
     /// Critic weights of G = α·head + β·dist + γ·vel.
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct Weights {
-        pub alpha: f64 = 0.05, "1" [>= 0.0] "α, weight of the heading critic";
-        pub beta: f64 = 0.2, "1" [>= 0.0] "β, weight of the clearance critic";
-        pub gamma: f64 = 0.1, "1" [>= 0.0] "γ, weight of the velocity critic";
+        pub alpha: f64 = 0.05, "1" [>= 0.0] label "heading weight α" "α, weight of the heading critic";
+        pub beta: f64 = 0.2, "1" [>= 0.0] label "clearance weight β" "β, weight of the clearance critic";
+        pub gamma: f64 = 0.1, "1" [>= 0.0] label "speed weight γ" "γ, weight of the velocity critic";
     }
 }
 
@@ -67,38 +67,38 @@ crate::params::params! {
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct DwaConfig {
         pub alpha: f64 = 0.05, "1" [>= 0.0]
-            "α, heading weight: π − |bearing error at the rollout end|";
-        pub beta: f64 = 0.2, "1" [>= 0.0] "β, clearance weight: smallest clearance, capped";
-        pub gamma: f64 = 0.1, "1" [>= 0.0] "γ, velocity weight: forward speed";
+            label "heading weight α" "α, heading weight: π − |bearing error at the rollout end|";
+        pub beta: f64 = 0.2, "1" [>= 0.0] label "clearance weight β" "β, clearance weight: smallest clearance, capped";
+        pub gamma: f64 = 0.1, "1" [>= 0.0] label "speed weight γ" "γ, velocity weight: forward speed";
         pub v_res: f64 = 0.01, "m/s" [> 0.0]
-            "linear-speed sampling resolution (when v_samples = 0)";
+            label "speed resolution" "linear-speed sampling resolution (when v_samples = 0)";
         pub w_res: f64 = 1f64.to_radians(), "rad/s" [> 0.0]
-            "turn-rate sampling resolution (when w_samples = 0)";
+            label "turn-rate resolution" "turn-rate sampling resolution (when w_samples = 0)";
         pub v_samples: u32 = 0, "1" []
-            "linear speeds per step, evenly spread; 0 = by v_res";
-        pub w_samples: u32 = 0, "1" [] "turn rates per step, evenly spread; 0 = by w_res";
-        pub predict_time: f64 = 3.0, "s" [> 0.0] "rollout horizon";
-        pub sim_dt: f64 = 0.1, "s" [> 0.0] "rollout integration step";
-        pub dist_cap: f64 = 1.0, "m" [> 0.0] "clearance critic saturates here";
+            label "speed samples" "linear speeds per step, evenly spread; 0 = by v_res";
+        pub w_samples: u32 = 0, "1" [] label "turn-rate samples" "turn rates per step, evenly spread; 0 = by w_res";
+        pub predict_time: f64 = 3.0, "s" [> 0.0] label "look-ahead time" "rollout horizon";
+        pub sim_dt: f64 = 0.1, "s" [> 0.0] label "rollout time step" "rollout integration step";
+        pub dist_cap: f64 = 1.0, "m" [> 0.0] label "clearance cap" "clearance critic saturates here";
         /// Rollouts closer than this to anything collide.
-        pub safety_margin: f64 = 0.0, "m" [>= 0.0] "extra clearance kept beyond the footprint";
+        pub safety_margin: f64 = 0.0, "m" [>= 0.0] label "safety margin" "extra clearance kept beyond the footprint";
         pub predict_movers: bool = true, "bool" []
-            "movers move at their observed velocity along rollouts";
+            label "predict movers" "movers move at their observed velocity along rollouts";
         /// Fox et al.'s braking distance.
         pub admissible_window: bool = true, "bool" []
-            "apply V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b), dist along the arc to the first contact";
+            label "admissible window V_a" "apply V_a: v ≤ √(2·dist·v̇_b), |ω| ≤ √(2·dist·ω̇_b), dist along the arc to the first contact";
         pub rotate_in_place: bool = true, "bool" []
-            "with no admissible sample, a round robot turns toward the goal";
+            label "rotate in place" "with no admissible sample, a round robot turns toward the goal";
         /// A planner's own caps, as ROS planners have `max_vel_x`: the
         /// robot's limits when 0; never above them.
         pub max_speed: f64 = 0.0, "m/s" [>= 0.0, <= 100.0]
-            "fastest forward speed sampled (0: the robot's v_max)";
+            label "top speed" "fastest forward speed sampled (0: the robot's v_max)";
         pub max_turn: f64 = 0.0, "rad/s" [>= 0.0, <= 100.0]
-            "fastest turn rate sampled (0: the robot's ω_max)";
+            label "top turn rate" "fastest turn rate sampled (0: the robot's ω_max)";
         pub max_accel: f64 = 0.0, "m/s²" [>= 0.0, <= 1000.0]
-            "linear acceleration of the window and of braking (0: the robot's a_v)";
+            label "acceleration" "linear acceleration of the window and of braking (0: the robot's a_v)";
         pub max_turn_accel: f64 = 0.0, "rad/s²" [>= 0.0, <= 1000.0]
-            "angular acceleration of the window and of braking (0: the robot's a_ω)";
+            label "turn acceleration" "angular acceleration of the window and of braking (0: the robot's a_ω)";
     }
 }
 

@@ -77,23 +77,23 @@ crate::params::params! {
     pub struct ImprovedConfig {
         /// Its α, β, γ are the weights with no mover in range.
         pub dwa: DwaConfig = DwaConfig::default(), "" [nested] "the DWA engine";
-        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] "A* inflation beyond the footprint radius";
-        pub switch_radius: f64 = 1.0, "m" [> 0.0] "advance to the next key point within this";
+        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] label "inflation margin" "A* inflation beyond the footprint radius";
+        pub switch_radius: f64 = 1.0, "m" [> 0.0] label "key point switch radius" "advance to the next key point within this";
         pub virtual_radius: f64 = 0.3, "m" [> 0.0]
-            "a virtual goal counts as reached within this";
+            label "virtual goal radius" "a virtual goal counts as reached within this";
         /// Measured from the robot's centre.
-        pub react_range: f64 = 3.0, "m" [>= 0.0] "classify movers whose surface is this close";
-        pub v_static: f64 = 0.1, "m/s" [>= 0.0] "movers faster than this are ordinary dynamic";
+        pub react_range: f64 = 3.0, "m" [>= 0.0] label "reaction range" "classify movers whose surface is this close";
+        pub v_static: f64 = 0.1, "m/s" [>= 0.0] label "static speed limit" "movers faster than this are ordinary dynamic";
         /// A special obstacle this close to the current goal is "near the
         /// goal" (\[T\] Fig 3-13 c–e).
         pub goal_region: f64 = 1.5, "m" [>= 0.0]
-            "near-goal rules within this of the current goal (virtual goal beside it, drive-in)";
+            label "goal region" "near-goal rules within this of the current goal (virtual goal beside it, drive-in)";
         /// \[T\] eq 3-7.
-        pub rho_n: f64 = 2.0, "1" [>= 0.0] "exponent n of the relative distance factor ρ";
+        pub rho_n: f64 = 2.0, "1" [>= 0.0] label "relative distance exponent n" "exponent n of the relative distance factor ρ";
         pub decelerate: Weights = Weights { alpha: 1.0, beta: 0.2, gamma: 0.1 }, "" [nested of]
-            "deceleration strategy (large heading weight)";
+            label "deceleration" "deceleration strategy (large heading weight)";
         pub detour: Weights = Weights { alpha: 0.05, beta: 0.2, gamma: 0.1 }, "" [nested of]
-            "detour strategy (small heading weight)";
+            label "detour" "detour strategy (small heading weight)";
     }
 }
 
@@ -104,15 +104,15 @@ crate::params::params! {
     pub struct Fusion53Config {
         /// Its α, β, γ are the weights with no mover in range.
         pub dwa: DwaConfig = DwaConfig::default(), "" [nested] "the DWA engine";
-        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] "A* inflation beyond the footprint radius";
-        pub switch_radius: f64 = 1.0, "m" [> 0.0] "advance to the next key point within this";
+        pub inflate_margin: f64 = 0.1, "m" [>= 0.0] label "inflation margin" "A* inflation beyond the footprint radius";
+        pub switch_radius: f64 = 1.0, "m" [> 0.0] label "key point switch radius" "advance to the next key point within this";
         /// Measured from the robot's centre.
         pub react_range: f64 = 3.0, "m" [>= 0.0]
-            "decelerate while a moving obstacle's surface is this close";
+            label "reaction range" "decelerate while a moving obstacle's surface is this close";
         pub v_static: f64 = 0.1, "m/s" [>= 0.0]
-            "obstacles faster than this are moving (decelerate); slower get plain DWA";
+            label "static speed limit" "obstacles faster than this are moving (decelerate); slower get plain DWA";
         pub decelerate: Weights = Weights { alpha: 1.0, beta: 0.2, gamma: 0.1 }, "" [nested of]
-            "deceleration strategy";
+            label "deceleration" "deceleration strategy";
     }
 }
 

@@ -16,12 +16,12 @@ crate::params::params! {
     /// Settings of the `pursuit` baseline.
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct PursuitConfig {
-        pub k_w: f64 = 1.5, "1/s" [> 0.0] "heading gain: ω = k_w · heading error";
+        pub k_w: f64 = 1.5, "1/s" [> 0.0] label "heading gain k_w" "heading gain: ω = k_w · heading error";
         pub turn_angle: f64 = std::f64::consts::FRAC_PI_3, "rad" [> 0.0]
-            "turn in place while the heading error exceeds this";
-        pub stop_distance: f64 = 0.05, "m" [>= 0.0] "stop when the goal is this close";
+            label "turn-in-place angle" "turn in place while the heading error exceeds this";
+        pub stop_distance: f64 = 0.05, "m" [>= 0.0] label "stopping distance" "stop when the goal is this close";
         pub brake_fraction: f64 = 0.8, "1" [> 0.0, <= 1.0]
-            "share of the deceleration limit the braking profile plans with (0–1]";
+            label "braking share" "share of the deceleration limit the braking profile plans with (0–1]";
     }
 }
 

@@ -33,12 +33,12 @@ params! {
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct LaserConfig {
         pub fov_deg: f64 = 270.0, "°" [> 0.0, <= 360.0]
-            "field of view, centred on the heading";
-        pub resolution_deg: f64 = 0.25, "°" [>= 0.01, <= 90.0] "angle between neighbouring beams";
-        pub range: f64 = 30.0, "m" [> 0.0, <= 1000.0] "range limit";
+            label "field of view" "field of view, centred on the heading";
+        pub resolution_deg: f64 = 0.25, "°" [>= 0.01, <= 90.0] label "beam spacing" "angle between neighbouring beams";
+        pub range: f64 = 30.0, "m" [> 0.0, <= 1000.0] label "range" "range limit";
         /// planlab's choice, not BARN's: the usual Gazebo laser plugin σ.
         pub noise_std: f64 = 0.0, "m" [>= 0.0, <= 10.0]
-            "Gaussian range noise σ (0 = exact); its stream is seeded by the episode's seed";
+            label "range noise σ" "Gaussian range noise σ (0 = exact); its stream is seeded by the episode's seed";
     }
 }
 
@@ -47,19 +47,19 @@ params! {
     /// inflation layers (defaults: BARN's Jackal configuration).
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct ScanCostmapConfig {
-        pub resolution: f64 = 0.05, "m" [>= 0.005, <= 1.0] "cell size of the perceived map";
+        pub resolution: f64 = 0.05, "m" [>= 0.005, <= 1.0] label "map cell size" "cell size of the perceived map";
         pub obstacle_range: f64 = 2.5, "m" [>= 0.0, <= 1000.0]
-            "returns within this range mark their cell";
+            label "obstacle marking range" "returns within this range mark their cell";
         pub raytrace_range: f64 = 3.0, "m" [>= 0.0, <= 1000.0]
-            "rays clear the cells they cross up to this range";
+            label "clearing range" "rays clear the cells they cross up to this range";
         pub inflation_radius: f64 = 0.30, "m" [>= 0.0, <= 100.0]
-            "the inflation layer's radius (drawn and reported; planners inflate as they do)";
+            label "inflation radius" "the inflation layer's radius (drawn and reported; planners inflate as they do)";
         /// `costmap_2d`'s default.
         pub cost_scaling_factor: f64 = 10.0, "1/m" [>= 0.0, <= 1000.0]
-            "decay rate of the inflated cost";
+            label "cost decay rate" "decay rate of the inflated cost";
         /// planlab's choice: a costmap updated at 5 Hz.
         pub update_period: f64 = 0.2, "s" [>= 0.0, <= 100.0]
-            "the perceived map is rebuilt at most this often (0: every step)";
+            label "map update period" "the perceived map is rebuilt at most this often (0: every step)";
     }
 }
 

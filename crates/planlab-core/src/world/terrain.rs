@@ -142,17 +142,17 @@ crate::params::params! {
     /// Vehicle parameters for the wheel loads (\[C\] Table 1 defaults).
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct VehicleSpec {
-        pub mass: f64 = 20.0, "kg" [> 0.0] "vehicle mass m";
+        pub mass: f64 = 20.0, "kg" [> 0.0] label "vehicle mass m" "vehicle mass m";
         /// l_f.
-        pub l_f: f64 = 0.25, "m" [>= 0.0] "centre of gravity to front axle";
+        pub l_f: f64 = 0.25, "m" [>= 0.0] label "centre of gravity to front axle l_f" "centre of gravity to front axle";
         /// l_r.
-        pub l_r: f64 = 0.25, "m" [>= 0.0] "centre of gravity to rear axle";
+        pub l_r: f64 = 0.25, "m" [>= 0.0] label "centre of gravity to rear axle l_r" "centre of gravity to rear axle";
         /// b_f, the distance between the front wheels.
-        pub b_f: f64 = 0.5, "m" [> 0.0] "front track";
+        pub b_f: f64 = 0.5, "m" [> 0.0] label "front track b_f" "front track";
         /// b_r.
-        pub b_r: f64 = 0.5, "m" [> 0.0] "rear track";
+        pub b_r: f64 = 0.5, "m" [> 0.0] label "rear track b_r" "rear track";
         /// h.
-        pub h: f64 = 0.2, "m" [>= 0.0] "height of the centre of gravity";
+        pub h: f64 = 0.2, "m" [>= 0.0] label "centre-of-gravity height h" "height of the centre of gravity";
     }
 }
 

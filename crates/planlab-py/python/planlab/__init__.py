@@ -66,7 +66,9 @@ def planners() -> list:
 
 
 def planner_catalogue() -> list:
-    """The local planner catalogue (``planlab planners --json``)."""
+    """The local planner catalogue (``planlab planners --json``): each
+    planner's fields with ``name`` (the config name), ``label`` (the same in
+    plain words, e.g. "heading weight α"), ``unit``, ``default`` and ``doc``."""
     return _planner_catalogue()
 
 

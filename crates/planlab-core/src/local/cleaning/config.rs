@@ -37,62 +37,62 @@ crate::params::params! {
     #[derive(Debug, Clone, PartialEq)]
     pub struct CleaningDwaConfig {
         pub alpha: f64 = 0.1, "1" [>= 0.0]
-            "α: weight of the obstacle cost (sum of costmap costs crossed)";
+            label "obstacle cost weight α" "α: weight of the obstacle cost (sum of costmap costs crossed)";
         /// \[C\] Table 2's "local weight", see the module doc.
-        pub beta: f64 = 0.3, "1" [>= 0.0] "β: weight of the Manhattan distance to the local goal";
+        pub beta: f64 = 0.3, "1" [>= 0.0] label "goal distance weight β" "β: weight of the Manhattan distance to the local goal";
         /// \[C\] Table 2's "global weight".
         pub gamma: f64 = 0.6, "1" [>= 0.0]
-            "γ: weight of the Manhattan distance to the global path";
+            label "path distance weight γ" "γ: weight of the Manhattan distance to the global path";
         /// nav2 DWB's "twirling" critic.
         pub twirl: f64 = 0.1, "m·s/rad" [>= 0.0]
-            "weight of |ω| (not in \\[C\\]; keeps the holonomic body from spinning, 0 = off)";
-        pub v_res: f64 = 0.02, "m/s" [> 0.0] "linear velocity resolution (v_x and v_y)";
-        pub w_res: f64 = 0.01, "rad/s" [> 0.0] "angular velocity resolution";
-        pub sim_time: f64 = 2.0, "s" [> 0.0] "trajectory prediction time";
-        pub sim_dt: f64 = 0.1, "s" [> 0.0] "integration step of the prediction";
+            label "spin weight" "weight of |ω| (not in \\[C\\]; keeps the holonomic body from spinning, 0 = off)";
+        pub v_res: f64 = 0.02, "m/s" [> 0.0] label "speed resolution" "linear velocity resolution (v_x and v_y)";
+        pub w_res: f64 = 0.01, "rad/s" [> 0.0] label "turn-rate resolution" "angular velocity resolution";
+        pub sim_time: f64 = 2.0, "s" [> 0.0] label "look-ahead time" "trajectory prediction time";
+        pub sim_dt: f64 = 0.1, "s" [> 0.0] label "rollout time step" "integration step of the prediction";
         /// A tiny resolution cannot stall a step.
-        pub max_samples_per_axis: usize = 41, "1" [] "most samples per velocity axis";
+        pub max_samples_per_axis: usize = 41, "1" [] label "samples per axis" "most samples per velocity axis";
         /// \[C\] Table 1's single maximum linear speed.
         pub max_speed: f64 = 0.0, "m/s" [>= 0.0]
-            "largest translational speed √(v_x² + v_y²); 0 = the robot's v_max";
+            label "top speed" "largest translational speed √(v_x² + v_y²); 0 = the robot's v_max";
         pub inflation_radius: f64 = 0.35, "m" [>= 0.0]
-            "robot inflation radius: costmap inscribed radius and A* inflation";
+            label "inflation radius" "robot inflation radius: costmap inscribed radius and A* inflation";
         pub safety_distance: f64 = 0.10, "m" [>= 0.0]
-            "costs decay from the inflation radius out to inflation_radius + this";
+            label "cost decay distance" "costs decay from the inflation radius out to inflation_radius + this";
         pub cost_scaling: f64 = 10.0, "1/m" [>= 0.0]
-            "costmap cost decay factor (ROS cost_scaling_factor)";
+            label "cost decay rate" "costmap cost decay factor (ROS cost_scaling_factor)";
         pub lookahead: f64 = 1.5, "m" [> 0.0]
-            "arc length from the robot's projection to the local goal (at least 1.25·v_max·sim_time)";
+            label "local goal distance" "arc length from the robot's projection to the local goal (at least 1.25·v_max·sim_time)";
         pub waypoints: Vec<[f64; 2]> = Vec::new(), "m" []
-            "cleaning target points [[x, y], …] the global path passes through in order";
+            label "cleaning waypoints" "cleaning target points [[x, y], …] the global path passes through in order";
         /// \[C\] §2.1: many close targets, frequent acceleration and braking.
         pub stop_at_waypoints: bool = false, "bool" []
-            "stop at every waypoint (the local goal waits there until it is reached)";
-        pub waypoint_tolerance: f64 = 0.1, "m" [> 0.0] "a waypoint is reached within this distance";
+            label "stop at waypoints" "stop at every waypoint (the local goal waits there until it is reached)";
+        pub waypoint_tolerance: f64 = 0.1, "m" [> 0.0] label "waypoint tolerance" "a waypoint is reached within this distance";
         /// \[C\] §3.2.
         pub load_limit: bool = true, "bool" []
-            "vertical-load acceleration limit (\\[C\\] eq 8, 14)";
+            label "wheel load limit" "vertical-load acceleration limit (\\[C\\] eq 8, 14)";
         pub load_fraction: f64 = 0.2, "1" [>= 0.0]
-            "j: every wheel keeps more than j·m·g (0 ≤ j < 1/4)";
+            label "least wheel load j" "j: every wheel keeps more than j·m·g (0 ≤ j < 1/4)";
         pub load_region: LoadRegion = LoadRegion::Diamond, "" []
-            "`diamond` (exact eq 8, |a_x|+|a_y| ≤ x₁) or `box` (eq 14 per axis)";
+            label "load limit shape" "`diamond` (exact eq 8, |a_x|+|a_y| ≤ x₁) or `box` (eq 14 per axis)";
         pub vehicle: VehicleSpec = VehicleSpec::default(), "" [nested]
             "vehicle of the load limit (\\[C\\] Table 1)";
         /// A peak-hold filter: the next period's bumps are unknown, the
         /// recent worst is a cautious guess.
         pub accel_z_hold: usize = 5, "periods" []
-            "the load limit uses the largest a_z measured over this many periods (≥ 1)";
+            label "vertical acceleration memory" "the load limit uses the largest a_z measured over this many periods (≥ 1)";
         /// \[C\] §3.3.
         pub compensate: bool = true, "bool" []
-            "odometry error compensation: least-squares K used in rollouts (\\[C\\] eq 15–18)";
+            label "odometry compensation" "odometry error compensation: least-squares K used in rollouts (\\[C\\] eq 15–18)";
         pub k_structure: KStructure = KStructure::Block, "" []
-            "`block` (translation 2×2 and rotation fitted separately) or `full` (3×3, eq 17)";
-        pub window: usize = 50, "samples" [] "sliding window of odometry pairs for the fit";
+            label "compensation matrix form" "`block` (translation 2×2 and rotation fitted separately) or `full` (3×3, eq 17)";
+        pub window: usize = 50, "samples" [] label "fit window" "sliding window of odometry pairs for the fit";
         pub min_samples: usize = 10, "samples" []
-            "odometry pairs needed before the first fit (K = I until then)";
+            label "samples before first fit" "odometry pairs needed before the first fit (K = I until then)";
         /// Relative to the mean excitation tr(Σuuᵀ)/3.
         pub ridge: f64 = 0.3, "1" [>= 0.0]
-            "pull of K toward its previous value, relative to the mean excitation";
+            label "fit damping" "pull of K toward its previous value, relative to the mean excitation";
     }
 }
 

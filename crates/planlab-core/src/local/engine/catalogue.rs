@@ -71,7 +71,7 @@ macro_rules! critic_params {
             $(#[$a])*
             #[derive(Debug, Clone, Copy, PartialEq)]
             pub struct $name {
-                pub scale: f64 = $scale, "1" [>= 0.0] "weight of the critic's cost";
+                pub scale: f64 = $scale, "1" [>= 0.0] label "weight" "weight of the critic's cost";
                 $(pub $f: $t = $d, $u [$($b)*] $doc;)*
             }
         }

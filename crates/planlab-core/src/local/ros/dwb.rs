@@ -46,23 +46,23 @@ crate::params::params! {
     /// acc_lim_theta = a_ω).
     #[derive(Debug, Clone, PartialEq)]
     pub struct DwbConfig {
-        pub vx_samples: u32 = 20, "1" [] "vx_samples: forward speeds sampled (at least 1)";
-        pub vtheta_samples: u32 = 20, "1" [] "vtheta_samples: turn rates sampled (at least 1)";
-        pub sim_time: f64 = 1.7, "s" [> 0.0, <= 60.0] "sim_time: rollout horizon";
+        pub vx_samples: u32 = 20, "1" [] label "speed samples" "vx_samples: forward speeds sampled (at least 1)";
+        pub vtheta_samples: u32 = 20, "1" [] label "turn-rate samples" "vtheta_samples: turn rates sampled (at least 1)";
+        pub sim_time: f64 = 1.7, "s" [> 0.0, <= 60.0] label "look-ahead time" "sim_time: rollout horizon";
         pub linear_granularity: f64 = 0.05, "m" [> 0.0, <= 10.0]
-            "linear_granularity: linear step between rollout poses";
+            label "rollout step" "linear_granularity: linear step between rollout poses";
         pub angular_granularity: f64 = 0.025, "rad" [> 0.0, <= 10.0]
-            "angular_granularity: angular step between rollout poses";
+            label "rollout angular step" "angular_granularity: angular step between rollout poses";
         pub include_last_point: bool = true, "bool" []
-            "include_last_point: the final pose is appended once more (as the source does)";
+            label "repeat last pose" "include_last_point: the final pose is appended once more (as the source does)";
         pub forward_prune_distance: f64 = 2.0, "m" [> 0.0, <= 1000.0]
-            "forward_prune_distance: the plan the critics see ends this far from the robot";
+            label "plan window" "forward_prune_distance: the plan the critics see ends this far from the robot";
         pub replan_period: f64 = 1.0, "s" [>= 0.0, <= 1000.0]
-            "global replanning period of Nav2's default behaviour tree (0: only after a failure)";
+            label "replanning period" "global replanning period of Nav2's default behaviour tree (0: only after a failure)";
         pub critics: Vec<String> = default_critics(), "" []
-            "critics: critic names in order, looked up in the critic catalogue";
+            label "critic list" "critics: critic names in order, looked up in the critic catalogue";
         pub critic_config: serde_json::Value = serde_json::json!({}), "" []
-            "per-critic settings by name, e.g. {\"PathAlign\": {\"scale\": 32, \"forward_point_distance\": 0.325}}";
+            label "critic settings" "per-critic settings by name, e.g. {\"PathAlign\": {\"scale\": 32, \"forward_point_distance\": 0.325}}";
         pub costmap: CostmapParams = CostmapParams::default(), "" [nested] "costmap inflation layer";
     }
 }

@@ -54,11 +54,11 @@ crate::params::params! {
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct CostmapParams {
         pub inflation_radius: f64 = 0.55, "m" [>= 0.0, <= 100.0]
-            "inflation_radius: costs decay out to this distance from an obstacle (at least the robot's inscribed radius)";
+            label "inflation radius" "inflation_radius: costs decay out to this distance from an obstacle (at least the robot's inscribed radius)";
         pub cost_scaling_factor: f64 = 10.0, "1/m" [>= 0.0, <= 1000.0]
-            "cost_scaling_factor: decay rate of the inflated cost, 252·exp(−k·(d − r_inscribed))";
+            label "cost decay rate" "cost_scaling_factor: decay rate of the inflated cost, 252·exp(−k·(d − r_inscribed))";
         pub footprint_padding: f64 = 0.01, "m" [>= 0.0, <= 10.0]
-            "footprint_padding: the footprint is grown by this much (a disc becomes a 16-gon of radius r + padding)";
+            label "footprint padding" "footprint_padding: the footprint is grown by this much (a disc becomes a 16-gon of radius r + padding)";
     }
 }
 

@@ -44,44 +44,44 @@ crate::params::params! {
     /// ω_max, acc_lim_x = a_v, acc_lim_theta = a_ω).
     #[derive(Debug, Clone, Copy, PartialEq)]
     pub struct MoveBaseConfig {
-        pub vx_samples: u32 = 3, "1" [] "vx_samples: forward speeds sampled (at least 1)";
-        pub vtheta_samples: u32 = 20, "1" [] "vtheta_samples: turn rates sampled (at least 1)";
-        pub sim_time: f64 = 1.0, "s" [> 0.0, <= 60.0] "sim_time: rollout horizon";
+        pub vx_samples: u32 = 3, "1" [] label "speed samples" "vx_samples: forward speeds sampled (at least 1)";
+        pub vtheta_samples: u32 = 20, "1" [] label "turn-rate samples" "vtheta_samples: turn rates sampled (at least 1)";
+        pub sim_time: f64 = 1.0, "s" [> 0.0, <= 60.0] label "look-ahead time" "sim_time: rollout horizon";
         pub sim_granularity: f64 = 0.025, "m" [> 0.0, <= 10.0]
-            "sim_granularity: linear step between rollout points";
+            label "rollout step" "sim_granularity: linear step between rollout points";
         pub angular_sim_granularity: f64 = 0.025, "rad" [> 0.0, <= 10.0]
-            "angular_sim_granularity: angular step term of the rollout's step count";
+            label "rollout angular step" "angular_sim_granularity: angular step term of the rollout's step count";
         pub min_vel_x: f64 = 0.1, "m/s" [>= 0.0, <= 100.0]
-            "min_vel_x: slowest forward sample (at most the robot's v_max)";
+            label "slowest speed" "min_vel_x: slowest forward sample (at most the robot's v_max)";
         pub min_in_place_vel_theta: f64 = 0.4, "rad/s" [>= 0.0, <= 100.0]
-            "min_in_place_vel_theta: slowest in-place rotation";
-        pub pdist_scale: f64 = 0.6, "1" [>= 0.0] "pdist_scale: weight of the distance to the plan";
-        pub gdist_scale: f64 = 0.8, "1" [>= 0.0] "gdist_scale: weight of the distance to the local goal";
-        pub occdist_scale: f64 = 0.01, "1" [>= 0.0] "occdist_scale: weight of the costmap cost";
+            label "slowest in-place turn" "min_in_place_vel_theta: slowest in-place rotation";
+        pub pdist_scale: f64 = 0.6, "1" [>= 0.0] label "path distance weight" "pdist_scale: weight of the distance to the plan";
+        pub gdist_scale: f64 = 0.8, "1" [>= 0.0] label "goal distance weight" "gdist_scale: weight of the distance to the local goal";
+        pub occdist_scale: f64 = 0.01, "1" [>= 0.0] label "obstacle cost weight" "occdist_scale: weight of the costmap cost";
         pub meter_scoring: bool = false, "bool" []
-            "meter_scoring: distances in metres (every scale times the resolution) instead of cells";
+            label "distances in metres" "meter_scoring: distances in metres (every scale times the resolution) instead of cells";
         pub heading_lookahead: f64 = 0.325, "m" [>= 0.0, <= 100.0]
-            "heading_lookahead: how far ahead of an in-place rotation the goal distance is read";
+            label "heading look-ahead" "heading_lookahead: how far ahead of an in-place rotation the goal distance is read";
         pub oscillation_reset_dist: f64 = 0.05, "m" [>= 0.0, <= 100.0]
-            "oscillation_reset_dist: moving this far clears the in-place oscillation flags";
+            label "oscillation reset distance" "oscillation_reset_dist: moving this far clears the in-place oscillation flags";
         pub escape_vel: f64 = -0.1, "m/s" [>= -100.0, <= 0.0]
-            "escape_vel: backing-up speed with no legal trajectory (the robot's v_min bounds it)";
+            label "escape speed" "escape_vel: backing-up speed with no legal trajectory (the robot's v_min bounds it)";
         pub escape_reset_dist: f64 = 0.1, "m" [>= 0.0, <= 100.0]
-            "escape_reset_dist: backing up ends this far from where it began";
+            label "escape distance" "escape_reset_dist: backing up ends this far from where it began";
         pub escape_reset_theta: f64 = std::f64::consts::FRAC_PI_4, "rad" [>= 0.0, <= 10.0]
-            "escape_reset_theta: backing up ends after turning this far";
+            label "escape turn" "escape_reset_theta: backing up ends after turning this far";
         pub max_vel_x: f64 = 0.0, "m/s" [>= 0.0, <= 100.0]
-            "max_vel_x: fastest forward sample (0: the robot's v_max; at most the robot's v_max)";
+            label "top speed" "max_vel_x: fastest forward sample (0: the robot's v_max; at most the robot's v_max)";
         pub max_vel_theta: f64 = 0.0, "rad/s" [>= 0.0, <= 100.0]
-            "max_vel_theta: fastest turn sample (0: the robot's ω_max; at most the robot's)";
+            label "top turn rate" "max_vel_theta: fastest turn sample (0: the robot's ω_max; at most the robot's)";
         pub acc_lim_x: f64 = 0.0, "m/s²" [>= 0.0, <= 1000.0]
-            "acc_lim_x: the window's linear acceleration (0: the robot's a_v; at most the robot's)";
+            label "acceleration" "acc_lim_x: the window's linear acceleration (0: the robot's a_v; at most the robot's)";
         pub acc_lim_theta: f64 = 0.0, "rad/s²" [>= 0.0, <= 1000.0]
-            "acc_lim_theta: the window's angular acceleration (0: the robot's a_ω; at most the robot's)";
+            label "turn acceleration" "acc_lim_theta: the window's angular acceleration (0: the robot's a_ω; at most the robot's)";
         pub planner_frequency: f64 = 0.0, "Hz" [>= 0.0, <= 100.0]
-            "planner_frequency: global replanning rate (0: once, and after a failure)";
+            label "replanning rate" "planner_frequency: global replanning rate (0: once, and after a failure)";
         pub plan_window: f64 = 5.0, "m" [> 0.0, <= 1000.0]
-            "the plan the critics see ends this far from the robot (half of costmap_2d's default 10 m local costmap)";
+            label "plan window" "the plan the critics see ends this far from the robot (half of costmap_2d's default 10 m local costmap)";
         pub costmap: CostmapParams = CostmapParams::default(), "" [nested] "costmap inflation layer";
     }
 }
