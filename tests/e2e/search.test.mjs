@@ -411,3 +411,26 @@ test('a 512 × 512 search animates (frame work printed)', async () => {
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('a race with safe A* says its cost comes from other moves; Space races and F finishes', async () => {
+  const page = await session.context.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  page.on('console', (m) => m.type() === 'error' && problems.push(m.text()));
+  await page.goto(session.base + 'race.html');
+  await page.waitForFunction(() => document.body.dataset.raceState === 'ready', null, { timeout: 30_000 });
+  await page.locator('#lane-picks select').nth(3).selectOption('safe-astar');
+  await page.waitForFunction(() => Array.from(document.querySelectorAll('.lane'), (l) => l.dataset.algorithm).includes('safe-astar'));
+  await page.waitForFunction(() => document.body.dataset.raceState === 'ready', null, { timeout: 30_000 });
+  await page.evaluate(() => document.activeElement instanceof HTMLElement && document.activeElement.blur());
+  await page.keyboard.press(' ');
+  await page.waitForFunction(() => document.body.dataset.raceState !== 'ready');
+  await page.keyboard.press('f');
+  assert.equal(await page.getAttribute('body', 'data-race-state'), 'finished');
+  const text = await page.textContent('#race-winner');
+  assert.match(text, /Lowest cost: /);
+  assert.match(text, /Safe A\* \(Ge & Li\): 24-neighbourhood moves: not comparable with A\*/, text);
+  assert.doesNotMatch(text, /A\*: .*not comparable.*A\*: /);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

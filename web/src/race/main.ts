@@ -12,7 +12,7 @@ import type { Cell } from '../shell/cells';
 import { GridSession } from '../scene/grid-session';
 import { loadPreset, type MapHost } from '../shell/grid-maps';
 import type { SearchPlayback } from '../scene/search-player';
-import { GRID_PLANNERS, plannerLabel } from '../shell/grid-planners';
+import { GRID_PLANNERS, movesNote, plannerLabel } from '../shell/grid-planners';
 import { el, errorBanner, messageOf } from '../shell/dom';
 import { panZoom } from '../shell/canvas-input';
 import { installShell } from '../shell/help';
@@ -242,7 +242,14 @@ function showTable(): void {
   // JPS and Theta* expand few cells but scan lines between them: said.
   const lines = byExpanded.map((l) => l.playback!.counters(l.playback!.n).lines);
   const scans = lines.some((n) => n > 0) ? `, with ${lines.join(' / ')} line checks` : '';
-  ui.winner.textContent = `Fewest expanded: ${names(byExpanded)} (${fewest}${scans}) · Lowest cost: ${names(byCost)} (${cheapest.toFixed(4)})`;
+  // A lane whose moves differ from the others' (safe A*'s 24 cells,
+  // Theta*'s any angle; the diagonal rule is every lane's) can win on
+  // cost without being better: said.
+  const caveat = ok
+    .filter((l) => l.algorithm === 'safe-astar' || l.algorithm === 'theta-star')
+    .map((l) => ` · ${plannerLabel(l.algorithm)}: ${movesNote(options(l.algorithm))?.[0] ?? ''}`)
+    .join('');
+  ui.winner.textContent = `Fewest expanded: ${names(byExpanded)} (${fewest}${scans}) · Lowest cost: ${names(byCost)} (${cheapest.toFixed(4)})${caveat}`;
   ui.winner.dataset.expanded = byExpanded.map((l) => l.algorithm).join(',');
   ui.winner.dataset.cost = byCost.map((l) => l.algorithm).join(',');
 }
