@@ -9,7 +9,7 @@
 import init, { MapHandle, PlanSession, ScenBatch, plan } from '../pkg-grid/planlab_wasm.js';
 import { version as pfVersion } from 'pathfinding/package.json';
 import { SIZES, loadCases, type Size } from './bench/cases';
-import { RULES, median, runVersus, type RowResult } from './bench/versus';
+import { RULES, median, type RowResult, type RunRequest, type WorkerMessage } from './bench/shared';
 
 export interface BenchResult {
   rows: number;
@@ -246,6 +246,23 @@ function timerResolutionUs(): number {
   return best * 1e3;
 }
 
+/** Runs the A* comparison in a worker (bench/worker.ts): both libraries on
+ *  one thread, the page free to repaint its progress line. */
+function runInWorker(req: RunRequest, progress: (m: string) => void, onRow: (r: RowResult) => void): Promise<RowResult[]> {
+  const worker = new Worker(new URL('./bench/worker.ts', import.meta.url), { type: 'module' });
+  return new Promise<RowResult[]>((resolve, reject) => {
+    worker.onmessage = (e: MessageEvent<WorkerMessage>) => {
+      const m = e.data;
+      if (m.type === 'progress') progress(m.message);
+      else if (m.type === 'row') onRow(m.row);
+      else if (m.type === 'done') resolve(m.rows);
+      else reject(new Error(m.message));
+    };
+    worker.onerror = (e) => reject(new Error(`the benchmark worker failed: ${e.message}`));
+    worker.postMessage(req);
+  }).finally(() => worker.terminate());
+}
+
 async function run(): Promise<void> {
   const size = $<HTMLSelectElement>('size').value as Size;
   const reps = Math.max(1, Number($<HTMLSelectElement>('reps').value));
@@ -268,7 +285,7 @@ async function run(): Promise<void> {
     progress('Loading the maps and scenarios…');
     const cases = await loadCases(size);
     let n = 0;
-    const rows = await runVersus(cases, reps, progress, (r) => addRow(body, ++n, r));
+    const rows = await runInWorker({ cases, reps }, progress, (r) => addRow(body, ++n, r));
 
     const tr = foot.insertRow();
     const allEqual = rows.every((r) => r.costsEqual);

@@ -1,10 +1,12 @@
 // planlab's A* (wasm) against PathFinding.js's AStarFinder on the same
 // maps and queries: costs checked against each other and the optimum, then
-// times, the median of alternating timed blocks.
+// times, the median of alternating timed blocks. Runs in the bench page's
+// worker (bench/worker.ts), both libraries on the same thread.
 
 import PF from 'pathfinding';
 import { MapHandle, ScenBatch } from '../../pkg-grid/planlab_wasm.js';
 import type { MapCase, Query } from './cases';
+import { RULES, median, type RowResult } from './shared';
 
 /** planlab's A*, spelled out (these are also its defaults). */
 export const PLANLAB_OPTIONS = { algorithm: 'astar', heuristic: 'octile', weight: 1, diagonal: 'no_corner_cutting' };
@@ -18,37 +20,6 @@ export const PF_OPTIONS = {
   weight: 1,
 };
 
-/** Both rules, as the page states them. */
-export const RULES = {
-  planlab: 'no_corner_cutting (a diagonal needs both side cells free)',
-  pathfinding: 'DiagonalMovement.OnlyWhenNoObstacles (a diagonal needs both side cells free)',
-  /** The two rules are the same, so every row is like for like. */
-  same: true,
-};
-
-export interface RowResult {
-  /** The map's id and name (cases.ts). */
-  mapKey: string;
-  map: string;
-  query: Query;
-  planlabCost: number;
-  pfCost: number;
-  /** Costs equal up to float rounding. */
-  costsEqual: boolean;
-  /** planlab's cost equals the optimum; null when there is none. */
-  optimalOk: boolean | null;
-  /** The two libraries use the same diagonal rule on this row. */
-  likeForLike: boolean;
-  /** Query runs per timed block. */
-  planlabInner: number;
-  pfInner: number;
-  /** Median over the blocks, µs per query. */
-  planlabUs: number;
-  pfUs: number;
-  /** PathFinding.js time ÷ planlab time. */
-  ratio: number;
-}
-
 /** A timed block lasts about this long, ms: well above performance.now()'s
  *  resolution (100 µs in a page that is not cross-origin isolated). */
 const BLOCK_MS = 4;
@@ -58,12 +29,6 @@ const MAX_INNER = 2000;
 const CLONE_CELLS = 3_000_000;
 /** .scen optima are printed to 5 or more decimals. */
 export const OPTIMUM_TOL = 1e-4;
-
-export const median = (xs: number[]): number => {
-  const s = [...xs].sort((a, b) => a - b);
-  const m = s.length >> 1;
-  return s.length % 2 ? s[m] : (s[m - 1] + s[m]) / 2;
-};
 
 /** Cost of a PathFinding.js path (cells from start to goal), summed in the
  *  order its A* sums g; errors on a step that is not to a neighbour. */
