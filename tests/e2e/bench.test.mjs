@@ -4,7 +4,8 @@
 // Moving AI maze); every row has both costs; planlab's cost equals the
 // optimum read here from the Moving AI .scen files (or, on the open grid,
 // the octile distance); PathFinding.js's cost equals planlab's on the rows
-// the page marks like for like; the ratios are finite; the DWA row's
+// the page marks like for like; both expanded counts and the ratios are
+// finite (no block shorter than the timer's step); the DWA row's
 // checksum equals the native CLI's. No timing assertions: times depend on
 // the machine. No console errors. Screenshot: tests/e2e/screenshots/bench.png.
 
@@ -64,7 +65,10 @@ test('Run with the tiny size fills the table: optimal planlab costs, equal PathF
   for (const r of rows) {
     const q = r.query.split(',').map(Number);
     const label = `${r.map} ${r.query}`;
-    assert.equal(r.cells, 10, `${label}: every column filled`);
+    assert.equal(r.cells, 12, `${label}: every column filled`);
+    for (const k of ['planlabExpanded', 'pfExpanded']) {
+      assert.ok(Number.isInteger(Number(r[k])) && Number(r[k]) > 0, `${label}: ${k} ${r[k]}`);
+    }
     const planlab = Number(r.planlabCost);
     const pf = Number(r.pfCost);
     assert.ok(Number.isFinite(planlab) && planlab > 0, `${label}: planlab cost ${r.planlabCost}`);

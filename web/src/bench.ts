@@ -174,6 +174,8 @@ function addRow(body: HTMLTableSectionElement, n: number, r: RowResult): void {
   if (q.optimal !== null) tr.dataset.optimal = String(q.optimal);
   tr.dataset.likeForLike = String(r.likeForLike);
   tr.dataset.ratio = String(r.ratio);
+  tr.dataset.planlabExpanded = String(r.planlabExpanded);
+  tr.dataset.pfExpanded = String(r.pfExpanded);
   cell(tr, String(n), 'num');
   cell(tr, r.map);
   cell(tr, `(${q.sx}, ${q.sy}) → (${q.gx}, ${q.gy})`, 'mono');
@@ -191,6 +193,8 @@ function addRow(body: HTMLTableSectionElement, n: number, r: RowResult): void {
     r.costsEqual ? 'ok' : 'bad',
     r.likeForLike ? 'same diagonal rule on both sides' : 'the libraries use different diagonal rules here',
   );
+  cell(tr, String(r.planlabExpanded), 'num');
+  cell(tr, String(r.pfExpanded), 'num');
   cell(tr, fmtUs(r.planlabUs), 'num', `median of the blocks; ${r.planlabInner} searches per block`);
   cell(tr, fmtUs(r.pfUs), 'num', `median of the blocks; ${r.pfInner} searches per block`);
   cell(tr, `${r.ratio.toFixed(1)}×`, 'num ratio', 'PathFinding.js time ÷ planlab time');
@@ -291,7 +295,7 @@ async function run(): Promise<void> {
     const allEqual = rows.every((r) => r.costsEqual);
     const optimal = rows.filter((r) => r.optimalOk !== null);
     const td = cell(tr, '', 'summary');
-    td.colSpan = 10;
+    td.colSpan = 12;
     td.textContent =
       `${rows.length} queries: planlab's cost equals the optimum on ${optimal.filter((r) => r.optimalOk).length} of ` +
       `${optimal.length} rows with one; costs ${allEqual ? 'equal on every row' : 'DIFFER on some rows'} (same diagonal rule on both sides). ` +

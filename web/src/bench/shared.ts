@@ -25,6 +25,10 @@ export interface RowResult {
   optimalOk: boolean | null;
   /** The two libraries use the same diagonal rule on this row. */
   likeForLike: boolean;
+  /** Cells each search expanded (planlab's `expandedCount`; the nodes
+   *  PathFinding.js closed). */
+  planlabExpanded: number;
+  pfExpanded: number;
   /** Query runs per timed block. */
   planlabInner: number;
   pfInner: number;

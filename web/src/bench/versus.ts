@@ -4,7 +4,7 @@
 // worker (bench/worker.ts), both libraries on the same thread.
 
 import PF from 'pathfinding';
-import { MapHandle, ScenBatch } from '../../pkg-grid/planlab_wasm.js';
+import { MapHandle, ScenBatch, plan } from '../../pkg-grid/planlab_wasm.js';
 import type { MapCase, Query } from './cases';
 import { RULES, median, type RowResult } from './shared';
 
@@ -69,6 +69,22 @@ function blockPf(finder: PF.AStarFinder, q: Query, grid: PF.Grid, n: number): nu
   return performance.now() - t0;
 }
 
+/**
+ * Runs per block: doubled until the fastest time per run seen so far says a
+ * block lasts BLOCK_MS. The fastest, because a garbage collection or
+ * another process can make one trial slow, which would stop the doubling
+ * early and leave blocks shorter than the timer's resolution.
+ */
+function runsPerBlock(block: (n: number) => number, cap: number): number {
+  let n = 1;
+  let best = Infinity;
+  for (;;) {
+    best = Math.min(best, block(n) / n);
+    if (n >= cap || n * best >= BLOCK_MS) return n;
+    n = Math.min(cap, n * 2);
+  }
+}
+
 const nextTask = () => new Promise<void>((r) => setTimeout(r, 0));
 
 export interface Progress {
@@ -98,7 +114,7 @@ export async function runVersus(
       return c.queries.map((q) => {
         const batch = new ScenBatch(map, q.scen, PLANLAB_OPTIONS);
         batches.push(batch);
-        return { key: c.key, name: c.name, q, batch, grid, cells: map.width * map.height };
+        return { key: c.key, name: c.name, q, map, batch, grid, cells: map.width * map.height };
       });
     });
 
@@ -109,17 +125,21 @@ export async function runVersus(
       progress(`Checking costs and warming up: query ${i + 1} of ${rows.length} (${r.name})…`);
       await nextTask();
       const planlabCost = r.batch.solveAll();
-      const path = finder.findPath(r.q.sx, r.q.sy, r.q.gx, r.q.gy, r.grid.clone());
+      const planned = plan(r.map, r.q.sx, r.q.sy, r.q.gx, r.q.gy, PLANLAB_OPTIONS, false);
+      const planlabExpanded = planned.expandedCount;
+      planned.free();
+      const pfSearched = r.grid.clone();
+      const path = finder.findPath(r.q.sx, r.q.sy, r.q.gx, r.q.gy, pfSearched);
       if (path.length === 0) {
         throw new Error(`PathFinding.js found no path on ${r.name} (${r.q.sx}, ${r.q.sy}) → (${r.q.gx}, ${r.q.gy})`);
       }
       const pfCost = pathCost(path);
-      let planlabInner = 1;
-      while (planlabInner < MAX_INNER && blockPlanlab(r.batch, planlabInner) < BLOCK_MS) planlabInner *= 2;
-      const cloneCap = Math.max(1, Math.floor(CLONE_CELLS / r.cells));
-      let pfInner = 1;
-      while (pfInner < cloneCap && blockPf(finder, r.q, r.grid, pfInner) < BLOCK_MS) pfInner = Math.min(cloneCap, pfInner * 2);
-      est.push({ planlabCost, pfCost, planlabInner, pfInner });
+      // PathFinding.js marks every node it expanded `closed`.
+      const pfExpanded = (pfSearched as unknown as { nodes: { closed?: boolean }[][] }).nodes
+        .reduce((n, row) => n + row.filter((v) => v.closed).length, 0);
+      const planlabInner = runsPerBlock((n) => blockPlanlab(r.batch, n), MAX_INNER);
+      const pfInner = runsPerBlock((n) => blockPf(finder, r.q, r.grid, n), Math.max(1, Math.floor(CLONE_CELLS / r.cells)));
+      est.push({ planlabCost, pfCost, planlabExpanded, pfExpanded, planlabInner, pfInner });
     }
 
     const out: RowResult[] = [];
@@ -144,6 +164,8 @@ export async function runVersus(
         costsEqual: Math.abs(e.planlabCost - e.pfCost) <= 1e-9 * Math.max(1, e.planlabCost),
         optimalOk: r.q.optimal === null ? null : Math.abs(e.planlabCost - r.q.optimal) <= OPTIMUM_TOL,
         likeForLike: RULES.same,
+        planlabExpanded: e.planlabExpanded,
+        pfExpanded: e.pfExpanded,
         planlabInner: e.planlabInner,
         pfInner: e.pfInner,
         planlabUs,
