@@ -7,7 +7,7 @@
 // the page marks like for like; both expanded counts and the ratios are
 // finite (no block shorter than the timer's step); the DWA row's
 // checksum equals the native CLI's. No timing assertions: times depend on
-// the machine. No console errors. Screenshot: tests/e2e/screenshots/bench.png.
+// the machine. The filled page fits 1366 px. No console errors. Screenshot: tests/e2e/screenshots/bench.png.
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
@@ -56,6 +56,7 @@ async function runTiny(page) {
 
 test('Run with the tiny size fills the table: optimal planlab costs, equal PathFinding.js costs, finite ratios, the DWA row', async () => {
   const { page, problems } = await watchedPage(session);
+  await page.setViewportSize({ width: 1366, height: 768 });
   await runTiny(page);
 
   const rows = await page.$$eval('#astar-rows tr', (trs) => trs.map((tr) => ({ ...tr.dataset, cells: tr.cells.length })));
@@ -106,6 +107,9 @@ test('Run with the tiny size fills the table: optimal planlab costs, equal PathF
   assert.equal(Number(dwa[0].checksum), native.checksum, 'DWA checksum wasm = native');
 
   assert.match(await page.textContent('#progress'), /^Done in/);
+  // The filled tables fit a laptop's window: no sideways scrolling.
+  const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+  assert.ok(overflow <= 1, `page ${overflow} px wider than the window at 1366`);
   fs.mkdirSync(SCREENSHOTS, { recursive: true });
   await page.screenshot({ path: path.join(SCREENSHOTS, 'bench.png'), fullPage: true });
   assert.deepEqual(problems, []);
