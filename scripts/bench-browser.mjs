@@ -117,7 +117,7 @@ async function openBench(session) {
   await page.goto(session.base + 'bench.html');
   await page.waitForFunction(() => document.body.dataset.state !== 'loading', null, { timeout: 30_000 });
   if ((await page.getAttribute('body', 'data-state')) !== 'ready') {
-    throw new Error(`bench page failed: ${await page.textContent('#out')}`);
+    throw new Error(`bench page failed: ${await page.textContent('#error')}`);
   }
   return page;
 }
