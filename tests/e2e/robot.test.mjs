@@ -247,6 +247,26 @@ test('bad input lands in the message bar and the page keeps working', async () =
   await page.close();
 });
 
+test('a mover hitting the robot at rest is named in the status line', async () => {
+  const { page, problems } = await openRobot();
+  // The demo with one fast mover 0.05 m from the robot, driving at it: it
+  // hits in the first step, before the robot can reach 0.05 m/s.
+  const scenario = JSON.parse(fs.readFileSync(path.join(REPO, 'assets/scenarios', DEMO), 'utf8'));
+  scenario.movers = [{ id: 3, radius: 0.3, motion: { model: 'constant-velocity', start: [1.6, 1.05], velocity: [-3.0, 0.0] } }];
+  await page.setInputFiles('#file-input', { name: 'hit.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(scenario)) });
+  await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30_000 });
+  await page.click('#play');
+  await page.waitForFunction(() => document.body.dataset.outcome === 'collision', null, { timeout: 30_000 });
+  await page.waitForFunction(() => /hit by mover 3 while at rest/.test(document.getElementById('status').textContent), null, { timeout: 5000 });
+  const status = await page.textContent('#status');
+  assert.match(status, / · hit by mover 3 while at rest$/);
+  assert.doesNotMatch(status, /· collision$/);
+  assert.match(await page.textContent('#hint'), /Episode over: hit by mover 3 while at rest\./);
+  await screenshot(page, 'robot-hit-at-rest.png');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 test('determinism: the page and the native CLI give the same trace hash', async () => {
   assert.ok(fs.existsSync(CLI), 'build target/release/planlab first (cargo build --release -p planlab-cli)');
   // The demo (baseline DWA), and when present an improved-DWA preset (global

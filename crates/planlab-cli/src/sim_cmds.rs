@@ -318,7 +318,14 @@ pub(crate) fn opt(v: Option<f64>, digits: usize) -> String {
 /// The metrics as `name value unit` lines.
 fn metrics_table(m: &EpisodeMetrics) -> String {
     let rows = [
-        ("outcome", m.outcome.to_string(), ""),
+        (
+            "outcome",
+            match m.collision {
+                Some(c) => format!("{} ({c})", m.outcome),
+                None => m.outcome.to_string(),
+            },
+            "",
+        ),
         ("time", format!("{:.2}", m.time_s), "s"),
         ("path length", format!("{:.3}", m.path_length_m), "m"),
         ("min clearance", format!("{:.3}", m.min_clearance_m), "m"),

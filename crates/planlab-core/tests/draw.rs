@@ -45,6 +45,7 @@ fn episode(planner: &str, footprint: Footprint) -> Episode {
             motion: MotionModel::ConstantVelocity {
                 start: [6.0, 2.0],
                 velocity: [-0.2, 0.1],
+                since: 0.0,
             },
         },
         MoverSpec {
@@ -53,6 +54,7 @@ fn episode(planner: &str, footprint: Footprint) -> Episode {
             motion: MotionModel::ConstantVelocity {
                 start: [2.0, 6.5],
                 velocity: [0.0, 0.0],
+                since: 0.0,
             },
         },
     ];

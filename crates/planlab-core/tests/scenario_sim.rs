@@ -182,6 +182,7 @@ fn a_scenario_becomes_an_episode() {
         ms[0].motion = MotionModel::ConstantVelocity {
             start: [1.25, 2.3],
             velocity: [0.0, 0.0],
+            since: 0.0,
         };
     }
     let e = Episode::from_scenario(&bad, grid.clone()).unwrap_err();

@@ -115,6 +115,7 @@ fn a_mover_crossing_the_path_collides() {
         motion: MotionModel::ConstantVelocity {
             start: [5.5, 8.0],
             velocity: [0.0, -0.5],
+            since: 0.0,
         },
     }];
     let mut ep = Episode::new(s).unwrap();
@@ -133,6 +134,61 @@ fn a_mover_crossing_the_path_collides() {
     let now = ep.movers_now();
     assert_eq!(now.len(), 1);
     assert_eq!((now[0].0, now[0].1), (4, 0.3));
+}
+
+#[test]
+fn a_robot_hit_by_a_mover_while_at_rest_is_reported_as_such() {
+    // The robot stands (an external zero command every step) while mover
+    // 3 drives into it from the east; mover 5 stays away.
+    let mut s = setup(room(10, 10, &[]), [3.0, 5.0, 0.0], [9.0, 5.0]);
+    let cv = |id, start, velocity| MoverSpec {
+        id,
+        radius: 0.3,
+        motion: MotionModel::ConstantVelocity {
+            start,
+            velocity,
+            since: 0.0,
+        },
+    };
+    s.movers = vec![
+        cv(5, [8.0, 8.0], [0.0, 0.0]),
+        cv(3, [6.0, 5.0], [-0.5, 0.0]),
+    ];
+    let mut ep = Episode::new(s.clone()).unwrap();
+    assert_eq!(ep.collision(), None);
+    let stand = planlab_core::world::Command::default();
+    while ep.outcome() == Outcome::Running {
+        ep.step_with(stand).unwrap();
+    }
+    assert_eq!(ep.outcome(), Outcome::Collision);
+    let c = ep.collision().expect("a collision says what with");
+    assert_eq!(
+        c,
+        planlab_core::sim::Collision::Mover {
+            id: 3,
+            at_rest: true
+        }
+    );
+    assert_eq!(c.to_string(), "hit by mover 3 while at rest");
+    let m = EpisodeMetrics::of_episode(&ep);
+    assert_eq!(m.collision, Some(c));
+    let json = serde_json::to_value(&m).unwrap();
+    assert_eq!(json["collision"]["with"], "mover");
+    assert_eq!(json["collision"]["at_rest"], true);
+    // The robot driving into a standing mover is an ordinary collision.
+    s.movers = vec![cv(3, [6.0, 5.0], [0.0, 0.0])];
+    let mut ep = Episode::new(s).unwrap();
+    assert_eq!(ep.run(), Outcome::Collision);
+    assert_eq!(
+        ep.collision().unwrap().to_string(),
+        "collision with mover 3"
+    );
+    // No collision, no field.
+    let mut ep = Episode::new(setup(room(10, 10, &[]), [1.0, 1.0, 0.0], [8.0, 7.0])).unwrap();
+    assert_eq!(ep.run(), Outcome::Reached);
+    assert_eq!(ep.collision(), None);
+    let json = serde_json::to_value(EpisodeMetrics::of_episode(&ep)).unwrap();
+    assert!(json.get("collision").is_none(), "{json}");
 }
 
 #[test]
@@ -214,6 +270,7 @@ fn movers_can_be_replaced_live() {
         motion: MotionModel::ConstantVelocity {
             start: [5.0, 5.0],
             velocity: [0.0, 0.0],
+            since: 0.0,
         },
     };
     assert!(ep
@@ -228,6 +285,7 @@ fn movers_can_be_replaced_live() {
         motion: MotionModel::ConstantVelocity {
             start: [5.0, 5.0],
             velocity: [0.0, 0.0],
+            since: 0.0,
         },
     };
     ep.set_movers(vec![parked]).unwrap();
@@ -279,6 +337,7 @@ fn bad_input_is_refused_with_clear_errors() {
         motion: MotionModel::ConstantVelocity {
             start: [1.3, 1.0],
             velocity: [0.0, 0.0],
+            since: 0.0,
         },
     }];
     assert!(err(s).to_string().contains("mover 9"));

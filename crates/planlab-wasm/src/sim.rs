@@ -13,7 +13,7 @@
 use crate::draw_js::draw_arrays;
 use planlab_core::draw::{self, DrawList, FanColour, Layers, Request};
 use planlab_core::lidar::fog::SeenCells;
-use planlab_core::metrics::{distance_to_polyline, EpisodeMetrics, DEFAULT_LOAD_THRESHOLD_N};
+use planlab_core::metrics::{distance_to_polyline, EpisodeMetrics};
 use planlab_core::planners::{self as registry, PlannerChoice};
 use planlab_core::scenario::Scenario;
 use planlab_core::sim::{Column, Edit, Episode, EpisodeSetup, Outcome, Recording, SimConfig};
@@ -255,6 +255,14 @@ impl SimHandle {
         outcome_str(self.ep.outcome())
     }
 
+    /// What a collision was with, in the core's words ("hit by mover 3
+    /// while at rest", "collision with a wall or the map edge"); undefined
+    /// unless the outcome is a collision.
+    #[wasm_bindgen(getter)]
+    pub fn collision(&self) -> Option<String> {
+        self.ep.collision().map(|c| c.to_string())
+    }
+
     /// Simulated time, s.
     #[wasm_bindgen(getter)]
     pub fn time(&self) -> f64 {
@@ -475,12 +483,8 @@ impl SimHandle {
     /// --json`).
     #[wasm_bindgen(js_name = metricsJson)]
     pub fn metrics_json(&self) -> Result<String, JsError> {
-        let m = EpisodeMetrics::from_trace(
-            self.ep.trace(),
-            &self.ep.planner_debug().global_path,
-            self.ep.outcome(),
-            DEFAULT_LOAD_THRESHOLD_N,
-        );
+        // With what a collision was with (`collision`), for the status line.
+        let m = EpisodeMetrics::of_episode(&self.ep);
         serde_json::to_string(&m).map_err(|e| json_err("metrics", e))
     }
 

@@ -27,7 +27,7 @@ import { panZoom } from '../shell/canvas-input';
 import { installKeys } from '../shell/keys';
 import { bindSpeed } from '../shell/speed';
 import { loadPreset, openFirst, type OpenHost } from './open';
-import { StatusPanel, describeOutcome } from './status';
+import { StatusPanel, endText } from './status';
 import { CanvasTools, type Tool } from './tools';
 import { CriticsPanel } from './critics';
 import { installToggles } from './toggles';
@@ -215,7 +215,7 @@ function finish(): void {
   refreshSlow();
   if (sim) ui.body.dataset.traceHash = sim.traceHash();
   ui.body.dataset.state = 'done';
-  ui.hint.textContent = `Episode over: ${describeOutcome(outcome, sim?.state()[3] ?? 0)}. Reset to run it again.`;
+  ui.hint.textContent = `Episode over: ${endText(outcome, sim?.state()[3] ?? 0, sim?.collision)}. Reset to run it again.`;
   galleryRunEnded(outcome);
 }
 

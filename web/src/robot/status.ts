@@ -18,6 +18,12 @@ interface MoverJson {
 
 export { describeOutcome } from '../shell/outcome';
 
+/** The status line's words for an ended run: a collision as the core words
+ *  it (`collision`: "hit by mover 3 while at rest", …), else the outcome. */
+export function endText(outcome: string, speed: number, collision: string | undefined): string {
+  return outcome === 'collision' && collision ? collision : describeOutcome(outcome, speed);
+}
+
 /** A one-line description of the robot JSON and whether it drives
  *  omnidirectionally. */
 export function describeRobot(json: string): [string, boolean] {
@@ -85,6 +91,7 @@ export class StatusPanel {
     const m = JSON.parse(sim.metricsJson()) as Metrics;
     setMetric(M.outcome, m.outcome, null);
     M.outcome.dataset.outcome = m.outcome;
+    M.outcome.title = outcome === 'collision' && sim.collision ? sim.collision : '';
     setMetric(M.time, `${m.time_s.toFixed(1)} s`, m.time_s);
     setMetric(M.length, `${m.path_length_m.toFixed(2)} m`, m.path_length_m);
     setMetric(M.clearance, `${m.min_clearance_m.toFixed(2)} / ${m.mean_clearance_m.toFixed(2)}`, m.min_clearance_m);
@@ -108,7 +115,7 @@ export class StatusPanel {
       (this.note ? `⚠ ${this.note} · ` : '') +
       `t = ${sim.time.toFixed(1)} s · v = ${s[3].toFixed(2)} m/s · ω = ${s[5].toFixed(2)} rad/s · ` +
       `${movers} movers · ${rollouts} rollouts` +
-      (outcome === 'running' ? (playing ? ' · playing' : ' · paused') : ` · ${describeOutcome(outcome, s[3])}`);
+      (outcome === 'running' ? (playing ? ' · playing' : ' · paused') : ` · ${endText(outcome, s[3], sim.collision)}`);
     this.status.title = this.status.textContent;
     this.renderMovers(sim, S);
   }

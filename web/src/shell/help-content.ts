@@ -41,7 +41,7 @@ export function robotHelp(planners: RegistryPlanner[], current: string): HelpCon
         default: 'total score',
         doc: 'A DWA-family planner judges every rollout of the fan with a few critics (for plain DWA: heading toward the goal, distance from obstacles, speed), scales each so the rollouts of one step can be compared (its normalised value), multiplies it by the critic’s weight and adds them up: the rollout with the best total is driven. The Critics list in the Local planner card shows each critic with the weight it had in the last step (improved DWA switches weights with the situation, so they change as the run goes). Pick a critic to colour the fan by that critic alone, blue for its lowest value, orange for its highest; pick “total score” to colour by the sum the planner ranks by. Grey rollouts were not allowed.',
       },
-      { name: 'Motion model', unit: '', default: 'constant velocity', doc: 'How a placed mover moves: straight on, back and forth over Span, or round a square.' },
+      { name: 'Motion model', unit: '', default: 'constant velocity', doc: 'How a placed mover moves: straight on (bouncing off walls and the map edge), back and forth over Span, or round a square.' },
       { name: 'Radius', unit: 'm', default: 0.3, doc: 'Radius of the next mover placed.' },
       { name: 'Span', unit: 'm', default: 3, doc: 'Back-and-forth distance of the next mover.' },
     ],

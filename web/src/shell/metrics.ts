@@ -16,4 +16,7 @@ export interface Metrics {
   max_tracking_error_m: number | null;
   tracking_error_var_m2: number | null;
   load_ok_share: number | null;
+  /** Present after a collision: what with, and whether the robot was at
+   *  rest (`SimHandle.collision` words it). */
+  collision?: { with: 'wall' | 'mover' | 'non-finite'; id?: number; at_rest?: boolean };
 }

@@ -27,6 +27,15 @@ use crate::world::Outcome;
 /// little between two checks).
 pub const MOTION_CHECKS: usize = 4;
 
+/// The whole-arm check keeps every link at least this far from the hand,
+/// m: a move that ends nearer than this, and nearer than the arm is now, is
+/// refused like one that touches. Without it the arm crept up to the hand
+/// (each move ending a hair short of contact) until it pressed against it
+/// 0.1 mm away, drawn inside it, every candidate refused, and the run ended
+/// stuck. A move that gains distance is always allowed, so the margin
+/// never traps an arm already inside it.
+pub const ARM_CLEARANCE_M: f64 = 0.005;
+
 /// Timing and end conditions of an arm episode.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -450,16 +459,22 @@ impl ArmEpisode {
 
     /// Whether moving the joints linearly from the current configuration to
     /// `q_to` brings any link into contact with `obstacles` (checked at
-    /// [`MOTION_CHECKS`] points along the move, the end included).
+    /// [`MOTION_CHECKS`] points along the move, the end included) or ends
+    /// it nearer than [`ARM_CLEARANCE_M`] and nearer than now.
     fn motion_touches(&self, q_to: &[f64], obstacles: &[Obstacle3; 2]) -> bool {
+        let dist = |q: &[f64]| {
+            let links = link_capsules(&self.model.fk(q), &self.radii);
+            min_distance(&links, obstacles).map_or(f64::INFINITY, |(d, _)| d)
+        };
+        let now = dist(&self.q);
         let mut q = self.q.clone();
         (1..=MOTION_CHECKS).any(|k| {
             let f = k as f64 / MOTION_CHECKS as f64;
             for (qi, (a, b)) in q.iter_mut().zip(self.q.iter().zip(q_to)) {
                 *qi = a + (b - a) * f;
             }
-            let links = link_capsules(&self.model.fk(&q), &self.radii);
-            min_distance(&links, obstacles).is_some_and(|(d, _)| d <= 0.0)
+            let d = dist(&q);
+            d <= 0.0 || (k == MOTION_CHECKS && d < ARM_CLEARANCE_M && d < now)
         })
     }
 

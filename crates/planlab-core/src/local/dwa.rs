@@ -598,6 +598,7 @@ mod tests {
                 motion: MotionModel::ConstantVelocity {
                     start,
                     velocity: vel,
+                    since: 0.0,
                 },
             };
             let mut p = Dwa::new(DwaConfig::default(), &robot(), [14.0, 4.0]).unwrap();

@@ -47,7 +47,6 @@ pub fn run(
 ) -> Run {
     let dt = 0.1;
     let mut s = start;
-    let bounds = map.bounds();
     let r = robot.footprint.circumscribed_radius();
     let mut out = Run {
         end: End::Timeout,
@@ -63,7 +62,7 @@ pub fn run(
         let obs_movers: Vec<ObservedMover> = movers
             .iter()
             .map(|m| {
-                let st = m.state_at(t, bounds);
+                let st = m.state_at(t, map);
                 ObservedMover {
                     id: m.id,
                     pos: st.pos,
@@ -96,7 +95,7 @@ pub fn run(
         out.time = t + dt;
         let mut c = map.footprint_distance(&robot.footprint, &s, 5.0);
         for m in movers {
-            let st = m.state_at(t + dt, bounds);
+            let st = m.state_at(t + dt, map);
             c = c.min(hypot(st.pos[0] - s.x, st.pos[1] - s.y) - r - m.radius);
         }
         out.min_clearance = out.min_clearance.min(c);

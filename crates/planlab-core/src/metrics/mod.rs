@@ -43,7 +43,7 @@ use serde::{Deserialize, Serialize};
 /// here because callers that report it look for it with the metrics.
 pub use crate::geom::distance_to_polyline;
 use crate::num::{atan2, hypot, wrap_angle};
-use crate::sim::{Episode, Outcome, Trace};
+use crate::sim::{Collision, Episode, Outcome, Trace};
 
 /// Arc-length step of the resampling used for turning angles, m.
 pub const TURN_RESAMPLE_M: f64 = 0.1;
@@ -98,6 +98,11 @@ pub struct EpisodeMetrics {
     pub wheel_load_share: Option<f64>,
     /// Temporary-goal switches (\[L\]; 0 for planners without them).
     pub temp_goal_switches: u32,
+    /// What a collision was with and whether the robot was at rest (a
+    /// mover hitting a standing robot); absent for other outcomes and for
+    /// metrics computed from a trace alone.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collision: Option<Collision>,
 }
 
 impl EpisodeMetrics {
@@ -106,12 +111,15 @@ impl EpisodeMetrics {
     /// wheel loads against [`DEFAULT_LOAD_THRESHOLD_N`]. What `planlab run`,
     /// `planlab batch` and `planlab reproduce` report.
     pub fn of_episode(ep: &Episode) -> EpisodeMetrics {
-        EpisodeMetrics::from_trace(
-            ep.trace(),
-            &ep.planner_debug().global_path,
-            ep.outcome(),
-            DEFAULT_LOAD_THRESHOLD_N,
-        )
+        EpisodeMetrics {
+            collision: ep.collision(),
+            ..EpisodeMetrics::from_trace(
+                ep.trace(),
+                &ep.planner_debug().global_path,
+                ep.outcome(),
+                DEFAULT_LOAD_THRESHOLD_N,
+            )
+        }
     }
 
     /// Computes every metric of `trace` (see the module doc for the
@@ -176,6 +184,7 @@ impl EpisodeMetrics {
             },
             wheel_load_share,
             temp_goal_switches: temp_goal_switches(trace),
+            collision: None,
         }
     }
 

@@ -26,7 +26,7 @@ mod trace;
 
 /// Every kind of run reports it, so it is a world type; named here too as
 /// the episode's result.
-pub use crate::world::Outcome;
+pub use crate::world::{Collision, Outcome};
 pub use edit::{
     generated_sim_config, is_start_collision, SetupEdit, GENERATED_MAX_TIME, GENERATED_STUCK_TIME,
 };
@@ -46,8 +46,8 @@ use crate::num::{cos, fmt_num, hypot, sin};
 use crate::params::param_problem;
 use crate::planners::{self, PlannerChoice};
 use crate::world::{
-    Command, Footprint, MoverSpec, MoverState, OdometrySample, RobotSpec, RobotState, StaticMap,
-    Terrain, TerrainSpec, WorldError,
+    Command, Footprint, MoverSpec, MoverState, MoverTrack, OdometrySample, RobotSpec, RobotState,
+    StaticMap, Terrain, TerrainSpec, WorldError,
 };
 
 /// Clearance values in traces and metrics are capped here, metres: farther
@@ -271,6 +271,9 @@ pub struct Episode {
     state: RobotState,
     goal: [f64; 2],
     movers: Vec<MoverSpec>,
+    /// The movers' bounces computed so far (constant velocity), extended
+    /// step by step.
+    tracks: Vec<MoverTrack>,
     choice: PlannerChoice,
     planner: Box<dyn LocalPlanner>,
     config: SimConfig,
@@ -280,6 +283,8 @@ pub struct Episode {
     steps: u64,
     max_steps: u64,
     outcome: Outcome,
+    /// What the robot ran into, when the outcome is a collision.
+    collision: Option<Collision>,
     trace: Trace,
     odometry: Option<OdometrySample>,
     accel_z: f64,
@@ -392,9 +397,32 @@ fn check_state(s: &RobotState) -> Result<(), SimError> {
 }
 
 /// Mover states at time `t` on `map`.
-fn movers_at(movers: &[MoverSpec], map: &StaticMap, t: f64) -> Vec<MoverState> {
-    let b = map.bounds();
-    movers.iter().map(|m| m.state_at(t, b)).collect()
+fn movers_at(
+    movers: &[MoverSpec],
+    tracks: &[MoverTrack],
+    map: &StaticMap,
+    t: f64,
+) -> Vec<MoverState> {
+    movers
+        .iter()
+        .zip(tracks)
+        .map(|(m, tr)| tr.state_at(m, map, t))
+        .collect()
+}
+
+/// Validates movers against the map (numbers, no mover in or through a
+/// wall) and starts their tracks, computed up to time `t`.
+fn tracks_of(movers: &[MoverSpec], map: &StaticMap, t: f64) -> Result<Vec<MoverTrack>, SimError> {
+    movers
+        .iter()
+        .map(|m| {
+            m.validate()?;
+            m.check_on(map)?;
+            let mut tr = MoverTrack::new(m, map);
+            tr.extend_to(m, map, t);
+            Ok(tr)
+        })
+        .collect()
 }
 
 /// The movers as discs a laser sees.
@@ -431,9 +459,7 @@ impl Episode {
         } = setup;
         config.validate()?;
         robot.validate()?;
-        for m in &movers {
-            m.validate()?;
-        }
+        let tracks = tracks_of(&movers, &map, 0.0)?;
         check_state(&start)?;
         check_goal(&map, goal)?;
         let start = RobotState {
@@ -464,9 +490,8 @@ impl Episode {
             }
             .into());
         }
-        let bounds = map.bounds();
-        for m in &movers {
-            let s = m.state_at(0.0, bounds);
+        for (m, tr) in movers.iter().zip(&tracks) {
+            let s = tr.state_at(m, &map, 0.0);
             if footprint_disc_distance(&fp, &start, s.pos, m.radius) <= 0.0 {
                 return Err(WorldError::StartInCollision {
                     x: start.x,
@@ -481,7 +506,7 @@ impl Episode {
         let perception = match perception_spec {
             Some(spec) => {
                 let mut p = Perception::new(spec, &map, seed)?;
-                let discs = discs_of(&movers, &movers_at(&movers, &map, 0.0));
+                let discs = discs_of(&movers, &movers_at(&movers, &tracks, &map, 0.0));
                 p.sense(&map, [start.x, start.y, start.theta], &discs, 0.0);
                 Some(p)
             }
@@ -502,6 +527,7 @@ impl Episode {
             state: start,
             goal,
             movers,
+            tracks,
             choice,
             planner,
             config,
@@ -510,6 +536,7 @@ impl Episode {
             seed,
             steps: 0,
             outcome: Outcome::Running,
+            collision: None,
             trace: Trace::default(),
             odometry: None,
             accel_z: 0.0,
@@ -540,7 +567,7 @@ impl Episode {
 
     /// Mover positions and velocities at time `t`.
     fn movers_at(&self, t: f64) -> Vec<MoverState> {
-        movers_at(&self.movers, &self.map, t)
+        movers_at(&self.movers, &self.tracks, &self.map, t)
     }
 
     /// The laser and the map built from it, when the episode has a
@@ -737,6 +764,9 @@ impl Episode {
         self.accel_z = ts.accel_z;
         self.steps += 1;
         let t1 = self.time();
+        for (tr, m) in self.tracks.iter_mut().zip(&self.movers) {
+            tr.extend_to(m, &self.map, t1);
+        }
         let next = self.movers_at(t1);
         if let Some(p) = &mut self.perception {
             let s = &self.state;
@@ -749,11 +779,21 @@ impl Episode {
         }
         let fp = self.robot.footprint;
         let hit_wall = self.map.footprint_collides(&fp, &self.state);
+        // The mover overlapping deepest, if any.
         let hit_mover = self
             .movers
             .iter()
             .zip(&next)
-            .any(|(m, ms)| footprint_disc_distance(&fp, &self.state, ms.pos, m.radius) <= 0.0);
+            .map(|(m, ms)| {
+                (
+                    m.id,
+                    footprint_disc_distance(&fp, &self.state, ms.pos, m.radius),
+                )
+            })
+            .filter(|&(_, d)| d <= 0.0)
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(id, _)| id);
+        let at_rest = hypot(self.state.v, self.state.vy) < crate::world::AT_REST_SPEED;
         let d_goal = hypot(self.goal[0] - self.state.x, self.goal[1] - self.state.y);
         if d_goal < self.progress.0 - self.config.stuck_distance {
             self.progress = (d_goal, t1);
@@ -761,7 +801,16 @@ impl Episode {
         let finite = [self.state.x, self.state.y, self.state.theta]
             .iter()
             .all(|v| v.is_finite());
-        self.outcome = if hit_wall || hit_mover || !finite {
+        self.collision = if !finite {
+            Some(Collision::NonFinite)
+        } else if let Some(id) = hit_mover {
+            Some(Collision::Mover { id, at_rest })
+        } else if hit_wall {
+            Some(Collision::Wall { at_rest })
+        } else {
+            None
+        };
+        self.outcome = if self.collision.is_some() {
             Outcome::Collision
         } else if d_goal <= self.config.goal_tolerance {
             Outcome::Reached
@@ -795,6 +844,12 @@ impl Episode {
     /// The outcome so far.
     pub fn outcome(&self) -> Outcome {
         self.outcome
+    }
+
+    /// What the robot ran into and whether it was at rest, once the
+    /// outcome is [`Outcome::Collision`]; `None` before and otherwise.
+    pub fn collision(&self) -> Option<Collision> {
+        self.collision
     }
 
     /// Simulated time, s (steps × dt).
@@ -906,12 +961,11 @@ impl Episode {
 
     /// Replaces the movers (the page edits them live). Their motion models
     /// run on episode time: a constant-velocity mover placed at p with
-    /// velocity u at time t needs `start` = p − u·t. Each is validated; a
-    /// mover dropped onto the robot is a collision at the next step.
+    /// velocity u at time t has `start` = p and `since` = t. Each is
+    /// validated, also against the map ([`MoverSpec::check_on`]); a mover
+    /// dropped onto the robot is a collision at the next step.
     pub fn set_movers(&mut self, movers: Vec<MoverSpec>) -> Result<(), SimError> {
-        for m in &movers {
-            m.validate()?;
-        }
+        self.tracks = tracks_of(&movers, &self.map, self.time())?;
         self.movers = movers;
         self.rewrite_start_row();
         Ok(())

@@ -154,6 +154,7 @@ mod tests {
             motion: MotionModel::ConstantVelocity {
                 start: [3.0, 2.6],
                 velocity: [0.0, -0.3],
+                since: 0.0,
             },
         }
     }

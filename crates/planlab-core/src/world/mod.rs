@@ -13,8 +13,8 @@ mod sensors;
 pub mod static_map;
 pub mod terrain;
 
-pub use movers::{MotionModel, MoverSpec, MoverState, Placement, ScriptSample};
-pub use outcome::Outcome;
+pub use movers::{MotionModel, MoverSpec, MoverState, MoverTrack, Placement, ScriptSample};
+pub use outcome::{Collision, Outcome, AT_REST_SPEED};
 pub use robot::{Command, Drive, Footprint, RobotLimits, RobotSpec, RobotState};
 pub use sensors::{LaserScan, OdometrySample};
 pub use static_map::StaticMap;
@@ -43,6 +43,18 @@ pub enum WorldError {
         y: f64,
         /// What it overlaps ("a wall", "mover 2", "the map edge").
         with: String,
+    },
+    /// A mover starts overlapping a wall or the map edge.
+    #[error("mover {id} at ({x:.3}, {y:.3}) m {reason}")]
+    MoverInWall {
+        /// The mover's id.
+        id: u32,
+        /// Where, x, metres.
+        x: f64,
+        /// Where, y, metres.
+        y: f64,
+        /// What is wrong ("starts overlapping a wall or the map edge", …).
+        reason: String,
     },
 }
 

@@ -38,3 +38,45 @@ impl std::fmt::Display for Outcome {
         f.write_str(self.as_str())
     }
 }
+
+/// A robot slower than this (translational speed, m/s) when something hits
+/// it counts as at rest (the pages call a stuck robot this slow "stopped").
+pub const AT_REST_SPEED: f64 = 0.05;
+
+/// What an episode that ended in [`Outcome::Collision`] ran into, and
+/// whether the robot was at rest: a mover driving into a robot that stands
+/// (or turns on the spot) is not the planner driving into it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", tag = "with")]
+pub enum Collision {
+    /// A wall (blocked cell) or the map edge.
+    Wall {
+        /// The robot's translational speed was below [`AT_REST_SPEED`].
+        at_rest: bool,
+    },
+    /// A mover (the one overlapping deepest when several do).
+    Mover {
+        /// The mover's id.
+        id: u32,
+        /// The robot's translational speed was below [`AT_REST_SPEED`].
+        at_rest: bool,
+    },
+    /// The robot's state stopped being a finite number.
+    NonFinite,
+}
+
+impl std::fmt::Display for Collision {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Collision::Wall { at_rest: false } => {
+                f.write_str("collision with a wall or the map edge")
+            }
+            Collision::Wall { at_rest: true } => f.write_str(
+                "collision with a wall or the map edge while at rest (turning on the spot)",
+            ),
+            Collision::Mover { id, at_rest: false } => write!(f, "collision with mover {id}"),
+            Collision::Mover { id, at_rest: true } => write!(f, "hit by mover {id} while at rest"),
+            Collision::NonFinite => f.write_str("the robot's state became non-finite"),
+        }
+    }
+}
