@@ -127,6 +127,8 @@ export function gridHelp(core: CorePlanner[] = []): HelpContent {
       { keys: 'G', action: 'tool: place the goal' },
       { keys: 'W', action: 'tool: paint walls' },
       { keys: 'E', action: 'tool: erase walls' },
+      { keys: 'X', action: 'clear walls (the start and goal stay)' },
+      { keys: 'C', action: 'clear path: remove the search and the path' },
       { keys: 'F', action: 'fit the map into the view' },
       { keys: 'Space', action: 'play / pause the search' },
       { keys: ', / .', action: 'one search event back / forward' },
