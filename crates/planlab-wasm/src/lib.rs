@@ -21,7 +21,9 @@
 //!   plans for the grid page (edits update it cell by cell) and returns the
 //!   search as events ([`RecordedPlan`]); [`DStarSession`] keeps a D* Lite
 //!   search, repaired after edits and moved starts; see [`session`]. Both
-//!   come with the `grid-search` feature (the grid page's module only).
+//!   come with the `grid-search` feature (the grid page's module only),
+//!   as do the whole-map tools of [`grid_tools`] (empty maps, clear walls,
+//!   the seeded generators).
 //!
 //! - [`SimHandle`] runs one robot episode (core `sim::Episode`) for the
 //!   robot page: steps, live edits (goal, movers, planner and its
@@ -53,6 +55,8 @@ pub mod dstar;
 #[cfg(feature = "robot")]
 pub mod files;
 #[cfg(feature = "grid-search")]
+pub mod grid_tools;
+#[cfg(feature = "grid-search")]
 pub mod session;
 #[cfg(feature = "robot")]
 pub mod sim;
@@ -63,6 +67,8 @@ pub use apf::ApfHandle;
 pub use barn::{barn_cylinders, barn_planners, barn_scenario, barn_score, barn_worlds};
 #[cfg(feature = "grid-search")]
 pub use dstar::{grid_algorithms, DStarSession};
+#[cfg(feature = "grid-search")]
+pub use grid_tools::{generate_grid, GeneratedGrid};
 /// The arm page's handle, from its own crate (the arm page loads that
 /// crate's smaller wasm module; the playground pages build this crate
 /// without the feature).

@@ -24,6 +24,7 @@ import { clearMetrics, showMetrics } from './metrics';
 import { Driver } from './drive';
 import { download, onFileDrop } from '../shell/download';
 import { TOOL_HINTS, type Tool } from './tools';
+import { installClassroom } from './classroom';
 
 const CELL_NAMES = ['free', 'occupied', 'unknown'];
 
@@ -360,19 +361,40 @@ onFileDrop(
     if (await loadFiles(maps, files)) ui.preset.value = '';
   }),
 );
+/** The map's cells changed wholesale (reset, clear walls): replans. */
+function mapReplaced(m: MapHandle): void {
+  if (m !== map) map?.free();
+  map = m;
+  session.reload(m);
+  mapVersion += 1;
+  cellsDirty = true;
+  scheduleReplan();
+}
 ui.reset.addEventListener(
   'click',
   guard(() => {
-    if (!loaded) return;
-    map?.free();
-    map = loaded.clone();
-    session.reload(map);
-    mapVersion += 1;
-    cellsDirty = true;
-    scheduleReplan();
+    if (loaded) mapReplaced(loaded.clone());
   }),
 );
 ui.fitView.addEventListener('click', () => view.fit());
+// Empty grid, clear walls / path, generators (classroom.ts).
+installClassroom({
+  maps,
+  preset: ui.preset,
+  map: () => map,
+  mapReplaced,
+  clearPlan: () => {
+    driver.stop();
+    player.load(null);
+    view.show(EMPTY, PLAN_LAYERS);
+    clearMetrics();
+    currentPath = null;
+    ui.canvas.dataset.pathLen = '0';
+    ui.canvas.dataset.path = '';
+  },
+  guard,
+  status: ui.status,
+});
 ui.savePosthoc.addEventListener('click', () => {
   if (!map || !start || !goal) {
     showError('Place the start and the goal first: the trace is of the search between them.');

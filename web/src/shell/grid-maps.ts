@@ -1,5 +1,5 @@
 // The grid page's maps: the presets (a Moving AI map, the TurtleBot3 ROS
-// map, a scenario), a scenario with its map and endpoints, and picked files
+// map, a scenario, an empty grid of large cells to draw on), a scenario with its map and endpoints, and picked files
 // (one `.map`, a ROS `.yaml` + `.pgm`, an ASCII `.txt` or a scenario
 // `.json` with the map files it refers to). The wasm readers parse them;
 // errors name the file.
@@ -11,7 +11,7 @@ import type { Cell } from './cells';
 
 interface Preset {
   name: string;
-  kind: 'movingai' | 'ros' | 'scenario';
+  kind: 'movingai' | 'ros' | 'scenario' | 'empty';
   files: string[];
   /** Endpoints to place (a scenario brings its own). */
   start?: Cell;
@@ -19,6 +19,14 @@ interface Preset {
 }
 
 const PRESETS: Record<string, Preset> = {
+  // Few cells, so each is large on screen (a class draws walls on it).
+  empty: {
+    name: 'empty 30×18',
+    kind: 'empty',
+    files: [],
+    start: [3, 9],
+    goal: [26, 9],
+  },
   arena: {
     name: 'arena.map',
     kind: 'movingai',
@@ -59,7 +67,9 @@ export async function loadPreset(host: MapHost, key: string): Promise<void> {
     return;
   }
   let m: MapHandle;
-  if (p.kind === 'movingai') {
+  if (p.kind === 'empty') {
+    m = MapHandle.empty(30, 18);
+  } else if (p.kind === 'movingai') {
     m = MapHandle.fromMovingAi(await fetchText(site(p.files[0])));
   } else {
     const [yaml, pgm] = await Promise.all([fetchText(site(p.files[0])), fetchBytes(site(p.files[1]))]);

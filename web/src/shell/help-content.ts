@@ -118,7 +118,7 @@ export function gridHelp(core: CorePlanner[] = []): HelpContent {
   return {
     page: 'grid',
     intro:
-      'The grid page plans global paths on an occupancy grid: Moving AI maps, ROS maps or scenario files. Place the start and goal (drag the S and G markers), paint walls, and every change replans at once. Press Play to watch the search: green cells are open (reached, waiting), blue cells closed (expanded), the orange square is the cell being expanded, violet lines are straight-line checks (JPS jump scans, Theta* line of sight; red when blocked), and the path appears when the search has played out. Step with , and . or drag the scrubber; hover a cell for its g, h, f, parent and the steps it was opened and expanded at. With D* Lite, painting a wall repairs the plan instead of starting over: the status line says how many cells the repair expanded against a fresh A*.',
+      'The grid page plans global paths on an occupancy grid: Moving AI maps, ROS maps or scenario files. Place the start and goal (drag the S and G markers), paint walls, and every change replans at once. Press Play to watch the search: green cells are open (reached, waiting), blue cells closed (expanded), the orange square is the cell being expanded, violet lines are straight-line checks (JPS jump scans, Theta* line of sight; red when blocked), and the path appears when the search has played out. Step with , and . or drag the scrubber; hover a cell for its g, h, f, parent and the steps it was opened and expanded at. With D* Lite, painting a wall repairs the plan instead of starting over: the status line says how many cells the repair expanded against a fresh A*. The Draw & generate card gives an empty grid of large cells to draw on, Clear walls, Clear path, and seeded mazes, rooms and random fill (the same maps as planlab generate).',
     planners: gridPlannerHelp(core),
     params: [
       { name: 'Heuristic', unit: 'cells', default: 'octile', doc: 'A* / JPS distance estimate: octile (exact on 8-connected grids), Euclidean, Manhattan, Chebyshev or zero.' },
@@ -135,6 +135,8 @@ export function gridHelp(core: CorePlanner[] = []): HelpContent {
       { keys: 'G', action: 'tool: place the goal' },
       { keys: 'W', action: 'tool: paint walls' },
       { keys: 'E', action: 'tool: erase walls' },
+      { keys: 'X', action: 'clear walls (the start and goal stay)' },
+      { keys: 'C', action: 'clear path: remove the search and the path' },
       { keys: 'F', action: 'fit the map into the view' },
       { keys: 'Space', action: 'play / pause the search' },
       { keys: ', / .', action: 'one search event back / forward' },
