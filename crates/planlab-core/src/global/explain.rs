@@ -217,7 +217,7 @@ impl Algorithm {
             Algorithm::AStar => (true, false, false, "finds a shortest path (with the octile heuristic and weight 1; a weight w > 1 gives up to w times longer); always finds a path if one exists; moves along the grid; not incremental"),
             Algorithm::Dijkstra => (true, false, false, "finds a shortest path; always finds a path if one exists; moves along the grid; not incremental"),
             Algorithm::Jps => (true, false, false, "finds a shortest path (the same cost as A*); always finds a path if one exists; moves along the grid, jumping over straight runs; not incremental"),
-            Algorithm::SafeAStar => (true, false, false, "not the shortest: trades length for distance from walls; always finds a path if one exists; moves up to two cells at a time (24 directions), still from cell to cell; not incremental"),
+            Algorithm::SafeAStar => (true, false, false, "not the shortest: trades length for distance from walls; always finds a path if one exists; moves from grid cell to grid cell, up to two cells at a time (24 directions); not incremental"),
             Algorithm::Bfs => (true, false, false, "fewest moves, which is the shortest path only without diagonals; always finds a path if one exists; moves along the grid; not incremental"),
             Algorithm::Greedy => (true, false, false, "not the shortest: follows the estimate alone; always finds a path if one exists (each cell is expanded at most once); moves along the grid; not incremental"),
             Algorithm::BidirectionalAStar => (true, false, false, "finds a shortest path; always finds a path if one exists; moves along the grid; not incremental"),
