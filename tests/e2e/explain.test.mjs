@@ -62,12 +62,20 @@ function shownNumbers(text) {
   return { f: Number(m[1]), g: Number(m[2]), w: m[3] ? Number(m[3]) : 1, h: Number(m[4]) };
 }
 
+/** Opens the panel (closed by default). */
+async function openPanel(page) {
+  await page.click('#explain > summary');
+  await page.waitForFunction(() => document.getElementById('explain').open);
+}
+
 async function setAlgorithm(page, value) {
   await afterReplan(page, () => page.selectOption('#algorithm', value));
 }
 
 test('stepping an A* search: f = g + h, the expand line is lit, the open list starts with the next expanded cell', async () => {
   const { page, problems } = await openPage(session);
+  assert.equal(await page.evaluate(() => document.getElementById('explain').open), false, 'closed until asked for');
+  await openPanel(page);
   await setEndpoints(page, ROW.start, ROW.goal);
   assert.equal(await errorText(page), null);
   await page.evaluate(() => window.planlabGrid.seek(60));
@@ -123,6 +131,7 @@ test('stepping an A* search: f = g + h, the expand line is lit, the open list st
 
 test('every planner in the menu gets its pseudo-code and says what its events do not carry', async () => {
   const { page, problems } = await openPage(session);
+  await openPanel(page);
   await setEndpoints(page, ROW.start, ROW.goal);
   const algorithms = await page.$$eval('#algorithm option', (os) => os.map((o) => o.value));
   assert.ok(algorithms.length >= 10, algorithms.join(','));
@@ -178,6 +187,31 @@ test('the help lists every menu planner with its properties in plain words', asy
   assert.match(props['dstar-lite'], /incremental: after a wall/);
   assert.match(props.astar, /not incremental/);
   assert.match(props.greedy, /not the shortest/);
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('on a 512 × 512 map the panel explains a mid-search step of Dijkstra (time printed)', async () => {
+  const RANDOM512 = path.join(DATA, 'movingai/random/random512-10-0.map');
+  const row = readScen(`${RANDOM512}.scen`).at(-1);
+  const { page, problems } = await openPage(session);
+  await openPanel(page);
+  await afterReplan(page, () => page.setInputFiles('#file-input', RANDOM512));
+  await setAlgorithm(page, 'dijkstra');
+  await setEndpoints(page, row.start, row.goal);
+  assert.equal(await errorText(page), null);
+  const n = Number(await page.evaluate(() => document.body.dataset.searchEvents));
+  assert.ok(n > 100_000, `${n} events`);
+  await page.evaluate((k) => window.planlabGrid.seek(k), Math.floor(n / 2));
+  const ms = [];
+  const mid = await stepToExpansion(page);
+  ms.push(await page.evaluate(() => window.planlabExplain.ms()));
+  const first = (await panel(page)).open[0];
+  await stepToExpansion(page);
+  ms.push(await page.evaluate(() => window.planlabExplain.ms()));
+  assert.deepEqual((await panel(page)).cell, first, 'the open list began with the cell expanded next');
+  assert.ok(mid.open_len > 100, `${mid.open_len} open`);
+  process.stderr.write(`random512 Dijkstra, ${n} events, ${mid.open_len} open at step ${mid.expanded_at}: explain ${ms.map((x) => x.toFixed(2)).join(', ')} ms\n`);
   assert.deepEqual(problems, []);
   await page.close();
 });
