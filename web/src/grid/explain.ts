@@ -109,10 +109,13 @@ export class ExplainPanel {
     const summary = h('summary', '', 'Explain this step');
     summary.title = 'What the planner does at the player\'s current step: the expanded cell and its f, the neighbours it opened or improved, the open list after it and the pseudo-code line';
     const facts = h('div', 'explain-facts');
-    const relaxedHead = h('h4', '', 'Neighbours added or improved (old g → new g; grey: later in this expansion, not played yet)');
-    facts.append(this.head, this.f, this.missing, relaxedHead, this.relaxed, this.openHead, this.open);
+    const relaxedHead = h('h4', '', 'Neighbours added or improved (old g → new g; grey: not played yet)');
+    relaxedHead.title = 'Grey rows come later in this expansion: the player has not played them yet';
+    facts.append(this.head, this.f, this.missing, relaxedHead, this.relaxed);
+    const openList = h('div', 'explain-facts');
+    openList.append(this.openHead, this.open);
     const body = h('div', 'explain-body');
-    body.append(facts, this.code);
+    body.append(facts, openList, this.code);
     this.root.append(summary, body);
     document.getElementById('player')?.after(this.root);
     this.root.addEventListener('toggle', () => this.refresh());
@@ -257,7 +260,7 @@ export class ExplainPanel {
       return;
     }
     const by = x.order.priority.kind === 'fifo' ? 'first in, first out' : x.order.priority.kind === 'h' ? 'lowest h first' : 'lowest f first';
-    this.openHead.textContent = `Open list after this step — first ${Math.min(TOP, x.open_len)} of ${count} (${by})`;
+    this.openHead.textContent = `Open list after this step: first ${Math.min(TOP, x.open_len)} of ${count} (${by})`;
     this.open.replaceChildren(
       ...x.open.map((e, i) => {
         const li = h('li');
