@@ -163,6 +163,20 @@ test('every planner in the menu gets its pseudo-code and says what its events do
   assert.match(seen['safe-astar'].fText, /ε·L is not recorded/);
   assert.match(seen['dstar-lite'].fText, /rhs [\d.]+, h [\d.]+/);
   for (const a of ['jps', 'theta-star']) assert.ok(Math.abs(seen[a].f - (seen[a].g + seen[a].h)) <= 0.01, a);
+
+  // Key-point A*: the segment checks after the search light the post line.
+  await setAlgorithm(page, 'astar');
+  await afterReplan(page, () => page.check('#keypoints'));
+  const n = Number(await page.evaluate(() => document.body.dataset.searchEvents));
+  await page.evaluate((k) => window.planlabGrid.seek(k), n);
+  const end = await panel(page);
+  assert.equal((await state(page)).kind, 'line');
+  assert.deepEqual(
+    end.lit.map((l) => l.role),
+    ['post'],
+    JSON.stringify(end.lit),
+  );
+  assert.match(end.lit[0].text, /key points/);
   assert.deepEqual(problems, []);
   await page.close();
 });
