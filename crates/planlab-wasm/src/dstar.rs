@@ -157,11 +157,13 @@ struct AlgorithmInfo {
     optimal: bool,
     reference: &'static str,
     summary: &'static str,
+    /// Optimal, complete, any-angle, incremental, and the four in words.
+    properties: planlab_core::global::explain::Properties,
 }
 
 /// The core's grid planners (`Algorithm::ALL`): JSON name, whether it is
-/// optimal, its reference and plain-language summary, for the page's menu
-/// and help.
+/// optimal, its reference, plain-language summary and properties, for the
+/// page's menu and help.
 #[wasm_bindgen(js_name = gridAlgorithms)]
 pub fn grid_algorithms() -> Result<JsValue, JsError> {
     let all: Vec<AlgorithmInfo> = Algorithm::ALL
@@ -171,6 +173,7 @@ pub fn grid_algorithms() -> Result<JsValue, JsError> {
             optimal: a.optimal(),
             reference: a.reference(),
             summary: a.summary(),
+            properties: a.properties(),
         })
         .collect();
     serde_wasm_bindgen::to_value(&all).map_err(|e| JsError::new(&e.to_string()))

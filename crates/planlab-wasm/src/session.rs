@@ -10,6 +10,7 @@
 
 use crate::{cell_of, options_from_js, paint_grid, MapHandle, PlanResult};
 use planlab_core::draw;
+use planlab_core::global::explain::OpenOrder;
 use planlab_core::global::plan::{
     build_observed_planner, plan_grid_for, plan_on_grid_observed, GridPlan, GridPlanError,
     GridPlanOptions,
@@ -527,5 +528,31 @@ impl SearchReplay {
         let mut out = draw::DrawList::default();
         self.inner.draw(draw::Layers::from_bits(layers), &mut out);
         crate::draw_js::draw_arrays(&out)
+    }
+}
+
+/// A step explained, with the order it was explained in (for the page's
+/// explain panel).
+#[derive(serde::Serialize)]
+struct Explained {
+    #[serde(flatten)]
+    step: draw::StepExplanation,
+    order: OpenOrder,
+}
+
+#[wasm_bindgen]
+impl SearchReplay {
+    /// The current step explained (core `SearchReplay::explain`) for the
+    /// planner `options` (a `GridPlanOptions` object) choose: the expansion
+    /// with g, h and priority, its neighbours (old g → new g), the open
+    /// list's first `top` entries in that planner's order, and the order
+    /// itself (`order.missing`: what the events do not carry).
+    pub fn explain(&self, options: JsValue, top: u32) -> Result<JsValue, JsError> {
+        let order = OpenOrder::of(&crate::options_from_js(options)?);
+        let step = self.inner.explain(&order, top as usize);
+        // Flattened fields go through a map: make it a plain object.
+        let out = serde_wasm_bindgen::Serializer::new().serialize_maps_as_objects(true);
+        serde::Serialize::serialize(&Explained { step, order }, &out)
+            .map_err(|e| JsError::new(&e.to_string()))
     }
 }

@@ -11,6 +11,7 @@ import { DrawList, EMPTY, Layer, mask } from '../scene/draw';
 import type { Cell } from '../shell/cells';
 import { GridSession } from '../scene/grid-session';
 import { SearchPlayer, exposeForTests } from './player-ui';
+import { ExplainPanel } from './explain';
 import { installShell } from '../shell/help';
 import { gridHelp, type CorePlanner } from '../shell/help-content';
 import { gridUrl } from './grid-url';
@@ -55,6 +56,7 @@ const { showError, clearError, guard } = errorBanner(ui.error, ui.body, () => (u
 const view = new MapView(ui.canvas);
 const session = new GridSession();
 const player = new SearchPlayer(view);
+new ExplainPanel(player);
 let map: MapHandle | null = null;
 /** The map as loaded, for "Reset edits". */
 let loaded: MapHandle | null = null;

@@ -35,6 +35,7 @@ export class SearchPlayer {
   private p: SearchPlayback | null = null;
   private playing = false;
   private last = 0;
+  private shown: Array<() => void> = [];
   readonly meter = new FrameMeter();
 
   constructor(view: MapView) {
@@ -55,6 +56,11 @@ export class SearchPlayer {
 
   get isPlaying(): boolean {
     return this.playing;
+  }
+
+  /** Calls `f` after every change of step or recording (the explain panel). */
+  onShow(f: () => void): void {
+    this.shown.push(f);
   }
 
   /** Events played per animation frame. */
@@ -126,8 +132,14 @@ export class SearchPlayer {
     requestAnimationFrame((tt) => this.frame(tt));
   }
 
-  /** Scrubber, buttons, counters and the state the tests read. */
+  /** Scrubber, buttons, counters and the state the tests read; then the
+   *  `onShow` listeners. */
   private show(): void {
+    this.showCounters();
+    for (const f of this.shown) f();
+  }
+
+  private showCounters(): void {
     const p = this.p;
     const d = document.body.dataset;
     for (const b of [ui.play, ui.back, ui.fwd, ui.scrub]) b.disabled = !p;

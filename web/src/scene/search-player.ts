@@ -87,6 +87,12 @@ export class SearchPlayback {
     return { step: s, events, expanded, open, f, lines };
   }
 
+  /** The current step explained for the planner `options` choose, with
+   *  the open list's first `top` entries (grid/explain.ts reads it). */
+  explain(options: Record<string, unknown>, top: number): unknown {
+    return this.r.explain(options, top);
+  }
+
   /** Releases the wasm side. */
   free(): void {
     this.r.free();

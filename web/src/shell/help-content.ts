@@ -76,6 +76,8 @@ export interface CorePlanner {
   optimal: boolean;
   reference: string;
   summary: string;
+  /** Optimal, complete, any-angle, incremental; `words`: the four in a sentence. */
+  properties?: { optimal: boolean; complete: boolean; any_angle: boolean; incremental: boolean; words: string };
 }
 
 const GRID_PLANNERS: HelpPlanner[] = [
@@ -108,6 +110,8 @@ export function gridPlannerHelp(core: CorePlanner[] = []): HelpPlanner[] {
       name: plannerLabel(p.name),
       paper: p.reference,
       summary: `${p.summary}${p.optimal ? '' : ' (Not optimal: its path can be longer than the shortest.)'}${COST_NOTES[p.name] ?? ''}`,
+      properties: p.properties?.words,
+      key: p.name,
     })),
     ...GRID_EXTRAS,
   ];

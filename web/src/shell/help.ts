@@ -17,6 +17,10 @@ export interface HelpPlanner {
   /** The same in plain words for a beginner (what it does, when it fails,
    *  what to look at on the canvas); shown first. */
   plain?: string;
+  /** Optimal? complete? any-angle? incremental? in plain words, one line. */
+  properties?: string;
+  /** The name the page's menu uses for it (`data-key`), where it differs. */
+  key?: string;
   /** Its parameters; shown in a table under the planner. */
   params?: HelpParam[];
 }
@@ -271,6 +275,7 @@ function build(dialog: HTMLElement, c: HelpContent): void {
     for (const p of c.planners) {
       const d = h('details', 'help-planner');
       d.dataset.planner = p.name;
+      if (p.key) d.dataset.key = p.key;
       if (p.name === c.current || (!c.current && c.planners.length === 1)) d.open = true;
       const s = h('summary');
       const paper = h('span', 'help-paper');
@@ -279,6 +284,7 @@ function build(dialog: HTMLElement, c: HelpContent): void {
       d.append(s);
       if (p.plain) d.append(rich('p', p.plain, 'help-plain'));
       d.append(rich('p', p.summary, p.plain ? 'help-technical' : ''));
+      if (p.properties) d.append(rich('p', `Properties: ${p.properties}.`, 'help-properties'));
       if (p.params?.length) d.append(paramTable(p.params));
       sec.append(d);
     }

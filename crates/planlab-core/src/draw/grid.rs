@@ -4,6 +4,10 @@
 //! line checks, the cell being expanded). Points are cell centres in
 //! metres, in the frame of the map's [`Shape::Cells`] item.
 
+mod explain;
+
+pub use explain::{OpenEntry, Relaxed, StepExplanation, StepKind};
+
 use super::{grid_frame, DrawList, Layer, Layers, Shape};
 use crate::global::{GridPos, SearchEvent};
 use crate::map::OccupancyGrid;

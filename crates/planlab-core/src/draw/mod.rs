@@ -28,7 +28,10 @@ mod grid;
 pub use apf::{apf_run, from_plane_xy, plane_xy, ApfDraw};
 pub use arm::arm_episode;
 pub use episode::{episode, trace_frame, FanColour, Request};
-pub use grid::{grid_plan, CellInfo, CellState, GridPlanDraw, SearchCounters, SearchReplay};
+pub use grid::{
+    grid_plan, CellInfo, CellState, GridPlanDraw, OpenEntry, Relaxed, SearchCounters, SearchReplay,
+    StepExplanation, StepKind,
+};
 
 /// A named group of items a renderer can show or hide as one.
 ///

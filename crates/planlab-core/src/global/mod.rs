@@ -10,6 +10,7 @@ pub mod bottom_up;
 pub mod classic;
 pub mod dstar_lite;
 pub mod events;
+pub mod explain;
 pub mod jps;
 pub mod keypoints;
 pub mod plan;
