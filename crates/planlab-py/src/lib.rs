@@ -327,7 +327,7 @@ fn cells_array<'py>(py: Python<'py>, cells: &[GridPos]) -> PyResult<Bound<'py, P
 /// Plans on `grid` from `start` to `goal` (cells (col, row); default: the
 /// scenario's) with the core's `plan_on_map`, as `planlab plan` does.
 /// Returns a dict: `path` ((n, 2) int array of (col, row)), `cost` (cells),
-/// `length_m`, `expanded`, `keypoints`, `feature_nodes`, `safety`.
+/// `length_m`, `expanded`, `keypoints`, `feature_nodes`, `safety`, `note`.
 #[pyfunction]
 #[pyo3(signature = (grid, start = None, goal = None, algo = None, heuristic = None,
     diagonal = None, weight = None, inflate = None, allow_unknown = false,
@@ -406,6 +406,8 @@ fn plan<'py>(
     d.set_item("feature_nodes", cells_array(py, &result.feature_nodes)?)?;
     d.set_item("safety", PyArray1::from_vec(py, result.safety))?;
     d.set_item("algorithm", options.algorithm.name())?;
+    // E.g. that BFS ignored the map's cell weights; None when nothing to say.
+    d.set_item("note", result.note)?;
     Ok(d)
 }
 
