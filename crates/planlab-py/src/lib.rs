@@ -219,6 +219,18 @@ impl Grid {
         table(py, g.height(), g.width(), cells)
     }
 
+    /// `weights[row, col]`: each cell's traversal weight as a uint8 array
+    /// (1 ordinary … 9; all ones on a unit-cost map; docs/algorithms.md
+    /// §weights). A move costs its length times the weight it enters.
+    #[getter]
+    fn weights<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u8>>> {
+        let g = &self.grid;
+        let w = g
+            .weights()
+            .map_or_else(|| vec![1; g.cells().len()], <[u8]>::to_vec);
+        table(py, g.height(), g.width(), w)
+    }
+
     #[getter]
     fn width(&self) -> usize {
         self.grid.width()
