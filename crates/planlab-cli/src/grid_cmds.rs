@@ -186,14 +186,22 @@ pub fn plan(map_path: &Path, grid: &OccupancyGrid, args: &PlanArgs) -> Result<()
         if !result.safety.is_empty() {
             out["safety"] = json!(result.safety);
         }
+        if grid.is_weighted() {
+            out["weighted"] = json!(true);
+        }
+        if let Some(note) = &result.note {
+            out["note"] = json!(note);
+        }
         outln!("{out}");
     } else {
         outln!(
-            "{} on {} ({}×{} cells, {} m/cell): cost {:.4} cells, length {:.3} m, {} nodes, {} expanded, {:.1} µs",
+            "{} on {} ({}×{} cells{}, {} m/cell): cost {:.4} cells, length {:.3} m, {} nodes, {} expanded, {:.1} µs",
             args.options.algorithm.name(),
             map_path.display(),
             grid.width(),
             grid.height(),
+            // The cost is then weighted (docs/algorithms.md §weights).
+            if grid.is_weighted() { ", weighted" } else { "" },
             grid.resolution(),
             result.path.cost,
             result.length_m,
@@ -201,6 +209,9 @@ pub fn plan(map_path: &Path, grid: &OccupancyGrid, args: &PlanArgs) -> Result<()
             result.path.expanded,
             micros
         );
+        if let Some(note) = &result.note {
+            outln!("note: {note}");
+        }
         if args.options.keypoints {
             outln!(
                 "key points ({}): {:?}",

@@ -409,7 +409,9 @@ fn pgm_modes_and_negate() {
     let mut m = meta("m.pgm");
     assert_eq!(grid(&m), "##??.\n");
     m.mode = RosMode::Scale;
-    assert_eq!(grid(&m), "##??.\n");
+    // Scale: the band is weighted free ground (100 → p 0.61 → weight 8;
+    // 205 → p just above free_thresh → weight 1).
+    assert_eq!(grid(&m), "##8..\n");
     m.negate = true;
     m.mode = RosMode::Trinary;
     // p = v/255: 0 → 0 free, 50 → 0.196 (just ≥ 0.196) unknown, 100 → 0.39

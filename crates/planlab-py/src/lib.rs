@@ -219,6 +219,18 @@ impl Grid {
         table(py, g.height(), g.width(), cells)
     }
 
+    /// `weights[row, col]`: each cell's traversal weight as a uint8 array
+    /// (1 ordinary … 9; all ones on a unit-cost map; docs/algorithms.md
+    /// §weights). A move costs its length times the weight it enters.
+    #[getter]
+    fn weights<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u8>>> {
+        let g = &self.grid;
+        let w = g
+            .weights()
+            .map_or_else(|| vec![1; g.cells().len()], <[u8]>::to_vec);
+        table(py, g.height(), g.width(), w)
+    }
+
     #[getter]
     fn width(&self) -> usize {
         self.grid.width()
@@ -327,7 +339,7 @@ fn cells_array<'py>(py: Python<'py>, cells: &[GridPos]) -> PyResult<Bound<'py, P
 /// Plans on `grid` from `start` to `goal` (cells (col, row); default: the
 /// scenario's) with the core's `plan_on_map`, as `planlab plan` does.
 /// Returns a dict: `path` ((n, 2) int array of (col, row)), `cost` (cells),
-/// `length_m`, `expanded`, `keypoints`, `feature_nodes`, `safety`.
+/// `length_m`, `expanded`, `keypoints`, `feature_nodes`, `safety`, `note`.
 #[pyfunction]
 #[pyo3(signature = (grid, start = None, goal = None, algo = None, heuristic = None,
     diagonal = None, weight = None, inflate = None, allow_unknown = false,
@@ -406,6 +418,8 @@ fn plan<'py>(
     d.set_item("feature_nodes", cells_array(py, &result.feature_nodes)?)?;
     d.set_item("safety", PyArray1::from_vec(py, result.safety))?;
     d.set_item("algorithm", options.algorithm.name())?;
+    // E.g. that BFS ignored the map's cell weights; None when nothing to say.
+    d.set_item("note", result.note)?;
     Ok(d)
 }
 

@@ -124,3 +124,22 @@ def test_a_grid_from_numpy():
                        ([[0, 256]], "value 256"), (np.array([[0, 2**62]]), "value 4611686018427387904")]:
         with pytest.raises(planlab.MapError, match=match):
             planlab.Grid(bad)
+
+
+def test_a_scale_map_is_weighted_and_plan_honours_the_weights():
+    # tests/data/weights/band.yaml: an 11 × 5 scale-mode map, a weight-9
+    # band at column 5 in rows 0–3 (docs/algorithms.md §weights).
+    grid = planlab.load_map(DATA / "weights" / "band.yaml")
+    assert grid.weights[0:4, 5].tolist() == [9, 9, 9, 9]
+    assert grid.weights[4, 5] == 1 and grid.weights[2, 0] == 1
+    astar = planlab.plan(grid, (1, 2), (9, 2), diagonal="never")
+    # Round the band's end (12 moves of 1), not through it (7 + 9).
+    assert astar["cost"] == pytest.approx(12.0)
+    assert astar["note"] is None
+    bfs = planlab.plan(grid, (1, 2), (9, 2), algo="bfs", diagonal="never")
+    assert bfs["cost"] == pytest.approx(16.0)
+    assert "ignores cell weights" in bfs["note"]
+    with pytest.raises(planlab.PlanError, match="needs uniform cell costs"):
+        planlab.plan(grid, (1, 2), (9, 2), algo="jps")
+    # A unit map: all ones.
+    assert (planlab.load_map(ARENA).weights == 1).all()

@@ -45,6 +45,15 @@ impl DStarSession {
     /// or under inflation every cell whose inflated passability changed
     /// (a wall grows by the radius).
     fn sync(&mut self, touched: &[(usize, usize)]) -> Result<(), JsError> {
+        // Weights first: a cell freed by the cost brush is entered at its
+        // new weight.
+        for &(c, r) in touched {
+            let w = self.map.weight(c, r);
+            if self.known.weight(c as i64, r as i64) != u32::from(w) {
+                self.known.set_weight(c, r, w);
+                self.dstar.set_weight(GridPos::new(c as u32, r as u32), w);
+            }
+        }
         let set = |dstar: &mut DStarLite, known: &mut PlanGrid, c: usize, r: usize, free: bool| {
             if known.is_free(c as i64, r as i64) != free {
                 known.set_free(c, r, free);
@@ -107,13 +116,19 @@ impl DStarSession {
     pub fn plan(&mut self) -> Result<RecordedPlan, JsError> {
         let mut events = EventColumns::with_limit(EVENT_LIMIT);
         let path = self.dstar.plan(&mut events)?;
+        let length_m = if self.known.is_weighted() {
+            planlab_core::global::Path::polyline_length(&path.cells) * self.map.resolution()
+        } else {
+            path.cost * self.map.resolution()
+        };
         let plan = GridPlan {
-            length_m: path.cost * self.map.resolution(),
+            length_m,
             path,
             keypoints: Vec::new(),
             feature_nodes: Vec::new(),
             expanded_cells: Vec::new(),
             safety: Vec::new(),
+            note: None,
         };
         Ok(RecordedPlan::new(PlanResult { plan }, events))
     }
@@ -137,6 +152,23 @@ impl DStarSession {
         kind: u8,
     ) -> Result<u32, JsError> {
         let changed = paint_grid(&mut self.map, [col0, row0, col1, row1], kind)?;
+        if changed > 0 {
+            self.sync(&segment_cells(col0, row0, col1, row1))?;
+        }
+        Ok(changed)
+    }
+
+    /// The cost brush, as `MapHandle.paintWeight`; the next plan repairs.
+    #[wasm_bindgen(js_name = paintWeight)]
+    pub fn paint_weight(
+        &mut self,
+        col0: u32,
+        row0: u32,
+        col1: u32,
+        row1: u32,
+        weight: u8,
+    ) -> Result<u32, JsError> {
+        let changed = crate::paint_weight(&mut self.map, [col0, row0, col1, row1], weight)?;
         if changed > 0 {
             self.sync(&segment_cells(col0, row0, col1, row1))?;
         }

@@ -138,6 +138,18 @@ pub(crate) fn paint_grid(
     Ok(grid.paint_segment((c0, r0), (c1, r1), cell)? as u32)
 }
 
+/// The cost brush: paints the segment `[col0, row0, col1, row1]` free with
+/// traversal weight `weight` (1 erases a weight); returns how many cells
+/// changed.
+pub(crate) fn paint_weight(
+    grid: &mut OccupancyGrid,
+    seg: [u32; 4],
+    weight: u8,
+) -> Result<u32, JsError> {
+    let [c0, r0, c1, r1] = seg.map(|v| v as usize);
+    Ok(grid.paint_weight_segment((c0, r0), (c1, r1), weight)? as u32)
+}
+
 /// Flattens cells into `col, row` pairs for a `Uint32Array`.
 fn flat(cells: &[GridPos]) -> Vec<u32> {
     let mut out = Vec::with_capacity(cells.len() * 2);
@@ -289,6 +301,33 @@ impl MapHandle {
         kind: u8,
     ) -> Result<u32, JsError> {
         paint_grid(&mut self.grid, [col0, row0, col1, row1], kind)
+    }
+
+    /// The cost brush: paints the cells the segment between two cell
+    /// centres crosses free with traversal weight `weight` (1–9; 1 erases
+    /// a weight); returns how many cells changed.
+    #[wasm_bindgen(js_name = paintWeight)]
+    pub fn paint_weight(
+        &mut self,
+        col0: u32,
+        row0: u32,
+        col1: u32,
+        row1: u32,
+        weight: u8,
+    ) -> Result<u32, JsError> {
+        paint_weight(&mut self.grid, [col0, row0, col1, row1], weight)
+    }
+
+    /// The traversal weight of a cell (1 = ordinary; off the map 1).
+    #[wasm_bindgen(js_name = weightAt)]
+    pub fn weight_at(&self, col: u32, row: u32) -> u8 {
+        self.grid.weight(col as usize, row as usize)
+    }
+
+    /// Whether some cell weighs more than 1.
+    #[wasm_bindgen(getter)]
+    pub fn weighted(&self) -> bool {
+        self.grid.is_weighted()
     }
 
     /// The map as a Moving AI `.map` (unknown written as blocked).
@@ -522,13 +561,22 @@ impl PlanResult {
         self.plan.safety.clone()
     }
 
-    /// Path length in cells (moves of 1 and √2).
+    /// Path cost in cells (moves of 1 and √2, each times the weight of the
+    /// cell entered on weighted cells).
     #[wasm_bindgen(getter)]
     pub fn cost(&self) -> f64 {
         self.plan.path.cost
     }
 
-    /// Path length in metres (cost × resolution).
+    /// What the plan should say, e.g. that BFS ignored the cell weights
+    /// (`undefined` when nothing).
+    #[wasm_bindgen(getter)]
+    pub fn note(&self) -> Option<String> {
+        self.plan.note.clone()
+    }
+
+    /// Path length in metres (the polyline's; cost × resolution on a
+    /// unit-cost map).
     #[wasm_bindgen(getter, js_name = lengthM)]
     pub fn length_m(&self) -> f64 {
         self.plan.length_m

@@ -60,6 +60,7 @@ impl PlanSession {
             self.grid = None;
         } else if let (Some(grid), Some(cell)) = (self.grid.as_mut(), self.map.get(col, row)) {
             grid.set_free(col, row, cell.passable(self.options.allow_unknown));
+            grid.set_weight(col, row, self.map.weight(col, row));
         }
     }
 
@@ -177,6 +178,26 @@ impl PlanSession {
         kind: u8,
     ) -> Result<u32, JsError> {
         let changed = paint_grid(&mut self.map, [col0, row0, col1, row1], kind)?;
+        if changed > 0 {
+            for (c, r) in segment_cells(col0, row0, col1, row1) {
+                self.sync_cell(c, r);
+            }
+        }
+        Ok(changed)
+    }
+
+    /// The cost brush, as `MapHandle.paintWeight`; returns how many cells
+    /// changed.
+    #[wasm_bindgen(js_name = paintWeight)]
+    pub fn paint_weight(
+        &mut self,
+        col0: u32,
+        row0: u32,
+        col1: u32,
+        row1: u32,
+        weight: u8,
+    ) -> Result<u32, JsError> {
+        let changed = crate::paint_weight(&mut self.map, [col0, row0, col1, row1], weight)?;
         if changed > 0 {
             for (c, r) in segment_cells(col0, row0, col1, row1) {
                 self.sync_cell(c, r);

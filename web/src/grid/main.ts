@@ -26,6 +26,7 @@ import { Driver } from './drive';
 import { download, onFileDrop } from '../shell/download';
 import { TOOL_HINTS, type Tool } from './tools';
 import { installClassroom } from './classroom';
+import { costWeight, describeWeight, weightNote } from './weights';
 
 const CELL_NAMES = ['free', 'occupied', 'unknown'];
 
@@ -90,7 +91,7 @@ function scheduleReplan(): void {
     try {
       if (cellsDirty && map) {
         cellsDirty = false;
-        showMap(mask(Layer.Map));
+        showMap(mask(Layer.Map, Layer.Weights));
       }
       replan();
     } catch (e) {
@@ -188,6 +189,7 @@ function replan(): void {
     if (truncated) status += ` · the search recording stopped at ${playback?.n.toLocaleString('en-US')} events`;
     const note = inflationNote(Number(opts.inflate_m), map.resolution);
     if (note) status += ` · note: ${note}`;
+    status += weightNote(res, map);
     ui.body.dataset.repair = shown ? `${shown.expanded},${shown.freshAStar}` : '';
     ui.status.textContent = status;
   } finally {
@@ -233,7 +235,9 @@ function canvasPoint(ev: MouseEvent): [number, number] {
   return [ev.clientX - r.left, ev.clientY - r.top];
 }
 
-let painting: { kind: number; last: Cell | null } | null = null;
+/** A brush stroke: a cell kind (walls, erase) or, for the cost brush, a
+ *  traversal weight. */
+let painting: { kind: number; weight?: number; last: Cell | null } | null = null;
 /** The endpoint marker being dragged (replans at every new cell). */
 let dragging: 'start' | 'goal' | null = null;
 // Before the tools' handlers: a pan gesture goes no further.
@@ -246,10 +250,12 @@ function paintTo(cell: Cell | null): void {
     return;
   }
   const from = painting.last ?? cell;
-  const changed = map.paintSegment(from[0], from[1], cell[0], cell[1], painting.kind);
+  const w = painting.weight;
+  const changed = w === undefined ? map.paintSegment(from[0], from[1], cell[0], cell[1], painting.kind) : map.paintWeight(from[0], from[1], cell[0], cell[1], w);
   painting.last = cell;
   if (changed > 0) {
-    session.paint(from, cell, painting.kind);
+    if (w === undefined) session.paint(from, cell, painting.kind);
+    else session.paintWeight(from, cell, w);
     mapVersion += 1;
     cellsDirty = true;
     scheduleReplan();
@@ -260,7 +266,7 @@ function describeCell(cell: Cell | null): string {
   if (!cell || !map) return '—';
   const kind = CELL_NAMES[view.cellKind(cell[0], cell[1]) ?? 0];
   const [x, y] = map.cellToWorld(cell[0], cell[1]);
-  const where = `cell (${cell[0]}, ${cell[1]}) · ${kind} · world (${x.toFixed(2)}, ${y.toFixed(2)}) m`;
+  const where = `cell (${cell[0]}, ${cell[1]}) · ${kind}${describeWeight(map, cell)} · world (${x.toFixed(2)}, ${y.toFixed(2)}) m`;
   const search = player.playback ? describeSearch(player.playback.info(cell[0], cell[1])) : '';
   ui.hover.dataset.search = search;
   return search ? `${where} · ${search}` : where;
@@ -285,7 +291,7 @@ ui.canvas.addEventListener(
       start = cell;
       scheduleReplan();
     } else {
-      painting = { kind: tool === 'wall' ? 1 : 0, last: null };
+      painting = tool === 'cost' ? { kind: 0, weight: costWeight(), last: null } : { kind: tool === 'wall' ? 1 : 0, last: null };
       ui.canvas.setPointerCapture(ev.pointerId);
       paintTo(cell);
     }
@@ -326,7 +332,7 @@ window.addEventListener('keydown', (ev) => {
   const t = ev.target as HTMLElement | null;
   if (t && (t.tagName === 'INPUT' || t.tagName === 'SELECT' || t.tagName === 'TEXTAREA')) return;
   if (ev.ctrlKey || ev.metaKey || ev.altKey) return;
-  const keys: Record<string, Tool> = { s: 'start', g: 'goal', w: 'wall', e: 'erase' };
+  const keys: Record<string, Tool> = { s: 'start', g: 'goal', w: 'wall', e: 'erase', k: 'cost' };
   const k = ev.key.toLowerCase();
   if (keys[k]) setTool(keys[k]);
   else if (k === ' ') {

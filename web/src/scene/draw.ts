@@ -35,9 +35,10 @@ export const Layer = {
   Hand: 26,
   HandPath: 27,
   Costmap: 28,
+  Weights: 29,
 } as const;
 export type LayerCode = (typeof Layer)[keyof typeof Layer];
-const LAYER_COUNT = 29;
+const LAYER_COUNT = 30;
 
 /** Shape codes (`planlab_core::draw::Shape`). */
 export const Shape = {

@@ -67,6 +67,12 @@ export class GridSession {
     this.d?.s.paintSegment(from[0], from[1], to[0], to[1], kind);
   }
 
+  /** The same cost-brush stroke as the page's MapHandle got. */
+  paintWeight(from: Cell, to: Cell, weight: number): void {
+    this.s?.paintWeight(from[0], from[1], to[0], to[1], weight);
+    this.d?.s.paintWeight(from[0], from[1], to[0], to[1], weight);
+  }
+
   /** Times the grid was (re)built (edits without inflation keep it). */
   get rebuilds(): number {
     return this.s?.rebuilds ?? 0;

@@ -11,9 +11,10 @@ import { knownBox, offscreen, sizeToBox, type Cell } from '../shell/cells';
 import type { SearchPlayback } from './search-player';
 import { SEARCH_CSS, SearchTint } from './search-tint';
 import { EMPTY, Frame, Layer, mask, type DrawList, type LayerCode } from './draw';
+import { labelWeights, weightColor } from './weight-shade';
 
 /** The layers a grid view shows from the map's and the plan's lists. */
-export const MAP_LAYERS = mask(Layer.Map, Layer.Inflation, Layer.Goals);
+export const MAP_LAYERS = mask(Layer.Map, Layer.Inflation, Layer.Goals, Layer.Weights);
 export const PLAN_LAYERS = mask(Layer.GlobalPath, Layer.KeyPoints, Layer.FeatureNodes);
 const SEARCH_LAYERS = mask(Layer.SearchCells, Layer.SearchLines, Layer.SearchCurrent);
 
@@ -108,7 +109,7 @@ export class MapView {
       const i = d.first(Layer.Map);
       this.cells = i < d.end(Layer.Map) ? d.cellBytes(i) : null;
     }
-    if (layers & mask(Layer.Map, Layer.Inflation)) this.paintBase();
+    if (layers & mask(Layer.Map, Layer.Inflation, Layer.Weights)) this.paintBase();
     this.request();
   }
 
@@ -235,8 +236,10 @@ export class MapView {
     const ii = inf.first(Layer.Inflation);
     const infl = ii < inf.end(Layer.Inflation) ? inf.cellBytes(ii) : null;
     const palette = [COLORS.free, COLORS.occupied, COLORS.unknown];
+    const weights = this.weights();
     for (let i = 0; i < cells.length; i++) {
-      const col = infl && infl[i] ? COLORS.inflated : palette[cells[i]] ?? COLORS.unknown;
+      let col: readonly number[] = infl && infl[i] ? COLORS.inflated : palette[cells[i]] ?? COLORS.unknown;
+      if (weights && cells[i] === 0 && !(infl && infl[i])) col = weightColor(col, weights[i]);
       const o = i * 4;
       px[o] = col[0];
       px[o + 1] = col[1];
@@ -244,6 +247,13 @@ export class MapView {
       px[o + 3] = 255;
     }
     this.baseCtx.putImageData(img, 0, 0);
+  }
+
+  /** The map's traversal weights (Weights layer), or null on a unit map. */
+  private weights(): Uint8Array | null {
+    const d = this.frame.of(Layer.Weights);
+    const i = d.first(Layer.Weights);
+    return i < d.end(Layer.Weights) ? d.cellBytes(i) : null;
   }
 
   request(): void {
@@ -318,6 +328,8 @@ export class MapView {
     ctx.drawImage(this.tint.canvas, ox, oy, this.w * scale, this.h * scale);
 
     if (scale >= 9) this.gridLines();
+    const weights = this.weights();
+    if (weights) labelWeights(ctx, weights, this.w, this.h, this.view, [this.cssW, this.cssH]);
 
     const lw = Math.min(7, Math.max(2.5, scale * 0.4));
     const path = this.pointsOf(Layer.GlobalPath);

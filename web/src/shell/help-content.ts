@@ -139,6 +139,7 @@ export function gridHelp(core: CorePlanner[] = []): HelpContent {
       { keys: 'G', action: 'tool: place the goal' },
       { keys: 'W', action: 'tool: paint walls' },
       { keys: 'E', action: 'tool: erase walls' },
+      { keys: 'K', action: 'tool: cost brush (weighted cells)' },
       { keys: 'X', action: 'clear walls (the start and goal stay)' },
       { keys: 'C', action: 'clear path: remove the search and the path' },
       { keys: 'F', action: 'fit the map into the view' },

@@ -46,7 +46,7 @@ fn centres(frame: &[f64; 5], cells: &[GridPos]) -> Vec<[f64; 2]> {
 
 /// The layers of `p` in `layers` ([`Layer::Map`], [`Layer::GlobalPath`],
 /// [`Layer::KeyPoints`], [`Layer::Goals`] with the start `tag` 0 and the
-/// goal 1, [`Layer::Inflation`], [`Layer::FeatureNodes`]), appended to
+/// goal 1, [`Layer::Inflation`], [`Layer::FeatureNodes`], [`Layer::Weights`]), appended to
 /// `out`.
 pub fn grid_plan(p: &GridPlanDraw<'_>, layers: Layers, out: &mut DrawList) {
     let frame = grid_frame(p.grid);
@@ -76,6 +76,12 @@ pub fn grid_plan(p: &GridPlanDraw<'_>, layers: Layers, out: &mut DrawList) {
     if want(Layer::FeatureNodes) && !p.feature_nodes.is_empty() {
         let pts = centres(&frame, p.feature_nodes);
         out.points(Layer::FeatureNodes, Shape::Points, &pts, 0.0, 0.0);
+    }
+    // Last: the highest layer code.
+    if let (true, Some(w)) = (want(Layer::Weights), p.grid.weights()) {
+        if p.grid.is_weighted() {
+            out.grid(Layer::Weights, frame, w, 0.0, 0.0);
+        }
     }
 }
 

@@ -139,11 +139,15 @@ pub enum Layer {
     /// the inflation's decay, 253 inscribed, 254 a laser mark, 255 never
     /// seen); `value` the perceived map's revision.
     Costmap,
+    /// Traversal weights of a weighted map (docs/algorithms.md §weights):
+    /// one [`Shape::Cells`] item over the map's frame, bytes the weight
+    /// (1 ordinary … 9); absent on a unit-cost map.
+    Weights,
 }
 
 impl Layer {
     /// Every layer, in item order.
-    pub const ALL: [Layer; 29] = [
+    pub const ALL: [Layer; 30] = [
         Layer::Map,
         Layer::Seen,
         Layer::GlobalPath,
@@ -173,6 +177,7 @@ impl Layer {
         Layer::Hand,
         Layer::HandPath,
         Layer::Costmap,
+        Layer::Weights,
     ];
 
     /// Kebab-case name (what the page's layer table lists).
@@ -207,6 +212,7 @@ impl Layer {
             Layer::Hand => "hand",
             Layer::HandPath => "hand-path",
             Layer::Costmap => "costmap",
+            Layer::Weights => "weights",
         }
     }
 }

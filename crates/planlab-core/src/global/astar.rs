@@ -1,6 +1,7 @@
 //! A* and Dijkstra on a [`PlanGrid`] (docs/algorithms.md §grid; Wu 2022 eq 3-6, f = g + w·h).
 //!
-//! 4- or 8-connected moves of cost 1 and √2 under a [`Diagonal`] rule, any
+//! 4- or 8-connected moves of cost 1 and √2 (times the weight of the cell
+//! entered on a weighted grid, `global::weights`) under a [`Diagonal`] rule, any
 //! [`Heuristic`] with a weight w ≥ 1 (cost ≤ w · optimum for a consistent
 //! heuristic), Dijkstra as the zero heuristic.
 //!
@@ -185,18 +186,29 @@ fn run<E: Estimate, const RULE: u8, O: SearchObserver + ?Sized>(
         binary,
         ..
     } = &mut *space;
-    let (reached, expanded) = if E::MONOTONE {
-        search::<E, RULE, _, O>(grid, s, t, words, radix, tag, est, obs)
-    } else {
-        search::<E, RULE, _, O>(grid, s, t, words, binary, tag, est, obs)
+    // Weighted cells get their own copy of the loop, so unit grids pay
+    // nothing for them.
+    let (reached, expanded) = match (E::MONOTONE, grid.is_weighted()) {
+        (true, false) => search::<E, RULE, _, O, false>(grid, s, t, words, radix, tag, est, obs),
+        (true, true) => search::<E, RULE, _, O, true>(grid, s, t, words, radix, tag, est, obs),
+        (false, false) => search::<E, RULE, _, O, false>(grid, s, t, words, binary, tag, est, obs),
+        (false, true) => search::<E, RULE, _, O, true>(grid, s, t, words, binary, tag, est, obs),
     };
     finish(grid, space, (s, t), reached, expanded)
 }
 
 /// The A* loop: whether `t` was reached, and how many cells were expanded.
 /// `tag` is the open word of cost 0 (see [`SearchSpace::open_word`]).
+/// `WEIGHTED`: a move costs its length times the weight of the cell it
+/// enters (`global::weights`).
 #[allow(clippy::too_many_arguments)]
-fn search<E: Estimate, const RULE: u8, Q: OpenList, O: SearchObserver + ?Sized>(
+fn search<
+    E: Estimate,
+    const RULE: u8,
+    Q: OpenList,
+    O: SearchObserver + ?Sized,
+    const WEIGHTED: bool,
+>(
     grid: &PlanGrid,
     s: usize,
     t: usize,
@@ -210,6 +222,7 @@ fn search<E: Estimate, const RULE: u8, Q: OpenList, O: SearchObserver + ?Sized>(
     let stride = grid.stride();
     let (gx, gy) = xy(t, stride);
     let is_free = |j: usize| free.get(j).copied().unwrap_or(false);
+    let weights = grid.padded_weights().unwrap_or(&[]);
 
     if let Some(w) = words.get_mut(s) {
         *w = tag;
@@ -253,7 +266,11 @@ fn search<E: Estimate, const RULE: u8, Q: OpenList, O: SearchObserver + ?Sized>(
         macro_rules! relax {
             ($j:expr, $nx:expr, $ny:expr, $cost:expr, $dir:expr) => {{
                 let j: usize = $j;
-                let ng = g + $cost;
+                let ng = if WEIGHTED {
+                    g + $cost * weights.get(j).map_or(1, |&w| u64::from(w))
+                } else {
+                    g + $cost
+                };
                 let new = tag | ng << G_SHIFT | $dir;
                 if let Some(old) = words.get_mut(j) {
                     if improves(*old, new) {

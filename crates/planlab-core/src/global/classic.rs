@@ -217,12 +217,35 @@ pub(crate) fn step(
         return None;
     }
     let q = GridPos::new((x + dx) as u32, (y + dy) as u32);
+    // A move costs its length times the weight of the cell it enters.
+    let w = f64::from(grid.weight(x + dx, y + dy));
     if dx == 0 || dy == 0 {
-        return Some((q, 1.0));
+        return Some((q, w));
     }
     diagonal
         .allows(grid.is_free(x + dx, y), grid.is_free(x, y + dy))
-        .then_some((q, std::f64::consts::SQRT_2))
+        .then_some((q, std::f64::consts::SQRT_2 * w))
+}
+
+/// Calls `f` with each cell `q` from which a legal move leads into `p`, and
+/// that move's cost (its length times the weight of `p`): the predecessors
+/// a backward search relaxes. Moves are symmetric in legality, not in cost.
+#[inline]
+pub(crate) fn for_each_move_into(
+    grid: &PlanGrid,
+    p: GridPos,
+    diagonal: Diagonal,
+    mut f: impl FnMut(GridPos, f64),
+) {
+    let w = f64::from(grid.weight(i64::from(p.col), i64::from(p.row)));
+    for_each_move(grid, p, diagonal, |q, _| {
+        let len = if q.col != p.col && q.row != p.row {
+            std::f64::consts::SQRT_2
+        } else {
+            1.0
+        };
+        f(q, len * w)
+    });
 }
 
 /// Calls `f` with each legal move from `p`: target and cost.
@@ -294,9 +317,9 @@ fn open_event(cell: GridPos, parent: Option<GridPos>, g: f64, h: f64) -> SearchE
     SearchEvent::Open { cell, parent, g, h }
 }
 
-fn path_of(cells: Vec<GridPos>, expanded: usize) -> Path {
+fn path_of(grid: &PlanGrid, cells: Vec<GridPos>, expanded: usize) -> Path {
     Path {
-        cost: Path::polyline_length(&cells),
+        cost: grid.path_cost(&cells),
         cells,
         expanded,
     }
@@ -355,7 +378,7 @@ fn best_first<O: SearchObserver + ?Sized>(
             let here = pos(w, i);
             emit(obs, || SearchEvent::Close { cell: here });
             if here == goal {
-                return Ok(path_of(nodes.chain(w, i), expanded));
+                return Ok(path_of(grid, nodes.chain(w, i), expanded));
             }
             let g = nodes.g(i);
             for_each_move(grid, here, diagonal, |q, c| {
@@ -509,7 +532,14 @@ impl BidirectionalAStar {
                 let g = this.g(i);
                 let target = roots[1 - side];
                 let heap = &mut heaps[side];
-                for_each_move(grid, here, diagonal, |q, c| {
+                // Backwards, `q` is a predecessor: the move q → here costs
+                // the weight of `here`.
+                let moves = if side == 0 {
+                    for_each_move
+                } else {
+                    for_each_move_into
+                };
+                moves(grid, here, diagonal, |q, c| {
                     let j = index(w, q);
                     let ng = g + c;
                     if this.closed(j) || ng >= this.g(j) {
@@ -537,7 +567,7 @@ impl BidirectionalAStar {
             let mut back = bwd.chain(w, m);
             back.reverse();
             cells.extend(back.into_iter().skip(1));
-            Ok(path_of(cells, expanded))
+            Ok(path_of(grid, cells, expanded))
         })
     }
 }
@@ -628,7 +658,7 @@ impl IdaStar {
                     if q == goal {
                         let mut cells: Vec<GridPos> = stack.iter().map(|f| f.0).collect();
                         cells.push(q);
-                        return Ok(path_of(cells, expanded));
+                        return Ok(path_of(grid, cells, expanded));
                     }
                     if expanded >= limit {
                         return Err(PlanError::SearchLimit { expanded, limit });
@@ -679,7 +709,14 @@ impl ThetaStar {
             return Err(PlanError::Unreachable { expanded: 0 });
         }
         let h = |p: GridPos| estimate(Heuristic::Euclidean, p, goal);
-        let dist = |a: GridPos, b: GridPos| estimate(Heuristic::Euclidean, a, b);
+        let weighted = grid.is_weighted();
+        let segment = |a: GridPos, b: GridPos| {
+            if weighted {
+                grid.segment_cost(a, b)
+            } else {
+                estimate(Heuristic::Euclidean, a, b)
+            }
+        };
         lowest_f_first(
             grid,
             (start, goal),
@@ -704,7 +741,14 @@ impl ThetaStar {
                             clear,
                         });
                         if clear {
-                            (par, ng) = (grand as usize, nodes.g(grand as usize) + dist(gp, q));
+                            // On weighted cells the straight segment pays
+                            // the heaviest cell it enters, so it is taken
+                            // only where that is no dearer (on a unit grid
+                            // it never is).
+                            let through = nodes.g(grand as usize) + segment(gp, q);
+                            if !weighted || through <= ng {
+                                (par, ng) = (grand as usize, through);
+                            }
                         }
                     }
                     offer.push((q, ng, par));
@@ -832,7 +876,7 @@ fn lowest_f_first<O: SearchObserver + ?Sized>(
             let here = pos(w, i);
             emit(obs, || SearchEvent::Close { cell: here });
             if here == goal {
-                return Ok(path_of(finish(start, nodes.chain(w, i)), expanded));
+                return Ok(path_of(grid, finish(start, nodes.chain(w, i)), expanded));
             }
             offers.clear();
             expand(nodes, i, here, obs, &mut offers);

@@ -32,7 +32,7 @@
 //! assert!((repaired.cost - (4.0 + 2.0 * 2f64.sqrt())).abs() < 1e-9);
 //! ```
 
-use super::classic::{for_each_move, index, pos, MOVES};
+use super::classic::{for_each_move, for_each_move_into, index, pos, MOVES};
 use super::events::emit;
 use super::plan::GridPlanOptions;
 use super::{
@@ -56,7 +56,8 @@ fn key_less(a: Key, b: Key) -> bool {
 
 /// `x` to the nearest multiple of 2⁻²⁰ (≈ 10⁻⁶): far above the rounding of
 /// a sum of moves (≈ 10⁻¹² here), far below the smallest difference
-/// between two different path costs on these grids (sums of 1 and √2).
+/// between two different path costs on these grids (sums of 1 and √2 with
+/// whole-number weights).
 fn quantise(x: f64) -> f64 {
     const SCALE: f64 = (1u64 << 20) as f64;
     (x * SCALE).round() / SCALE
@@ -309,7 +310,9 @@ impl DStarLite {
                 self.g[u] = self.rhs[u];
                 let gu = self.g[u];
                 let mut preds = Vec::with_capacity(8);
-                for_each_move(&self.grid, up, self.diagonal, |q, c| preds.push((q, c)));
+                // A move q → u costs the weight of u (moves are symmetric in
+                // legality, not in cost).
+                for_each_move_into(&self.grid, up, self.diagonal, |q, c| preds.push((q, c)));
                 for (q, c) in preds {
                     let j = self.at(q);
                     if q != self.goal && c + gu < self.rhs[j] {
@@ -350,10 +353,33 @@ impl DStarLite {
             }
         }
         Ok(Path {
-            cost: Path::polyline_length(&cells),
+            cost: self.grid.path_cost(&cells),
             cells,
             expanded,
         })
+    }
+
+    /// Changes one cell's traversal weight (1..=9); the next plan() repairs
+    /// only what it affects: the moves into the cell, from its neighbours.
+    pub fn set_weight(&mut self, cell: GridPos, weight: u8) {
+        let (w, h) = (self.grid.width(), self.grid.height());
+        if cell.col as usize >= w || cell.row as usize >= h {
+            return;
+        }
+        let (x, y) = (i64::from(cell.col), i64::from(cell.row));
+        if self.grid.weight(x, y) == u32::from(weight) {
+            return;
+        }
+        self.grid
+            .set_weight(cell.col as usize, cell.row as usize, weight);
+        for (dx, dy) in MOVES {
+            let (nx, ny) = (x + dx, y + dy);
+            if nx >= 0 && ny >= 0 && (nx as usize) < w && (ny as usize) < h {
+                let j = self.at(GridPos::new(nx as u32, ny as u32));
+                self.recompute_rhs(j);
+                self.update(j, &mut ());
+            }
+        }
     }
 
     /// Changes one cell (true = blocked); the next plan() repairs only what it affects.

@@ -101,6 +101,14 @@ impl Jps {
         goal: GridPos,
         obs: &mut O,
     ) -> Result<Path, PlanError> {
+        // Pruning symmetric paths assumes they all cost the same; on
+        // weighted cells they do not, and a silent fallback to A* would
+        // show A*'s search under JPS's name.
+        if grid.is_weighted() {
+            return Err(PlanError::NeedsUniformCosts {
+                planner: "jump point search",
+            });
+        }
         if self.config.diagonal == Diagonal::Never {
             return jps4(grid, start, goal, self.config.heuristic, obs);
         }

@@ -17,6 +17,7 @@ pub mod plan;
 pub mod posthoc;
 pub mod safe_astar;
 pub mod search;
+mod weights;
 
 /// Cells and the supercover line live with the grid (the map layer paints
 /// segments too); the planners' code names them from here as before.
@@ -159,6 +160,16 @@ pub enum PlanError {
     /// A configuration value is out of range.
     #[error("invalid planner configuration: {}", crate::text::one_line(.0))]
     InvalidConfig(String),
+    /// The planner assumes every cell costs the same (Jump Point Search's
+    /// pruning is valid only then) and the grid has weighted cells.
+    #[error(
+        "{planner} needs uniform cell costs, and this map has weighted cells; \
+         plan with A* (or Dijkstra), which honours the weights"
+    )]
+    NeedsUniformCosts {
+        /// The planner's name.
+        planner: &'static str,
+    },
     /// The search stopped at its bound on work (IDA*), before finding a
     /// path or proving there is none.
     #[error(
@@ -179,8 +190,9 @@ pub struct Path {
     /// Cells from start to goal inclusive.
     pub cells: Vec<GridPos>,
     /// Sum of move lengths in cells (1 straight, √2 diagonal, the Euclidean
-    /// length for longer moves). For safe A* this is the geometric length,
-    /// not the search's internal cost.
+    /// length for longer moves), each times the weight of the cell it
+    /// enters on a weighted grid ([`PlanGrid::path_cost`]). For safe A*
+    /// this is that weighted length, not the search's internal cost.
     pub cost: f64,
     /// Nodes taken off the open list and expanded.
     pub expanded: usize,
@@ -284,15 +296,21 @@ pub struct PlanGrid {
     /// grids, e.g. the ones planners build every replan, never need it) and
     /// then kept in step with `free`.
     lines: std::sync::OnceLock<search::LineBits>,
+    /// Traversal weight per padded cell (1..=9; the border 1), or `None` on
+    /// a unit-cost grid: a move costs its length times the weight of the
+    /// cell it enters (docs/algorithms.md §weights; `weights.rs`).
+    weights: Option<Vec<u8>>,
 }
 
 impl PlanGrid {
     /// Passability of `grid`; unknown cells are passable only with
     /// `allow_unknown`.
     pub fn new(grid: &OccupancyGrid, allow_unknown: bool) -> Self {
-        Self::from_fn(grid.width(), grid.height(), |c, r| {
+        let mut out = Self::from_fn(grid.width(), grid.height(), |c, r| {
             grid.cells()[r * grid.width() + c].passable(allow_unknown)
-        })
+        });
+        out.take_weights_of(grid);
+        out
     }
 
     /// A grid whose cell `(c, r)` is passable when `f(c, r)`.
@@ -310,6 +328,7 @@ impl PlanGrid {
             stride,
             free,
             lines: std::sync::OnceLock::new(),
+            weights: None,
         }
     }
 
@@ -425,7 +444,8 @@ impl PlanGrid {
     }
 }
 
-/// Checks a heuristic weight: finite and ≥ 1.
+/// Checks a heuristic weight: finite and ≥ 1 (not a cell's traversal
+/// weight: see [`PlanGrid::weight`]).
 pub fn check_weight(weight: f64) -> Result<(), PlanError> {
     if weight.is_finite() && weight >= 1.0 {
         Ok(())

@@ -276,7 +276,9 @@ impl GridPlanOptions {
 pub struct GridPlan {
     /// The path; `cost` in cells.
     pub path: Path,
-    /// Path length in metres (cost × resolution).
+    /// Path length in metres: the cells' polyline length × resolution
+    /// (cost × resolution on a unit-cost map, where the two agree; on
+    /// weighted cells the cost is weighted and the length is not).
     pub length_m: f64,
     /// Key points, when asked for (else empty).
     pub keypoints: Vec<GridPos>,
@@ -286,6 +288,10 @@ pub struct GridPlan {
     pub expanded_cells: Vec<GridPos>,
     /// Safety index per path node, for safe A* (else empty).
     pub safety: Vec<f64>,
+    /// What the caller should know about this plan, e.g. that breadth-first
+    /// search ignored the map's cell weights (else `None`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
 /// Why [`plan_on_map`] failed.
@@ -556,14 +562,37 @@ fn plan_with<O: SearchObserver + ?Sized>(
     } else {
         Vec::new()
     };
+    let weighted = plan_grid.is_weighted();
     Ok(GridPlan {
-        length_m: path.cost * map.resolution(),
+        length_m: if weighted {
+            Path::polyline_length(&path.cells) * map.resolution()
+        } else {
+            path.cost * map.resolution()
+        },
         path,
         keypoints,
         feature_nodes,
         expanded_cells: Vec::new(),
         safety,
+        note: weights_note(options.algorithm, weighted).map(str::to_string),
     })
+}
+
+/// What a plan on weighted cells should say about `algorithm`: breadth-
+/// first search counts moves, so it cannot honour weights by definition,
+/// and greedy best-first never looks at the cost so far.
+pub fn weights_note(algorithm: Algorithm, weighted: bool) -> Option<&'static str> {
+    match (weighted, algorithm) {
+        (true, Algorithm::Bfs) => Some(
+            "breadth-first search ignores cell weights (it finds the fewest moves); \
+             the cost shown is that path's weighted cost",
+        ),
+        (true, Algorithm::Greedy) => Some(
+            "greedy best-first ignores cell weights while searching (it follows the \
+             estimate alone); the cost shown is that path's weighted cost",
+        ),
+        _ => None,
+    }
 }
 
 /// Bottom-Up's maximum error must be a finite number ≥ 0.

@@ -19,7 +19,8 @@
 //!   when `k = 0`.
 //! - **Moves**: a move `n → m` is legal only if every cell the straight
 //!   segment crosses is free ([`PlanGrid::segment_is_free`] with
-//!   [`Diagonal::NoCornerCutting`]); it costs its Euclidean length.
+//!   [`Diagonal::NoCornerCutting`]); it costs its Euclidean length (times
+//!   the largest weight among the cells it enters, on weighted cells).
 //! - **Closed nodes are never reopened**, as in the paper's step 2–5.
 //! - **h′(goal) = 0**: the goal's own `L` is never charged. A heuristic is 0
 //!   at the goal by definition, and with the paper's form a goal beside a
@@ -325,6 +326,7 @@ impl SafeAStar {
         let (w, h) = (grid.width(), grid.height());
         let cfg = &self.cfg;
         let mut field = SafetyField::new(grid, cfg.window_radius);
+        let weighted = grid.is_weighted();
         let n = w * h;
         let mut g = vec![f64::INFINITY; n];
         let mut parent = vec![NO_PARENT; n];
@@ -369,7 +371,7 @@ impl SafeAStar {
                     cells.push(GridPos::new((cur % w) as u32, (cur / w) as u32));
                 }
                 cells.reverse();
-                let cost = Path::polyline_length(&cells);
+                let cost = grid.path_cost(&cells);
                 return Ok(Path {
                     cells,
                     cost,
@@ -397,6 +399,13 @@ impl SafeAStar {
                     0.0
                 } else {
                     cfg.epsilon * field.at(mc, mr, &self.window)
+                };
+                // On weighted cells the move's length is weighted as every
+                // planner weighs it (the heaviest cell it enters).
+                let len = if weighted {
+                    grid.segment_cost(here, next)
+                } else {
+                    len
                 };
                 let (step, extra) = if cfg.admissible {
                     (len + safety, 0.0)

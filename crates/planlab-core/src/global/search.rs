@@ -279,7 +279,11 @@ pub(crate) fn finish(
     // The walk cannot fail (see `walk_back`); an empty path would be a bug.
     let cells = walk_back(grid, |i| space.reached(i), s, t).unwrap_or_default();
     Ok(Path {
-        cost: unit_path_cost(&cells),
+        cost: if grid.is_weighted() {
+            grid.path_cost(&cells)
+        } else {
+            unit_path_cost(&cells)
+        },
         cells,
         expanded,
     })
@@ -287,7 +291,9 @@ pub(crate) fn finish(
 
 /// Walks back from `t` to `s` along the stored arrival directions. From a
 /// cell `c`, the cells behind it along its direction are visited until one
-/// reached in this search with `g + distance ≤ g(c)`: the cell `c` was
+/// reached in this search with `g + cost ≤ g(c)` (the cost of the moves
+/// back to `c`, each its length times the weight of the cell it enters):
+/// the cell `c` was
 /// reached from lies on that ray and its cost has only decreased since, so
 /// the walk always succeeds, every step strictly lowers `g`, and the result
 /// costs at most `g(t)`. Cells in start-to-goal order; `None` only if the
@@ -300,6 +306,8 @@ pub(crate) fn walk_back(
 ) -> Option<Vec<GridPos>> {
     let stride = grid.stride();
     let free = |i: usize| grid.padded().get(i).copied().unwrap_or(false);
+    let weights = grid.padded_weights();
+    let weight = |i: usize| weights.map_or(1, |w| w.get(i).map_or(1, |&v| u64::from(v)));
     let (mut gc, mut dir) = reached(t)?;
     let (mut x, mut y) = xy(t, stride);
     // Padded → map coordinates (the padding is one cell).
@@ -312,8 +320,10 @@ pub(crate) fn walk_back(
     while c != s {
         let (mut dx, mut dy) = DIRS.get(dir as usize).copied()?;
         let cost = if dx != 0 && dy != 0 { DIAG } else { STRAIGHT };
+        // Cost of the moves walked back from the cell reached, so far.
         let mut k = 0u64;
         let found = loop {
+            let entered = c;
             let mut next = c.wrapping_add_signed(-offset(dx, dy));
             if !free(next) {
                 // Jump Point Search follows corridor corners without
@@ -336,10 +346,10 @@ pub(crate) fn walk_back(
             c = next;
             x = x.wrapping_add_signed(-dx);
             y = y.wrapping_add_signed(-dy);
-            k += 1;
+            k += cost * weight(entered);
             cells.push(pos(x, y));
             if let Some((gq, dq)) = reached(c) {
-                if gq + k * cost <= gc {
+                if gq + k <= gc {
                     break Some((gq, dq));
                 }
             }
@@ -365,7 +375,9 @@ pub(crate) fn with_space<R>(f: impl FnOnce(&mut SearchSpace) -> R) -> R {
 
 /// Refuses grids whose padded cell count does not fit the `u32` indices.
 pub(crate) fn check_size(grid: &PlanGrid) -> Result<(), PlanError> {
-    if grid.padded().len() > MAX_PADDED_CELLS {
+    // A simple path enters each cell once, so the weights' sum bounds its
+    // cost in moves of DIAG (a unit grid: the cell count, as before).
+    if grid.padded().len() > MAX_PADDED_CELLS || grid.weight_total() > MAX_PADDED_CELLS as u64 {
         return Err(PlanError::InvalidConfig(format!(
             "a {}×{} grid is too large for the grid planners",
             grid.width(),

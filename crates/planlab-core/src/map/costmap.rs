@@ -200,8 +200,13 @@ pub fn inflate(grid: &OccupancyGrid, radius_m: f64) -> Result<OccupancyGrid, Map
         .zip(&d2)
         .map(|(&c, &d)| if d <= limit { Cell::Occupied } else { c })
         .collect();
-    OccupancyGrid::from_cells(grid.width(), grid.height(), cells)?
-        .with_frame(grid.resolution(), grid.origin())
+    let out = OccupancyGrid::from_cells(grid.width(), grid.height(), cells)?
+        .with_frame(grid.resolution(), grid.origin())?;
+    // The cells left free keep their traversal weights.
+    match grid.weights() {
+        Some(w) => out.with_weights(w.to_vec()),
+        None => Ok(out),
+    }
 }
 
 /// A grid of ROS `costmap_2d` costs (0–255), row-major, row 0 at the top.

@@ -12,8 +12,10 @@ pub mod generate;
 mod grid_pos;
 pub mod io;
 pub mod ray;
+mod weights;
 
 pub use grid_pos::{supercover, supercover_while, GridPos};
+pub use weights::MAX_WEIGHT;
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -208,6 +210,9 @@ pub struct OccupancyGrid {
     resolution: f64,
     origin: Pose2,
     cells: Vec<Cell>,
+    /// Traversal weight per cell (1..=[`MAX_WEIGHT`], row-major), or `None`
+    /// for a unit-cost map (docs/algorithms.md §weights; `weights.rs`).
+    weights: Option<Vec<u8>>,
 }
 
 impl OccupancyGrid {
@@ -220,6 +225,7 @@ impl OccupancyGrid {
             resolution: 1.0,
             origin: Pose2::default(),
             cells: vec![Cell::Free; n],
+            weights: None,
         })
     }
 
@@ -240,12 +246,14 @@ impl OccupancyGrid {
             resolution: 1.0,
             origin: Pose2::default(),
             cells,
+            weights: None,
         })
     }
 
     /// A grid from ASCII art, one text line per row, top row first.
     ///
-    /// `.` ` ` `S` `G` are free, `#` `@` `T` `O` `W` occupied, `?` unknown.
+    /// `.` ` ` `S` `G` are free, `#` `@` `T` `O` `W` occupied, `?` unknown,
+    /// a digit `1`–`9` a free cell of that traversal weight.
     /// Leading and trailing blank lines are ignored; every row must have the
     /// same width. Handy for test fixtures:
     ///
@@ -274,6 +282,7 @@ impl OccupancyGrid {
         let width = lines.first().map_or(0, |l| l.chars().count());
         let n = check_dimensions(width as u64, height as u64)?;
         let mut cells = Vec::with_capacity(n);
+        let mut weights = Vec::with_capacity(n);
         for (r, line) in lines.iter().enumerate() {
             if line.chars().count() != width {
                 return Err(MapError::parse(
@@ -286,7 +295,10 @@ impl OccupancyGrid {
                 ));
             }
             for ch in line.chars() {
+                // A digit 1–9 is a free cell of that weight.
+                weights.push(ch.to_digit(10).filter(|&d| d >= 1).unwrap_or(1) as u8);
                 cells.push(match ch {
+                    '1'..='9' => Cell::Free,
                     '.' | ' ' | 'S' | 'G' => Cell::Free,
                     '#' | '@' | 'T' | 'O' | 'W' => Cell::Occupied,
                     '?' => Cell::Unknown,
@@ -300,15 +312,23 @@ impl OccupancyGrid {
                 });
             }
         }
-        Self::from_cells(width, height, cells)
+        let grid = Self::from_cells(width, height, cells)?;
+        if weights.iter().any(|&w| w > 1) {
+            grid.with_weights(weights)
+        } else {
+            Ok(grid)
+        }
     }
 
-    /// Renders the grid as ASCII art (`.` free, `#` occupied, `?` unknown).
+    /// Renders the grid as ASCII art (`.` free, `#` occupied, `?` unknown,
+    /// a digit 2–9 a free cell of that weight).
     pub fn to_ascii(&self) -> String {
         let mut s = String::with_capacity((self.width + 1) * self.height);
-        for row in self.cells.chunks(self.width) {
-            for c in row {
+        for (r, row) in self.cells.chunks(self.width).enumerate() {
+            for (col, c) in row.iter().enumerate() {
+                let w = self.weight(col, r);
                 s.push(match c {
+                    Cell::Free if w > 1 => char::from_digit(u32::from(w), 10).unwrap_or('.'),
                     Cell::Free => '.',
                     Cell::Occupied => '#',
                     Cell::Unknown => '?',
@@ -387,6 +407,10 @@ impl OccupancyGrid {
     pub fn set(&mut self, col: usize, row: usize, cell: Cell) -> Result<(), MapError> {
         if col < self.width && row < self.height {
             self.cells[row * self.width + col] = cell;
+            // A wall painted or erased takes the cell's weight with it.
+            if let Some(w) = self.weights.as_mut() {
+                w[row * self.width + col] = 1;
+            }
             Ok(())
         } else {
             Err(MapError::OutOfBounds {
@@ -427,8 +451,12 @@ impl OccupancyGrid {
             // Crossed cells lie in the endpoints' bounding box, so on the map.
             if corner.is_none() {
                 let i = r as usize * self.width + c as usize;
-                if self.cells[i] != cell {
+                let weighted = self.weights.as_ref().is_some_and(|w| w[i] > 1);
+                if self.cells[i] != cell || weighted {
                     self.cells[i] = cell;
+                    if let Some(w) = self.weights.as_mut() {
+                        w[i] = 1;
+                    }
                     changed += 1;
                 }
             }
@@ -469,6 +497,11 @@ impl OccupancyGrid {
         }
         for c in &self.cells {
             eat(&[*c as u8]);
+        }
+        // Only a weighted map hashes its weights: unit maps keep their hash.
+        if let Some(w) = self.weights.as_ref().filter(|w| w.iter().any(|&v| v > 1)) {
+            eat(b"weights");
+            eat(w);
         }
         h
     }

@@ -37,10 +37,16 @@
 //! `negate`) is the occupancy probability.
 //! - **trinary**: occupied if `p > occupied_thresh`, free if
 //!   `p < free_thresh`, unknown otherwise — exactly map_server.
-//! - **scale**: map_server turns the in-between band into costs 1–99; an
-//!   [`OccupancyGrid`] has only three states, so that band becomes *unknown*
-//!   and the result equals trinary. (PGM has no alpha channel, the other
-//!   source of unknown in scale mode.)
+//! - **scale**: occupied and free as trinary; map_server turns the
+//!   in-between band into costs 1–99, and planlab into **weighted free
+//!   cells** (docs/algorithms.md §weights): with
+//!   `ratio = (p − free_thresh)/(occupied_thresh − free_thresh)` in \[0, 1\],
+//!   the weight is `1 + round(8·ratio)`, the band spread linearly over the
+//!   weights 1–[`MAX_WEIGHT`](crate::map::MAX_WEIGHT) (a pale grey just
+//!   above `free_thresh` costs as free ground, a dark one just below
+//!   `occupied_thresh` nine times as much). PGM has no alpha channel, the
+//!   other source of unknown in scale mode, so a scale map has no unknown
+//!   cells.
 //! - **raw**: the pixel (rescaled to 0–255 when `m ≠ 255`) *is* the ROS
 //!   occupancy value, as in nav2: 0–100 is a percentage, thresholded like
 //!   `p = v/100` above; anything above 100 (e.g. 255, ROS's −1) is unknown.
@@ -65,7 +71,8 @@ pub enum RosMode {
     /// Occupied / free / unknown by the two thresholds.
     #[default]
     Trinary,
-    /// As trinary for planlab's three-state grid (see the module docs).
+    /// As trinary, with the band between the thresholds as weighted free
+    /// cells (see the module docs).
     Scale,
     /// Pixel values are ROS occupancy values 0–100, others unknown.
     Raw,
@@ -1011,11 +1018,33 @@ fn classify(meta: &RosMapMeta, maxval: f64, v: u16) -> Cell {
     };
     if p > meta.occupied_thresh {
         Cell::Occupied
-    } else if p < meta.free_thresh {
+    } else if p < meta.free_thresh || meta.mode == RosMode::Scale {
         Cell::Free
     } else {
         Cell::Unknown
     }
+}
+
+/// The traversal weight of a pixel of a scale-mode map (module docs); 1
+/// outside the band between the thresholds and in the other modes.
+#[inline]
+fn scale_weight(meta: &RosMapMeta, maxval: f64, v: u16) -> u8 {
+    if meta.mode != RosMode::Scale {
+        return 1;
+    }
+    let v = f64::from(v);
+    let p = if meta.negate {
+        v / maxval
+    } else {
+        (maxval - v) / maxval
+    };
+    if !(p >= meta.free_thresh && p <= meta.occupied_thresh) {
+        return 1;
+    }
+    // validate() keeps free_thresh < occupied_thresh: no division by 0.
+    let ratio = (p - meta.free_thresh) / (meta.occupied_thresh - meta.free_thresh);
+    let top = f64::from(crate::map::MAX_WEIGHT - 1);
+    1 + (ratio.clamp(0.0, 1.0) * top).round() as u8
 }
 
 /// Builds the occupancy grid of a map_server map from its metadata and
@@ -1041,8 +1070,17 @@ pub fn grid_from_pgm(meta: &RosMapMeta, pgm: &Pgm) -> Result<OccupancyGrid, MapE
         .iter()
         .map(|&v| classify(meta, maxval, v.min(pgm.maxval)))
         .collect();
-    OccupancyGrid::from_cells(pgm.width, pgm.height, cells)?
-        .with_frame(meta.resolution, meta.origin)
+    let grid = OccupancyGrid::from_cells(pgm.width, pgm.height, cells)?
+        .with_frame(meta.resolution, meta.origin)?;
+    if meta.mode != RosMode::Scale {
+        return Ok(grid);
+    }
+    let weights = pgm
+        .pixels
+        .iter()
+        .map(|&v| scale_weight(meta, maxval, v.min(pgm.maxval)))
+        .collect();
+    grid.with_weights(weights)
 }
 
 /// Parses a YAML text and its PGM bytes into a grid in one call.
@@ -1128,5 +1166,37 @@ mod tests {
         assert_eq!(classify(&meta, 255.0, 100), Cell::Occupied);
         assert_eq!(classify(&meta, 255.0, 50), Cell::Unknown);
         assert_eq!(classify(&meta, 255.0, 255), Cell::Unknown);
+    }
+
+    #[test]
+    fn scale_mode_turns_the_grey_band_into_weights() {
+        // Default thresholds 0.196 / 0.65: 254 free, 0 occupied; between
+        // them p = (255 − v)/255 spreads over the weights 1–9.
+        let pgm = b"P2
+6 1
+255
+254 0 150 100 90 205
+";
+        let yaml = |mode: &str| {
+            format!(
+                "image: m.pgm
+resolution: 0.1
+origin: [0, 0, 0]
+mode: {mode}
+"
+            )
+        };
+        let (_, g) = read_map(&yaml("scale"), pgm).unwrap();
+        assert_eq!(g.cells()[..2], [Cell::Free, Cell::Occupied]);
+        assert!(g.cells()[2..].iter().all(|&c| c == Cell::Free));
+        // v = 150: p = 0.4118, ratio = 0.475 → 1 + round(3.80) = 5;
+        // v = 100: p = 0.6078, ratio = 0.907 → 8; v = 90: p = 0.647 → 9;
+        // v = 205 (map_saver's unknown grey): p just above free_thresh → 1.
+        let weights: Vec<u8> = (0..6).map(|c| g.weight(c, 0)).collect();
+        assert_eq!(weights, [1, 1, 5, 8, 9, 1]);
+        // Trinary: the same band is unknown and nothing is weighted.
+        let (_, t) = read_map(&yaml("trinary"), pgm).unwrap();
+        assert!(!t.is_weighted());
+        assert_eq!(t.cells()[2], Cell::Unknown);
     }
 }
