@@ -446,7 +446,7 @@ fn timeline_replays_an_edited_run_exactly_and_reads_rows() {
     let mut sim = SimHandle::from_scenario(&room_json("dwa", ""), None).unwrap();
     sim.set_goal(3.2, 1.2).unwrap();
     sim.step(8);
-    sim.place_mover("constant-velocity", 0.15, 2.6, 1.8, 0.0, -0.2, 1.0)
+    sim.place_mover("constant-velocity", 0.15, 2.6, 1.5, 0.0, -0.2, 1.0)
         .unwrap();
     // Refused edits are not part of the run.
     assert!(sim.set_goal(0.1, 0.1).is_err());
