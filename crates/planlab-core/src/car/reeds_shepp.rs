@@ -32,6 +32,9 @@ const ZERO: f64 = 1e-10;
 
 type Word = Vec<(Steer, f64)>;
 
+/// A base formula: the normalised goal to its word, if it has one.
+type Formula = fn(f64, f64, f64) -> Option<Word>;
+
 fn polar(x: f64, y: f64) -> (f64, f64) {
     (hypot(x, y), atan2(y, x))
 }
@@ -158,7 +161,7 @@ fn lrslr(x: f64, y: f64, phi: f64) -> Option<Word> {
 }
 
 /// The eight base formulas with their family names.
-const BASE: [(&str, fn(f64, f64, f64) -> Option<Word>); 8] = [
+const BASE: [(&str, Formula); 8] = [
     ("CSC", lsl),
     ("CSC", lsr),
     ("CCC", lrl),
