@@ -46,17 +46,19 @@ struct Cli {
     command: Command,
 }
 
-/// A grid planner on the command line: every [`Algorithm`] by its name,
-/// with its one-line description in `--help`.
+/// A planner on the command line: every grid [`Algorithm`] by its name,
+/// with its one-line description in `--help`, and `hybrid-astar` (a car
+/// path over poses, `None` here).
 #[derive(Clone, Copy)]
-struct AlgoArg(Algorithm);
+struct AlgoArg(Option<Algorithm>);
 
-/// Every planner, in [`Algorithm::ALL`] order (clap wants a static slice).
-const ALGO_ARGS: [AlgoArg; Algorithm::ALL.len()] = {
-    let mut out = [AlgoArg(Algorithm::AStar); Algorithm::ALL.len()];
+/// Every planner, in [`Algorithm::ALL`] order, then Hybrid A* (clap wants
+/// a static slice).
+const ALGO_ARGS: [AlgoArg; Algorithm::ALL.len() + 1] = {
+    let mut out = [AlgoArg(None); Algorithm::ALL.len() + 1];
     let mut i = 0;
-    while i < out.len() {
-        out[i] = AlgoArg(Algorithm::ALL[i].0);
+    while i < Algorithm::ALL.len() {
+        out[i] = AlgoArg(Some(Algorithm::ALL[i].0));
         i += 1;
     }
     out
@@ -68,14 +70,31 @@ impl ValueEnum for AlgoArg {
     }
 
     fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
-        Some(clap::builder::PossibleValue::new(self.0.name()).help(self.0.description()))
+        Some(match self.0 {
+            Some(a) => clap::builder::PossibleValue::new(a.name()).help(a.description()),
+            None => clap::builder::PossibleValue::new("hybrid-astar").help(
+                "Hybrid A*: a car path of arcs at --turning-radius over x,y,θ poses (plan only)",
+            ),
+        })
     }
 }
 
-impl From<AlgoArg> for Algorithm {
-    fn from(a: AlgoArg) -> Self {
-        a.0
+impl AlgoArg {
+    /// The grid planner, or why Hybrid A* is not one.
+    fn grid(self) -> Result<Algorithm, String> {
+        self.0.ok_or_else(|| {
+            "hybrid-astar plans car poses, not grid cells; use it with `planlab plan`".to_string()
+        })
     }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum CurveKind {
+    /// Forward only (Dubins 1957).
+    Dubins,
+    /// Forward and reverse (Reeds & Shepp 1990).
+    #[value(name = "reeds-shepp")]
+    ReedsShepp,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -202,11 +221,13 @@ enum Command {
         /// Map file.
         map: PathBuf,
         /// Start cell COLUMN,ROW (row 0 at the top of the image); a scenario
-        /// .json supplies its own when omitted.
-        #[arg(long)]
+        /// .json supplies its own when omitted. With hybrid-astar: the pose
+        /// X,Y,THETA (world metres, degrees).
+        #[arg(long, allow_hyphen_values = true)]
         start: Option<String>,
         /// Goal cell COLUMN,ROW; a scenario .json supplies its own when omitted.
-        #[arg(long)]
+        /// With hybrid-astar: X,Y,THETA (world metres, degrees).
+        #[arg(long, allow_hyphen_values = true)]
         goal: Option<String>,
         /// Planner [default: astar, or the scenario's].
         #[arg(long, value_enum)]
@@ -235,6 +256,15 @@ enum Command {
         /// Safe A* safety weight ε.
         #[arg(long, allow_hyphen_values = true)]
         epsilon: Option<f64>,
+        /// Hybrid A*: minimum turning radius, metres.
+        #[arg(long, value_name = "R", allow_hyphen_values = true)]
+        turning_radius: Option<f64>,
+        /// Hybrid A*: the car may reverse (Reeds-Shepp).
+        #[arg(long)]
+        reverse: bool,
+        /// Hybrid A*: radius of the disc footprint, metres [default: 0.2].
+        #[arg(long, value_name = "r", allow_hyphen_values = true)]
+        radius: Option<f64>,
         /// JSON output.
         #[arg(long)]
         json: bool,
@@ -242,6 +272,25 @@ enum Command {
         /// JSON; open it in ShortestPathLab's Posthoc with the map).
         #[arg(long, value_name = "FILE")]
         trace_posthoc: Option<PathBuf>,
+    },
+    /// The shortest car path between two poses ignoring obstacles: its
+    /// length and word (Dubins: forward only; Reeds-Shepp: with reverse).
+    Curve {
+        /// dubins or reeds-shepp.
+        #[arg(value_enum)]
+        kind: CurveKind,
+        /// Start pose X,Y,THETA (metres, degrees).
+        #[arg(long, allow_hyphen_values = true)]
+        from: String,
+        /// Goal pose X,Y,THETA (metres, degrees).
+        #[arg(long, allow_hyphen_values = true)]
+        to: String,
+        /// Minimum turning radius, metres.
+        #[arg(long, allow_hyphen_values = true)]
+        radius: f64,
+        /// JSON output.
+        #[arg(long)]
+        json: bool,
     },
     /// Run one simulated episode of a scenario .json and print its metrics
     /// (an arm scenario, with an `arm` section, runs the arm episode;
@@ -499,6 +548,19 @@ fn run(cli: Cli) -> Result<(), String> {
             },
         ),
         Command::Planners { json } => sim_cmds::planners(json),
+        Command::Curve {
+            kind,
+            from,
+            to,
+            radius,
+            json,
+        } => grid_cmds::curve(
+            matches!(kind, CurveKind::ReedsShepp),
+            grid_cmds::parse_pose(&from, "--from")?,
+            grid_cmds::parse_pose(&to, "--to")?,
+            radius,
+            json,
+        ),
         Command::Barn {
             paths,
             worlds,
@@ -607,7 +669,7 @@ fn run(cli: Cli) -> Result<(), String> {
             algo,
             json,
         } => {
-            let mismatches = grid_cmds::scen(&map, &scen, algo.into(), json)?;
+            let mismatches = grid_cmds::scen(&map, &scen, algo.grid()?, json)?;
             if mismatches > 0 {
                 return Err(format!("{mismatches} rows missed the optimal cost"));
             }
@@ -626,14 +688,38 @@ fn run(cli: Cli) -> Result<(), String> {
             keypoints,
             bottom_up,
             epsilon,
+            turning_radius,
+            reverse,
+            radius,
             json,
             trace_posthoc,
         } => {
             let (grid, scenario) = load::load_any(&map)?;
+            if let Some(AlgoArg(None)) = algo {
+                let (Some(start), Some(goal)) = (start, goal) else {
+                    return Err("hybrid-astar needs --start X,Y,THETA and --goal X,Y,THETA (metres, degrees)".into());
+                };
+                let car = grid_cmds::CarArgs {
+                    start: grid_cmds::parse_pose(&start, "--start")?,
+                    goal: grid_cmds::parse_pose(&goal, "--goal")?,
+                    turning_radius: turning_radius
+                        .ok_or("hybrid-astar needs --turning-radius R (metres)")?,
+                    reverse,
+                    radius,
+                    allow_unknown,
+                    json,
+                };
+                return grid_cmds::plan_car(&map, &grid, &car);
+            }
+            if turning_radius.is_some() || reverse || radius.is_some() {
+                return Err(
+                    "--turning-radius, --reverse and --radius belong to --algo hybrid-astar".into(),
+                );
+            }
             // Flags override the scenario's planner section, which overrides
             // the defaults.
             let overrides = GridPlanOverrides {
-                algorithm: algo.map(Into::into),
+                algorithm: algo.map(AlgoArg::grid).transpose()?,
                 heuristic: heuristic.map(Into::into),
                 weight,
                 diagonal: diagonal.map(Into::into),

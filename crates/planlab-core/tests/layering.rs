@@ -20,6 +20,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("geom, params", &["geom", "params"]),
     ("map", &["map"]),
     ("global", &["global"]),
+    ("car", &["car"]),
     ("world", &["world"]),
     ("local", &["local"]),
     ("apf", &["apf"]),
