@@ -217,7 +217,7 @@ fn no_path_within_the_iterations_is_reported_with_them() {
     let mut shell = Vec::new();
     for i in 0..12 {
         for j in 0..6 {
-            let (th, ph) = (i as f64 * 0.5236, 0.3 + j as f64 * 0.5);
+            let (th, ph) = (i as f64 * std::f64::consts::FRAC_PI_6, 0.3 + j as f64 * 0.5);
             let d = DVec3::new(ph.sin() * th.cos(), ph.sin() * th.sin(), ph.cos());
             let o = Obstacle3::Sphere {
                 centre: (g + d * 0.2).to_array(),
