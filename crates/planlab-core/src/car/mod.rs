@@ -1,9 +1,9 @@
 //! Car-like robots (docs/algorithms.md §car-curves, §hybrid-astar): paths
 //! made of circular arcs of a minimum turning radius and straight lines.
 //!
-//! - [`dubins`]: the shortest forward-only path between two poses (Dubins
+//! - [`dubins()`]: the shortest forward-only path between two poses (Dubins
 //!   1957: six words LSL, RSR, LSR, RSL, RLR, LRL);
-//! - [`reeds_shepp`]: the shortest path when the car may also reverse
+//! - [`reeds_shepp()`]: the shortest path when the car may also reverse
 //!   (Reeds & Shepp 1990: the five families CSC, CCC, CCCC, CCSC, CCSCC and
 //!   their time-flipped, reflected and backwards words);
 //! - [`hybrid_astar`]: Hybrid A* (Dolgov et al. 2008, as in Nav2's Smac
