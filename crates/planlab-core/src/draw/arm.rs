@@ -69,7 +69,13 @@ pub fn arm_episode(ep: &ArmEpisode, script: usize, layers: Layers, out: &mut Dra
         let r = ep.scene().hand.hand_radius_m;
         for (c, k) in ep.rrt_predicted() {
             let [x, y, z] = c.to_array();
-            out.push(Layer::Predicted, Shape::Spheres, [x, y, z, r], f64::from(*k), 0.0);
+            out.push(
+                Layer::Predicted,
+                Shape::Spheres,
+                [x, y, z, r],
+                f64::from(*k),
+                0.0,
+            );
         }
     }
     if want(Layer::Links) {
