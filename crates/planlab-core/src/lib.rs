@@ -61,6 +61,7 @@ pub mod bench;
 pub mod draw;
 pub mod geom;
 pub mod global;
+pub mod sampling;
 pub mod lidar;
 pub mod local;
 pub mod map;
