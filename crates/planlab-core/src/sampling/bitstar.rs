@@ -69,8 +69,7 @@ pub(crate) struct BitStar {
 
 impl BitStar {
     pub(crate) fn new(c: &mut Common, batch_size: usize) -> Self {
-        let gamma =
-            2.0 * 1.1 * 1.5f64.sqrt() * (c.space.free_area() / std::f64::consts::PI).sqrt();
+        let gamma = 2.0 * 1.1 * 1.5f64.sqrt() * (c.space.free_area() / std::f64::consts::PI).sqrt();
         let mut s = Self {
             batch_size,
             pts: vec![c.start, c.goal],

@@ -119,10 +119,7 @@ impl DiscSpace {
     /// The box the disc's centre may occupy: `[lo, hi]` per axis.
     pub fn bounds(&self) -> (Point, Point) {
         let r = self.test_radius;
-        (
-            [r, r],
-            [self.width as f64 - r, self.height as f64 - r],
-        )
+        ([r, r], [self.width as f64 - r, self.height as f64 - r])
     }
 
     fn inside(&self, p: Point) -> bool {
@@ -219,6 +216,54 @@ impl DiscSpace {
             t = t1;
         }
         true
+    }
+
+    /// The farthest point of the segment `a → b` (`a` free) that the disc
+    /// is known to reach from `a` without collision: `b` when the whole
+    /// segment is free, else a point before the first collision, found by
+    /// the same sphere tracing as [`DiscSpace::segment_free`] refined to
+    /// pieces of an eighth of a cell. `a` itself when nothing beyond it is
+    /// known free (or `a` is not free).
+    pub fn free_prefix(&self, a: Point, b: Point) -> Point {
+        if !self.point_free(a) {
+            return a;
+        }
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let len = dx.hypot(dy);
+        if len == 0.0 {
+            return a;
+        }
+        let (ux, uy) = (dx / len, dy / len);
+        let at = |t: f64| {
+            if t >= len {
+                b
+            } else {
+                [a[0] + ux * t, a[1] + uy * t]
+            }
+        };
+        let r = self.test_radius;
+        let mut t = 0.0;
+        while t < len {
+            let p = at(t);
+            let jump = self.clearance_bound(p) - r;
+            if jump >= 0.5 {
+                let t1 = (t + jump).min(len);
+                if !self.point_free(at(t1)) {
+                    // Only the map's edge (outside the box of centres) can
+                    // stop a jump; refine with pieces.
+                } else {
+                    t = t1;
+                    continue;
+                }
+            }
+            let t1 = (t + 0.125).min(len);
+            let q = at(t1);
+            if !self.point_free(q) || !self.piece_free(p, q) {
+                return p;
+            }
+            t = t1;
+        }
+        b
     }
 
     /// Exact test of a short piece against every blocked square within the
@@ -326,7 +371,10 @@ mod tests {
                 dense = dense.min(point_square_distance(p, 1, 1));
             }
             let exact = segment_square_distance(a, b, 1, 1);
-            assert!((exact - dense).abs() < 1e-3, "{a:?}→{b:?}: {exact} vs {dense}");
+            assert!(
+                (exact - dense).abs() < 1e-3,
+                "{a:?}→{b:?}: {exact} vs {dense}"
+            );
         }
     }
 
@@ -351,7 +399,10 @@ mod tests {
         let d = s.clearance([1.5, 1.5], 5.0);
         assert!((d - 0.5f64.hypot(0.5)).abs() < 1e-12, "{d}");
         assert!(s.point_free([1.5, 1.5]));
-        assert!(!s.point_free([0.2, 1.5]), "the edge is closer than the radius");
+        assert!(
+            !s.point_free([0.2, 1.5]),
+            "the edge is closer than the radius"
+        );
         assert!(!s.point_free([2.5, 2.5]), "inside a wall");
     }
 

@@ -4,7 +4,7 @@
 //! (the trees meet: done) or is blocked; then the trees swap roles.
 
 use super::tree::Tree;
-use super::{dist, path_cost, steer, Common, Event, Point};
+use super::{dist, extend_free, path_cost, Common, Event, Point};
 
 const NONE: u32 = u32::MAX;
 
@@ -62,13 +62,12 @@ impl ConnectPlanner {
             return Extend::Trapped;
         };
         let from = self.trees[t].pts[near as usize];
-        let x_new = steer(from, q, c.range);
-        if x_new == from {
+        if from == q {
             return Extend::Reached(near);
         }
-        if !c.space.segment_free(from, x_new) {
+        let Some(x_new) = extend_free(&c.space, from, q, c.range) else {
             return Extend::Trapped;
-        }
+        };
         let n = self.add(c, t, x_new, near);
         if x_new == q {
             Extend::Reached(n)

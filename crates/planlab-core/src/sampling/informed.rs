@@ -14,6 +14,14 @@ pub(crate) fn in_ellipse(c: &Common, p: Point, best: f64) -> bool {
     dist(c.start, p) + dist(p, c.goal) < best
 }
 
+/// The area of the informed ellipse for a best cost `best`, cells².
+pub(crate) fn area(c: &Common, best: f64) -> f64 {
+    let c_min = dist(c.start, c.goal);
+    let a = 0.5 * best;
+    let b = 0.5 * (best * best - c_min * c_min).max(0.0).sqrt();
+    std::f64::consts::PI * a * b
+}
+
 /// A uniform point of the informed set when a solution exists, else of the
 /// box. The smaller of the ellipse and the box is sampled, rejecting what
 /// falls outside the other.
@@ -44,10 +52,7 @@ pub(crate) fn sample(c: &mut Common) -> Point {
             let rho = c.rng.uniform().sqrt();
             let th = 2.0 * std::f64::consts::PI * c.rng.uniform();
             let (ex, ey) = (a * rho * cos(th), b * rho * sin(th));
-            let p = [
-                centre[0] + ux * ex - uy * ey,
-                centre[1] + uy * ex + ux * ey,
-            ];
+            let p = [centre[0] + ux * ex - uy * ey, centre[1] + uy * ex + ux * ey];
             if p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] {
                 return p;
             }

@@ -10,12 +10,12 @@
 //! path. Coordinates are in cells ([`collision`]); costs are path lengths
 //! in cells.
 
+mod bitstar;
 pub mod collision;
 mod connect;
 mod informed;
 mod nn;
 mod prm;
-mod bitstar;
 pub mod shortcut;
 mod tree;
 
@@ -121,6 +121,14 @@ pub struct SamplingOptions {
     pub range: Option<f64>,
     /// Probability of sampling the goal (RRT, RRT*, Informed RRT*).
     pub goal_bias: f64,
+    /// Probability that a uniform sample is moved to the centre of its cell
+    /// (every planner). On a grid, the corridors one cell wide that a disc
+    /// of less than half a cell can pass leave it a tube a few tenths of a
+    /// cell wide around the cells' centre line, which uniform samples
+    /// almost never hit; a segment between two centres of such a corridor
+    /// runs down that line. The other samples stay uniform, so the
+    /// planners keep their guarantees.
+    pub centre_bias: f64,
     /// Samples per batch (BIT*).
     pub batch_size: usize,
     /// Keep the event log (off for benchmarks).
@@ -134,6 +142,7 @@ impl Default for SamplingOptions {
             seed: 0,
             range: None,
             goal_bias: 0.05,
+            centre_bias: 0.5,
             batch_size: 100,
             record_events: false,
         }
@@ -265,6 +274,7 @@ pub(crate) struct Common {
     pub(crate) goal: Point,
     pub(crate) range: f64,
     pub(crate) goal_bias: f64,
+    pub(crate) centre_bias: f64,
     pub(crate) iteration: u64,
     pub(crate) best: f64,
     pub(crate) path: Vec<Point>,
@@ -303,6 +313,14 @@ impl Common {
         cost.is_finite() && cost < self.best * (1.0 - IMPROVEMENT)
     }
 
+    /// Whether the best path is as short as the straight line from start to
+    /// goal: nothing can beat it, and the informed set (an ellipse with
+    /// those foci) has collapsed to that segment, where sampling more only
+    /// piles points on one line.
+    pub(crate) fn optimal(&self) -> bool {
+        self.best <= dist(self.start, self.goal) * (1.0 + IMPROVEMENT)
+    }
+
     /// Records a better solution (the caller checked [`Common::improves`]).
     pub(crate) fn solved(&mut self, cost: f64, path: Vec<Point>) {
         self.best = cost;
@@ -314,10 +332,19 @@ impl Common {
         });
     }
 
-    /// A uniform point of the box of allowed centres.
+    /// A uniform point of the box of allowed centres, moved to the centre
+    /// of its cell with probability `centre_bias`.
     pub(crate) fn uniform(&mut self) -> Point {
         let (lo, hi) = self.space.bounds();
-        [self.rng.range(lo[0], hi[0]), self.rng.range(lo[1], hi[1])]
+        let p = [self.rng.range(lo[0], hi[0]), self.rng.range(lo[1], hi[1])];
+        if self.centre_bias > 0.0 && self.rng.uniform() < self.centre_bias {
+            [
+                (p[0].floor() + 0.5).clamp(lo[0], hi[0]),
+                (p[1].floor() + 0.5).clamp(lo[1], hi[1]),
+            ]
+        } else {
+            p
+        }
     }
 }
 
@@ -332,8 +359,32 @@ pub(crate) fn steer(from: Point, to: Point, range: f64) -> Point {
         to
     } else {
         let t = range / d;
-        [from[0] + (to[0] - from[0]) * t, from[1] + (to[1] - from[1]) * t]
+        [
+            from[0] + (to[0] - from[0]) * t,
+            from[1] + (to[1] - from[1]) * t,
+        ]
     }
+}
+
+/// The shortest step a tree takes when a collision cuts its extension
+/// short, cells.
+const MIN_STEP: f64 = 0.25;
+
+/// Where a tree at `from` grows towards `q`: the point `range` along (or
+/// `q`), cut short before the first collision when the disc cannot go all
+/// the way, so that trees creep along walls and through clutter instead of
+/// discarding every long extension that clips an obstacle. `None` when the
+/// step would be shorter than [`MIN_STEP`] (or zero).
+pub(crate) fn extend_free(space: &DiscSpace, from: Point, q: Point, range: f64) -> Option<Point> {
+    let target = steer(from, q, range);
+    if target == from {
+        return None;
+    }
+    if space.segment_free(from, target) {
+        return Some(target);
+    }
+    let cut = space.free_prefix(from, target);
+    (dist(from, cut) >= MIN_STEP && space.segment_free(from, cut)).then_some(cut)
 }
 
 /// The length of a polyline, cells.
@@ -394,6 +445,12 @@ impl SamplingPlanner {
                 options.goal_bias
             )));
         }
+        if !(0.0..=1.0).contains(&options.centre_bias) {
+            return Err(SamplingError::BadOption(format!(
+                "centre bias {}: must be in [0, 1]",
+                options.centre_bias
+            )));
+        }
         if !(1..=100_000).contains(&options.batch_size) {
             return Err(SamplingError::BadOption(format!(
                 "batch size {}: must be 1 to 100000",
@@ -407,6 +464,7 @@ impl SamplingPlanner {
             goal,
             range,
             goal_bias: options.goal_bias,
+            centre_bias: options.centre_bias,
             iteration: 0,
             best: f64::INFINITY,
             path: Vec::new(),
@@ -414,14 +472,18 @@ impl SamplingPlanner {
             events: options.record_events.then(Vec::new),
         };
         let engine = match options.algorithm {
-            SamplingAlgorithm::Rrt => Engine::Tree(tree::TreePlanner::new(&mut common, tree::Variant::Rrt)),
+            SamplingAlgorithm::Rrt => {
+                Engine::Tree(tree::TreePlanner::new(&mut common, tree::Variant::Rrt))
+            }
             SamplingAlgorithm::RrtStar => {
                 Engine::Tree(tree::TreePlanner::new(&mut common, tree::Variant::Star))
             }
             SamplingAlgorithm::InformedRrtStar => {
                 Engine::Tree(tree::TreePlanner::new(&mut common, tree::Variant::Informed))
             }
-            SamplingAlgorithm::RrtConnect => Engine::Connect(connect::ConnectPlanner::new(&mut common)),
+            SamplingAlgorithm::RrtConnect => {
+                Engine::Connect(connect::ConnectPlanner::new(&mut common))
+            }
             SamplingAlgorithm::Prm => Engine::Prm(prm::PrmPlanner::new(&mut common, false)),
             SamplingAlgorithm::PrmStar => Engine::Prm(prm::PrmPlanner::new(&mut common, true)),
             SamplingAlgorithm::BitStar => {
@@ -455,9 +517,11 @@ impl SamplingPlanner {
     }
 
     /// Whether stepping can change nothing more: RRT and RRT-Connect once
-    /// they have a path (they do not optimise), or the iteration limit.
+    /// they have a path (they do not optimise), any planner once its path
+    /// is the straight line from start to goal, or the iteration limit.
     pub fn done(&self) -> bool {
         (!self.algorithm.optimizing() && self.common.best.is_finite())
+            || self.common.optimal()
             || self.common.iteration >= MAX_ITERATIONS
     }
 

@@ -167,12 +167,71 @@ impl PrmPlanner {
         }
     }
 
-    fn recompute(&mut self) {
-        self.d.fill(f64::INFINITY);
-        self.pred.fill(NONE);
-        self.d[0] = 0.0;
+    /// Restores the shortest distances after edges were found to collide:
+    /// only the nodes whose shortest path ran through such an edge (their
+    /// subtree in the predecessor tree) are reset and re-seeded from their
+    /// untouched neighbours, instead of a Dijkstra over the whole roadmap
+    /// each time (which made Lazy PRM* slow on cluttered maps, where most
+    /// lazy edges collide). Removing edges only lengthens paths, so the
+    /// untouched distances stay exact.
+    fn repair(&mut self) {
+        const UNKNOWN: u8 = 0;
+        const CLEAN: u8 = 1;
+        const DIRTY: u8 = 2;
+        let n = self.pts.len();
+        let mut mark = vec![UNKNOWN; n];
+        mark[0] = CLEAN;
+        let mut chain = Vec::new();
+        for v in 0..n {
+            let mut u = v;
+            chain.clear();
+            let found = loop {
+                if mark[u] != UNKNOWN {
+                    break mark[u];
+                }
+                chain.push(u);
+                let e = self.pred[u];
+                if e == NONE {
+                    break CLEAN;
+                }
+                let edge = &self.edges[e as usize];
+                if edge.state == EdgeState::Invalid {
+                    break DIRTY;
+                }
+                u = (if edge.a as usize == u { edge.b } else { edge.a }) as usize;
+            };
+            for &w in &chain {
+                mark[w] = found;
+            }
+        }
         let mut heap = BinaryHeap::new();
-        heap.push(Reverse(Key(0.0, 0)));
+        for (v, _) in mark.iter().enumerate().filter(|(_, m)| **m == DIRTY) {
+            self.d[v] = f64::INFINITY;
+            self.pred[v] = NONE;
+        }
+        for v in 0..n {
+            if mark[v] != DIRTY {
+                continue;
+            }
+            for &e in &self.adj[v] {
+                let edge = &self.edges[e as usize];
+                if edge.state == EdgeState::Invalid {
+                    continue;
+                }
+                let u = (if edge.a as usize == v { edge.b } else { edge.a }) as usize;
+                if mark[u] == DIRTY {
+                    continue;
+                }
+                let through = self.d[u] + edge.w;
+                if through < self.d[v] {
+                    self.d[v] = through;
+                    self.pred[v] = e;
+                }
+            }
+            if self.d[v].is_finite() {
+                heap.push(Reverse(Key(self.d[v], v as u32)));
+            }
+        }
         self.relax(&mut heap);
     }
 
@@ -200,7 +259,9 @@ impl PrmPlanner {
                     (edge.a, edge.b, edge.state)
                 };
                 if state == EdgeState::Unchecked {
-                    if c.space.segment_free(self.pts[a as usize], self.pts[b as usize]) {
+                    if c.space
+                        .segment_free(self.pts[a as usize], self.pts[b as usize])
+                    {
                         self.edges[e as usize].state = EdgeState::Valid;
                     } else {
                         self.edges[e as usize].state = EdgeState::Invalid;
@@ -210,7 +271,7 @@ impl PrmPlanner {
                 }
             }
             if broken {
-                self.recompute();
+                self.repair();
                 continue;
             }
             let mut path = vec![self.pts[1]];

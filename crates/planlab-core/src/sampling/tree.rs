@@ -4,7 +4,7 @@
 //! samples come from the informed ellipse once a path exists; no pruning).
 
 use super::nn::PointIndex;
-use super::{dist, informed, steer, Common, Event, Point};
+use super::{dist, extend_free, informed, Common, Event, Point};
 
 /// Which member of the family.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -106,9 +106,22 @@ impl TreePlanner {
         self.tree.pts.len()
     }
 
+    /// The RRT* connection radius. Informed RRT* measures the space it
+    /// samples, the informed ellipse, not the whole map (Gammell et al.
+    /// 2014, eq. 9 with λ(X_f̂) in place of λ(X_free)): with the map's area
+    /// the radius stays map-sized while the samples crowd into a thin
+    /// ellipse, and every new node then rewires against thousands.
     fn radius(&self, c: &Common) -> f64 {
         let n = (self.tree.pts.len() + 1) as f64;
-        (self.gamma * (n.ln() / n).sqrt()).min(c.range)
+        let mut gamma = self.gamma;
+        if self.variant == Variant::Informed && c.best.is_finite() {
+            let ellipse = informed::area(c, c.best);
+            let free = c.space.free_area();
+            if ellipse < free {
+                gamma *= (ellipse / free).sqrt();
+            }
+        }
+        (gamma * (n.ln() / n).sqrt()).min(c.range)
     }
 
     pub(crate) fn iterate(&mut self, c: &mut Common) {
@@ -124,10 +137,9 @@ impl TreePlanner {
             return;
         };
         let from = self.tree.pts[nearest as usize];
-        let x_new = steer(from, q, c.range);
-        if x_new == from || !c.space.segment_free(from, x_new) {
+        let Some(x_new) = extend_free(&c.space, from, q, c.range) else {
             return;
-        }
+        };
         if x_new == c.goal && self.goal_node != NONE {
             // The goal is in the tree already; RRT* improves it by rewiring.
             return;
@@ -147,7 +159,9 @@ impl TreePlanner {
         } else if self.variant != Variant::Rrt {
             self.rewire(c, new);
         }
-        if self.goal_node == NONE && dist(x_new, c.goal) <= c.range && c.space.segment_free(x_new, c.goal)
+        if self.goal_node == NONE
+            && dist(x_new, c.goal) <= c.range
+            && c.space.segment_free(x_new, c.goal)
         {
             let g = if self.variant == Variant::Rrt {
                 self.tree.add(c.goal, new)
@@ -181,7 +195,8 @@ impl TreePlanner {
             .map(|&(d, n)| (self.tree.cost[n as usize] + d, n))
             .collect();
         cands.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let via_nearest = self.tree.cost[nearest as usize] + dist(self.tree.pts[nearest as usize], x_new);
+        let via_nearest =
+            self.tree.cost[nearest as usize] + dist(self.tree.pts[nearest as usize], x_new);
         let mut parent = nearest;
         for &(cost, n) in &cands {
             if cost >= via_nearest {
