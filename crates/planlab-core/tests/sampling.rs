@@ -267,20 +267,21 @@ fn rrt_connect_solves_the_sampled_moving_ai_rows_that_a_star_solves() {
     }
 }
 
-/// Iterations for the optimising planners, and how many rows of each map.
+/// The optimising planners with their iteration budgets (a BIT*
+/// iteration is one edge from its queue, much cheaper than a sample).
 const OPTIMISING: [(SamplingAlgorithm, u64); 4] = [
     (SamplingAlgorithm::RrtStar, 40_000),
     (SamplingAlgorithm::InformedRrtStar, 40_000),
     (SamplingAlgorithm::PrmStar, 40_000),
-    (SamplingAlgorithm::BitStar, 40_000),
+    (SamplingAlgorithm::BitStar, 200_000),
 ];
 
 #[test]
 fn optimising_planners_never_get_worse_and_come_within_five_percent_of_theta_star() {
-    let picks: [(&str, usize, &[usize]); 2] = [
-        ("dao/arena.map", 6, &[4, 5]),
-        ("dao/arena2.map", 6, &[1, 2]),
-    ];
+    // (map, rows sampled, which of them): rows that need turns (the
+    // trivial straight-line rows end at once).
+    let picks: [(&str, usize, &[usize]); 2] =
+        [("dao/arena.map", 6, &[4]), ("dao/arena2.map", 6, &[1, 2])];
     for (map, n, which) in picks {
         let (grid, rows) = sampled_rows(map, n);
         let space = Arc::new(DiscSpace::new(&grid, RADIUS, false).unwrap());
@@ -304,6 +305,11 @@ fn optimising_planners_never_get_worse_and_come_within_five_percent_of_theta_sta
                 let costs: Vec<f64> = p.solutions().iter().map(|s| s.1).collect();
                 assert!(costs.windows(2).all(|w| w[1] < w[0]), "{algo:?}: {costs:?}");
                 assert_eq!(invalid(&grid, RADIUS, p.path(), s, g), None, "{algo:?}");
+                eprintln!(
+                    "{map} row {k} {algo:?}: {last:.2} after {} iterations, Theta* {theta:.2} ({:+.1} %)",
+                    p.iterations(),
+                    100.0 * (last / theta - 1.0)
+                );
                 assert!(
                     last <= 1.05 * theta,
                     "{map} row {k} {algo:?}: {last:.2} after {} iterations, Theta* {theta:.2} ({:+.1} %)",

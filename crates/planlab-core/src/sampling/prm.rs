@@ -167,69 +167,59 @@ impl PrmPlanner {
         }
     }
 
-    /// Restores the shortest distances after edges were found to collide:
-    /// only the nodes whose shortest path ran through such an edge (their
-    /// subtree in the predecessor tree) are reset and re-seeded from their
-    /// untouched neighbours, instead of a Dijkstra over the whole roadmap
-    /// each time (which made Lazy PRM* slow on cluttered maps, where most
-    /// lazy edges collide). Removing edges only lengthens paths, so the
-    /// untouched distances stay exact.
-    fn repair(&mut self) {
-        const UNKNOWN: u8 = 0;
-        const CLEAN: u8 = 1;
-        const DIRTY: u8 = 2;
-        let n = self.pts.len();
-        let mut mark = vec![UNKNOWN; n];
-        mark[0] = CLEAN;
-        let mut chain = Vec::new();
-        for v in 0..n {
-            let mut u = v;
-            chain.clear();
-            let found = loop {
-                if mark[u] != UNKNOWN {
-                    break mark[u];
+    /// Restores the shortest distances after the edges `broken` (all on
+    /// the candidate path, so each is some node's predecessor edge) were
+    /// found to collide: only the nodes whose shortest path ran through
+    /// them, the subtrees hanging below them in the predecessor tree (found
+    /// through the adjacency lists, so the work is local), are reset and
+    /// re-seeded from their untouched neighbours, instead of a Dijkstra
+    /// over the whole roadmap each time (which made Lazy PRM* slow: on
+    /// cluttered maps most lazy edges collide). Removing edges only
+    /// lengthens paths, so the untouched distances stay exact.
+    fn repair(&mut self, broken: &[u32]) {
+        let mut dirty: Vec<u32> = Vec::new();
+        for &e in broken {
+            let edge = &self.edges[e as usize];
+            for w in [edge.a, edge.b] {
+                if self.pred[w as usize] == e {
+                    dirty.push(w);
                 }
-                chain.push(u);
-                let e = self.pred[u];
-                if e == NONE {
-                    break CLEAN;
-                }
-                let edge = &self.edges[e as usize];
-                if edge.state == EdgeState::Invalid {
-                    break DIRTY;
-                }
-                u = (if edge.a as usize == u { edge.b } else { edge.a }) as usize;
-            };
-            for &w in &chain {
-                mark[w] = found;
             }
+        }
+        // The subtrees: a node's children are the neighbours whose
+        // predecessor edge is the edge to it.
+        let mut i = 0;
+        while i < dirty.len() {
+            let u = dirty[i];
+            i += 1;
+            for &e in &self.adj[u as usize] {
+                let edge = &self.edges[e as usize];
+                let w = if edge.a == u { edge.b } else { edge.a };
+                if self.pred[w as usize] == e && !broken.contains(&e) {
+                    dirty.push(w);
+                }
+            }
+        }
+        for &v in &dirty {
+            self.d[v as usize] = f64::INFINITY;
+            self.pred[v as usize] = NONE;
         }
         let mut heap = BinaryHeap::new();
-        for (v, _) in mark.iter().enumerate().filter(|(_, m)| **m == DIRTY) {
-            self.d[v] = f64::INFINITY;
-            self.pred[v] = NONE;
-        }
-        for v in 0..n {
-            if mark[v] != DIRTY {
-                continue;
-            }
-            for &e in &self.adj[v] {
+        for &v in &dirty {
+            for &e in &self.adj[v as usize] {
                 let edge = &self.edges[e as usize];
                 if edge.state == EdgeState::Invalid {
                     continue;
                 }
-                let u = (if edge.a as usize == v { edge.b } else { edge.a }) as usize;
-                if mark[u] == DIRTY {
-                    continue;
-                }
-                let through = self.d[u] + edge.w;
-                if through < self.d[v] {
-                    self.d[v] = through;
-                    self.pred[v] = e;
+                let u = if edge.a == v { edge.b } else { edge.a };
+                let through = self.d[u as usize] + edge.w;
+                if through < self.d[v as usize] {
+                    self.d[v as usize] = through;
+                    self.pred[v as usize] = e;
                 }
             }
-            if self.d[v].is_finite() {
-                heap.push(Reverse(Key(self.d[v], v as u32)));
+            if self.d[v as usize].is_finite() {
+                heap.push(Reverse(Key(self.d[v as usize], v)));
             }
         }
         self.relax(&mut heap);
@@ -252,7 +242,7 @@ impl PrmPlanner {
     fn settle(&mut self, c: &mut Common) {
         while c.improves(self.d[1]) {
             let edges = self.candidate();
-            let mut broken = false;
+            let mut broken = Vec::new();
             for &e in &edges {
                 let (a, b, state) = {
                     let edge = &self.edges[e as usize];
@@ -266,12 +256,12 @@ impl PrmPlanner {
                     } else {
                         self.edges[e as usize].state = EdgeState::Invalid;
                         c.log(Event::RemoveEdge { from: a, to: b });
-                        broken = true;
+                        broken.push(e);
                     }
                 }
             }
-            if broken {
-                self.repair();
+            if !broken.is_empty() {
+                self.repair(&broken);
                 continue;
             }
             let mut path = vec![self.pts[1]];
