@@ -32,6 +32,7 @@ use planlab_files as load;
 use clap::{Parser, Subcommand, ValueEnum};
 use planlab_core::global::plan::{Algorithm, GridPlanOptions, GridPlanOverrides};
 use planlab_core::global::{Diagonal, GridPos, Heuristic, PlanError};
+use planlab_core::sampling::SamplingAlgorithm;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -75,6 +76,45 @@ impl ValueEnum for AlgoArg {
 impl From<AlgoArg> for Algorithm {
     fn from(a: AlgoArg) -> Self {
         a.0
+    }
+}
+
+/// A planner of `planlab plan`: a grid planner or a sampling planner
+/// (`planlab_core::sampling`), each by its name.
+#[derive(Clone, Copy)]
+enum PlanAlgoArg {
+    Grid(Algorithm),
+    Sampling(SamplingAlgorithm),
+}
+
+/// Every grid planner, then every sampling planner.
+const PLAN_ALGO_ARGS: [PlanAlgoArg; Algorithm::ALL.len() + SamplingAlgorithm::ALL.len()] = {
+    let mut out =
+        [PlanAlgoArg::Grid(Algorithm::AStar); Algorithm::ALL.len() + SamplingAlgorithm::ALL.len()];
+    let mut i = 0;
+    while i < Algorithm::ALL.len() {
+        out[i] = PlanAlgoArg::Grid(Algorithm::ALL[i].0);
+        i += 1;
+    }
+    let mut j = 0;
+    while j < SamplingAlgorithm::ALL.len() {
+        out[i + j] = PlanAlgoArg::Sampling(SamplingAlgorithm::ALL[j].0);
+        j += 1;
+    }
+    out
+};
+
+impl ValueEnum for PlanAlgoArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        &PLAN_ALGO_ARGS
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        let (name, help) = match self {
+            PlanAlgoArg::Grid(a) => (a.name(), a.description()),
+            PlanAlgoArg::Sampling(a) => (a.name(), a.description()),
+        };
+        Some(clap::builder::PossibleValue::new(name).help(help))
     }
 }
 
@@ -208,9 +248,24 @@ enum Command {
         /// Goal cell COLUMN,ROW; a scenario .json supplies its own when omitted.
         #[arg(long)]
         goal: Option<String>,
-        /// Planner [default: astar, or the scenario's].
+        /// Planner [default: astar, or the scenario's]. The sampling
+        /// planners (rrt … bit-star) plan a disc of --radius cells in
+        /// continuous space, seeded by --seed, for --iterations.
         #[arg(long, value_enum)]
-        algo: Option<AlgoArg>,
+        algo: Option<PlanAlgoArg>,
+        /// Sampling planners: iterations to run (RRT and RRT-Connect stop
+        /// at their first path) [default: 10000].
+        #[arg(long)]
+        iterations: Option<u64>,
+        /// Sampling planners: seed of the random stream [default: 0].
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Sampling planners: the robot's radius, cells [default: 0.4].
+        #[arg(long, allow_hyphen_values = true)]
+        radius: Option<f64>,
+        /// Sampling planners: shorten the path by seeded shortcuts.
+        #[arg(long)]
+        shortcut: bool,
         /// A*/JPS heuristic [default: octile, or the scenario's].
         #[arg(long, value_enum)]
         heuristic: Option<HeuristicArg>,
@@ -618,6 +673,10 @@ fn run(cli: Cli) -> Result<(), String> {
             start,
             goal,
             algo,
+            iterations,
+            seed,
+            radius,
+            shortcut,
             heuristic,
             weight,
             diagonal,
@@ -630,10 +689,64 @@ fn run(cli: Cli) -> Result<(), String> {
             trace_posthoc,
         } => {
             let (grid, scenario) = load::load_any(&map)?;
+            let sampling_flags = [
+                ("--iterations", iterations.is_some()),
+                ("--seed", seed.is_some()),
+                ("--radius", radius.is_some()),
+                ("--shortcut", shortcut),
+            ];
+            let algo = match algo {
+                Some(PlanAlgoArg::Sampling(algorithm)) => {
+                    let grid_flags = [
+                        ("--heuristic", heuristic.is_some()),
+                        ("--weight", weight.is_some()),
+                        ("--diagonal", diagonal.is_some()),
+                        ("--inflate", inflate.is_some()),
+                        ("--keypoints", keypoints),
+                        ("--bottom-up", bottom_up.is_some()),
+                        ("--epsilon", epsilon.is_some()),
+                        ("--trace-posthoc", trace_posthoc.is_some()),
+                    ];
+                    if let Some((flag, _)) = grid_flags.iter().find(|f| f.1) {
+                        return Err(format!(
+                            "{flag} applies to the grid planners, not to {}",
+                            algorithm.name()
+                        ));
+                    }
+                    let cell = |flag: Option<String>, name: &str, from: Option<GridPos>| match (
+                        flag, from,
+                    ) {
+                        (Some(s), _) => grid_cmds::parse_cell(&s),
+                        (None, Some(p)) => Ok(p),
+                        (None, None) => {
+                            Err(format!("--{name} COLUMN,ROW is required for this map"))
+                        }
+                    };
+                    let args = grid_cmds::SamplingArgs {
+                        start: cell(start, "start", scenario.as_ref().map(|s| s.start.pos()))?,
+                        goal: cell(goal, "goal", scenario.as_ref().map(|s| s.goal.pos()))?,
+                        algorithm,
+                        iterations: iterations.unwrap_or(10_000),
+                        seed: seed.unwrap_or(0),
+                        radius: radius.unwrap_or(0.4),
+                        shortcut,
+                        allow_unknown,
+                        json,
+                    };
+                    return grid_cmds::plan_sampling(&map, &grid, &args);
+                }
+                Some(PlanAlgoArg::Grid(a)) => Some(a),
+                None => None,
+            };
+            if let Some((flag, _)) = sampling_flags.iter().find(|f| f.1) {
+                return Err(format!(
+                    "{flag} applies to the sampling planners (--algo rrt, rrt-connect, rrt-star, informed-rrt-star, prm, prm-star, bit-star)"
+                ));
+            }
             // Flags override the scenario's planner section, which overrides
             // the defaults.
             let overrides = GridPlanOverrides {
-                algorithm: algo.map(Into::into),
+                algorithm: algo,
                 heuristic: heuristic.map(Into::into),
                 weight,
                 diagonal: diagonal.map(Into::into),
