@@ -238,13 +238,20 @@ fn the_same_seed_gives_the_same_tree_and_path_and_another_seed_a_different_one()
     }
 }
 
-/// RRT-Connect's iteration budget per row.
-const CONNECT_BUDGET: u64 = 50_000;
+/// RRT-Connect's iteration budget per row (seed 1). The one-cell
+/// corridors of arena2 make some rows slow: (274, 150) → (12, 107), which
+/// must pass one (cells (35, 98) and (36, 98)), takes 170 201 iterations with seed 1 (15 000 to
+/// 50 000 with seeds 0, 2, 3, 4).
+const CONNECT_BUDGET: u64 = 200_000;
 
 #[test]
 fn rrt_connect_solves_the_sampled_moving_ai_rows_that_a_star_solves() {
     for map in ["dao/arena.map", "dao/arena2.map"] {
-        let (grid, rows) = sampled_rows(map, 10);
+        let (grid, mut rows) = sampled_rows(map, 10);
+        if map == "dao/arena2.map" {
+            // The slowest row of the 6-row sample, added on purpose.
+            rows.push(sampled_rows(map, 6).1[5].clone());
+        }
         let space = Arc::new(DiscSpace::new(&grid, RADIUS, false).unwrap());
         let plan_grid = PlanGrid::new(&grid, false);
         for row in &rows {
@@ -429,9 +436,12 @@ fn a_straight_line_solution_ends_the_search() {
     }
 }
 
+/// Not a check: prints every planner's first-path iteration, cost against
+/// Theta* and time on sampled rows (`PROBE_MAPS`, `PROBE_ALGO`,
+/// `PROBE_ROWS`, `PROBE_ITERS`; run with `--ignored --nocapture`).
 #[test]
 #[ignore]
-fn probe() {
+fn measure_every_planner_on_sampled_rows() {
     let only: Option<String> = std::env::var("PROBE_ALGO").ok();
     let nrows: usize = std::env::var("PROBE_ROWS")
         .ok()
