@@ -10,6 +10,11 @@ use planlab_core::global::posthoc::{posthoc_trace, PosthocError, DEFAULT_EVENT_L
 use planlab_core::global::{GridPos, PlanError, PlanGrid};
 use planlab_core::map::io::movingai;
 use planlab_core::map::OccupancyGrid;
+use planlab_core::sampling::shortcut::shortcut;
+use planlab_core::sampling::{
+    self, cell_centre, path_cost, Point, SamplingAlgorithm, SamplingError, SamplingOptions,
+    SpaceError,
+};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -342,6 +347,127 @@ pub fn curve(reverse: bool, from: Pose, to: Pose, radius: f64, json: bool) -> Re
             if reverse { "reeds-shepp" } else { "dubins" },
             p.length(),
             p.word()
+        );
+    }
+    Ok(())
+}
+
+/// Options of `planlab plan` with a sampling planner.
+pub struct SamplingArgs {
+    /// Start cell (the disc starts at its centre).
+    pub start: GridPos,
+    /// Goal cell (the disc ends at its centre).
+    pub goal: GridPos,
+    /// The planner.
+    pub algorithm: SamplingAlgorithm,
+    /// Iterations to run.
+    pub iterations: u64,
+    /// Seed of the planner's (and the shortcut's) random stream.
+    pub seed: u64,
+    /// The disc's radius, cells.
+    pub radius: f64,
+    /// Shortcut the path afterwards.
+    pub shortcut: bool,
+    /// Unknown cells are free.
+    pub allow_unknown: bool,
+    /// JSON output.
+    pub json: bool,
+}
+
+/// Plans once with a sampling planner and prints the result: the cost (the
+/// path's length in cells) and length in metres, the iterations run and the
+/// first one with a path, the planner's nodes, and with --json the path's
+/// points (cell coordinates, x along the columns, y down the rows).
+pub fn plan_sampling(
+    map_path: &Path,
+    grid: &OccupancyGrid,
+    args: &SamplingArgs,
+) -> Result<(), String> {
+    if args.iterations == 0 {
+        return Err("--iterations 0: must be at least 1".into());
+    }
+    let start = cell_centre(args.start.col, args.start.row);
+    let goal = cell_centre(args.goal.col, args.goal.row);
+    let options = SamplingOptions {
+        algorithm: args.algorithm,
+        seed: args.seed,
+        ..SamplingOptions::default()
+    };
+    let say = |e: SamplingError| {
+        match e {
+        SamplingError::Space(SpaceError::BadRadius(r)) => format!(
+            "--radius {}: must be a finite number of metres ≥ 0 and less than half the map's smaller side", r * grid.resolution()
+        ),
+        e => e.to_string(),
+    }
+    };
+    let t = Instant::now();
+    let planner = sampling::plan_on_grid(
+        grid,
+        args.radius,
+        args.allow_unknown,
+        start,
+        goal,
+        &options,
+        args.iterations,
+    )
+    .map_err(say)?;
+    let Some(raw_cost) = planner.best_cost() else {
+        return Err(format!(
+            "{}: no path after {} iterations ({} nodes); try more --iterations or another --seed",
+            args.algorithm.name(),
+            planner.iterations(),
+            planner.node_count()
+        ));
+    };
+    let path: Vec<Point> = if args.shortcut {
+        shortcut(planner.space(), planner.path(), args.seed, 200)
+    } else {
+        planner.path().to_vec()
+    };
+    let micros = t.elapsed().as_secs_f64() * 1e6;
+    let cost = path_cost(&path);
+    let length_m = cost * grid.resolution();
+    let first = planner.first_solution_iteration().unwrap_or(0);
+    if args.json {
+        let mut out = json!({
+            "algorithm": args.algorithm.name(),
+            "cost": cost,
+            "length_m": length_m,
+            "iterations": planner.iterations(),
+            "first_solution_iteration": first,
+            "nodes": planner.node_count(),
+            "seed": args.seed,
+            "radius": args.radius,
+            "path": path.iter().map(|p| [p[0], p[1]]).collect::<Vec<_>>(),
+            "micros": (micros * 1000.0).round() / 1000.0,
+        });
+        if args.shortcut {
+            out["cost_before_shortcut"] = json!(raw_cost);
+        }
+        outln!("{out}");
+    } else {
+        outln!(
+            "{} on {} ({}×{} cells, {} m/cell, disc radius {} cells, seed {}): cost {:.4} cells, length {:.3} m, {} iterations (first path at {}), {} nodes, {} points{}, {:.1} µs",
+            args.algorithm.name(),
+            map_path.display(),
+            grid.width(),
+            grid.height(),
+            grid.resolution(),
+            args.radius,
+            args.seed,
+            cost,
+            length_m,
+            planner.iterations(),
+            first,
+            planner.node_count(),
+            path.len(),
+            if args.shortcut {
+                format!(" (shortcut from {raw_cost:.4})")
+            } else {
+                String::new()
+            },
+            micros
         );
     }
     Ok(())

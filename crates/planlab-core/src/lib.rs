@@ -73,6 +73,7 @@ pub mod params;
 pub mod planners;
 pub mod recipe;
 pub mod reproduce;
+pub mod sampling;
 pub mod scenario;
 pub mod sim;
 pub mod text;

@@ -19,7 +19,7 @@ const LAYERS: &[(&str, &[&str])] = &[
     ("text, num", &["text", "num"]),
     ("geom, params", &["geom", "params"]),
     ("map", &["map"]),
-    ("global", &["global"]),
+    ("global, sampling", &["global", "sampling"]),
     ("car", &["car"]),
     ("world", &["world"]),
     ("local", &["local"]),
