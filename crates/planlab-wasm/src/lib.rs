@@ -25,6 +25,11 @@
 //!   as do the whole-map tools of [`grid_tools`] (empty maps, clear walls,
 //!   the seeded generators).
 //!
+//! - [`SamplingRun`] runs one seeded sampling planner (RRT … BIT*) on a
+//!   copy of the page's map for the grid and race pages, stepped from JS
+//!   (which owns the clock); its events cross as typed columns; see
+//!   [`sampling`] (feature `grid-search`).
+//!
 //! - [`SimHandle`] runs one robot episode (core `sim::Episode`) for the
 //!   robot page: steps, live edits (goal, movers, planner and its
 //!   parameters) and everything drawn or plotted as typed arrays; see
@@ -57,6 +62,8 @@ pub mod files;
 #[cfg(feature = "grid-search")]
 pub mod grid_tools;
 #[cfg(feature = "grid-search")]
+pub mod sampling;
+#[cfg(feature = "grid-search")]
 pub mod session;
 #[cfg(feature = "robot")]
 pub mod sim;
@@ -81,6 +88,8 @@ pub use planlab_wasm_arm::{arm_choices, edit_scenario, ArmHandle};
 /// this crate without the feature).
 #[cfg(feature = "reproduce")]
 pub use planlab_wasm_reproduce::{reproduce_variant, reproduce_variant_info};
+#[cfg(feature = "grid-search")]
+pub use sampling::{sampling_algorithms, SamplingEvents, SamplingRun};
 #[cfg(feature = "grid-search")]
 pub use session::{PlanSession, RecordedPlan, SearchReplay};
 #[cfg(feature = "robot")]

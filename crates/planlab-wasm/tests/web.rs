@@ -750,7 +750,7 @@ fn session_edits_plan_as_a_fresh_plan_on_the_edited_map() {
         assert_eq!(before.path(), fresh.path(), "{algo}: before any edit");
         // A wall across the middle of the path, and one cell freed again.
         let mid = before.path();
-        let (c, r) = (mid[mid.len() / 2 & !1], mid[(mid.len() / 2 & !1) + 1]);
+        let (c, r) = (mid[(mid.len() / 2) & !1], mid[((mid.len() / 2) & !1) + 1]);
         let mut edited = map.duplicate();
         let top = r.saturating_sub(8).max(1);
         edited.paint_segment(c, top, c, r + 8, 1).unwrap();

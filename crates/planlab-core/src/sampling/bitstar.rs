@@ -276,7 +276,7 @@ impl BitStar {
             }
         }
         let q = (self.samples.len() + self.vertices.len()).max(2) as f64;
-        self.radius = self.gamma * (q.ln() / q).sqrt();
+        self.radius = self.gamma * (crate::num::ln(q) / q).sqrt();
         for v in 0..self.pts.len() {
             if self.state[v] == State::Vertex {
                 self.old[v] = true;

@@ -10,6 +10,7 @@
 
 use crate::map::costmap::squared_cell_distances;
 use crate::map::{Cell, MapError, OccupancyGrid};
+use crate::num::hypot;
 
 /// Half the diagonal of a cell: every point of a square is this close to
 /// its centre.
@@ -135,7 +136,7 @@ impl DiscSpace {
         let col = (p[0].floor() as i64).clamp(0, self.width as i64 - 1);
         let row = (p[1].floor() as i64).clamp(0, self.height as i64 - 1);
         let d = self.centre_distance[row as usize * self.width + col as usize];
-        let off = (p[0] - (col as f64 + 0.5)).hypot(p[1] - (row as f64 + 0.5));
+        let off = hypot(p[0] - (col as f64 + 0.5), p[1] - (row as f64 + 0.5));
         let edge = p[0]
             .min(p[1])
             .min(self.width as f64 - p[0])
@@ -194,7 +195,7 @@ impl DiscSpace {
             return false;
         }
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let len = dx.hypot(dy);
+        let len = hypot(dx, dy);
         if len == 0.0 {
             return true;
         }
@@ -229,7 +230,7 @@ impl DiscSpace {
             return a;
         }
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let len = dx.hypot(dy);
+        let len = hypot(dx, dy);
         if len == 0.0 {
             return a;
         }
@@ -294,7 +295,7 @@ pub fn point_square_distance(p: Point, col: i64, row: i64) -> f64 {
     let (c, r) = (col as f64, row as f64);
     let dx = (c - p[0]).max(0.0).max(p[0] - (c + 1.0));
     let dy = (r - p[1]).max(0.0).max(p[1] - (r + 1.0));
-    dx.hypot(dy)
+    hypot(dx, dy)
 }
 
 /// Distance from the segment `a → b` to the closed square of `(col, row)`:
@@ -344,7 +345,7 @@ pub fn point_segment_distance(p: Point, a: Point, b: Point) -> f64 {
     } else {
         (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
     };
-    (a[0] + t * d[0] - p[0]).hypot(a[1] + t * d[1] - p[1])
+    hypot(a[0] + t * d[0] - p[0], a[1] + t * d[1] - p[1])
 }
 
 #[cfg(test)]

@@ -85,6 +85,19 @@ impl SamplingAlgorithm {
         !matches!(self, SamplingAlgorithm::Rrt | SamplingAlgorithm::RrtConnect)
     }
 
+    /// The paper it comes from (docs/algorithms.md §sampling).
+    pub fn reference(self) -> &'static str {
+        match self {
+            SamplingAlgorithm::Rrt => "S. M. LaValle, \"Rapidly-exploring random trees: a new tool for path planning\", TR 98-11, Iowa State University, 1998",
+            SamplingAlgorithm::RrtConnect => "J. J. Kuffner, S. M. LaValle, \"RRT-Connect: an efficient approach to single-query path planning\", ICRA 2000",
+            SamplingAlgorithm::RrtStar => "S. Karaman, E. Frazzoli, \"Sampling-based algorithms for optimal motion planning\", IJRR 30(7), 2011",
+            SamplingAlgorithm::InformedRrtStar => "J. D. Gammell, S. S. Srinivasa, T. D. Barfoot, \"Informed RRT*: optimal sampling-based path planning focused via direct sampling of an admissible ellipsoidal heuristic\", IROS 2014",
+            SamplingAlgorithm::Prm => "L. E. Kavraki, P. Švestka, J.-C. Latombe, M. H. Overmars, \"Probabilistic roadmaps for path planning in high-dimensional configuration spaces\", IEEE T-RA 12(4), 1996",
+            SamplingAlgorithm::PrmStar => "k-nearest PRM* of S. Karaman, E. Frazzoli, IJRR 30(7), 2011, with the lazy edges of R. Bohlin, L. E. Kavraki, \"Path planning using lazy PRM\", ICRA 2000",
+            SamplingAlgorithm::BitStar => "J. D. Gammell, S. S. Srinivasa, T. D. Barfoot, \"Batch Informed Trees (BIT*): sampling-based optimal planning via the heuristically guided search of implicit random geometric graphs\", ICRA 2015",
+        }
+    }
+
     /// One line for `--help` lists.
     pub fn description(self) -> &'static str {
         match self {
@@ -349,7 +362,7 @@ impl Common {
 }
 
 pub(crate) fn dist(a: Point, b: Point) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
+    crate::num::hypot(a[0] - b[0], a[1] - b[1])
 }
 
 /// The point `range` from `from` towards `to`, or `to` when closer.
@@ -429,7 +442,7 @@ impl SamplingPlanner {
                 });
             }
         }
-        let diagonal = (space.width() as f64).hypot(space.height() as f64);
+        let diagonal = crate::num::hypot(space.width() as f64, space.height() as f64);
         let range = match options.range {
             None => (0.1 * diagonal).max(2.0),
             Some(r) if r.is_finite() && r > 0.0 => r,

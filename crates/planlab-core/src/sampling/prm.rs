@@ -106,7 +106,9 @@ impl PrmPlanner {
         let mut near = std::mem::take(&mut self.near);
         if self.lazy {
             let count = (self.pts.len()) as f64;
-            let k = (std::f64::consts::E * 1.5 * count.ln()).ceil().max(1.0) as usize;
+            let k = (std::f64::consts::E * 1.5 * crate::num::ln(count))
+                .ceil()
+                .max(1.0) as usize;
             self.index.k_nearest(p, k, &mut near);
         } else {
             self.index.k_nearest(p, PRM_K, &mut near);

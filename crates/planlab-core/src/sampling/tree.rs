@@ -121,7 +121,7 @@ impl TreePlanner {
                 gamma *= (ellipse / free).sqrt();
             }
         }
-        (gamma * (n.ln() / n).sqrt()).min(c.range)
+        (gamma * (crate::num::ln(n) / n).sqrt()).min(c.range)
     }
 
     pub(crate) fn iterate(&mut self, c: &mut Common) {
