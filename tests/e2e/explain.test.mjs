@@ -129,11 +129,11 @@ test('stepping an A* search: f = g + h, the expand line is lit, the open list st
   await page.close();
 });
 
-test('every planner in the menu gets its pseudo-code and says what its events do not carry', async () => {
+test('every grid search in the menu gets its pseudo-code and says what its events do not carry', async () => {
   const { page, problems } = await openPage(session);
   await openPanel(page);
   await setEndpoints(page, ROW.start, ROW.goal);
-  const algorithms = await page.$$eval('#algorithm option', (os) => os.map((o) => o.value));
+  const algorithms = await page.$$eval('#grid-searches option', (os) => os.map((o) => o.value));
   assert.ok(algorithms.length >= 10, algorithms.join(','));
   const seen = {};
   for (const a of algorithms) {

@@ -10,6 +10,7 @@ import type { SearchPlayer } from './player-ui';
 import { readOptions } from './options';
 import { pseudoCode, type Role } from './explain-code';
 import './explain.css';
+import { isSampling } from '../scene/sampling-run';
 
 interface Cell {
   col: number;
@@ -145,6 +146,10 @@ export class ExplainPanel {
     const p = this.player.playback;
     const opts = readOptions();
     const algorithm = String(opts.algorithm ?? 'astar');
+    // A sampling planner has no search step to explain: its card has
+    // "Explain this planner" instead.
+    this.root.hidden = isSampling(algorithm);
+    if (this.root.hidden) return;
     this.showCode(algorithm, opts.keypoints === true || typeof opts.bottom_up_eps === 'number');
     if (!p || !this.root.open) {
       this.last = null;

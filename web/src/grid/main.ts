@@ -5,7 +5,7 @@
 // planning happens in this file: it converts control values into the core's
 // GridPlanOptions and paints what comes back.
 
-import init, { MapHandle, ScenarioHandle, defaultPlanOptions, gridAlgorithms, inflationMask, inflationNote, rosImageName } from '../../pkg-grid/planlab_wasm.js';
+import init, { MapHandle, ScenarioHandle, defaultPlanOptions, gridAlgorithms, inflationMask, inflationNote, rosImageName, samplingAlgorithms } from '../../pkg-grid/planlab_wasm.js';
 import { MAP_LAYERS, MapView, PLAN_LAYERS } from '../scene/grid-view';
 import { DrawList, EMPTY, Layer, mask } from '../scene/draw';
 import type { Cell } from '../shell/cells';
@@ -18,7 +18,9 @@ import { gridUrl } from './grid-url';
 import { loadPresetFiles } from '../shell/scenario-files';
 import { el, errorBanner, messageOf } from '../shell/dom';
 import { panZoom } from '../shell/canvas-input';
-import { applyOptions, getDefaults, onOptionInput, readOptions, setDefaults, showExpanded, syncControls } from './options';
+import { applyOptions, getDefaults, onOptionInput, readOptions, readSampling, samplingChosen, setDefaults, showExpanded, syncControls } from './options';
+import { cliCommand, noPathLine, runSampling, samplingLabel } from '../scene/sampling-run';
+import { clearSamplingMetrics, drawPlot, explainSampler, setSamplers, showSamplingMetrics, showSamplingMode, type CoreSampler } from './sampling';
 import { installScenario, loadFiles, loadPreset, type MapHost } from '../shell/grid-maps';
 import { describeSearch } from './inspect';
 import { clearMetrics, showMetrics } from './metrics';
@@ -140,12 +142,19 @@ function replan(): void {
     view.show(EMPTY, PLAN_LAYERS);
     player.load(null);
     clearMetrics();
+    clearSamplingMetrics();
     clearError();
     ui.body.dataset.state = 'idle';
     ui.canvas.dataset.pathLen = '0';
     ui.status.textContent = !start ? 'Place the start: click a free cell.' : 'Place the goal: click a free cell.';
     return;
   }
+  if (samplingChosen()) {
+    planSampling(start, goal);
+    return;
+  }
+  showSamplingMode(false);
+  ui.status.title = '';
   let planned;
   try {
     planned = session.plan(start, goal, opts, showExpanded(), map);
@@ -196,6 +205,59 @@ function replan(): void {
     res.free();
   }
 }
+
+/** The map file the CLI would read for the map on screen (the presets'
+ *  files; an opened file by its name). */
+function mapFileForCli(): string {
+  const presetFiles: Record<string, string> = { arena: 'assets/maps/arena.map', turtlebot3: 'assets/maps/turtlebot3.yaml', 'grid-demo': 'assets/scenarios/grid-demo.json' };
+  return presetFiles[ui.preset.value] ?? (ui.mapName.textContent || 'MAP');
+}
+
+/** A sampling planner's run to its budget: the tree in the player, the
+ *  metrics and the cost plot; bad input or no path within the budget is
+ *  one line in the error bar. */
+function planSampling(s: Cell, g: Cell): void {
+  if (!map) return;
+  showSamplingMode(true);
+  view.show(EMPTY, PLAN_LAYERS);
+  const settings = readSampling();
+  explainSampler(settings.algorithm);
+  let r;
+  try {
+    r = runSampling(map, s, g, settings);
+  } catch (e) {
+    player.load(null);
+    clearSamplingMetrics();
+    ui.canvas.dataset.pathLen = '0';
+    ui.canvas.dataset.path = '';
+    ui.status.textContent = `${samplingLabel(settings.algorithm)}: not run.`;
+    showError(messageOf(e));
+    return;
+  }
+  player.load(r.playback);
+  showSamplingMetrics(r);
+  const path = r.playback.finalPath;
+  ui.canvas.dataset.pathLen = String(path.length / 2);
+  ui.canvas.dataset.path = Array.from(path).join(',');
+  ui.body.dataset.samplingIterations = String(r.iterations);
+  ui.body.dataset.samplingMs = String(r.ms);
+  const cli = cliCommand(mapFileForCli(), s, g, settings, r.iterations);
+  ui.body.dataset.samplingCli = cli;
+  const budget = settings.budget.kind === 'ms' ? `${settings.budget.value} ms budget` : `${settings.budget.value.toLocaleString('en-US')}-iteration budget`;
+  const stopped = r.finished && r.iterations < (settings.budget.kind === 'iterations' ? settings.budget.value : Infinity) ? ' (it stopped by itself)' : '';
+  if (!Number.isFinite(r.cost)) {
+    ui.body.dataset.state = 'error';
+    ui.status.textContent = `${samplingLabel(settings.algorithm)}: ${r.iterations.toLocaleString('en-US')} iterations in ${r.ms.toFixed(1)} ms (${budget}), no path.`;
+    showError(noPathLine(settings, r));
+    return;
+  }
+  clearError();
+  ui.body.dataset.state = 'ok';
+  ui.status.title = cli;
+  ui.status.textContent = `${samplingLabel(settings.algorithm)}: path ${r.cost.toFixed(4)} cells (${r.lengthM.toFixed(2)} m), ${r.iterations.toLocaleString('en-US')} iterations in ${r.ms.toFixed(1)} ms (${budget})${stopped}, robot radius ${r.radiusCells.toFixed(3)} cells · the same run: ${cli}`;
+}
+
+player.onShow(() => drawPlot(player.sampling));
 
 // -------------------------------------------------------------- map loading
 function installMap(m: MapHandle, name: string, s: Cell | null, g: Cell | null): void {
@@ -426,6 +488,8 @@ async function boot(): Promise<void> {
   clearMetrics();
   await init();
   corePlanners = gridAlgorithms() as CorePlanner[];
+  coreSamplers = samplingAlgorithms() as CoreSampler[];
+  setSamplers(coreSamplers);
   setDefaults(defaultPlanOptions() as Record<string, unknown>);
   applyOptions(getDefaults());
   syncControls();
@@ -455,7 +519,8 @@ async function boot(): Promise<void> {
 
 /** The core's planners with their references (for the help), after init. */
 let corePlanners: CorePlanner[] = [];
-installShell(() => gridHelp(corePlanners));
+let coreSamplers: CoreSampler[] = [];
+installShell(() => gridHelp(corePlanners, coreSamplers));
 
 exposeForTests(player, () => session.rebuilds, view);
 

@@ -4,6 +4,7 @@
 // link's), and only the controls the chosen algorithm reads shown.
 
 import { el } from '../shell/dom';
+import { isSampling, type SamplingSettings } from '../scene/sampling-run';
 
 const ui = {
   algorithm: el<HTMLSelectElement>('algorithm'),
@@ -20,6 +21,11 @@ const ui = {
   bottomUp: el<HTMLInputElement>('bottom-up'),
   bottomUpEps: el<HTMLInputElement>('bottom-up-eps'),
   showExpanded: el<HTMLInputElement>('show-expanded'),
+  budget: el<HTMLInputElement>('sampling-budget'),
+  budgetKind: el<HTMLSelectElement>('sampling-budget-kind'),
+  seed: el<HTMLInputElement>('sampling-seed'),
+  radius: el<HTMLInputElement>('sampling-radius'),
+  shortcut: el<HTMLInputElement>('sampling-shortcut'),
 };
 
 /** The core's defaults (`defaultPlanOptions()`), under every read. */
@@ -65,13 +71,40 @@ export function readOptions(): Record<string, unknown> {
   };
 }
 
+/** The sampling planner's settings (the chosen algorithm, whatever it
+ *  is); an empty radius is the core's default, an empty seed or budget
+ *  NaN (refused with a one-line error). */
+export function readSampling(): SamplingSettings {
+  const radius = ui.radius.value.trim();
+  return {
+    algorithm: ui.algorithm.value,
+    seed: num(ui.seed),
+    radiusM: radius === '' ? undefined : Number(radius),
+    budget: { kind: ui.budgetKind.value === 'ms' ? 'ms' : 'iterations', value: num(ui.budget) },
+    shortcut: ui.shortcut.checked,
+    allowUnknown: ui.allowUnknown.checked,
+  };
+}
+
+/** Whether the chosen algorithm is a sampling planner. */
+export function samplingChosen(): boolean {
+  return isSampling(ui.algorithm.value);
+}
+
 /** Shows only the controls that the chosen algorithm reads. */
 export function syncControls(): void {
   const algo = ui.algorithm.value;
+  const sampling = isSampling(algo);
+  document.querySelectorAll<HTMLElement>('.grid-box').forEach((e) => (e.dataset.hidden = String(sampling)));
   document.querySelectorAll<HTMLElement>('[data-for]').forEach((e) => {
     const forAlgos = (e.dataset.for ?? '').split(' ');
-    if (e.classList.contains('safe-box')) e.dataset.hidden = String(!forAlgos.includes(algo));
-    else e.dataset.dim = String(!forAlgos.includes(algo));
+    if (e.classList.contains('safe-box') || e.classList.contains('sampling-box')) e.dataset.hidden = String(!forAlgos.includes(algo));
+    else {
+      // A grid search's controls leave the card while a sampling planner
+      // is chosen (they would all be dimmed).
+      e.dataset.hidden = String(sampling);
+      e.dataset.dim = String(!forAlgos.includes(algo));
+    }
   });
   ui.weightOut.textContent = Number(ui.weight.value).toFixed(1);
   ui.bottomUpEps.disabled = !ui.bottomUp.checked;

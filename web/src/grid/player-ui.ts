@@ -7,7 +7,8 @@
 
 import { el } from '../shell/dom';
 import { FrameMeter } from '../shell/frame-meter';
-import type { SearchPlayback } from '../scene/search-player';
+import { SearchPlayback } from '../scene/search-player';
+import { SamplingPlayback } from '../scene/sampling-tree';
 import type { MapView } from '../scene/grid-view';
 import { Layer } from '../scene/draw';
 
@@ -22,7 +23,25 @@ const ui = {
   open: el('count-open'),
   f: el('count-f'),
   lines: el('count-lines'),
+  labels: ['count-expanded', 'count-open', 'count-f', 'count-lines'].map((id) => el(id).previousElementSibling as HTMLElement),
 };
+
+/** The counters' labels and tips: a grid search's, a sampling run's. */
+const SEARCH_LABELS: [string, string][] = [
+  ['Expanded', 'Cells taken from the open set so far'],
+  ['Open', 'Cells waiting in the open set'],
+  ['Best f', 'f = g + w·h of the cell expanded last: the best f so far'],
+  ['Lines', 'Straight-line checks (JPS scans, line of sight)'],
+];
+const SAMPLING_LABELS: [string, string][] = [
+  ['Nodes', 'Points in the tree or roadmap at this step'],
+  ['Samples', 'Random points drawn so far'],
+  ['Best cost', 'Length of the best path found so far, cells'],
+  ['Rewires', 'Nodes that moved to a cheaper parent so far (RRT*, Informed RRT*, BIT*)'],
+];
+
+/** What the player plays: a grid search or a sampling planner's run. */
+export type Playable = SearchPlayback | SamplingPlayback;
 
 function setCount(e: HTMLElement, text: string, value: number | null): void {
   e.textContent = text;
@@ -32,7 +51,8 @@ function setCount(e: HTMLElement, text: string, value: number | null): void {
 
 export class SearchPlayer {
   private view: MapView;
-  private p: SearchPlayback | null = null;
+  private p: Playable | null = null;
+  private labelled: 'search' | 'sampling' = 'search';
   private playing = false;
   private last = 0;
   private shown: Array<() => void> = [];
@@ -50,8 +70,14 @@ export class SearchPlayer {
     this.show();
   }
 
+  /** The grid search played (null for none or a sampling run). */
   get playback(): SearchPlayback | null {
-    return this.p;
+    return this.p instanceof SearchPlayback ? this.p : null;
+  }
+
+  /** The sampling run played, or null. */
+  get sampling(): SamplingPlayback | null {
+    return this.p instanceof SamplingPlayback ? this.p : null;
   }
 
   get isPlaying(): boolean {
@@ -69,12 +95,13 @@ export class SearchPlayer {
   }
 
   /** A new recording (null: none), shown played out unless `fromStart`. */
-  load(p: SearchPlayback | null, fromStart = false): void {
+  load(p: Playable | null, fromStart = false): void {
     this.pause();
     if (this.p !== p) this.p?.free();
     this.p = p;
     if (p) p.seek(fromStart ? 0 : p.n);
-    this.view.setSearch(p);
+    this.view.setSearch(p instanceof SearchPlayback ? p : null);
+    this.view.setTree(p instanceof SamplingPlayback ? p : null);
     this.show();
   }
 
@@ -152,8 +179,28 @@ export class SearchPlayer {
       d.searchEvents = '0';
       return;
     }
-    const c = p.counters();
+    const kind = p instanceof SamplingPlayback ? 'sampling' : 'search';
+    if (kind !== this.labelled) {
+      this.labelled = kind;
+      (kind === 'sampling' ? SAMPLING_LABELS : SEARCH_LABELS).forEach(([text, tip], i) => {
+        ui.labels[i].textContent = text;
+        ui.labels[i].title = tip;
+      });
+    }
     ui.scrub.max = String(p.n);
+    if (p instanceof SamplingPlayback) {
+      const c = p.counters();
+      ui.scrub.value = String(c.step);
+      setCount(ui.step, `${c.step.toLocaleString('en-US')} / ${c.events.toLocaleString('en-US')}`, c.step);
+      setCount(ui.expanded, c.nodes.toLocaleString('en-US'), c.nodes);
+      setCount(ui.open, c.samples.toLocaleString('en-US'), c.samples);
+      setCount(ui.f, Number.isNaN(c.cost) ? '—' : c.cost.toFixed(3), c.cost);
+      setCount(ui.lines, c.rewires.toLocaleString('en-US'), c.rewires);
+      d.searchStep = String(c.step);
+      d.searchEvents = String(c.events);
+      return;
+    }
+    const c = p.counters();
     ui.scrub.value = String(c.step);
     setCount(ui.step, `${c.step.toLocaleString('en-US')} / ${c.events.toLocaleString('en-US')}`, c.step);
     setCount(ui.expanded, c.expanded.toLocaleString('en-US'), c.expanded);
@@ -172,6 +219,13 @@ export function exposeForTests(player: SearchPlayer, rebuilds: () => number, vie
     seek: (k: number) => player.seek(k),
     play: () => player.play(),
     cellState: (c: number, r: number) => player.playback?.info(c, r)?.state ?? null,
+    /** The sampling run at the player's step: counters, edges painted, the
+     *  path shown (cells). */
+    sampling: () => {
+      const s = player.sampling;
+      if (!s) return null;
+      return { ...s.counters(), drawnEdges: s.drawnEdges, done: s.done, path: Array.from(s.pathNow() ?? []), solutionAt: s.solutionAt };
+    },
     info: (c: number, r: number) => player.playback?.info(c, r) ?? null,
     current: () => player.playback?.expanding() ?? null,
     counters: () => player.playback?.counters() ?? null,

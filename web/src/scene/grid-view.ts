@@ -9,6 +9,7 @@
 
 import { knownBox, offscreen, sizeToBox, type Cell } from '../shell/cells';
 import type { SearchPlayback } from './search-player';
+import type { SamplingPlayback } from './sampling-tree';
 import { SEARCH_CSS, SearchTint } from './search-tint';
 import { EMPTY, Frame, Layer, mask, type DrawList, type LayerCode } from './draw';
 import { labelWeights, weightColor } from './weight-shade';
@@ -51,6 +52,8 @@ export class MapView {
   private baseCtx: CanvasRenderingContext2D | null = null;
   private tint: SearchTint | null = null;
   private search: SearchPlayback | null = null;
+  /** A sampling planner's tree, painted over the map (cells). */
+  private tree: SamplingPlayback | null = null;
   /** The search layers of the last frame (lines, current cell). */
   private searchDraw: DrawList = EMPTY;
   /** Each layer from the draw list that last brought it. */
@@ -93,6 +96,7 @@ export class MapView {
     [this.base, this.baseCtx] = offscreen(this.w, this.h);
     this.tint = new SearchTint(this.w, this.h);
     this.search = null;
+    this.tree = null;
     this.searchDraw = EMPTY;
     this.frame = new Frame();
     this.show(d, MAP_LAYERS);
@@ -118,6 +122,12 @@ export class MapView {
     this.search = p;
     this.searchDraw = EMPTY;
     if (!p) this.tint?.clear();
+    this.request();
+  }
+
+  /** The sampling run to show (null: none); it paints its own path. */
+  setTree(t: SamplingPlayback | null): void {
+    this.tree = t;
     this.request();
   }
 
@@ -342,7 +352,8 @@ export class MapView {
     if (keyPoints) this.polyline(keyPoints, COLORS.keypoint, thin, [4, 4]);
     const playing = this.search !== null && !this.search.done;
     if (playing) this.searchOverlay();
-    const pathDrawn = String(path !== null && !playing);
+    if (this.tree) this.tree.paint(ctx, (x, y) => [ox + x * scale, oy + y * scale], scale);
+    const pathDrawn = String(this.tree ? this.tree.pathNow() !== null : path !== null && !playing);
     if (this.canvas.dataset.pathDrawn !== pathDrawn) this.canvas.dataset.pathDrawn = pathDrawn;
     if (path && !playing) {
       // White casing keeps the path readable over dark walls and tints.

@@ -117,14 +117,56 @@ export function gridPlannerHelp(core: CorePlanner[] = []): HelpPlanner[] {
   ];
 }
 
+/** A sampling planner as the core describes it (wasm `samplingAlgorithms()`). */
+export interface CoreSamplerInfo {
+  name: string;
+  optimizing: boolean;
+  reference: string;
+  summary: string;
+}
+
+const SAMPLER_LABELS: Record<string, string> = { rrt: 'RRT', 'rrt-connect': 'RRT-Connect', 'rrt-star': 'RRT*', 'informed-rrt-star': 'Informed RRT*', prm: 'PRM', 'prm-star': 'Lazy PRM*', 'bit-star': 'BIT*' };
+
+/** The sampling planners' help: the core's reference and summary. */
+export function samplerHelp(core: CoreSamplerInfo[] = []): HelpPlanner[] {
+  return core.map((p) => ({
+    name: SAMPLER_LABELS[p.name] ?? p.name,
+    paper: p.reference,
+    summary: `${p.summary}. Plans a round robot (a disc) in continuous space, not cell by cell: its cost is the path's length in cells, from the centre of the start cell to that of the goal cell (docs/algorithms.md §sampling).${p.optimizing ? '' : ' Stops at its first path, which is not short.'}`,
+    properties: SAMPLER_PROPERTIES[p.name],
+    key: p.name,
+  }));
+}
+
+/** Optimal? complete? any-angle? incremental? for the sampling planners,
+ *  in the words the grid planners' lines use (docs/algorithms.md §sampling). */
+const SAMPLER_PROPERTIES: Record<string, string> = (() => {
+  const tail = 'finds a path if one exists, with a probability that grows to 1 as it runs (probabilistically complete) · any-angle: straight segments in continuous space, not grid moves · not incremental: an edit plans again from scratch';
+  const first = `not the shortest path: stops at its first · ${tail}`;
+  const limit = `the shortest path in the limit: it keeps improving as it runs (asymptotically optimal) · ${tail}`;
+  return {
+    rrt: first,
+    'rrt-connect': first,
+    'rrt-star': limit,
+    'informed-rrt-star': limit,
+    prm: `not the shortest path: its roadmap paths stay a few per cent long · ${tail}`,
+    'prm-star': limit,
+    'bit-star': limit,
+  };
+})();
+
 /** The grid page (index.html). */
-export function gridHelp(core: CorePlanner[] = []): HelpContent {
+export function gridHelp(core: CorePlanner[] = [], samplers: CoreSamplerInfo[] = []): HelpContent {
   return {
     page: 'grid',
     intro:
-      'The grid page plans global paths on an occupancy grid: Moving AI maps, ROS maps or scenario files. Place the start and goal (drag the S and G markers), paint walls, and every change replans at once. Press Play to watch the search: green cells are open (reached, waiting), blue cells closed (expanded), the orange square is the cell being expanded, violet lines are straight-line checks (JPS jump scans, Theta* line of sight; red when blocked), and the path appears when the search has played out. Step with , and . or drag the scrubber; hover a cell for its g, h, f, parent and the steps it was opened and expanded at. With D* Lite, painting a wall repairs the plan instead of starting over: the status line says how many cells the repair expanded against a fresh A*. The Draw & generate card gives an empty grid of large cells to draw on, Clear walls, Clear path, and seeded mazes, rooms and random fill (the same maps as planlab generate).',
-    planners: gridPlannerHelp(core),
+      'The grid page plans global paths on an occupancy grid: Moving AI maps, ROS maps or scenario files. Place the start and goal (drag the S and G markers), paint walls, and every change replans at once. Pick a sampling planner (RRT … BIT*) to watch a tree grow from random samples instead: grey dots are samples, green lines the tree, orange lines rewired edges, and the best path so far glows when it improves; the small plot shows the best cost over the iterations. Press Play to watch the search: green cells are open (reached, waiting), blue cells closed (expanded), the orange square is the cell being expanded, violet lines are straight-line checks (JPS jump scans, Theta* line of sight; red when blocked), and the path appears when the search has played out. Step with , and . or drag the scrubber; hover a cell for its g, h, f, parent and the steps it was opened and expanded at. With D* Lite, painting a wall repairs the plan instead of starting over: the status line says how many cells the repair expanded against a fresh A*. The Draw & generate card gives an empty grid of large cells to draw on, Clear walls, Clear path, and seeded mazes, rooms and random fill (the same maps as planlab generate).',
+    planners: [...gridPlannerHelp(core), ...samplerHelp(samplers)],
     params: [
+      { name: 'Budget', unit: 'iterations or ms', default: '2000 iterations', doc: 'Sampling planners: how long the planner runs, a number of iterations (one random sample each; up to 200 000) or of milliseconds (up to 10 000, measured by the page: the core has no clock). A timed run is the same as the CLI with the iterations it reached, which the status line says.' },
+      { name: 'Seed', unit: '', default: 1, doc: 'Sampling planners: the seed of the random numbers. The same seed and iterations give the same tree and path here, in the CLI and from Python.' },
+      { name: 'Robot radius', unit: 'm', default: '0.4 cell', doc: 'Sampling planners: the robot is a disc of this radius that must keep clear of walls and the map edge (empty: 0.4 of a cell, the CLI default).' },
+      { name: 'Shorten the path', unit: '', default: false, doc: 'Sampling planners: after planning, seeded random shortcuts between path points that the robot can drive straight (the CLI\'s --shortcut).' },
       { name: 'Heuristic', unit: 'cells', default: 'octile', doc: 'A* / JPS distance estimate: octile (exact on 8-connected grids), Euclidean, Manhattan, Chebyshev or zero.' },
       { name: 'Weight', unit: '—', default: 1, doc: 'w in f = g + w·h; above 1 the search is faster and the path at most w times longer.' },
       { name: 'Diagonal moves', unit: '', default: 'no corner cutting', doc: 'Never (4-connected), no corner cutting (both orthogonal neighbours free), one side free, or always.' },
