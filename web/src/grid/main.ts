@@ -458,6 +458,7 @@ installClassroom({
     player.load(null);
     view.show(EMPTY, PLAN_LAYERS);
     clearMetrics();
+    clearSamplingMetrics();
     currentPath = null;
     ui.canvas.dataset.pathLen = '0';
     ui.canvas.dataset.path = '';
