@@ -8,7 +8,12 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
+import fs from 'node:fs';
+import os from 'node:os';
+import { spawnSync } from 'node:child_process';
 import { REPO, startSession, screenshot, errorText } from './harness.mjs';
+
+const PLANLAB = path.join(REPO, 'target/release/planlab');
 
 let session;
 before(async () => {
@@ -136,12 +141,12 @@ test('the Planner menu runs RRT-Connect on T-tab5-3 as the CLI does, draws its p
   assert.equal(plan.min_table_m === null, false, 'RRT-Connect knows the table top');
   assert.equal(await playToEnd(page), 'reached');
   // The same run as `planlab run assets/scenarios/T-tab5-3.json --planner
-  // rrt-connect --set arm.table_z_m=0.72`: 2.901 rad, 0.504 m, 0.008 m.
+  // rrt-connect --set arm.table_z_m=0.72`: 3.042 rad, 0.552 m, 0.045 m.
   const end = await page.evaluate(() => window.planlabArm.planner());
   const core = await page.evaluate(() => window.planlabArm.metrics());
-  assert.ok(Math.abs(end.joint_path_rad - 2.901) < 0.0015, `joint path ${end.joint_path_rad}`);
-  assert.ok(Math.abs(end.gripper_path_m - 0.504) < 0.0015, `gripper path ${end.gripper_path_m}`);
-  assert.ok(core.min_obstacle_distance_m > 0 && Math.abs(core.min_obstacle_distance_m - 0.008) < 0.0015, JSON.stringify(core));
+  assert.ok(Math.abs(end.joint_path_rad - 3.042) < 0.0015, `joint path ${end.joint_path_rad}`);
+  assert.ok(Math.abs(end.gripper_path_m - 0.552) < 0.0015, `gripper path ${end.gripper_path_m}`);
+  assert.ok(core.min_obstacle_distance_m > 0 && Math.abs(core.min_obstacle_distance_m - 0.045) < 0.0015, JSON.stringify(core));
   assert.match(await page.textContent('#metric-plans'), /^\d+ \(\d+ replans\), \d+ checks$/);
   assert.match(await page.textContent('#status'), /RRT-Connect/);
   await page.screenshot({ path: path.join(REPO, 'docs/arm-rrt-screenshot.png') });
@@ -150,4 +155,42 @@ test('the Planner menu runs RRT-Connect on T-tab5-3 as the CLI does, draws its p
   await page.waitForFunction(() => document.body.dataset.planner === 'apf' && document.body.dataset.state === 'ready');
   assert.equal(await page.evaluate(() => window.planlabArm.planner().plans), 0);
   assert.deepEqual(problems, []);
+});
+
+test('Compare runs both planners on variants of T-tab5-3 exactly as `planlab batch` does', async () => {
+  const { page, problems } = await openArm();
+  await page.fill('#compare-variants', '2');
+  await page.click('#compare-run');
+  await page.waitForFunction(() => ['done', 'error'].includes(document.body.dataset.compare), null, { timeout: 180_000 });
+  assert.equal(await errorText(page), null);
+  const rows = await page.evaluate(() => window.planlabArm.compare());
+  assert.deepEqual(rows.map((r) => r.planner), ['apf', 'rrt-connect']);
+  // The CLI's rows of the same batch: the same episodes, hash for hash.
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'planlab-arm-compare-'));
+  const csv = path.join(dir, 'runs.csv');
+  const cli = await page.textContent('#compare-cli code');
+  const args = cli.split(' ').slice(1).map((a) => (a.startsWith('assets/') ? path.join(REPO, a) : a));
+  const r = spawnSync(PLANLAB, [...args, '--csv', csv], { encoding: 'utf8', timeout: 120_000 });
+  assert.equal(r.status, 0, r.stderr);
+  const lines = fs.readFileSync(csv, 'utf8').trim().split('\n').map((l) => l.split(','));
+  fs.rmSync(dir, { recursive: true, force: true });
+  const col = (n) => lines[0].indexOf(n);
+  for (const row of rows) {
+    const mine = lines.slice(1).filter((l) => l[col('planner')] === row.planner);
+    mine.sort((a, b) => Number(a[col('variant')]) - Number(b[col('variant')]));
+    assert.deepEqual(row.hashes, mine.map((l) => l[col('trace_hash')]), `${row.planner} trace hashes`);
+    assert.equal(row.reached, mine.filter((l) => l[col('outcome')] === 'reached').length);
+    const hand = Math.min(...mine.map((l) => Number(l[col('min_hand_distance_m')])));
+    assert.ok(Math.abs(row.hand_min_m - hand) < 1e-12, `${row.planner} closest ${row.hand_min_m} vs ${hand}`);
+    assert.ok(row.compute_median_ms > 0);
+  }
+  const shown = await page.$$eval('#compare-table tbody tr', (trs) => trs.map((t) => [...t.cells].map((c) => c.textContent)));
+  assert.equal(shown.length, 2);
+  assert.match(shown[1][0], /RRT-Connect/);
+  assert.match(shown[1][1], /^\d\/2$/);
+  // The table is under the plot: the screenshot shows the page scrolled to it.
+  await page.locator('#compare').scrollIntoViewIfNeeded();
+  await page.screenshot({ path: path.join(REPO, 'docs/arm-compare-screenshot.png') });
+  assert.deepEqual(problems, []);
+  await page.close();
 });

@@ -8,7 +8,8 @@ use std::time::Instant;
 use planlab_core::batch::{self, metric_values, PlannerSummary};
 use planlab_core::metrics::EpisodeMetrics;
 use planlab_core::planners::PlannerChoice;
-use planlab_core::scenario::{Scenario, ScenarioKind};
+use planlab_core::recipe::{Recipe, RecipeError};
+use planlab_core::scenario::{AnyScenario, Scenario, ScenarioKind};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -22,8 +23,10 @@ pub struct BatchArgs<'a> {
     pub variants: u32,
     /// Batch seed.
     pub seed: u64,
-    /// Jitter radius, metres.
-    pub jitter: f64,
+    /// Jitter radius, metres (default [`batch::default_jitter`]).
+    pub jitter: Option<f64>,
+    /// `--set PATH=VALUE` edits before the variants are drawn.
+    pub set: &'a [String],
     /// Per-run CSV output.
     pub csv: Option<&'a Path>,
     /// JSON lines instead of a table.
@@ -42,15 +45,15 @@ struct RunRow {
 
 /// The last JSON line: what was run.
 #[derive(Serialize)]
-struct BatchFooter<'a> {
-    scenario: &'a str,
-    variants: u32,
-    planners: Vec<&'a str>,
-    seed: u64,
-    jitter_m: f64,
-    episodes: usize,
-    threads: usize,
-    seconds: f64,
+pub(crate) struct BatchFooter<'a> {
+    pub(crate) scenario: &'a str,
+    pub(crate) variants: u32,
+    pub(crate) planners: Vec<&'a str>,
+    pub(crate) seed: u64,
+    pub(crate) jitter_m: f64,
+    pub(crate) episodes: usize,
+    pub(crate) threads: usize,
+    pub(crate) seconds: f64,
 }
 
 /// `planlab batch`.
@@ -63,22 +66,43 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
         ));
     }
     let text = load::read_text(path)?;
-    // An arm file is no robot scenario at all: say so, not "unknown field".
-    if let Ok(tree) = serde_json::from_str::<serde_json::Value>(&text) {
-        let kind = ScenarioKind::of(&tree);
-        if kind != ScenarioKind::Robot {
-            let e = batch::BatchError::NoVariants(kind.name());
-            return Err(format!("{}: {e}", path.display()));
-        }
+    let kind = serde_json::from_str::<serde_json::Value>(&text)
+        .map_or(ScenarioKind::Robot, |tree| ScenarioKind::of(&tree));
+    // An APF file is no robot scenario at all: say so, not "unknown field".
+    if kind == ScenarioKind::Apf {
+        let e = batch::BatchError::NoVariants(kind.name());
+        return Err(format!("{}: {e}", path.display()));
     }
-    let base = Scenario::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let jitter = args.jitter.unwrap_or_else(|| batch::default_jitter(kind));
     let mut inputs = vec![path.to_path_buf()];
-    let grid = base
-        .load_grid(&mut crate::sim_cmds::noting_map_reader(path, &mut inputs))
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let recipe = Recipe {
+        set: crate::sim_cmds::parse_sets(args.set, kind)?,
+        ..Recipe::default()
+    };
+    let edited = recipe
+        .apply(
+            &text,
+            &mut crate::sim_cmds::noting_map_reader(path, &mut inputs),
+        )
+        .map_err(|e| match e {
+            RecipeError::Document(_) if !args.set.is_empty() => {
+                format!("{} (after --set): {e}", path.display())
+            }
+            e => format!("{}: {e}", path.display()),
+        })?;
     if let Some(csv) = args.csv {
         crate::output::refuse_input("--csv", csv, &inputs)?;
     }
+    let (base, grid) = match (edited.scenario, edited.grid) {
+        (AnyScenario::Robot(base), Some(grid)) => (base, grid),
+        (AnyScenario::Arm(base), _) => {
+            return crate::batch_arm::batch_arm(path, &base, jitter, args);
+        }
+        (other, _) => {
+            let e = batch::BatchError::NoVariants(other.kind().name());
+            return Err(format!("{}: {e}", path.display()));
+        }
+    };
     let choices = batch::planner_choices(&base, args.planners).map_err(|e| match e {
         batch::BatchError::BadPlanners(_) => format!("--planners: {e}"),
         e => format!("{}: {e}", path.display()),
@@ -100,9 +124,9 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
     let mut from = 0u32;
     while from < args.variants {
         let to = from.saturating_add(chunk).min(args.variants);
-        let chunk_rows = run_variants(path, &base, &grid, &choices, from..to, args)?;
+        let chunk_rows = run_variants(path, &base, &grid, &choices, from..to, args.seed, jitter)?;
         if let Some(f) = csv.as_mut() {
-            f.write(runs_csv(&chunk_rows, &choices, args).as_bytes())?;
+            f.write(runs_csv(&chunk_rows, &choices, args.seed, jitter).as_bytes())?;
         }
         rows.extend(chunk_rows);
         from = to;
@@ -134,7 +158,7 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
         variants: args.variants,
         planners: choices.iter().map(|c| c.name.as_str()).collect(),
         seed: args.seed,
-        jitter_m: args.jitter,
+        jitter_m: jitter,
         episodes: rows.len(),
         threads: rayon::current_num_threads(),
         seconds,
@@ -163,12 +187,13 @@ fn run_variants(
     grid: &planlab_core::map::OccupancyGrid,
     choices: &[PlannerChoice],
     range: std::ops::Range<u32>,
-    args: &BatchArgs<'_>,
+    seed: u64,
+    jitter: f64,
 ) -> Result<Vec<RunRow>, String> {
     let variants: Vec<Scenario> = range
         .clone()
         .into_par_iter()
-        .map(|i| batch::variant(base, grid, i, args.seed, args.jitter))
+        .map(|i| batch::variant(base, grid, i, seed, jitter))
         .collect::<Result<_, _>>()
         .map_err(|e| format!("{}: {e}", path.display()))?;
     let jobs: Vec<(u32, usize)> = range
@@ -202,7 +227,7 @@ fn csv_header() -> String {
 }
 
 /// One CSV row per episode (no header).
-fn runs_csv(rows: &[RunRow], choices: &[PlannerChoice], args: &BatchArgs<'_>) -> String {
+fn runs_csv(rows: &[RunRow], choices: &[PlannerChoice], seed: u64, jitter: f64) -> String {
     let mut s = String::new();
     for r in rows {
         let _ = write!(
@@ -211,8 +236,8 @@ fn runs_csv(rows: &[RunRow], choices: &[PlannerChoice], args: &BatchArgs<'_>) ->
             r.variant,
             choices[r.planner].name,
             r.seed,
-            args.seed,
-            args.jitter,
+            seed,
+            jitter,
             r.steps,
             r.hash,
             r.metrics.outcome.as_str()
@@ -231,7 +256,7 @@ fn runs_csv(rows: &[RunRow], choices: &[PlannerChoice], args: &BatchArgs<'_>) ->
 }
 
 /// Per planner: success and each metric's mean, median and 95% interval.
-fn table(summaries: &[PlannerSummary], f: &BatchFooter<'_>) -> String {
+pub(crate) fn table(summaries: &[PlannerSummary], f: &BatchFooter<'_>) -> String {
     // The name comes from the file: no escape sequence reaches the terminal.
     let mut s = format!(
         "{} — {} variants (seed {}, jitter {} m), {} episodes on {} threads in {:.1} s\n",

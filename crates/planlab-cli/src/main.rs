@@ -16,6 +16,7 @@ macro_rules! outln {
 
 mod arm_cmds;
 mod barn_cmd;
+mod batch_arm;
 mod batch_cmd;
 mod bench;
 mod gen_cmd;
@@ -369,14 +370,10 @@ enum Command {
         /// replay a row of its CSV.
         #[arg(long, value_name = "K")]
         variant: Option<u32>,
-        /// With --variant: the batch's jitter, metres.
-        #[arg(
-            long,
-            default_value_t = 0.3,
-            allow_hyphen_values = true,
-            requires = "variant"
-        )]
-        jitter: f64,
+        /// With --variant: the batch's jitter, metres [default: 0.3; an arm
+        /// scenario 0.02].
+        #[arg(long, allow_hyphen_values = true, requires = "variant")]
+        jitter: Option<f64>,
         /// Edit the scenario before reading it: a dotted path and a JSON
         /// value (or plain text), e.g. `sim.dt=0.05`, `movers.0.radius=0.4`,
         /// `local_planner.config.alpha=0.2`. Repeatable.
@@ -473,7 +470,8 @@ enum Command {
         from_csv: Vec<PathBuf>,
     },
     /// Run N seeded variants of a scenario (start, goal and movers
-    /// jittered) with several planners in parallel; print the success rate
+    /// jittered; an arm scenario: the tool's start and goal and the hand's
+    /// speed) with several planners in parallel; print the success rate
     /// and the mean, median and 95% confidence interval of every metric.
     Batch {
         /// Scenario JSON (a referenced map file is found relative to it).
@@ -487,9 +485,17 @@ enum Command {
         /// Seed of the variants (and of their episodes).
         #[arg(long, default_value_t = 0)]
         seed: u64,
-        /// Largest shift of start, goal and each mover path per axis, metres.
-        #[arg(long, default_value_t = 0.3, allow_hyphen_values = true)]
-        jitter: f64,
+        /// Largest shift of start, goal and each mover path per axis, metres
+        /// [default: 0.3]. An arm scenario: the largest move of the tool's
+        /// start and goal (in a ball) [default: 0.02]; its hand's speed
+        /// varies by ±20 %.
+        #[arg(long, allow_hyphen_values = true)]
+        jitter: Option<f64>,
+        /// Edit the scenario before the variants are drawn: a dotted path and
+        /// a JSON value, as `planlab run --set` (e.g. `arm.table_z_m=0.72`).
+        /// Repeatable.
+        #[arg(long = "set", value_name = "PATH=VALUE", allow_hyphen_values = true)]
+        set: Vec<String>,
         /// Write one CSV row per episode to this file.
         #[arg(long, value_name = "FILE.csv")]
         csv: Option<PathBuf>,
@@ -654,6 +660,7 @@ fn run(cli: Cli) -> Result<(), String> {
             variants,
             seed,
             jitter,
+            set,
             csv,
             json,
         } => batch_cmd::batch(
@@ -663,6 +670,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 variants,
                 seed,
                 jitter,
+                set: &set,
                 csv: csv.as_deref(),
                 json,
             },

@@ -43,7 +43,7 @@ pub struct RunArgs<'a> {
     pub mcap: Option<&'a Path>,
     /// Run `planlab batch`'s variant K (with `seed` as the batch seed and
     /// this jitter) instead of the scenario as written.
-    pub variant: Option<(u32, f64)>,
+    pub variant: Option<(u32, Option<f64>)>,
 }
 
 /// What `planlab run --json` prints: the run's identity, then the metrics.
@@ -63,6 +63,26 @@ struct RunReport<'a> {
     metrics: &'a EpisodeMetrics,
 }
 
+/// The `--set PATH=VALUE` edits as (path, value) pairs; a malformed one is
+/// refused with an example fitting the scenario's `kind`.
+pub(crate) fn parse_sets(
+    sets: &[String],
+    kind: ScenarioKind,
+) -> Result<Vec<(String, String)>, String> {
+    let like = if kind == ScenarioKind::Arm {
+        "arm.hand.speed=2"
+    } else {
+        "sim.dt=0.05"
+    };
+    sets.iter()
+        .map(|edit| {
+            edit.split_once('=')
+                .map(|(k, v)| (k.to_string(), v.to_string()))
+                .ok_or_else(|| format!("--set {edit}: expected PATH=VALUE, like {like}"))
+        })
+        .collect()
+}
+
 /// Reads the scenario at `path` (text `text`) with the run's edits applied
 /// by the core's [`Recipe`] (planner, seed, `--set`, `--variant`, an arm
 /// scenario's predictor), and its map (none for an arm scenario).
@@ -75,25 +95,15 @@ fn edited_scenario(
     let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
     let kind = serde_json::from_str::<serde_json::Value>(text)
         .map_or(ScenarioKind::Robot, |tree| ScenarioKind::of(&tree));
-    let like = if kind == ScenarioKind::Arm {
-        "arm.hand.speed=2"
-    } else {
-        "sim.dt=0.05"
-    };
-    let mut set = Vec::with_capacity(args.set.len());
-    for edit in args.set {
-        let Some((key, value)) = edit.split_once('=') else {
-            return Err(format!("--set {edit}: expected PATH=VALUE, like {like}"));
-        };
-        set.push((key.to_string(), value.to_string()));
-    }
+    let set = parse_sets(args.set, kind)?;
     let recipe = Recipe {
         planner: args.planner.map(str::to_string),
         seed: args.seed,
         set,
-        variant: args
-            .variant
-            .map(|(index, jitter)| VariantPick { index, jitter }),
+        variant: args.variant.map(|(index, jitter)| VariantPick {
+            index,
+            jitter: jitter.unwrap_or_else(|| planlab_core::batch::default_jitter(kind)),
+        }),
     };
     // Errors in an edited tree point at lines of the re-written text, so
     // say so when edits were made (an arm file is always read as a tree;

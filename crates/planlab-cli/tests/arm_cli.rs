@@ -76,3 +76,84 @@ fn arm_run_edits_and_errors() {
     let o = planlab(&["run", &p, "--planner", "oracle"]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("unknown predictor"));
 }
+
+/// `planlab batch` of the arm preset with both arm planners: one summary
+/// per planner over the variants (success, joint and gripper path, hand
+/// distance, compute time), and a CSV row replays with `planlab run
+/// --variant` to the same trace hash.
+#[test]
+fn arm_batch_compares_the_planners_and_its_rows_replay() {
+    let p = preset();
+    let csv = std::env::temp_dir().join(format!("planlab-arm-batch-{}.csv", std::process::id()));
+    let csv_s = csv.display().to_string();
+    let o = planlab(&[
+        "batch",
+        &p,
+        "--planners",
+        "apf,rrt-connect",
+        "--variants",
+        "2",
+        "--set",
+        "arm.table_z_m=0.72",
+        "--json",
+        "--csv",
+        &csv_s,
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let lines: Vec<Value> = String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 3, "two summaries and a footer");
+    for (s, name) in lines.iter().zip(["apf", "rrt-connect"]) {
+        assert_eq!(s["planner"], name);
+        assert_eq!(s["runs"], 2);
+        for k in [
+            "joint_path_length_rad",
+            "gripper_path_length_m",
+            "min_hand_distance_m",
+            "compute_ms",
+        ] {
+            assert!(s["metrics"][k]["median"].as_f64().is_some(), "{k} in {s}");
+        }
+    }
+    assert_eq!(lines[2]["jitter_m"], 0.02, "the arm's default jitter");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let _ = std::fs::remove_file(&csv);
+    let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
+    let col = |name: &str| rows[0].iter().position(|c| *c == name).unwrap();
+    assert_eq!(rows.len(), 5, "{text}");
+    let row = rows
+        .iter()
+        .find(|r| r[col("variant")] == "1" && r[col("planner")] == "rrt-connect")
+        .unwrap();
+    let run = json_of(&planlab(&[
+        "run",
+        &p,
+        "--planner",
+        "rrt-connect",
+        "--variant",
+        "1",
+        "--seed",
+        row[col("batch_seed")],
+        "--set",
+        "arm.table_z_m=0.72",
+        "--json",
+    ]));
+    assert_eq!(run["trace_hash"], row[col("trace_hash")]);
+    assert_eq!(run["outcome"], row[col("outcome")]);
+}
+
+/// Unknown arm planners in a batch are refused in one line naming the
+/// known ones.
+#[test]
+fn arm_batch_refuses_a_robot_planner() {
+    let o = planlab(&["batch", &preset(), "--planners", "dwa", "--variants", "2"]);
+    assert!(!o.status.success());
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(e.trim().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("unknown arm planner `dwa`") && e.contains("rrt-connect"),
+        "{e}"
+    );
+}

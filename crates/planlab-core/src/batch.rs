@@ -1,7 +1,15 @@
 //! Batch experiments: seeded variants of one scenario (start, goal and
-//! movers jittered) and per-planner statistics over their runs. The CLI's
+//! movers jittered; for an arm, [`arm_variant`]) and per-planner
+//! statistics over their runs. The CLI's
 //! `planlab batch` runs the episodes in parallel; everything here is pure
 //! and deterministic, so a variant is the same whichever thread runs it.
+
+mod arm;
+
+pub use arm::{
+    arm_metric_values, arm_planners, arm_variant, run_arm_variant, summarise_arm, ArmBatchRun,
+    ARM_HAND_SPEED_REL, ARM_JITTER_M, ARM_METRIC_NAMES,
+};
 
 use std::collections::BTreeMap;
 
@@ -35,13 +43,23 @@ pub enum BatchError {
         /// The last rejection.
         last: String,
     },
-    /// The scenario is not a robot scenario (an APF one): variants jitter a
-    /// robot's start, goal and movers.
+    /// The scenario is an APF one: variants jitter a robot's start, goal
+    /// and movers, or an arm's start, goal and hand ([`arm_variant`]).
     #[error("{0} scenarios have no batch variants")]
     NoVariants(&'static str),
     /// The planner list names an unknown planner or one twice.
     #[error("{0}")]
     BadPlanners(String),
+    /// The variant's arm episode could not be built or run.
+    #[error("variant {index}, planner {planner}: {source}")]
+    Arm {
+        /// Variant index.
+        index: u32,
+        /// Planner name.
+        planner: String,
+        /// Why.
+        source: crate::arm::ArmError,
+    },
     /// The variant's episode could not be built.
     #[error("variant {index}, planner {planner}: {source}")]
     Episode {
@@ -148,6 +166,20 @@ pub fn run_variant(
         trace_hash: ep.trace().hash(),
         metrics: EpisodeMetrics::of_episode(&ep),
     })
+}
+
+/// The default jitter of a robot batch, m: start, goal and each mover's
+/// path move by up to this per axis (planlab's value: a few robot radii,
+/// the same corridor, not another route).
+pub const ROBOT_JITTER_M: f64 = 0.3;
+
+/// The default jitter of a batch of a scenario of `kind`, m: the robot's
+/// [`ROBOT_JITTER_M`] or the arm's [`ARM_JITTER_M`].
+pub fn default_jitter(kind: crate::scenario::ScenarioKind) -> f64 {
+    match kind {
+        crate::scenario::ScenarioKind::Arm => ARM_JITTER_M,
+        _ => ROBOT_JITTER_M,
+    }
 }
 
 /// The most variants one batch may ask for: each is an episode per planner,

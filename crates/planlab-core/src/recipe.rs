@@ -16,9 +16,11 @@
 //! Steps 1–4 edit the JSON tree ([`Recipe::edit_tree`]), so an edited
 //! document can be written out and replayed with no flags. With a
 //! `variant`, only step 3 edits the tree; then [`batch::variant`] draws the
-//! variant of the parsed robot scenario with `seed` as the *batch* seed, and
-//! the planner is swapped in last ([`batch::choice_for`]), which is how
-//! `planlab batch` builds a row, so a CSV row's trace is reproduced.
+//! variant of the parsed robot scenario ([`batch::arm_variant`] of an arm
+//! scenario) with `seed` as the *batch* seed, and the planner is swapped in
+//! last ([`batch::choice_for`]; an arm's planner or predictor by name),
+//! which is how `planlab batch` builds a row, so a CSV row's trace is
+//! reproduced.
 
 use serde::Deserialize;
 use serde_json::Value;
@@ -206,9 +208,6 @@ impl Recipe {
         if pick.index >= MAX_VARIANTS {
             return Err(RecipeError::VariantTooLarge(pick.index));
         }
-        if ScenarioKind::of(tree) == ScenarioKind::Arm {
-            return Err(RecipeError::NoVariants(ScenarioKind::Arm.name()));
-        }
         // The base is the scenario with the `set` edits only: the planner
         // comes after the draw and the seed is the batch's.
         let base = Recipe {
@@ -216,6 +215,19 @@ impl Recipe {
             ..Recipe::default()
         }
         .apply_with(tree, unedited, read)?;
+        if let AnyScenario::Arm(base) = &base.scenario {
+            let mut s = batch::arm_variant(base, pick.index, self.seed.unwrap_or(0), pick.jitter)?;
+            if let Some(name) = &self.planner {
+                match ArmPlanner::parse(name) {
+                    Ok(p) => s.arm.planner = p,
+                    Err(_) => ArmPredictor::parse(name)?.apply(&mut s.arm.apf),
+                }
+            }
+            return Ok(Edited {
+                scenario: AnyScenario::Arm(s),
+                grid: None,
+            });
+        }
         let (AnyScenario::Robot(base), Some(grid)) = (&base.scenario, base.grid) else {
             return Err(RecipeError::NoVariants(base.scenario.kind().name()));
         };
@@ -557,11 +569,23 @@ mod tests {
             }),
             ..Recipe::default()
         };
-        let e = zero.apply(ARM, &mut no_files).unwrap_err();
-        assert_eq!(
-            e.to_string(),
-            "--variant: arm scenarios have no batch variants"
-        );
+        // An arm variant is the arm batch's row with the planner swapped in.
+        let arm_pick = Recipe {
+            planner: Some("rrt-connect".into()),
+            seed: Some(7),
+            variant: Some(VariantPick {
+                index: 2,
+                jitter: 0.02,
+            }),
+            ..Recipe::default()
+        };
+        let AnyScenario::Arm(got) = arm_pick.apply(ARM, &mut no_files).unwrap().scenario else {
+            panic!("an arm variant is an arm scenario")
+        };
+        let mut want = batch::arm_variant(&arm(&Recipe::default(), ARM), 2, 7, 0.02).unwrap();
+        want.arm.planner = ArmPlanner::RrtConnect;
+        assert_eq!(got, want);
+        assert_ne!(got.arm.goal, arm(&Recipe::default(), ARM).arm.goal);
         let mut t = tree(ROBOT);
         assert_eq!(
             zero.edit_tree(&mut t).unwrap_err(),

@@ -61,6 +61,28 @@ pub fn edit_scenario(text: &str, recipe: &str) -> Result<String, JsError> {
     Ok(planlab_core::recipe::Recipe::from_json(recipe)?.edit_text(text)?)
 }
 
+/// Row `index` of `planlab batch` of the arm scenario `text` (JSON, edits
+/// already applied) with batch seed `seed` and jitter `jitter` m, run by
+/// `planner` (`apf`, `rrt-connect`): the variant drawn and run by the core
+/// exactly as the CLI does, as JSON (the core's `ArmBatchRun`, the trace
+/// hash as 16 hex digits). The page times the call: the core has no clock.
+#[wasm_bindgen(js_name = armBatchRun)]
+pub fn arm_batch_run(
+    text: &str,
+    index: u32,
+    seed: u32,
+    jitter: f64,
+    planner: &str,
+) -> Result<String, JsError> {
+    let base = ArmScenario::from_json(text).map_err(js)?;
+    let planner = planlab_core::batch::arm_planners(&base, &[planner.to_string()]).map_err(js)?[0];
+    let v = planlab_core::batch::arm_variant(&base, index, u64::from(seed), jitter).map_err(js)?;
+    let run = planlab_core::batch::run_arm_variant(&v, index, planner).map_err(js)?;
+    let mut out = serde_json::to_value(&run).map_err(js)?;
+    out["trace_hash"] = format!("{:016x}", run.trace_hash).into();
+    Ok(out.to_string())
+}
+
 fn push3(out: &mut Vec<f32>, p: [f64; 3]) {
     out.extend(p.iter().map(|&x| x as f32));
 }

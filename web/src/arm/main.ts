@@ -16,6 +16,7 @@ import init, { ArmHandle, armChoices, editScenario } from '../../pkg-arm/planlab
 import { ArmView } from './view';
 import { DrawList, Layer, mask } from '../scene/draw';
 import { DistancePlot } from './distplot';
+import { installCompare, type CompareRow } from './compare';
 import { el, messageOf } from '../shell/dom';
 
 /** At most this many 0.1 s samples per animation frame. */
@@ -272,6 +273,14 @@ async function main(): Promise<void> {
   for (const p of choices.hand_presets) ui.handPreset.add(new Option(p, p));
   view = new ArmView(ui.view);
   distPlot = new DistancePlot(el('plot-hand'));
+  // The comparison runs the preset as written (not the live edits of this
+  // run), with RRT-Connect's table top and the predictor chosen here.
+  const compare = installCompare(async () => {
+    const file = ui.preset.value;
+    const r = await fetch(`./scenarios/${file}`);
+    if (!r.ok) throw new Error(`cannot load scenarios/${file}: HTTP ${r.status}`);
+    return { file, text: await r.text(), predictor: ui.predictor.value, tableZ: RRT_TABLE_Z_M };
+  }, showError);
   view.onTargetDrag = (x, y, z) => setTarget([x, y, z]);
   ui.play.addEventListener('click', () => setPlaying(!playing));
   ui.step.addEventListener('click', () => {
@@ -377,6 +386,7 @@ async function main(): Promise<void> {
     metrics: () => (handle ? JSON.parse(handle.metricsJson()) : null),
     distancePlot: () => ({ rows: distPlot?.length ?? 0, last: distPlot?.last() ?? [], series: handle ? Array.from(handle.distanceSeries(0)) : [] }),
     planner: () => (handle ? JSON.parse(handle.plannerJson()) : null),
+    compare: (): CompareRow[] => compare.last(),
     setPlanner(name: string) {
       ui.planner.value = name;
       ui.planner.dispatchEvent(new Event('change'));

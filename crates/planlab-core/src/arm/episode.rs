@@ -42,6 +42,12 @@ pub const ARM_CLEARANCE_M: f64 = 0.005;
 /// hand blocks the one it had.
 pub const GOAL_POSTURE_TRIES: usize = 20;
 
+/// Random joint moves RRT-Connect's arm weighs when the predicted hand
+/// reaches it (half of the full period's reach, half of half of it):
+/// planlab's value, enough that a move away is found in the T-tab5-3
+/// variants, cheap beside a plan (thousands of checks).
+pub const EVASION_CANDIDATES: usize = 32;
+
 /// Timing and end conditions of an arm episode.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -210,8 +216,12 @@ pub struct PlanEffort {
     /// RRT-Connect runs that found no path (the arm held).
     pub failed_plans: u32,
     /// Planning instants at which the predicted hand reached the arm's
-    /// posture, so the arm stopped instead of planning.
+    /// posture and no evading move helped, so the arm stopped.
     pub holds: u32,
+    /// Planning instants at which the predicted hand reached the arm's
+    /// posture and the arm moved out of its way instead of planning.
+    #[serde(default)]
+    pub evasions: u32,
     /// Planner iterations: one per APF step, RRT-Connect's outer
     /// iterations (one sample each) summed over its runs.
     pub iterations: u64,
@@ -684,10 +694,21 @@ impl ArmEpisode {
         }
         if reaches_arm {
             // The hand is predicted to come onto the arm where it is: no
-            // path from here avoids that, so the arm stops (a protective
-            // stop, as the APF holds) and plans again next period.
-            self.effort.holds += 1;
+            // plan from here to the goal avoids that. Standing still lets
+            // the hand run into the arm (variants of T-tab5-3 collided so),
+            // so the arm first moves out of the predicted sweep as far as
+            // it can before the next plan; only with no move that helps
+            // does it stop (a protective stop) and plan again next period.
             run.ahead.clear();
+            let (away, checks) = self.evasion(&hand_now, &obstacles, &mut run);
+            self.effort.collision_checks += checks;
+            match away {
+                Some(q) => {
+                    self.effort.evasions += 1;
+                    run.ahead.push(q);
+                }
+                None => self.effort.holds += 1,
+            }
             self.rrt = Some(run);
             return;
         }
@@ -764,6 +785,69 @@ impl ArmEpisode {
         }
         self.effort.collision_checks += c.checks();
         self.rrt = Some(run);
+    }
+
+    /// The posture, within what the joints can move in one plan period,
+    /// that keeps the arm farthest from `threat` (the hand now and its
+    /// predicted sweep) and the table, among [`EVASION_CANDIDATES`] seeded
+    /// random joint moves of the full period's reach and of half of it;
+    /// the move to it must keep clear of the hand *now* at the RRT's
+    /// check resolution. `None` when no candidate is farther from the
+    /// threat than the current posture. Also returns the postures checked.
+    fn evasion(
+        &self,
+        hand_now: &[Obstacle3; 2],
+        threat: &[Obstacle3],
+        run: &mut RrtRun,
+    ) -> (Option<Vec<f64>>, u64) {
+        let reach = run.cfg.max_joint_speed_rad_s * self.scene.sim.plan_period_s;
+        let mut now_check = ArmChecker::new(
+            &self.model,
+            hand_now.to_vec(),
+            self.scene.table_z_m,
+            0.0,
+            run.cfg.check_sweep_m,
+        );
+        // Moving must not bring the arm nearer the hand now than the margin
+        // (or than half its clearance, when the hand is already nearer).
+        let here = now_check.clearance(&self.q);
+        let margin = ARM_CLEARANCE_M.min(0.5 * here);
+        now_check = ArmChecker::new(
+            &self.model,
+            hand_now.to_vec(),
+            self.scene.table_z_m,
+            margin,
+            run.cfg.check_sweep_m.min(2.0 * margin.max(1e-4)),
+        );
+        let mut best = (
+            rrt::clearance_of(&self.links(), threat, self.scene.table_z_m),
+            None,
+        );
+        for k in 0..EVASION_CANDIDATES {
+            let scale = if k % 2 == 0 { reach } else { 0.5 * reach };
+            let dir: Vec<f64> = (0..self.model.dof())
+                .map(|_| run.rng.range(-1.0, 1.0))
+                .collect();
+            let largest = dir.iter().fold(0.0_f64, |m, d| m.max(d.abs()));
+            if largest < 1e-9 {
+                continue;
+            }
+            let q: Vec<f64> = (0..self.model.dof())
+                .map(|i| {
+                    let (lo, hi) = self.model.limits(i);
+                    (self.q[i] + dir[i] / largest * scale).clamp(lo, hi)
+                })
+                .collect();
+            let d = rrt::clearance_of(
+                &link_capsules(&self.model.fk(&q), &self.radii),
+                threat,
+                self.scene.table_z_m,
+            );
+            if d > best.0 && now_check.motion_valid(&self.q, &q) {
+                best = (d, Some(q));
+            }
+        }
+        (best.1, 1 + EVASION_CANDIDATES as u64 + now_check.checks())
     }
 
     /// An IK posture putting the tool on the goal that `c` finds valid:

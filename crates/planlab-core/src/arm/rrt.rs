@@ -25,7 +25,9 @@
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::geometry::{link_capsules, link_distance, LinkCapsule, Obstacle3};
+use super::geometry::{
+    link_capsules, link_distance, link_distance_lower_bound, LinkCapsule, Obstacle3,
+};
 use super::model::ArmModel;
 use super::ArmError;
 use crate::num::Rng;
@@ -249,7 +251,10 @@ pub fn clearance_of(links: &[LinkCapsule], obstacles: &[Obstacle3], table_z: Opt
     let mut d = f64::INFINITY;
     for (i, l) in links.iter().enumerate() {
         for o in obstacles {
-            d = d.min(link_distance(l, o));
+            // The exact query only where it can lower the minimum.
+            if link_distance_lower_bound(l, o) < d {
+                d = d.min(link_distance(l, o));
+            }
         }
         if let Some(z) = table_z {
             d = d.min((l.a.z.min(l.b.z) - l.radius - z).max(0.0));
@@ -260,7 +265,9 @@ pub fn clearance_of(links: &[LinkCapsule], obstacles: &[Obstacle3], table_z: Opt
                 b: m.b.to_array(),
                 radius: m.radius,
             };
-            d = d.min(link_distance(l, &other));
+            if link_distance_lower_bound(l, &other) < d {
+                d = d.min(link_distance(l, &other));
+            }
         }
     }
     d
