@@ -218,3 +218,18 @@ test('the race plays RRT-Connect beside A* with its cost (the CLI’s) and time'
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('a link ?algorithm=rrt-connect opens the grid page with the sampling planner chosen', async () => {
+  const { page, problems } = await openPage(session, '?algorithm=rrt-connect');
+  await page.waitForFunction(() => document.getElementById('algorithm').value === 'rrt-connect');
+  assert.equal(await errorText(page), null);
+  // The run happened: its best-cost plot has a point and the player a tree.
+  await page.waitForFunction(() => JSON.parse(document.getElementById('sampling-plot')?.dataset.points ?? '[]').length > 0, null, { timeout: 30_000 });
+  assert.ok((await sampling(page)) !== null, 'the player holds the sampling run');
+  // An unknown name lists the sampling planners among the choices.
+  const bad = await openPage(session, '?algorithm=rrt-starr');
+  assert.match((await errorText(bad.page)) ?? '', /not one of .*rrt-star/);
+  assert.deepEqual(problems, []);
+  await page.close();
+  await bad.page.close();
+});

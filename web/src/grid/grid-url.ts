@@ -22,9 +22,10 @@ function flag(v: string): boolean | null {
   return null;
 }
 
-/** Reads `scenario`, `algorithm`, `keypoints`, `bottom_up` (cells, or 0/off)
+/** Reads `scenario`, `algorithm` (a grid planner or one of `samplers`, the
+ *  core's sampling planners), `keypoints`, `bottom_up` (cells, or 0/off)
  *  and `inflate` (m). */
-export function gridUrl(search: string = location.search): GridUrl {
+export function gridUrl(search: string = location.search, samplers: string[] = []): GridUrl {
   const q = new URLSearchParams(search);
   const out: GridUrl = { scenario: null, options: {}, problems: [] };
   const s = q.get('scenario');
@@ -35,8 +36,9 @@ export function gridUrl(search: string = location.search): GridUrl {
   }
   const algo = q.get('algorithm');
   if (algo !== null) {
-    if (ALGORITHMS.includes(algo)) out.options.algorithm = algo;
-    else out.problems.push(`algorithm “${algo}” is not one of ${ALGORITHMS.join(', ')}`);
+    const known = [...ALGORITHMS, ...samplers];
+    if (known.includes(algo)) out.options.algorithm = algo;
+    else out.problems.push(`algorithm “${algo}” is not one of ${known.join(', ')}`);
   }
   const kp = q.get('keypoints');
   if (kp !== null) {

@@ -495,8 +495,9 @@ async function boot(): Promise<void> {
   applyOptions(getDefaults());
   syncControls();
   ui.hint.textContent = TOOL_HINTS[tool];
-  // `?scenario=FILE` (+ planner options): a site scenario as a global plan.
-  const url = gridUrl();
+  // `?scenario=FILE` (+ planner options, `?algorithm=rrt-star` too): a site
+  // scenario as a global plan.
+  const url = gridUrl(location.search, coreSamplers.map((s) => s.name));
   if (url.scenario) {
     try {
       const { text, files } = await loadPresetFiles(url.scenario, rosImageName);
