@@ -310,6 +310,8 @@ def median(values):
 
 
 def ratio(a, b):
+    if math.isnan(a) or math.isnan(b):
+        return float("nan")
     if math.isinf(a) and math.isinf(b):
         return float("nan")
     if b == 0 or math.isinf(b):
@@ -538,7 +540,7 @@ def summarise(runs):
             algo, budget = key
             by = {lib: [x for x in xs if x["lib"] == lib] for lib in ("planlab", "ompl")}
             solved = {lib: sum(x["cost"] < math.inf for x in v) for lib, v in by.items()}
-            n = len(by["planlab"])
+            n = max(len(by["planlab"]), len(by["ompl"]))
             if algo == "rrt-connect":
                 metrics = [("first-solution wall s", lambda x: x["wall"] if x["cost"] < math.inf else math.inf),
                            ("first-solution CPU s", lambda x: x["cpu"] if x["cost"] < math.inf else math.inf),
