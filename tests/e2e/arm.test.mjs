@@ -116,3 +116,38 @@ test('target sliders move the goal; an unreachable target is refused', async () 
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('the Planner menu runs RRT-Connect on T-tab5-3 as the CLI does, draws its plan, and goes back to the APF', async () => {
+  const { page, problems } = await openArm();
+  assert.deepEqual(
+    await page.$$eval('#planner option', (o) => o.map((x) => x.value)),
+    ['apf', 'rrt-connect'],
+  );
+  assert.equal(await page.inputValue('#planner'), 'apf');
+  await page.selectOption('#planner', 'rrt-connect');
+  await page.waitForFunction(() => document.body.dataset.planner === 'rrt-connect' && document.body.dataset.state === 'ready');
+  // The predictor survives the restart.
+  assert.equal(await page.inputValue('#predictor'), 'constant-velocity');
+  // A few samples in, the plan ahead is drawn (Trail item tag 1).
+  await page.click('#step');
+  const plan = await page.evaluate(() => window.planlabArm.planner());
+  assert.equal(plan.planner, 'rrt-connect');
+  assert.ok(plan.plans >= 1 && plan.collision_checks > 0, JSON.stringify(plan));
+  assert.equal(plan.min_table_m === null, false, 'RRT-Connect knows the table top');
+  assert.equal(await playToEnd(page), 'reached');
+  // The same run as `planlab run assets/scenarios/T-tab5-3.json --planner
+  // rrt-connect --set arm.table_z_m=0.72`: 2.901 rad, 0.504 m, 0.008 m.
+  const end = await page.evaluate(() => window.planlabArm.planner());
+  const core = await page.evaluate(() => window.planlabArm.metrics());
+  assert.ok(Math.abs(end.joint_path_rad - 2.901) < 0.0015, `joint path ${end.joint_path_rad}`);
+  assert.ok(Math.abs(end.gripper_path_m - 0.504) < 0.0015, `gripper path ${end.gripper_path_m}`);
+  assert.ok(core.min_obstacle_distance_m > 0 && Math.abs(core.min_obstacle_distance_m - 0.008) < 0.0015, JSON.stringify(core));
+  assert.match(await page.textContent('#metric-plans'), /^\d+ \(\d+ replans\), \d+ checks$/);
+  assert.match(await page.textContent('#status'), /RRT-Connect/);
+  await page.screenshot({ path: path.join(REPO, 'docs/arm-rrt-screenshot.png') });
+  // Back to the thesis's APF: a fresh run of the preset.
+  await page.selectOption('#planner', 'apf');
+  await page.waitForFunction(() => document.body.dataset.planner === 'apf' && document.body.dataset.state === 'ready');
+  assert.equal(await page.evaluate(() => window.planlabArm.planner().plans), 0);
+  assert.deepEqual(problems, []);
+});

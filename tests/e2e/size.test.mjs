@@ -6,7 +6,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { startSession } from './harness.mjs';
-import { FIRST_LOAD_LIMIT, kB, measureFirstLoad, sitePages } from './firstload.mjs';
+import { FIRST_LOAD_LIMIT, FIRST_LOAD_SENT_LIMIT, kB, measureFirstLoad, sitePages } from './firstload.mjs';
 
 let session;
 before(async () => {
@@ -16,7 +16,7 @@ after(async () => {
   await session?.close();
 });
 
-test('first load of every page is within FIRST_LOAD_LIMIT (wasm + JS + CSS)', async () => {
+test('first load of every page is within its budgets, sent and decoded (wasm + JS + CSS)', async () => {
   const pages = sitePages();
   // The site's own pages at least; pages added later are measured too.
   for (const p of ['index.html', 'robot.html', 'apf.html', 'arm.html', 'barn.html']) assert.ok(pages.includes(p), `${p} built`);
@@ -26,6 +26,7 @@ test('first load of every page is within FIRST_LOAD_LIMIT (wasm + JS + CSS)', as
     // Every page that plans loads the wasm module; a page that fetched
     // nothing would pass the bar vacuously.
     assert.ok(m.js > 0, `${p}: loaded no JS`);
+    assert.ok(m.sentFirstLoad <= FIRST_LOAD_SENT_LIMIT, `${p}: ${m.sentFirstLoad} bytes sent > ${FIRST_LOAD_SENT_LIMIT}: ${JSON.stringify(m.files.slice(0, 5))}`);
     assert.ok(m.firstLoad <= FIRST_LOAD_LIMIT, `${p}: ${m.firstLoad} bytes > ${FIRST_LOAD_LIMIT}: ${JSON.stringify(m.files.slice(0, 5))}`);
   }
 });

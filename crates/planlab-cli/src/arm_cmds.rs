@@ -2,7 +2,7 @@
 //! the 7-DOF arm's end effector among the moving hand, \[T\] §5.3.3. The
 //! scenario is read, edited and run by `sim_cmds::run`; this is its report.
 
-use planlab_core::arm::{ArmEpisode, ArmMetrics, ArmPredictor};
+use planlab_core::arm::{ArmEpisode, ArmMetrics, ArmPredictor, PlanEffort};
 use planlab_core::scenario::AnyScenario;
 use serde::Serialize;
 
@@ -18,6 +18,12 @@ struct ArmRunReport<'a> {
     trace_hash: String,
     #[serde(flatten)]
     metrics: &'a ArmMetrics,
+    /// Joint-space distance travelled, rad.
+    joint_path_length_rad: f64,
+    /// Tool distance travelled sample by sample, m.
+    gripper_path_length_m: f64,
+    /// Planning effort (plans, iterations, collision checks).
+    effort: PlanEffort,
 }
 
 /// The report of a finished arm episode of `scenario`: the predictor in
@@ -37,10 +43,17 @@ pub fn report(
     }
     let report = ArmRunReport {
         scenario: scenario.name(),
-        planner: format!("arm-apf:{}", ArmPredictor::of(&ep.scene().apf).name()),
+        planner: format!(
+            "arm-{}:{}",
+            ep.planner().name(),
+            ArmPredictor::of(&ep.scene().apf).name()
+        ),
         seed: scenario.seed(),
         trace_hash: format!("{hash:016x}"),
         metrics: m,
+        joint_path_length_rad: ep.joint_path_length(),
+        gripper_path_length_m: ep.gripper_path_length(),
+        effort: ep.effort(),
     };
     if args.json {
         outln!(
@@ -50,6 +63,18 @@ pub fn report(
     } else {
         outln!("{title} — {}, seed {}", report.planner, report.seed);
         out!("{}", crate::sim_cmds::apf_metrics_table(m));
+        let e = report.effort;
+        outln!(
+            "joint path {:.3} rad, gripper path {:.3} m; {} plans ({} replans, {} failed, {} holds), {} iterations, {} collision checks",
+            report.joint_path_length_rad,
+            report.gripper_path_length_m,
+            e.plans,
+            e.replans,
+            e.failed_plans,
+            e.holds,
+            e.iterations,
+            e.collision_checks
+        );
     }
     Ok(())
 }

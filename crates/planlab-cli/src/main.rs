@@ -32,6 +32,7 @@ use planlab_files as load;
 use clap::{Parser, Subcommand, ValueEnum};
 use planlab_core::global::plan::{Algorithm, GridPlanOptions, GridPlanOverrides};
 use planlab_core::global::{Diagonal, GridPos, Heuristic, PlanError};
+use planlab_core::sampling::SamplingAlgorithm;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -46,17 +47,19 @@ struct Cli {
     command: Command,
 }
 
-/// A grid planner on the command line: every [`Algorithm`] by its name,
-/// with its one-line description in `--help`.
+/// A planner on the command line: every grid [`Algorithm`] by its name,
+/// with its one-line description in `--help`, and `hybrid-astar` (a car
+/// path over poses, `None` here).
 #[derive(Clone, Copy)]
-struct AlgoArg(Algorithm);
+struct AlgoArg(Option<Algorithm>);
 
-/// Every planner, in [`Algorithm::ALL`] order (clap wants a static slice).
-const ALGO_ARGS: [AlgoArg; Algorithm::ALL.len()] = {
-    let mut out = [AlgoArg(Algorithm::AStar); Algorithm::ALL.len()];
+/// Every planner, in [`Algorithm::ALL`] order, then Hybrid A* (clap wants
+/// a static slice).
+const ALGO_ARGS: [AlgoArg; Algorithm::ALL.len() + 1] = {
+    let mut out = [AlgoArg(None); Algorithm::ALL.len() + 1];
     let mut i = 0;
-    while i < out.len() {
-        out[i] = AlgoArg(Algorithm::ALL[i].0);
+    while i < Algorithm::ALL.len() {
+        out[i] = AlgoArg(Some(Algorithm::ALL[i].0));
         i += 1;
     }
     out
@@ -68,14 +71,75 @@ impl ValueEnum for AlgoArg {
     }
 
     fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
-        Some(clap::builder::PossibleValue::new(self.0.name()).help(self.0.description()))
+        Some(match self.0 {
+            Some(a) => clap::builder::PossibleValue::new(a.name()).help(a.description()),
+            None => clap::builder::PossibleValue::new("hybrid-astar").help(
+                "Hybrid A*: a car path of arcs at --turning-radius over x,y,θ poses (plan only)",
+            ),
+        })
     }
 }
 
-impl From<AlgoArg> for Algorithm {
-    fn from(a: AlgoArg) -> Self {
-        a.0
+impl AlgoArg {
+    /// The grid planner, or why Hybrid A* is not one.
+    fn grid(self) -> Result<Algorithm, String> {
+        self.0.ok_or_else(|| {
+            "hybrid-astar plans car poses, not grid cells; use it with `planlab plan`".to_string()
+        })
     }
+}
+
+/// A planner of `planlab plan`: a grid planner, a sampling planner
+/// (`planlab_core::sampling`), each by its name, or Hybrid A* for a car.
+#[derive(Clone, Copy)]
+enum PlanAlgoArg {
+    Grid(Algorithm),
+    Sampling(SamplingAlgorithm),
+    HybridAStar,
+}
+
+/// Every grid planner, then every sampling planner, then Hybrid A*.
+const PLAN_ALGO_ARGS: [PlanAlgoArg; Algorithm::ALL.len() + SamplingAlgorithm::ALL.len() + 1] = {
+    let mut out =
+        [PlanAlgoArg::HybridAStar; Algorithm::ALL.len() + SamplingAlgorithm::ALL.len() + 1];
+    let mut i = 0;
+    while i < Algorithm::ALL.len() {
+        out[i] = PlanAlgoArg::Grid(Algorithm::ALL[i].0);
+        i += 1;
+    }
+    let mut j = 0;
+    while j < SamplingAlgorithm::ALL.len() {
+        out[i + j] = PlanAlgoArg::Sampling(SamplingAlgorithm::ALL[j].0);
+        j += 1;
+    }
+    out
+};
+
+impl ValueEnum for PlanAlgoArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        &PLAN_ALGO_ARGS
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        let (name, help) = match self {
+            PlanAlgoArg::Grid(a) => (a.name(), a.description()),
+            PlanAlgoArg::Sampling(a) => (a.name(), a.description()),
+            PlanAlgoArg::HybridAStar => (
+                "hybrid-astar",
+                "Hybrid A*: a car path of arcs at --turning-radius over x,y,θ poses",
+            ),
+        };
+        Some(clap::builder::PossibleValue::new(name).help(help))
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum CurveKind {
+    /// Forward only (Dubins 1957).
+    Dubins,
+    /// Forward and reverse (Reeds & Shepp 1990).
+    #[value(name = "reeds-shepp")]
+    ReedsShepp,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -202,15 +266,34 @@ enum Command {
         /// Map file.
         map: PathBuf,
         /// Start cell COLUMN,ROW (row 0 at the top of the image); a scenario
-        /// .json supplies its own when omitted.
-        #[arg(long)]
+        /// .json supplies its own when omitted. With hybrid-astar: the pose
+        /// X,Y,THETA (world metres, degrees).
+        #[arg(long, allow_hyphen_values = true)]
         start: Option<String>,
         /// Goal cell COLUMN,ROW; a scenario .json supplies its own when omitted.
-        #[arg(long)]
+        /// With hybrid-astar: X,Y,THETA (world metres, degrees).
+        #[arg(long, allow_hyphen_values = true)]
         goal: Option<String>,
-        /// Planner [default: astar, or the scenario's].
+        /// Planner [default: astar, or the scenario's]. The sampling
+        /// planners (rrt … bit-star) plan a disc of --radius cells in
+        /// continuous space, seeded by --seed, for --iterations.
         #[arg(long, value_enum)]
-        algo: Option<AlgoArg>,
+        algo: Option<PlanAlgoArg>,
+        /// Sampling planners: iterations to run (RRT and RRT-Connect stop
+        /// at their first path) [default: 10000].
+        #[arg(long)]
+        iterations: Option<u64>,
+        /// Sampling planners: seed of the random stream [default: 0].
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Sampling planners and hybrid-astar: the robot's disc radius,
+        /// metres [default: hybrid-astar 0.2 m; sampling planners 0.4 of a
+        /// cell].
+        #[arg(long, value_name = "r", allow_hyphen_values = true)]
+        radius: Option<f64>,
+        /// Sampling planners: shorten the path by seeded shortcuts.
+        #[arg(long)]
+        shortcut: bool,
         /// A*/JPS heuristic [default: octile, or the scenario's].
         #[arg(long, value_enum)]
         heuristic: Option<HeuristicArg>,
@@ -235,6 +318,12 @@ enum Command {
         /// Safe A* safety weight ε.
         #[arg(long, allow_hyphen_values = true)]
         epsilon: Option<f64>,
+        /// Hybrid A*: minimum turning radius, metres.
+        #[arg(long, value_name = "R", allow_hyphen_values = true)]
+        turning_radius: Option<f64>,
+        /// Hybrid A*: the car may reverse (Reeds-Shepp).
+        #[arg(long)]
+        reverse: bool,
         /// JSON output.
         #[arg(long)]
         json: bool,
@@ -242,6 +331,25 @@ enum Command {
         /// JSON; open it in ShortestPathLab's Posthoc with the map).
         #[arg(long, value_name = "FILE")]
         trace_posthoc: Option<PathBuf>,
+    },
+    /// The shortest car path between two poses ignoring obstacles: its
+    /// length and word (Dubins: forward only; Reeds-Shepp: with reverse).
+    Curve {
+        /// dubins or reeds-shepp.
+        #[arg(value_enum)]
+        kind: CurveKind,
+        /// Start pose X,Y,THETA (metres, degrees).
+        #[arg(long, allow_hyphen_values = true)]
+        from: String,
+        /// Goal pose X,Y,THETA (metres, degrees).
+        #[arg(long, allow_hyphen_values = true)]
+        to: String,
+        /// Minimum turning radius, metres.
+        #[arg(long, allow_hyphen_values = true)]
+        radius: f64,
+        /// JSON output.
+        #[arg(long)]
+        json: bool,
     },
     /// Run one simulated episode of a scenario .json and print its metrics
     /// (an arm scenario, with an `arm` section, runs the arm episode;
@@ -499,6 +607,19 @@ fn run(cli: Cli) -> Result<(), String> {
             },
         ),
         Command::Planners { json } => sim_cmds::planners(json),
+        Command::Curve {
+            kind,
+            from,
+            to,
+            radius,
+            json,
+        } => grid_cmds::curve(
+            matches!(kind, CurveKind::ReedsShepp),
+            grid_cmds::parse_pose(&from, "--from")?,
+            grid_cmds::parse_pose(&to, "--to")?,
+            radius,
+            json,
+        ),
         Command::Barn {
             paths,
             worlds,
@@ -607,7 +728,7 @@ fn run(cli: Cli) -> Result<(), String> {
             algo,
             json,
         } => {
-            let mismatches = grid_cmds::scen(&map, &scen, algo.into(), json)?;
+            let mismatches = grid_cmds::scen(&map, &scen, algo.grid()?, json)?;
             if mismatches > 0 {
                 return Err(format!("{mismatches} rows missed the optimal cost"));
             }
@@ -618,6 +739,10 @@ fn run(cli: Cli) -> Result<(), String> {
             start,
             goal,
             algo,
+            iterations,
+            seed,
+            radius,
+            shortcut,
             heuristic,
             weight,
             diagonal,
@@ -626,14 +751,101 @@ fn run(cli: Cli) -> Result<(), String> {
             keypoints,
             bottom_up,
             epsilon,
+            turning_radius,
+            reverse,
             json,
             trace_posthoc,
         } => {
             let (grid, scenario) = load::load_any(&map)?;
+            if let Some(PlanAlgoArg::HybridAStar) = algo {
+                let foreign = [
+                    ("--iterations", iterations.is_some()),
+                    ("--seed", seed.is_some()),
+                    ("--shortcut", shortcut),
+                    ("--heuristic", heuristic.is_some()),
+                    ("--keypoints", keypoints),
+                    ("--trace-posthoc", trace_posthoc.is_some()),
+                ];
+                if let Some((flag, _)) = foreign.iter().find(|f| f.1) {
+                    return Err(format!("{flag} does not apply to hybrid-astar"));
+                }
+                let (Some(start), Some(goal)) = (start, goal) else {
+                    return Err("hybrid-astar needs --start X,Y,THETA and --goal X,Y,THETA (metres, degrees)".into());
+                };
+                let car = grid_cmds::CarArgs {
+                    start: grid_cmds::parse_pose(&start, "--start")?,
+                    goal: grid_cmds::parse_pose(&goal, "--goal")?,
+                    turning_radius: turning_radius
+                        .ok_or("hybrid-astar needs --turning-radius R (metres)")?,
+                    reverse,
+                    radius,
+                    allow_unknown,
+                    json,
+                };
+                return grid_cmds::plan_car(&map, &grid, &car);
+            }
+            if turning_radius.is_some() || reverse {
+                return Err("--turning-radius and --reverse belong to --algo hybrid-astar".into());
+            }
+            let sampling_flags = [
+                ("--iterations", iterations.is_some()),
+                ("--seed", seed.is_some()),
+                ("--radius", radius.is_some()),
+                ("--shortcut", shortcut),
+            ];
+            let algo = match algo {
+                Some(PlanAlgoArg::Sampling(algorithm)) => {
+                    let grid_flags = [
+                        ("--heuristic", heuristic.is_some()),
+                        ("--weight", weight.is_some()),
+                        ("--diagonal", diagonal.is_some()),
+                        ("--inflate", inflate.is_some()),
+                        ("--keypoints", keypoints),
+                        ("--bottom-up", bottom_up.is_some()),
+                        ("--epsilon", epsilon.is_some()),
+                        ("--trace-posthoc", trace_posthoc.is_some()),
+                    ];
+                    if let Some((flag, _)) = grid_flags.iter().find(|f| f.1) {
+                        return Err(format!(
+                            "{flag} applies to the grid planners, not to {}",
+                            algorithm.name()
+                        ));
+                    }
+                    let cell = |flag: Option<String>, name: &str, from: Option<GridPos>| match (
+                        flag, from,
+                    ) {
+                        (Some(s), _) => grid_cmds::parse_cell(&s),
+                        (None, Some(p)) => Ok(p),
+                        (None, None) => {
+                            Err(format!("--{name} COLUMN,ROW is required for this map"))
+                        }
+                    };
+                    let args = grid_cmds::SamplingArgs {
+                        start: cell(start, "start", scenario.as_ref().map(|s| s.start.pos()))?,
+                        goal: cell(goal, "goal", scenario.as_ref().map(|s| s.goal.pos()))?,
+                        algorithm,
+                        iterations: iterations.unwrap_or(10_000),
+                        seed: seed.unwrap_or(0),
+                        radius: radius.map_or(0.4, |r| r / grid.resolution()),
+                        shortcut,
+                        allow_unknown,
+                        json,
+                    };
+                    return grid_cmds::plan_sampling(&map, &grid, &args);
+                }
+                Some(PlanAlgoArg::Grid(a)) => Some(a),
+                Some(PlanAlgoArg::HybridAStar) | None => None,
+            };
+            if let Some((flag, _)) = sampling_flags.iter().find(|f| f.1) {
+                return Err(format!(
+                    "{flag} applies to the sampling planners (--algo rrt, rrt-connect, rrt-star, informed-rrt-star, prm, prm-star, bit-star){}",
+                    if *flag == "--radius" { " and hybrid-astar" } else { "" }
+                ));
+            }
             // Flags override the scenario's planner section, which overrides
             // the defaults.
             let overrides = GridPlanOverrides {
-                algorithm: algo.map(Into::into),
+                algorithm: algo,
                 heuristic: heuristic.map(Into::into),
                 weight,
                 diagonal: diagonal.map(Into::into),

@@ -23,6 +23,8 @@
 //!   Search, safe A* of Ge & Li (2022) §1, key-point extraction of Wu (2022)
 //!   §3.2.1 and Bottom-Up segmentation of Ge & Li §4.1 (docs/algorithms.md
 //!   §grid–§bottom-up).
+//! - [`car`]: car-like robots: Dubins and Reeds-Shepp curves and Hybrid
+//!   A* over continuous poses (§car-curves, §hybrid-astar).
 //! - [`world`]: the robot's body and kinematics, moving obstacles, terrain
 //!   and vehicle dynamics, the static map's geometry, sensor samples and
 //!   run outcomes (§robot, §terrain, §movers).
@@ -58,6 +60,7 @@ pub mod arm;
 pub mod barn;
 pub mod batch;
 pub mod bench;
+pub mod car;
 pub mod draw;
 pub mod geom;
 pub mod global;
@@ -70,6 +73,7 @@ pub mod params;
 pub mod planners;
 pub mod recipe;
 pub mod reproduce;
+pub mod sampling;
 pub mod scenario;
 pub mod sim;
 pub mod text;

@@ -26,7 +26,7 @@ use thiserror::Error;
 
 use crate::apf::ApfConfig;
 use crate::arm::episode::arm_apf_default;
-use crate::arm::{ArmError, ArmPredictor};
+use crate::arm::{ArmError, ArmPlanner, ArmPredictor};
 use crate::batch::{self, BatchError, MAX_VARIANTS};
 use crate::map::OccupancyGrid;
 use crate::scenario::{
@@ -39,7 +39,8 @@ use crate::scenario::{
 #[serde(default, deny_unknown_fields)]
 pub struct Recipe {
     /// A robot or APF scenario's local planner by registry name; an arm
-    /// scenario's hand predictor (`none`, `constant-velocity`, `rnn`).
+    /// scenario's hand predictor (`none`, `constant-velocity`, `rnn`) or
+    /// arm planner (`apf`, `rrt-connect`).
     pub planner: Option<String>,
     /// The scenario's seed; with a `variant`, the batch's seed.
     pub seed: Option<u64>,
@@ -136,7 +137,16 @@ impl Recipe {
             set_json_path(tree, path.trim(), value)?;
         }
         if let (Some(p), true) = (&self.planner, arm) {
-            set_predictor(tree, ArmPredictor::parse(p)?);
+            // An arm planner's name (`apf`, `rrt-connect`) picks the
+            // planner and keeps the predictor; a predictor's name picks it.
+            match ArmPlanner::parse(p) {
+                Ok(planner) => {
+                    if let Some(a) = tree.get_mut("arm").and_then(Value::as_object_mut) {
+                        a.insert("planner".into(), Value::from(planner.name()));
+                    }
+                }
+                Err(_) => set_predictor(tree, ArmPredictor::parse(p)?),
+            }
         }
         Ok(())
     }

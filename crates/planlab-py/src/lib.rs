@@ -423,6 +423,107 @@ fn plan<'py>(
     Ok(d)
 }
 
+/// A car's typed error as a Python exception: bad numbers are `ParamError`,
+/// the rest (endpoint off the map or in collision, no path) `PlanError`.
+fn car_err(e: planlab_core::car::CarError) -> PyErr {
+    use planlab_core::car::CarError;
+    match e {
+        CarError::InvalidParameter(_) | CarError::BadPose { .. } => err::<ParamError>(e),
+        e => err::<PlanError>(e),
+    }
+}
+
+fn pose(p: (f64, f64, f64)) -> planlab_core::car::Pose {
+    planlab_core::car::Pose::new(p.0, p.1, p.2)
+}
+
+/// Hybrid A* for a car (docs/algorithms.md §hybrid-astar), as `planlab
+/// plan --algo hybrid-astar`: `start`, `goal` are (x, y, θ) in world metres
+/// and **radians**. Returns a dict: `poses` ((n, 3) array x, y, θ),
+/// `forward` (bool per pose), `length_m`, `expanded`, `analytic`, `cusps`.
+#[pyfunction]
+#[pyo3(signature = (grid, start, goal, turning_radius, reverse = false, radius = None))]
+fn plan_car<'py>(
+    py: Python<'py>,
+    grid: &Grid,
+    start: (f64, f64, f64),
+    goal: (f64, f64, f64),
+    turning_radius: f64,
+    reverse: bool,
+    radius: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use planlab_core::car::hybrid_astar::{plan_hybrid_astar, HybridAStarConfig};
+    let mut cfg = HybridAStarConfig {
+        turning_radius,
+        reverse,
+        allow_unknown: grid.options.allow_unknown,
+        ..Default::default()
+    };
+    if let Some(r) = radius {
+        cfg.footprint_radius = r;
+    }
+    let g = &grid.grid;
+    let p = py
+        .detach(|| plan_hybrid_astar(g, pose(start), pose(goal), &cfg))
+        .map_err(car_err)?;
+    let flat: Vec<f64> = p.poses.iter().flat_map(|q| [q.x, q.y, q.yaw]).collect();
+    let d = PyDict::new(py);
+    d.set_item(
+        "poses",
+        Array2::from_shape_vec((p.poses.len(), 3), flat)
+            .map_err(err::<PlanError>)?
+            .into_pyarray(py),
+    )?;
+    d.set_item("forward", p.forward)?;
+    d.set_item("length_m", p.length)?;
+    d.set_item("expanded", p.expanded)?;
+    d.set_item("analytic", p.analytic)?;
+    d.set_item("cusps", p.cusps)?;
+    Ok(d)
+}
+
+fn curve_dict<'py>(
+    py: Python<'py>,
+    p: planlab_core::car::CurvePath,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("length", p.length())?;
+    d.set_item("word", p.word())?;
+    let segs: Vec<(String, f64)> = p
+        .segments
+        .iter()
+        .map(|s| (s.steer.letter().to_string(), s.length))
+        .collect();
+    d.set_item("segments", segs)?;
+    Ok(d)
+}
+
+/// The shortest forward-only car path (Dubins) from `start` to `goal`
+/// ((x, y, θ), metres and radians) at `radius`: `length`, `word`,
+/// `segments` ((letter, signed length) pairs).
+#[pyfunction]
+fn dubins<'py>(
+    py: Python<'py>,
+    start: (f64, f64, f64),
+    goal: (f64, f64, f64),
+    radius: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let p = planlab_core::car::dubins(pose(start), pose(goal), radius).map_err(car_err)?;
+    curve_dict(py, p)
+}
+
+/// As [`dubins`] when the car may reverse (Reeds-Shepp).
+#[pyfunction]
+fn reeds_shepp<'py>(
+    py: Python<'py>,
+    start: (f64, f64, f64),
+    goal: (f64, f64, f64),
+    radius: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let p = planlab_core::car::reeds_shepp(pose(start), pose(goal), radius).map_err(car_err)?;
+    curve_dict(py, p)
+}
+
 /// The grid algorithms' names (what `plan(algo=…)` accepts).
 #[pyfunction]
 fn algorithms() -> Vec<&'static str> {
@@ -1273,6 +1374,9 @@ fn _planlab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load_map, m)?)?;
     m.add_function(wrap_pyfunction!(load_scen, m)?)?;
     m.add_function(wrap_pyfunction!(plan, m)?)?;
+    m.add_function(wrap_pyfunction!(plan_car, m)?)?;
+    m.add_function(wrap_pyfunction!(dubins, m)?)?;
+    m.add_function(wrap_pyfunction!(reeds_shepp, m)?)?;
     m.add_function(wrap_pyfunction!(algorithms, m)?)?;
     m.add_function(wrap_pyfunction!(planner_catalogue, m)?)?;
     m.add_function(wrap_pyfunction!(batch_episodes, m)?)?;

@@ -14,7 +14,7 @@
 #[path = "../../planlab-wasm/src/draw_js.rs"]
 mod draw_js;
 
-use planlab_core::arm::{ArmEpisode, ArmPredictor, HandPreset, Obstacle3};
+use planlab_core::arm::{ArmEpisode, ArmPlanner, ArmPredictor, HandPreset, Obstacle3};
 use planlab_core::draw;
 use planlab_core::scenario::ArmScenario;
 use serde::Serialize;
@@ -37,15 +37,17 @@ pub struct ArmHandle {
 struct Choices {
     hand_presets: Vec<&'static str>,
     predictors: Vec<&'static str>,
+    planners: Vec<&'static str>,
 }
 
-/// The hand presets and predictors the page offers, as JSON
-/// `{hand_presets: [...], predictors: [...]}`.
+/// The hand presets, predictors and planners the page offers, as JSON
+/// `{hand_presets: [...], predictors: [...], planners: [...]}`.
 #[wasm_bindgen(js_name = armChoices)]
 pub fn arm_choices() -> String {
     serde_json::to_string(&Choices {
         hand_presets: HandPreset::ALL.iter().map(|p| p.name()).collect(),
         predictors: ArmPredictor::ALL.iter().map(|p| p.name()).collect(),
+        planners: ArmPlanner::ALL.iter().map(|p| p.name()).collect(),
     })
     .unwrap_or_default()
 }
@@ -171,6 +173,29 @@ impl ArmHandle {
     #[wasm_bindgen(js_name = metricsJson)]
     pub fn metrics_json(&self) -> Result<String, JsError> {
         serde_json::to_string(&self.ep.metrics()).map_err(js)
+    }
+
+    /// The planner and its effort so far as JSON: `{planner, plans,
+    /// replans, failed_plans, holds, iterations, collision_checks,
+    /// joint_path_rad, gripper_path_m, min_table_m}` (`min_table_m` null
+    /// without a table).
+    #[wasm_bindgen(js_name = plannerJson)]
+    pub fn planner_json(&self) -> Result<String, JsError> {
+        let e = self.ep.effort();
+        let table = self.ep.min_table_distance();
+        serde_json::to_string(&serde_json::json!({
+            "planner": self.ep.planner().name(),
+            "plans": e.plans,
+            "replans": e.replans,
+            "failed_plans": e.failed_plans,
+            "holds": e.holds,
+            "iterations": e.iterations,
+            "collision_checks": e.collision_checks,
+            "joint_path_rad": self.ep.joint_path_length(),
+            "gripper_path_m": self.ep.gripper_path_length(),
+            "min_table_m": table.is_finite().then_some(table),
+        }))
+        .map_err(js)
     }
 
     /// The current scenario (with the page's edits) as pretty JSON.

@@ -97,6 +97,25 @@ fn prediction_shows_virtual_obstacles_and_edits_apply() {
     assert!(message(h.set_hand("wave", 0.0, 0.0).unwrap_err()).contains("speed"));
     let choices: serde_json::Value = serde_json::from_str(&arm_choices()).unwrap();
     assert_eq!(choices["hand_presets"].as_array().unwrap().len(), 5);
+    assert_eq!(
+        choices["planners"],
+        serde_json::json!(["apf", "rrt-connect"])
+    );
+}
+
+#[wasm_bindgen_test]
+fn planner_json_names_the_planner_and_counts_its_effort() {
+    let mut h = ArmHandle::new(PRESET).unwrap();
+    let before: serde_json::Value = serde_json::from_str(&h.planner_json().unwrap()).unwrap();
+    assert_eq!(before["planner"], "apf");
+    assert_eq!(before["plans"], 0);
+    // The APF does not know a table: no distance to it.
+    assert!(before["min_table_m"].is_null());
+    h.step(20).unwrap();
+    let after: serde_json::Value = serde_json::from_str(&h.planner_json().unwrap()).unwrap();
+    assert!(after["plans"].as_u64().unwrap() > 0, "{after}");
+    assert!(after["joint_path_rad"].as_f64().unwrap() > 0.0, "{after}");
+    assert!(after["gripper_path_m"].as_f64().unwrap() > 0.0, "{after}");
 }
 
 #[wasm_bindgen_test]

@@ -37,6 +37,7 @@ const ui = {
   reset: el<HTMLButtonElement>('reset'),
   speed: el<HTMLSelectElement>('speed'),
   predictor: el<HTMLSelectElement>('predictor'),
+  planner: el<HTMLSelectElement>('planner'),
   showPred: el<HTMLInputElement>('show-pred'),
   showCand: el<HTMLInputElement>('show-cand'),
   showScript: el<HTMLInputElement>('show-script'),
@@ -56,8 +57,16 @@ const ui = {
     spikes: el('metric-spikes'),
     min: el('metric-min'),
     now: el('metric-now'),
+    joint: el('metric-joint'),
+    plans: el('metric-plans'),
   },
 };
+
+/** Page labels of the core's arm planners. */
+const PLANNER_LABELS: Record<string, string> = { apf: 'APF (thesis)', 'rrt-connect': 'RRT-Connect (joint space)' };
+/** Table top for RRT-Connect on the page, m: planlab's value for T-tab5-3
+ *  (below the hand's and the goal's heights), as `--set arm.table_z_m=0.72`. */
+const RRT_TABLE_Z_M = 0.72;
 
 let handle: ArmHandle | null = null;
 let view: ArmView | null = null;
@@ -159,6 +168,13 @@ function refresh(): void {
   ui.m.spikes.textContent = String(m.spikes);
   ui.m.min.textContent = `${m.min_obstacle_distance_m.toFixed(4)} m`;
   ui.m.now.textContent = `${h.distanceNow.toFixed(4)} m`;
+  const eff = JSON.parse(h.plannerJson());
+  ui.m.joint.textContent = `${eff.joint_path_rad.toFixed(2)} rad`;
+  ui.m.joint.dataset.value = String(eff.joint_path_rad);
+  ui.m.plans.textContent = `${eff.plans} (${eff.replans} replans), ${eff.collision_checks} checks`;
+  ui.m.plans.title = `${eff.iterations} iterations, ${eff.failed_plans} failed plans, ${eff.holds} holds` +
+    (eff.min_table_m === null ? '' : `; nearest the table ${eff.min_table_m.toFixed(3)} m`);
+  ui.body.dataset.planner = eff.planner;
   ui.m.min.dataset.value = String(m.min_obstacle_distance_m);
   ui.m.now.dataset.value = String(h.distanceNow);
   ui.m.length.dataset.value = String(m.path_length_m);
@@ -182,7 +198,7 @@ function refresh(): void {
   });
   const pred = h.predictor;
   ui.status.textContent =
-    `${h.name} — predictor ${pred}, hand ${h.handPreset} ×${h.handSpeed} (seed ${h.seed}); ` +
+    `${h.name} — ${eff.planner === 'apf' ? 'APF' : 'RRT-Connect'}, predictor ${pred}, hand ${h.handPreset} ×${h.handSpeed} (seed ${h.seed}); ` +
     `t = ${h.time.toFixed(1)} s, ${out}`;
   if (out !== 'running' && playing) setPlaying(false);
   if (out !== 'running') galleryRunEnded(out);
@@ -226,6 +242,7 @@ async function load(file: string, edit: (text: string) => string = (t) => t): Pr
   const json = JSON.parse(text);
   ui.description.textContent = json.description ?? '';
   ui.predictor.value = handle.predictor;
+  ui.planner.value = JSON.parse(handle.plannerJson()).planner;
   ui.handPreset.value = handle.handPreset;
   ui.handSpeed.value = String(handle.handSpeed);
   ui.handSeed.value = String(handle.seed);
@@ -249,7 +266,8 @@ function applyHand(): void {
 
 async function main(): Promise<void> {
   await init();
-  const choices: { hand_presets: string[]; predictors: string[] } = JSON.parse(armChoices());
+  const choices: { hand_presets: string[]; predictors: string[]; planners: string[] } = JSON.parse(armChoices());
+  for (const p of choices.planners) ui.planner.add(new Option(PLANNER_LABELS[p] ?? p, p));
   for (const p of choices.predictors) ui.predictor.add(new Option(p === 'none' ? 'none (sampling APF)' : p, p));
   for (const p of choices.hand_presets) ui.handPreset.add(new Option(p, p));
   view = new ArmView(ui.view);
@@ -269,6 +287,21 @@ async function main(): Promise<void> {
       showError(messageOf(e));
     }
     refresh();
+  });
+  // A planner change restarts the preset with the scene's planner set; RRT-
+  // Connect also gets the table top (planlab's value, as in the README's
+  // comparison), which the APF does not know.
+  ui.planner.addEventListener('change', () => {
+    const set: [string, string][] =
+      ui.planner.value === 'apf' ? [] : [['arm.planner', ui.planner.value], ['arm.table_z_m', String(RRT_TABLE_Z_M)]];
+    const predictor = ui.predictor.value;
+    load(ui.preset.value, (t) => editScenario(t, recipeJson(null, set)))
+      .then(() => {
+        handle?.setPredictor(predictor);
+        ui.predictor.value = predictor;
+        refresh();
+      })
+      .catch((e) => showError(messageOf(e)));
   });
   ui.predictor.addEventListener('change', () => {
     try {
@@ -332,7 +365,7 @@ async function main(): Promise<void> {
   }
   if (variantError !== null) showError(`Could not open the variant: ${messageOf(variantError)}`);
   else if (q && link.run) setPlaying(true);
-  ui.hint.textContent = 'Play to run; drag the target sliders, change the hand or the predictor at any time.';
+  ui.hint.textContent = 'Play to run; drag the target sliders, change the hand or the predictor at any time; the planner restarts the run.';
   // Hooks for the end-to-end tests.
   (window as unknown as { planlabArm: unknown }).planlabArm = {
     runToEnd(maxSteps = 2000): string {
@@ -343,6 +376,11 @@ async function main(): Promise<void> {
     },
     metrics: () => (handle ? JSON.parse(handle.metricsJson()) : null),
     distancePlot: () => ({ rows: distPlot?.length ?? 0, last: distPlot?.last() ?? [], series: handle ? Array.from(handle.distanceSeries(0)) : [] }),
+    planner: () => (handle ? JSON.parse(handle.plannerJson()) : null),
+    setPlanner(name: string) {
+      ui.planner.value = name;
+      ui.planner.dispatchEvent(new Event('change'));
+    },
     setPredictor(name: string) {
       ui.predictor.value = name;
       ui.predictor.dispatchEvent(new Event('change'));

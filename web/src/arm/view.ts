@@ -108,6 +108,8 @@ export class ArmView {
   private readonly goal: Mesh;
   private readonly start: Mesh;
   private readonly tool = polyline(0x2563eb);
+  /** RRT-Connect's plan still ahead, the tool along it (dashed). */
+  private readonly plan = polyline(0x16a34a, true);
   private readonly toolPts: Points;
   private readonly handPath = polyline(0xea580c);
   private readonly handScript = polyline(0xea580c, true);
@@ -157,7 +159,7 @@ export class ArmView {
     this.goal.scale.setScalar(0.025);
     this.start = new Mesh(this.sph, new MeshStandardMaterial({ color: 0x94a3b8 }));
     this.start.scale.setScalar(0.014);
-    this.scene.add(this.forearm.group, this.handBall, this.goal, this.start, this.tool, this.handPath, this.handScript);
+    this.scene.add(this.forearm.group, this.handBall, this.goal, this.start, this.tool, this.plan, this.handPath, this.handScript);
     const tg = new BufferGeometry();
     tg.setAttribute('position', new Float32BufferAttribute(new Float32Array(3), 3));
     this.toolPts = new Points(tg, new PointsMaterial({ color: 0x2563eb, size: 5, sizeAttenuation: false }));
@@ -250,6 +252,9 @@ export class ArmView {
     if (start.length === 3) this.start.position.set(start[0], start[1], start[2]);
     const tool = itemOf(d, Layer.Trail);
     setLine(this.tool, tool);
+    const plan = itemOf(d, Layer.Trail, 1);
+    this.plan.visible = plan.length > 0;
+    if (plan.length) setLine(this.plan, plan);
     this.toolPts.geometry.setAttribute('position', new Float32BufferAttribute(tool, 3));
     setLine(this.handPath, itemOf(d, Layer.HandPath, 0));
     const script = itemOf(d, Layer.HandPath, 1);

@@ -70,17 +70,21 @@ function blockPf(finder: PF.AStarFinder, q: Query, grid: PF.Grid, n: number): nu
 }
 
 /**
- * Runs per block: doubled until the fastest time per run seen so far says a
- * block lasts BLOCK_MS. The fastest, because a garbage collection or
- * another process can make one trial slow, which would stop the doubling
- * early and leave blocks shorter than the timer's resolution.
+ * Runs per block: doubled until a block lasts BLOCK_MS, judged both by the
+ * latest block and by the fastest time per run seen so far. The fastest,
+ * because a garbage collection or another process can make one trial slow;
+ * the latest too, because the first trial runs cold (JIT, caches) and would
+ * otherwise stop the doubling at n = 1 with blocks far shorter than the
+ * timer's resolution (a 0 ms block and a ratio of 0 on a short query).
  */
 function runsPerBlock(block: (n: number) => number, cap: number): number {
+  block(1); // untimed warm-up
   let n = 1;
   let best = Infinity;
   for (;;) {
-    best = Math.min(best, block(n) / n);
-    if (n >= cap || n * best >= BLOCK_MS) return n;
+    const t = block(n);
+    best = Math.min(best, t / n);
+    if (n >= cap || (t >= BLOCK_MS && n * best >= BLOCK_MS)) return n;
     n = Math.min(cap, n * 2);
   }
 }

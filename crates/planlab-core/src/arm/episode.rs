@@ -17,8 +17,10 @@ use super::geometry::{link_capsules, link_distance, min_distance, LinkCapsule, O
 use super::hand::{HandMotion, HandSpec};
 use super::kinematics::IkConfig;
 use super::model::{ArmModel, ArmSpec};
+use super::rrt::{self, ArmChecker, RrtConfig};
 use super::ArmError;
 use crate::apf::{Apf, ApfConfig, ApfMetrics, ApfMode, ApfStep, ObstacleObs, PredictorKind};
+use crate::num::Rng;
 use crate::params::{check_param, Bound};
 use crate::world::Outcome;
 
@@ -35,6 +37,10 @@ pub const MOTION_CHECKS: usize = 4;
 /// stuck. A move that gains distance is always allowed, so the margin
 /// never traps an arm already inside it.
 pub const ARM_CLEARANCE_M: f64 = 0.005;
+
+/// Random IK starts RRT-Connect tries for a free goal posture when the
+/// hand blocks the one it had.
+pub const GOAL_POSTURE_TRIES: usize = 20;
 
 /// Timing and end conditions of an arm episode.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -63,6 +69,17 @@ impl Default for ArmSimConfig {
             stuck_time_s: 15.0,
         }
     }
+}
+
+/// Smallest distance from `links` to the table top at `z` (infinite
+/// without one), m.
+fn table_distance(links: &[LinkCapsule], z: Option<f64>) -> f64 {
+    z.map_or(f64::INFINITY, |z| {
+        links
+            .iter()
+            .map(|l| (l.a.z.min(l.b.z) - l.radius - z).max(0.0))
+            .fold(f64::INFINITY, f64::min)
+    })
 }
 
 /// Which obstacle predictor the end-effector APF uses (the page's switch).
@@ -137,6 +154,72 @@ impl ArmPredictor {
     }
 }
 
+/// Which planner moves the arm.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum ArmPlanner {
+    /// The thesis's end-effector APF (with the scene's predictor), one
+    /// 0.04 m tool step per planning period, joints by IK.
+    #[default]
+    Apf,
+    /// RRT-Connect in joint space with shortcutting ([`super::rrt`]),
+    /// replanned when the hand (and its prediction) blocks the path.
+    RrtConnect,
+}
+
+impl ArmPlanner {
+    /// Every choice, in the page's order.
+    pub const ALL: [ArmPlanner; 2] = [ArmPlanner::Apf, ArmPlanner::RrtConnect];
+
+    /// The kebab-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ArmPlanner::Apf => "apf",
+            ArmPlanner::RrtConnect => "rrt-connect",
+        }
+    }
+
+    /// Parses a kebab-case name.
+    pub fn parse(s: &str) -> Result<ArmPlanner, ArmError> {
+        match s {
+            "apf" => Ok(ArmPlanner::Apf),
+            "rrt-connect" => Ok(ArmPlanner::RrtConnect),
+            _ => Err(ArmError::Invalid(format!(
+                "unknown arm planner `{s}`: use apf or rrt-connect"
+            ))),
+        }
+    }
+
+    fn is_apf(&self) -> bool {
+        *self == ArmPlanner::Apf
+    }
+}
+
+fn is_default_rrt(c: &RrtConfig) -> bool {
+    *c == RrtConfig::default()
+}
+
+/// Planning effort of an episode (the core has no clock: effort is counted).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct PlanEffort {
+    /// Plans made: APF steps, or RRT-Connect runs (the first and every
+    /// replan).
+    pub plans: u32,
+    /// RRT-Connect runs after the first (the path was blocked).
+    pub replans: u32,
+    /// RRT-Connect runs that found no path (the arm held).
+    pub failed_plans: u32,
+    /// Planning instants at which the predicted hand reached the arm's
+    /// posture, so the arm stopped instead of planning.
+    pub holds: u32,
+    /// Planner iterations: one per APF step, RRT-Connect's outer
+    /// iterations (one sample each) summed over its runs.
+    pub iterations: u64,
+    /// Whole-arm postures checked for collision (the APF's move checks;
+    /// RRT-Connect's tree edges, shortcuts and path checks).
+    pub collision_checks: u64,
+}
+
 /// The `arm` section of an arm scenario.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -165,6 +248,17 @@ pub struct ArmScene {
     /// Timing and end conditions.
     #[serde(default)]
     pub sim: ArmSimConfig,
+    /// Which planner moves the arm (default `apf`).
+    #[serde(default, skip_serializing_if = "ArmPlanner::is_apf")]
+    pub planner: ArmPlanner,
+    /// RRT-Connect settings (with `planner: rrt-connect`).
+    #[serde(default, skip_serializing_if = "is_default_rrt")]
+    pub rrt: RrtConfig,
+    /// Height of the table top, m: RRT-Connect keeps every link above it
+    /// by the clearance margin; the APF does not know it (its smallest
+    /// distance to it is measured).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub table_z_m: Option<f64>,
 }
 
 /// The APF defaults for the arm: the thesis's, with the tool's radius as
@@ -205,6 +299,25 @@ pub struct ArmEpisode {
     end_time: f64,
     best_goal_dist: f64,
     best_at: f64,
+    /// Whole-arm postures the APF's move check looked at.
+    apf_checks: std::cell::Cell<u64>,
+    effort: PlanEffort,
+    joint_len: f64,
+    gripper_len: f64,
+    min_table: f64,
+    rrt: Option<RrtRun>,
+}
+
+/// The joint-space planner's state in an episode.
+#[derive(Debug, Clone)]
+struct RrtRun {
+    cfg: RrtConfig,
+    q_goal: Vec<f64>,
+    /// Postures still ahead (the current one excluded).
+    ahead: Vec<Vec<f64>>,
+    rng: Rng,
+    /// Predicted hand centres planned against, with k (1 = t+1, 2 = t+2).
+    predicted: Vec<(DVec3, u8)>,
 }
 
 impl std::fmt::Debug for ArmEpisode {
@@ -234,6 +347,12 @@ impl ArmEpisode {
             .validate()
             .map_err(|e| ArmError::Invalid(e.to_string()))?;
         let sim = scene.sim;
+        scene.rrt.validate()?;
+        if let Some(z) = scene.table_z_m {
+            if !z.is_finite() {
+                return Err(ArmError::NotFinite("table_z_m".into()));
+            }
+        }
         check_pos("sim.plan_period_s", sim.plan_period_s)?;
         check_pos("sim.sample_period_s", sim.sample_period_s)?;
         check_pos("sim.max_time_s", sim.max_time_s)?;
@@ -326,6 +445,38 @@ impl ArmEpisode {
                 obstacle: "hand or forearm".into(),
             });
         }
+        let rrt = match scene.planner {
+            ArmPlanner::Apf => None,
+            ArmPlanner::RrtConnect => {
+                // The table and the arm itself are fixed: a start or goal
+                // posture they block is bad input, not a moment to wait.
+                let mut c = ArmChecker::new(
+                    &model,
+                    vec![],
+                    scene.table_z_m,
+                    ARM_CLEARANCE_M,
+                    scene.rrt.check_sweep_m,
+                );
+                for (what, q) in [("start posture", &q), ("goal posture", &q_goal)] {
+                    let d = c.clearance(q);
+                    if d < ARM_CLEARANCE_M {
+                        return Err(ArmError::PostureBlocked {
+                            what: what.into(),
+                            clearance_m: d,
+                            margin_m: ARM_CLEARANCE_M,
+                        });
+                    }
+                }
+                Some(RrtRun {
+                    cfg: scene.rrt,
+                    q_goal: q_goal.clone(),
+                    ahead: Vec::new(),
+                    rng: Rng::new(seed ^ 0x5252_5443), // "RRTC"
+                    predicted: Vec::new(),
+                })
+            }
+        };
+        let min_table = table_distance(&links, scene.table_z_m);
         let apf = Apf::<DVec3>::new(scene.apf).map_err(|e| ArmError::Invalid(e.to_string()))?;
         let per_plan = ((sim.plan_period_s / sim.sample_period_s).round() as u64).max(1);
         let tool = model.tool_position(&q);
@@ -346,6 +497,12 @@ impl ArmEpisode {
             end_time: 0.0,
             best_goal_dist: (tool - goal).length(),
             best_at: 0.0,
+            apf_checks: std::cell::Cell::new(0),
+            effort: PlanEffort::default(),
+            joint_len: 0.0,
+            gripper_len: 0.0,
+            min_table,
+            rrt,
             radii,
             hand,
             apf,
@@ -398,6 +555,10 @@ impl ArmEpisode {
                 target: goal,
                 error_m: r.error_m,
             });
+        }
+        if let Some(r) = &mut self.rrt {
+            r.q_goal = q;
+            r.ahead.clear();
         }
         self.scene.goal = goal;
         if matches!(
@@ -463,6 +624,7 @@ impl ArmEpisode {
     /// it nearer than [`ARM_CLEARANCE_M`] and nearer than now.
     fn motion_touches(&self, q_to: &[f64], obstacles: &[Obstacle3; 2]) -> bool {
         let dist = |q: &[f64]| {
+            self.apf_checks.set(self.apf_checks.get() + 1);
             let links = link_capsules(&self.model.fk(q), &self.radii);
             min_distance(&links, obstacles).map_or(f64::INFINITY, |(d, _)| d)
         };
@@ -476,6 +638,264 @@ impl ArmEpisode {
             let d = dist(&q);
             d <= 0.0 || (k == MOTION_CHECKS && d < ARM_CLEARANCE_M && d < now)
         })
+    }
+
+    /// RRT-Connect at a planning instant: the hand now and, with a
+    /// predictor, its sweep through its predicted places at t+1 and t+2
+    /// (capsules of the hand's radius, the forearm at each place) are the
+    /// obstacles; the path still ahead is checked against them and, when
+    /// blocked (or at the start), planned afresh from the current posture.
+    /// With no path found, or the predicted hand on the arm's posture, the
+    /// arm holds and tries again next period.
+    fn rrt_plan(&mut self, t: f64, obs: &[ObstacleObs<DVec3>]) {
+        let Some(mut run) = self.rrt.take() else {
+            return;
+        };
+        let hand_now = self.hand.obstacles_at(t);
+        let links = self.links();
+        let mut obstacles = hand_now.to_vec();
+        let mut reaches_arm = false;
+        run.predicted.clear();
+        if ArmPredictor::of(&self.scene.apf) != ArmPredictor::None {
+            // The hand sweeps from where it is through its predicted
+            // places: each stretch is a capsule of the hand's radius, and
+            // the forearm is added at each predicted place.
+            let mut prev = self.hand.hand_at(t);
+            let mut preds: Vec<_> = self
+                .apf
+                .predictions(obs)
+                .into_iter()
+                .filter(|v| v.id == 0)
+                .collect();
+            preds.sort_by_key(|v| v.k);
+            for v in preds {
+                let [hand, forearm] = self.hand.obstacles_for(v.centre);
+                let swept = Obstacle3::Capsule {
+                    a: prev.to_array(),
+                    b: v.centre.to_array(),
+                    radius: self.hand.spec.hand_radius_m,
+                };
+                let pred = [swept, hand, forearm];
+                prev = v.centre;
+                reaches_arm |= rrt::clearance_of(&links, &pred, None) < ARM_CLEARANCE_M;
+                obstacles.extend(pred);
+                run.predicted.push((v.centre, v.k));
+            }
+        }
+        if reaches_arm {
+            // The hand is predicted to come onto the arm where it is: no
+            // path from here avoids that, so the arm stops (a protective
+            // stop, as the APF holds) and plans again next period.
+            self.effort.holds += 1;
+            run.ahead.clear();
+            self.rrt = Some(run);
+            return;
+        }
+        let mut c = ArmChecker::new(
+            &self.model,
+            obstacles,
+            self.scene.table_z_m,
+            ARM_CLEARANCE_M,
+            run.cfg.check_sweep_m,
+        );
+        // An arm the hand came nearer than the margin plans with half its
+        // clearance as the margin (and checks finely enough for it), so it
+        // can still move away.
+        let root = c.clearance(&self.q);
+        if root < ARM_CLEARANCE_M {
+            let m = 0.5 * root;
+            c = ArmChecker::new(
+                &self.model,
+                c.obstacles().to_vec(),
+                self.scene.table_z_m,
+                m,
+                run.cfg.check_sweep_m.min(2.0 * m),
+            );
+        }
+        let at_goal = run
+            .q_goal
+            .iter()
+            .zip(&self.q)
+            .all(|(a, b)| (a - b).abs() < 1e-12);
+        let mut path = vec![self.q.clone()];
+        path.extend(run.ahead.iter().cloned());
+        let blocked = if run.ahead.is_empty() {
+            !at_goal
+        } else {
+            !c.path_valid(&path)
+        };
+        if blocked {
+            if self.effort.plans > 0 {
+                self.effort.replans += 1;
+            }
+            self.effort.plans += 1;
+            run.ahead.clear();
+            // The goal posture the hand now blocks is replaced by another
+            // IK solution for the same tool point, as MoveIt samples goal
+            // states: from the current posture, then from seeded random
+            // ones.
+            if c.margin() > 1e-4 && !c.valid(&run.q_goal) {
+                if let Some(q) = self.free_goal_posture(&mut c, &mut run.rng) {
+                    run.q_goal = q;
+                }
+            }
+            if c.margin() > 1e-4 {
+                match rrt::rrt_connect(&mut c, &self.q, &run.q_goal, &run.cfg, &mut run.rng) {
+                    Ok(plan) => {
+                        self.effort.iterations += u64::from(plan.iterations);
+                        let short = rrt::shortcut(
+                            &mut c,
+                            &plan.path,
+                            run.cfg.shortcut_attempts,
+                            &mut run.rng,
+                        );
+                        run.ahead = short[1..].to_vec();
+                    }
+                    Err(e) => {
+                        if let ArmError::NoPath { iterations } = e {
+                            self.effort.iterations += u64::from(iterations);
+                        }
+                        self.effort.failed_plans += 1;
+                    }
+                }
+            } else {
+                self.effort.failed_plans += 1;
+            }
+        }
+        self.effort.collision_checks += c.checks();
+        self.rrt = Some(run);
+    }
+
+    /// An IK posture putting the tool on the goal that `c` finds valid:
+    /// IK from the current posture, then from up to
+    /// [`GOAL_POSTURE_TRIES`] seeded random postures.
+    fn free_goal_posture(&self, c: &mut ArmChecker<'_>, rng: &mut Rng) -> Option<Vec<f64>> {
+        let goal = DVec3::from_array(self.scene.goal);
+        let deep = IkConfig {
+            max_iters: self.scene.ik.max_iters.max(400),
+            ..self.scene.ik
+        };
+        let tol = self.scene.sim.goal_tolerance_m;
+        for k in 0..=GOAL_POSTURE_TRIES {
+            let mut q = if k == 0 {
+                self.q.clone()
+            } else {
+                (0..self.model.dof())
+                    .map(|i| {
+                        let (lo, hi) = self.model.limits(i);
+                        rng.range(lo, hi)
+                    })
+                    .collect()
+            };
+            let r = self.model.ik_solve(&mut q, goal, &deep);
+            if r.error_m <= tol && c.valid(&q) {
+                return Some(q);
+            }
+        }
+        None
+    }
+
+    /// Moves the joints along the path ahead for one sample period, no
+    /// joint faster than the speed limit (the postures are followed in
+    /// order, the largest joint change setting the pace).
+    fn rrt_advance(&mut self) {
+        let Some(run) = &mut self.rrt else {
+            return;
+        };
+        let mut budget = run.cfg.max_joint_speed_rad_s * self.dt;
+        while budget > 0.0 && !run.ahead.is_empty() {
+            let next = &run.ahead[0];
+            let largest = next
+                .iter()
+                .zip(&self.q)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            if largest <= budget {
+                self.q.clone_from(next);
+                budget -= largest;
+                run.ahead.remove(0);
+            } else {
+                let f = budget / largest;
+                for (qi, n) in self.q.iter_mut().zip(next) {
+                    *qi += (n - *qi) * f;
+                }
+                budget = 0.0;
+            }
+        }
+    }
+
+    /// The planner moving the arm.
+    pub fn planner(&self) -> ArmPlanner {
+        self.scene.planner
+    }
+
+    /// Planning effort so far.
+    pub fn effort(&self) -> PlanEffort {
+        self.effort
+    }
+
+    /// Joint-space distance travelled so far (Euclidean, sample by
+    /// sample), rad.
+    pub fn joint_path_length(&self) -> f64 {
+        self.joint_len
+    }
+
+    /// Distance the tool point travelled so far, sample by sample (0.1 s;
+    /// the metrics' `path_length_m` joins the planning instants only), m.
+    pub fn gripper_path_length(&self) -> f64 {
+        self.gripper_len
+    }
+
+    /// Smallest distance from any link to the table top so far (infinite
+    /// without a table), m.
+    pub fn min_table_distance(&self) -> f64 {
+        self.min_table
+    }
+
+    /// RRT-Connect's postures still ahead, from the current one (empty
+    /// with the APF or while holding).
+    pub fn planned_path(&self) -> Vec<Vec<f64>> {
+        match &self.rrt {
+            Some(r) if !r.ahead.is_empty() => {
+                let mut p = vec![self.q.clone()];
+                p.extend(r.ahead.iter().cloned());
+                p
+            }
+            _ => Vec::new(),
+        }
+    }
+
+    /// The tool point along [`ArmEpisode::planned_path`], each straight
+    /// joint move sampled at 8 points, m.
+    pub fn planned_tool_path(&self) -> Vec<DVec3> {
+        let p = self.planned_path();
+        let mut out = Vec::new();
+        if let Some(first) = p.first() {
+            out.push(self.model.tool_position(first));
+        }
+        for w in p.windows(2) {
+            for k in 1..=8 {
+                let f = k as f64 / 8.0;
+                let q: Vec<f64> = w[0]
+                    .iter()
+                    .zip(&w[1])
+                    .map(|(a, b)| a + (b - a) * f)
+                    .collect();
+                out.push(self.model.tool_position(&q));
+            }
+        }
+        out
+    }
+
+    /// The predicted hand centres RRT-Connect last planned or checked
+    /// against, with k (1 = t+1, 2 = t+2).
+    pub fn rrt_predicted(&self) -> &[(DVec3, u8)] {
+        self.rrt.as_ref().map_or(&[], |r| &r.predicted)
+    }
+
+    /// The goal posture RRT-Connect plans to (`None` with the APF).
+    pub fn goal_posture(&self) -> Option<&[f64]> {
+        self.rrt.as_ref().map(|r| r.q_goal.as_slice())
     }
 
     /// Planned moves the whole-arm check refused so far (another
@@ -494,7 +914,17 @@ impl ArmEpisode {
         let goal = DVec3::from_array(self.scene.goal);
         let obs = self.observed(t);
         let phase = self.tick % self.per_plan;
-        if phase == 0 {
+        let q_before = self.q.clone();
+        let tool_before = self.model.tool_position(&self.q);
+        if self.rrt.is_some() {
+            self.apf.observe(t, &obs);
+            if phase == 0 {
+                self.rrt_plan(t, &obs);
+            }
+            self.rrt_advance();
+        } else if phase == 0 {
+            self.effort.plans += 1;
+            self.effort.iterations += 1;
             let tool = self.model.tool_position(&self.q);
             let mut s = self
                 .apf
@@ -541,15 +971,24 @@ impl ArmEpisode {
             self.q_from = self.q.clone();
             self.q_to = q_to;
             self.last_step = Some(s);
+            self.effort.collision_checks = self.apf_checks.get();
         } else {
             self.apf.observe(t, &obs);
         }
-        // Joints move linearly from q_from to q_to over the period.
         self.tick += 1;
-        let f = (phase + 1) as f64 / self.per_plan as f64;
-        for i in 0..self.q.len() {
-            self.q[i] = self.q_from[i] + (self.q_to[i] - self.q_from[i]) * f;
+        if self.rrt.is_none() {
+            // Joints move linearly from q_from to q_to over the period.
+            let f = (phase + 1) as f64 / self.per_plan as f64;
+            for i in 0..self.q.len() {
+                self.q[i] = self.q_from[i] + (self.q_to[i] - self.q_from[i]) * f;
+            }
         }
+        self.joint_len += q_before
+            .iter()
+            .zip(&self.q)
+            .map(|(a, b)| (b - a) * (b - a))
+            .sum::<f64>()
+            .sqrt();
         let t = self.time();
         let hand_obs = self.hand.obstacles_at(t);
         self.hand_path.push(self.hand.hand_at(t));
@@ -557,7 +996,12 @@ impl ArmEpisode {
         let d = min_distance(&links, &hand_obs).map_or(f64::INFINITY, |d| d.0);
         self.dist_now = d;
         self.min_dist = self.min_dist.min(d);
+        self.min_table = self
+            .min_table
+            .min(table_distance(&links, self.scene.table_z_m));
         let tool = self.model.tool_position(&self.q);
+        self.gripper_len += (tool - tool_before).length();
+        let rrt_done = self.rrt.as_ref().is_some_and(|r| r.ahead.is_empty());
         if phase + 1 == self.per_plan {
             self.path.push(tool);
         }
@@ -569,7 +1013,7 @@ impl ArmEpisode {
         let sim = &self.scene.sim;
         self.outcome = if d <= 0.0 {
             Outcome::Collision
-        } else if phase + 1 == self.per_plan && to_goal <= sim.goal_tolerance_m {
+        } else if (phase + 1 == self.per_plan || rrt_done) && to_goal <= sim.goal_tolerance_m {
             Outcome::Reached
         } else if t >= sim.max_time_s - 1e-9 {
             Outcome::Timeout

@@ -8,6 +8,8 @@
 //! - [`geometry`]: links as capsules, distance and collision against sphere
 //!   and capsule obstacles (parry3d).
 //! - [`hand`]: the moving hand and forearm with scripted reaching motions.
+//! - [`rrt`]: RRT-Connect in joint space and path shortcutting, the
+//!   alternative arm planner (docs/algorithms.md §arm-rrt).
 //! - [`episode`]: the end effector planned by the 3D APF of [`crate::apf`]
 //!   among the moving hand, followed by IK; the `arm` section of an arm
 //!   scenario (the file is [`crate::scenario::ArmScenario`]) and metrics.
@@ -17,12 +19,16 @@ pub mod geometry;
 pub mod hand;
 pub mod kinematics;
 pub mod model;
+pub mod rrt;
 
-pub use episode::{ArmEpisode, ArmMetrics, ArmPredictor, ArmScene, ArmSimConfig};
+pub use episode::{
+    ArmEpisode, ArmMetrics, ArmPlanner, ArmPredictor, ArmScene, ArmSimConfig, PlanEffort,
+};
 pub use geometry::{link_capsules, min_distance, LinkCapsule, Obstacle3};
 pub use hand::{HandMotion, HandPreset, HandSpec};
 pub use kinematics::{Frames, IkConfig, IkReport};
 pub use model::{ArmModel, ArmSpec, Frame, JointSpec};
+pub use rrt::{rrt_connect, shortcut, ArmChecker, RrtConfig, RrtPlan};
 
 use thiserror::Error;
 
@@ -114,6 +120,23 @@ pub enum ArmError {
         target: [f64; 3],
         /// Remaining error, m.
         error_m: f64,
+    },
+    /// A posture given to the joint-space planner is in contact or nearer
+    /// than the margin to an obstacle, the table or the arm itself.
+    #[error("{what} is blocked: {clearance_m:.4} m from the hand, table or arm, the planner keeps {margin_m:.4} m")]
+    PostureBlocked {
+        /// Which posture (`start posture`, `goal posture`).
+        what: String,
+        /// Its clearance, m.
+        clearance_m: f64,
+        /// The margin required, m.
+        margin_m: f64,
+    },
+    /// RRT-Connect found no path within its iterations.
+    #[error("RRT-Connect found no path in {iterations} iterations")]
+    NoPath {
+        /// Iterations run.
+        iterations: u32,
     },
     /// Any other out-of-range or inconsistent value (names the field).
     #[error("invalid arm setting: {}", crate::text::one_line(.0))]

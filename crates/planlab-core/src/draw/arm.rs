@@ -8,7 +8,8 @@ use crate::arm::{ArmEpisode, Obstacle3};
 use glam::DVec3;
 
 /// The layers of `ep` in `layers`, appended to `out`: [`Layer::Trail`]
-/// (the tool's path), [`Layer::Goals`] (start `tag` 0, goal 1),
+/// (the tool's path `tag` 0; with RRT-Connect, tag 1 the tool along the
+/// joint-space plan still ahead), [`Layer::Goals`] (start `tag` 0, goal 1),
 /// [`Layer::Predicted`], [`Layer::Candidates`], [`Layer::Links`],
 /// [`Layer::Hand`] and [`Layer::HandPath`] (where the hand went, and with
 /// `script` ≥ 2 its scripted motion sampled at that many instants up to its
@@ -24,6 +25,12 @@ pub fn arm_episode(ep: &ArmEpisode, script: usize, layers: Layers, out: &mut Dra
             0.0,
             0.0,
         );
+    }
+    if want(Layer::Trail) {
+        let ahead = ep.planned_tool_path();
+        if ahead.len() >= 2 {
+            out.push(Layer::Trail, Shape::Polyline3, flat(&ahead), 1.0, 0.0);
+        }
     }
     if want(Layer::Goals) {
         let s = ep.scene();
@@ -54,6 +61,21 @@ pub fn arm_episode(ep: &ArmEpisode, script: usize, layers: Layers, out: &mut Dra
                     c.cost,
                 );
             }
+        }
+    }
+    // RRT-Connect has no APF step: its predicted hand (the centres it last
+    // planned or checked against) is drawn with the hand's radius.
+    if want(Layer::Predicted) && ep.last_step().is_none() {
+        let r = ep.scene().hand.hand_radius_m;
+        for (c, k) in ep.rrt_predicted() {
+            let [x, y, z] = c.to_array();
+            out.push(
+                Layer::Predicted,
+                Shape::Spheres,
+                [x, y, z, r],
+                f64::from(*k),
+                0.0,
+            );
         }
     }
     if want(Layer::Links) {

@@ -28,8 +28,9 @@ pub const NO_INFORMATION: u8 = 255;
 pub const FREE_SPACE: u8 = 0;
 
 /// Squared distance in cells from each cell centre to the nearest occupied
-/// cell centre, `f64::INFINITY` when the grid has no occupied cell.
-fn squared_cell_distances(grid: &OccupancyGrid) -> Vec<f64> {
+/// cell centre, `f64::INFINITY` when the grid has no occupied cell. Exact
+/// (whole numbers), row-major; unknown cells are not obstacles.
+pub fn squared_cell_distances(grid: &OccupancyGrid) -> Vec<f64> {
     let w = grid.width();
     let cells = grid.cells();
     // Pass 1, along columns: distance to the nearest occupied cell in the

@@ -1,0 +1,88 @@
+//! `planlab plan --algo hybrid-astar` and `planlab curve`: results and
+//! one-line errors.
+
+use std::process::Command;
+
+const REPO: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+
+fn planlab(args: &[&str]) -> (bool, String, String) {
+    let o = Command::new(env!("CARGO_BIN_EXE_planlab"))
+        .args(args)
+        .output()
+        .expect("run planlab");
+    (
+        o.status.success(),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn curve_prints_the_hand_computed_lsl_and_a_reverse() {
+    let (ok, out, err) = planlab(&[
+        "curve", "dubins", "--from", "0,0,0", "--to", "0,4,180", "--radius", "1",
+    ]);
+    assert!(ok, "{err}");
+    assert_eq!(out.trim(), "dubins: length 5.141593 m, word LSL");
+    let (ok, out, _) = planlab(&[
+        "curve",
+        "reeds-shepp",
+        "--from",
+        "0,0,0",
+        "--to",
+        "-0.5,0,0",
+        "--radius",
+        "1",
+    ]);
+    assert!(ok);
+    assert_eq!(out.trim(), "reeds-shepp: length 0.500000 m, word S-");
+    let (ok, _, err) = planlab(&[
+        "curve", "dubins", "--from", "0,0,0", "--to", "1,1,0", "--radius", "NaN",
+    ]);
+    assert!(
+        !ok && err.trim().lines().count() == 1 && err.contains("turning radius"),
+        "{err}"
+    );
+}
+
+#[test]
+fn hybrid_astar_plans_on_the_turtlebot_map_and_refuses_bad_input_in_one_line() {
+    let map = format!("{REPO}/assets/maps/turtlebot3.yaml");
+    let base = [
+        "plan",
+        &map,
+        "--algo",
+        "hybrid-astar",
+        "--start",
+        "-2,-0.5,0",
+        "--goal",
+        "2,0.5,90",
+    ];
+    let run = |extra: &[&str]| {
+        let mut a: Vec<&str> = base.to_vec();
+        a.extend_from_slice(extra);
+        planlab(&a)
+    };
+    let (ok, out, err) = run(&["--turning-radius", "0.3", "--radius", "0.1", "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(v["analytic"], true);
+    let poses = v["poses"].as_array().unwrap();
+    let last = poses.last().unwrap();
+    assert!((last[0].as_f64().unwrap() - 2.0).abs() < 1e-6);
+    assert!((last[2].as_f64().unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-6);
+    for (extra, needle) in [
+        (vec!["--turning-radius", "-1"], "turning radius"),
+        (vec![], "--turning-radius"),
+        (
+            vec!["--turning-radius", "0.3", "--radius", "nan"],
+            "footprint radius",
+        ),
+    ] {
+        let (ok, _, err) = run(&extra);
+        assert!(
+            !ok && err.trim().lines().count() == 1 && err.contains(needle),
+            "{extra:?}: {err}"
+        );
+    }
+}
