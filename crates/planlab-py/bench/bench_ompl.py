@@ -461,7 +461,14 @@ class PlanlabRunner:
         if self.range_cells is not None:
             kw["range"] = self.range_cells
         t0, c0 = time.perf_counter(), time.process_time()
-        res = self.planlab.plan(self.grid, tuple(start), tuple(goal), **kw)
+        try:
+            res = self.planlab.plan(self.grid, tuple(start), tuple(goal), **kw)
+        except self.planlab.PlanError as e:
+            # No path within the budget (the endpoints, cell centres of free
+            # cells, are free for a disc under half a cell).
+            if "no path after" not in str(e):
+                raise
+            res = {}
         wall, cpu = time.perf_counter() - t0, time.process_time() - c0
         path = res.get("path")
         if path is not None and len(path) and math.isfinite(res.get("cost", math.inf)):
