@@ -110,6 +110,26 @@ def test_the_same_seed_repeats_and_a_generous_time_limit_changes_nothing():
     assert d["path"].tolist() != a["path"].tolist()
 
 
+def test_the_grids_kept_disc_space_follows_the_radius_and_unknown_flag():
+    # The space is cached per grid for the last (radius, allow_unknown):
+    # changing either must not reuse it.
+    occ = np.zeros((12, 12), dtype=np.uint8)
+    occ[0:9, 5] = 1
+    occ[9, 5] = 2  # unknown: blocked unless allowed
+    grid = planlab.Grid(occ)
+    kw = dict(algo="rrt-connect", iterations=20000, seed=1)
+    a = planlab.plan(grid, (1, 1), (10, 1), radius=0.3, **kw)
+    wide = planlab.plan(grid, (1, 1), (10, 1), radius=0.45, **kw)
+    assert wide["radius"] == 0.45 and a["radius"] == 0.3
+    assert wide["path"].tolist() != a["path"].tolist()
+    through = planlab.plan(grid, (1, 1), (10, 1), radius=0.3, allow_unknown=True, **kw)
+    again = planlab.plan(grid, (1, 1), (10, 1), radius=0.3, **kw)
+    assert again["path"].tolist() == a["path"].tolist()
+    # Allowed, the unknown cell opens a second gap, row 9, nearer the ends.
+    assert through["path"].tolist() != a["path"].tolist()
+    assert max(y for _, y in a["path"]) > 10  # the only gap without it: rows 10-11
+
+
 def test_a_short_time_limit_stops_before_the_iterations():
     grid = planlab.load_map(ARENA2)
     start, goal = arena2_row()
