@@ -4,9 +4,12 @@ same Moving AI maps, queries and disc robot.
     python crates/planlab-py/bench/bench_ompl.py [--per-map 10] [--seeds 5]
         [--radius 0.4] [--budgets 0.1,1] [--json out.json] [MAP ...]
 
-Needs the `ompl` wheel (crates/planlab-py/bench/requirements-ompl.txt) and
-planlab built optimised into the same venv; docs/bench-ompl.md says how
-and what was measured. Not part of CI (minutes per map).
+Needs the `ompl` wheel (pinned in crates/planlab-py/requirements-dev.txt,
+so scripts/setup.sh puts it in .venv) and planlab built optimised into the
+same venv (maturin develop --profile py-release); docs/bench-ompl.md says
+how and what was measured. A full run takes minutes per map: CI runs only
+crates/planlab-py/tests/test_bench_ompl_smoke.py (two arena rows through
+`run_map`) and the harness tests.
 
 Metrics, medians over seeds per map and over all maps:
 - RRT-Connect: wall (and CPU) time to the first solution; both stop there;
@@ -576,6 +579,20 @@ def summarise(runs):
                 table.append(dict(map=m, planner=algo, metric=metric, planlab=a, ompl=b,
                                   ratio=ratio(a, b), solved_planlab=solved["planlab"],
                                   solved_ompl=solved["ompl"], n=n))
+            # Where both solved the same query with the same seed index:
+            # the median of planlab's cost / OMPL's, a figure that the
+            # unsolved runs (∞ medians) do not hide.
+            pairs = {}
+            for x in xs:
+                if x["cost"] < math.inf and "row" in x:
+                    pairs.setdefault((x["map"], x["row"], x["seed"]), {})[x["lib"]] = x["cost"]
+            both = [v["planlab"] / v["ompl"] for v in pairs.values() if len(v) == 2 and v["ompl"] > 0]
+            if both:
+                table.append(dict(map=m, planner=algo, metric=f"cost planlab/OMPL where both solved"
+                                  f"{'' if algo == 'rrt-connect' else f' ({budget:g} s)'}",
+                                  planlab=float("nan"), ompl=float("nan"), ratio=median(both),
+                                  solved_planlab=solved["planlab"], solved_ompl=solved["ompl"],
+                                  n=len(both)))
             if by["ompl"] and "python_seconds" in by["ompl"][0]:
                 share = median([x["python_seconds"] / x["wall"] for x in by["ompl"] if x["wall"] > 0])
                 table.append(dict(map=m, planner=algo, metric="OMPL: share of wall time in Python checks",
@@ -603,7 +620,12 @@ def main():
     ap.add_argument("--libs", default="planlab,ompl", help="run only these (profiling one side)")
     ap.add_argument("--json", type=Path, default=None, help="write every run and the table here")
     ap.add_argument("--ompl-seed", type=int, default=1, help="OMPL's global RNG seed (set once)")
+    ap.add_argument("--table-from", type=Path, default=None,
+                    help="print the table of a saved --json run and exit")
     args = ap.parse_args()
+    if args.table_from:
+        print(markdown_table(summarise(json.loads(args.table_from.read_text())["runs"])))
+        return
     args.budgets = [float(b) for b in args.budgets.split(",")]
     args.planners = args.planners.split(",")
     args.libs = args.libs.split(",")
