@@ -407,6 +407,12 @@ class OmplRunner:
         self.check_step = check_step
         self.range_cells = range_cells
 
+    def close(self):
+        """Drops the OMPL objects and the validator subclass that refers
+        back to this runner: nanobind cannot collect such a cycle, and
+        reports it as leaked at exit."""
+        self.ss = self.si = self.space = self._motion = None
+
     def planner(self, name):
         og = self.og
         p = {"rrt-connect": og.RRTConnect, "rrt-star": og.RRTstar, "prm-star": og.PRMstar}[name](self.si)
@@ -549,6 +555,8 @@ def run_map(map_path, args, log):
                 f"{lib} cost {fmt(median([x['cost'] for x in done if x['lib'] == lib]))}"
                 f" wall {fmt(median([x['wall'] for x in done if x['lib'] == lib]))} s"
                 for lib in ("planlab", "ompl")))
+    if ompl is not None:
+        ompl.close()
     return runs, {"rows": picked, "range": rng, "checker_build_s": prep, "planlab_space_s": warm}
 
 
