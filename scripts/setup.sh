@@ -82,7 +82,7 @@ if [ ! -x .venv/bin/python ]; then
   python3 -m venv .venv
 fi
 if ! cmp -s "$PY_REQ" .venv/.requirements-dev.txt; then
-  log "installing the Python dev requirements into .venv (maturin, pytest, numpy, gymnasium, ray, matplotlib)"
+  log "installing the Python dev requirements into .venv (maturin, pytest, numpy, gymnasium, ray, matplotlib, mcap, ompl)"
   .venv/bin/python -m pip install -q --upgrade pip
   .venv/bin/python -m pip install -q -r "$PY_REQ"
   cp "$PY_REQ" .venv/.requirements-dev.txt

@@ -1,14 +1,22 @@
 //! `planlab bench grid`: our A* and JPS against the `pathfinding` crate's
-//! `astar` on the same Moving AI rows, all three checked against the optimum.
+//! `astar` on the same Moving AI rows, all three checked against the optimum;
+//! `planlab bench sampling`: the sampling planners against Theta* on sampled
+//! Moving AI rows; `bench step` and `bench scen`, the browser benchmark's
+//! native side.
 
 use crate::peer::pathfinding_cost;
 use planlab_core::global::astar::{AStar, AStarConfig};
+use planlab_core::global::classic::ThetaStar;
 use planlab_core::global::jps::{Jps, JpsConfig};
 use planlab_core::global::plan::{build_planner, Algorithm, GridPlanOptions};
 use planlab_core::global::{GridPlanner, Path, PlanError, PlanGrid};
 use planlab_core::map::io::movingai::ScenRow;
 use planlab_core::map::OccupancyGrid;
+use planlab_core::sampling::{
+    cell_centre, DiscSpace, SamplingAlgorithm, SamplingOptions, SamplingPlanner, MAX_ITERATIONS,
+};
 use serde::Serialize;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Milliseconds per query of each planner and the ratios.
@@ -314,6 +322,226 @@ pub fn bench_scen(
     })
 }
 
+/// The rows of `planlab bench sampling` and `bench_ompl.py`: `k` rows
+/// spread evenly over a scenario of `n`, indices round(i·(n−1)/(k−1)) for
+/// i = 0 … k−1 (ties to even, as Python's `round`), without repeats.
+/// Moving AI files are sorted by optimal length, so the sample runs from
+/// the shortest query to the longest.
+pub fn pick_rows(n: usize, k: usize) -> Vec<usize> {
+    if k >= n {
+        return (0..n).collect();
+    }
+    if k <= 1 {
+        return vec![0];
+    }
+    let mut out: Vec<usize> = (0..k)
+        .map(|i| (i as f64 * (n - 1) as f64 / (k - 1) as f64).round_ties_even() as usize)
+        .collect();
+    out.dedup();
+    out
+}
+
+/// One run of `planlab bench sampling`.
+#[derive(Debug, Serialize)]
+pub struct SamplingRun {
+    /// The map's file stem.
+    pub map: String,
+    /// The row's index in the .scen file.
+    pub row: usize,
+    /// Start cell (col, row).
+    pub start: [u32; 2],
+    /// Goal cell (col, row).
+    pub goal: [u32; 2],
+    /// The planner's `--algo` name.
+    pub algo: &'static str,
+    /// Its seed.
+    pub seed: u64,
+    /// The best path's length, cells (`None`: no path).
+    pub cost: Option<f64>,
+    /// Theta*'s cost on the same row, cells.
+    pub theta_star: f64,
+    /// Iterations run.
+    pub iterations: u64,
+    /// The iteration of the first path.
+    pub first_solution_iteration: Option<u64>,
+    /// Wall time of the run (planner built and stepped), ms.
+    pub ms: f64,
+}
+
+/// One planner's figures in a [`SamplingReport`], on one map or on all.
+#[derive(Debug, Serialize)]
+pub struct SamplingRow {
+    /// The map's file stem, or "all".
+    pub map: String,
+    /// The planner's `--algo` name.
+    pub algo: &'static str,
+    /// Runs (rows × seeds).
+    pub runs: usize,
+    /// Runs that found a path.
+    pub solved: usize,
+    /// Median over solved runs of cost / Theta*'s − 1 (negative: shorter
+    /// than Theta*, which keeps to cell centres' lines of sight); `None`
+    /// when nothing was solved.
+    pub median_gap: Option<f64>,
+    /// Median iteration of the first path over solved runs.
+    pub median_first_iteration: Option<f64>,
+    /// Median wall time per run (query), ms.
+    pub median_ms: f64,
+}
+
+/// `planlab bench sampling`: every run and the per-planner summary.
+#[derive(Debug, Serialize)]
+pub struct SamplingReport {
+    /// Iterations per run.
+    pub iterations: u64,
+    /// Disc radius, cells.
+    pub radius: f64,
+    /// Seeds per row (0 … seeds − 1).
+    pub seeds: u64,
+    /// Per map and planner, then per planner over all maps.
+    pub planners: Vec<SamplingRow>,
+    /// Every run.
+    pub runs: Vec<SamplingRun>,
+}
+
+/// One map of `planlab bench sampling`: its name, grid and picked rows.
+pub struct SamplingMap {
+    /// File stem.
+    pub name: String,
+    /// The map.
+    pub grid: OccupancyGrid,
+    /// The picked rows with their .scen indices.
+    pub rows: Vec<(usize, ScenRow)>,
+}
+
+/// Most seeds per row of `planlab bench sampling`.
+const MAX_BENCH_SEEDS: u64 = 1_000;
+
+/// Runs each of `algos` from every picked row's start cell centre to its
+/// goal's, `seeds` seeds each, for `iterations` iterations (RRT and
+/// RRT-Connect stop at their first path), and compares the costs with
+/// Theta*'s on the same row. No time limit: the answers depend only on the
+/// seeds, only the times on the machine.
+pub fn bench_sampling(
+    maps: &[SamplingMap],
+    algos: &[SamplingAlgorithm],
+    iterations: u64,
+    seeds: u64,
+    radius: f64,
+) -> Result<SamplingReport, String> {
+    if !(1..=MAX_ITERATIONS).contains(&iterations) {
+        return Err(format!(
+            "--iterations {iterations}: must be from 1 to {MAX_ITERATIONS}"
+        ));
+    }
+    if !(1..=MAX_BENCH_SEEDS).contains(&seeds) {
+        return Err(format!(
+            "--seeds {seeds}: must be from 1 to {MAX_BENCH_SEEDS}"
+        ));
+    }
+    let theta = ThetaStar::default();
+    let mut runs = Vec::new();
+    for m in maps {
+        let space = Arc::new(
+            DiscSpace::new(&m.grid, radius, false).map_err(|e| format!("{}: {e}", m.name))?,
+        );
+        let plan_grid = PlanGrid::new(&m.grid, false);
+        for (index, row) in &m.rows {
+            // Every Moving AI row has a path; one Theta* cannot find is
+            // a scenario that does not fit its map.
+            let theta_star = theta
+                .plan(&plan_grid, row.start, row.goal)
+                .map_err(|e| format!("{} row {index}: Theta*: {e}", m.name))?
+                .cost;
+            let s = cell_centre(row.start.col, row.start.row);
+            let g = cell_centre(row.goal.col, row.goal.row);
+            for &algo in algos {
+                for seed in 0..seeds {
+                    let options = SamplingOptions {
+                        algorithm: algo,
+                        seed,
+                        ..SamplingOptions::default()
+                    };
+                    let t = Instant::now();
+                    let mut p = SamplingPlanner::new(space.clone(), s, g, &options)
+                        .map_err(|e| format!("{} row {index}: {e}", m.name))?;
+                    p.step(iterations);
+                    let ms = t.elapsed().as_secs_f64() * 1e3;
+                    runs.push(SamplingRun {
+                        map: m.name.clone(),
+                        row: *index,
+                        start: [row.start.col, row.start.row],
+                        goal: [row.goal.col, row.goal.row],
+                        algo: algo.name(),
+                        seed,
+                        cost: p.best_cost(),
+                        theta_star,
+                        iterations: p.iterations(),
+                        first_solution_iteration: p.first_solution_iteration(),
+                        ms,
+                    });
+                }
+            }
+        }
+    }
+    let mut planners = Vec::new();
+    let names: Vec<String> = maps.iter().map(|m| m.name.clone()).collect();
+    for scope in names.iter().map(Some).chain([None]) {
+        for &algo in algos {
+            let of: Vec<&SamplingRun> = runs
+                .iter()
+                .filter(|r| r.algo == algo.name() && scope.map_or(true, |n| &r.map == n))
+                .collect();
+            let gaps: Vec<f64> = of
+                .iter()
+                .filter_map(|r| r.cost.map(|c| c / r.theta_star - 1.0))
+                .collect();
+            let firsts: Vec<f64> = of
+                .iter()
+                .filter_map(|r| r.first_solution_iteration.map(|i| i as f64))
+                .collect();
+            let ms: Vec<f64> = of.iter().map(|r| r.ms).collect();
+            planners.push(SamplingRow {
+                map: scope.cloned().unwrap_or_else(|| "all".into()),
+                algo: algo.name(),
+                runs: of.len(),
+                solved: gaps.len(),
+                median_gap: (!gaps.is_empty()).then(|| median(&gaps)),
+                median_first_iteration: (!firsts.is_empty()).then(|| median(&firsts)),
+                median_ms: if ms.is_empty() { 0.0 } else { median(&ms) },
+            });
+        }
+    }
+    Ok(SamplingReport {
+        iterations,
+        radius,
+        seeds,
+        planners,
+        runs,
+    })
+}
+
+/// The summary of [`bench_sampling`] as a text table.
+pub fn sampling_table(r: &SamplingReport) -> String {
+    let mut out = format!(
+        "{} iterations, disc radius {} cells, seeds 0..{}; gap: median over solved runs of cost / Theta*'s cost − 1\n{:<16} {:<18} {:>7} {:>9} {:>11} {:>10}\n",
+        r.iterations, r.radius, r.seeds, "map", "planner", "solved", "gap %", "1st iter", "ms/query"
+    );
+    for p in &r.planners {
+        let opt = |v: Option<f64>, f: &dyn Fn(f64) -> String| v.map_or("–".to_string(), f);
+        out.push_str(&format!(
+            "{:<16} {:<18} {:>7} {:>9} {:>11} {:>10.2}\n",
+            p.map,
+            p.algo,
+            format!("{}/{}", p.solved, p.runs),
+            opt(p.median_gap, &|g| format!("{:+.2}", 100.0 * g)),
+            opt(p.median_first_iteration, &|i| format!("{i:.0}")),
+            p.median_ms
+        ));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -342,6 +570,19 @@ mod tests {
         // A wrong optimum is reported, not averaged away.
         let err = bench_grid(&g, &[row((0, 0), (1, 1), 1.5)], 1).unwrap_err();
         assert!(err.contains("row 0"), "{err}");
+    }
+
+    #[test]
+    fn rows_are_picked_like_the_ompl_benchmark() {
+        // bench_ompl.py's pick_rows on the same sizes (its harness test).
+        assert_eq!(
+            pick_rows(161, 10),
+            [0, 18, 36, 53, 71, 89, 107, 124, 142, 160]
+        );
+        assert_eq!(pick_rows(5, 10), [0, 1, 2, 3, 4]);
+        assert_eq!(pick_rows(7, 1), [0]);
+        // 2.5 rounds to 2, as Python's round does.
+        assert_eq!(pick_rows(6, 3), [0, 2, 5]);
     }
 
     #[test]

@@ -219,6 +219,33 @@ enum BenchKind {
         #[arg(long, default_value_t = 3)]
         reps: usize,
     },
+    /// Sampling planners on Moving AI rows against Theta*: per map and
+    /// planner, runs solved, the median cost gap to Theta* and the median
+    /// time per query. The answers depend only on the seeds.
+    Sampling {
+        /// Moving AI .map files, each with its MAP.scen beside it.
+        #[arg(required = true)]
+        maps: Vec<PathBuf>,
+        /// Rows per map, spread evenly over the .scen file (shortest to
+        /// longest query; the rows of bench_ompl.py).
+        #[arg(long, default_value_t = 6)]
+        rows: usize,
+        /// Iterations per run (RRT and RRT-Connect stop at their first path).
+        #[arg(long, default_value_t = 20_000)]
+        iterations: u64,
+        /// Planners, comma-separated [default: every sampling planner].
+        #[arg(long, value_delimiter = ',')]
+        algo: Vec<String>,
+        /// Seeds per row: 0 … N−1.
+        #[arg(long, default_value_t = 1)]
+        seeds: u64,
+        /// The disc's radius, metres (Moving AI maps: 1 m per cell).
+        #[arg(long, default_value_t = 0.4, allow_hyphen_values = true)]
+        radius: f64,
+        /// One JSON document (every run and the summary) instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
     /// One DWA step of the reference scene (200 × 200 map, 20 movers,
     /// 20 × 40 samples, 3 s horizon), timed in blocks of STEPS steps; the
     /// native side of the browser benchmark. Prints one JSON line.
@@ -907,6 +934,81 @@ fn run(cli: Cli) -> Result<(), String> {
                 "{}",
                 serde_json::to_string(&report).map_err(|e| e.to_string())?
             );
+            Ok(())
+        }
+        Command::Bench {
+            kind:
+                BenchKind::Sampling {
+                    maps,
+                    rows,
+                    iterations,
+                    algo,
+                    seeds,
+                    radius,
+                    json,
+                },
+        } => {
+            let algos = if algo.is_empty() {
+                SamplingAlgorithm::ALL.iter().map(|(a, _)| *a).collect()
+            } else {
+                algo.iter()
+                    .map(|n| {
+                        SamplingAlgorithm::from_name(n.trim()).ok_or_else(|| {
+                            format!(
+                                "--algo {n:?}: not a sampling planner (one of {})",
+                                SamplingAlgorithm::ALL
+                                    .iter()
+                                    .map(|(_, n)| *n)
+                                    .collect::<Vec<_>>()
+                                    .join(", ")
+                            )
+                        })
+                    })
+                    .collect::<Result<Vec<_>, _>>()?
+            };
+            if rows == 0 {
+                return Err("--rows 0: must be at least 1".into());
+            }
+            let mut picked = Vec::new();
+            let mut resolution = None;
+            for map in &maps {
+                let grid = load::load_movingai(map)?;
+                let scen = PathBuf::from(format!("{}.scen", map.display()));
+                let all = load::load_scen(&scen)?;
+                planlab_core::map::io::movingai::check_scen_against_map(&all, &grid).map_err(
+                    |e| format!("{} does not fit {}: {e}", scen.display(), map.display()),
+                )?;
+                if all.is_empty() {
+                    return Err(format!("{} has no rows", scen.display()));
+                }
+                resolution.get_or_insert(grid.resolution());
+                let rows = bench::pick_rows(all.len(), rows)
+                    .into_iter()
+                    .map(|i| (i, all[i].clone()))
+                    .collect();
+                picked.push(bench::SamplingMap {
+                    name: map
+                        .file_stem()
+                        .map_or_else(|| map.display().to_string(), |s| s.to_string_lossy().into()),
+                    grid,
+                    rows,
+                });
+            }
+            if !(radius.is_finite() && radius >= 0.0) {
+                return Err(format!(
+                    "--radius {radius}: must be a finite number of metres ≥ 0"
+                ));
+            }
+            let cells = radius / resolution.unwrap_or(1.0);
+            let report = bench::bench_sampling(&picked, &algos, iterations, seeds, cells)?;
+            if json {
+                outln!(
+                    "{}",
+                    serde_json::to_string(&report).map_err(|e| e.to_string())?
+                );
+            } else {
+                out!("{}", bench::sampling_table(&report));
+            }
             Ok(())
         }
         Command::Bench {

@@ -162,3 +162,79 @@ fn bad_sampling_input_is_refused_with_one_line() {
     let e = error_line(&plan(&["--seed", "3"]));
     assert!(e.contains("--seed"), "{e}");
 }
+
+fn bench(args: &[&str]) -> std::process::Output {
+    let map = format!("{REPO}/tests/data/movingai/dao/arena.map");
+    Command::new(env!("CARGO_BIN_EXE_planlab"))
+        .args(["bench", "sampling", &map])
+        .args(args)
+        .output()
+        .expect("run planlab")
+}
+
+#[test]
+fn bench_sampling_counts_what_plan_finds_and_the_optimising_planners_come_near_theta_star() {
+    let out = json(&bench(&["--rows", "3", "--iterations", "20000", "--json"]));
+    let runs = out["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 3 * ALGOS.len());
+    // Each run is `planlab plan` with the same seed: solved exactly when
+    // plan finds a path, with the same cost.
+    for r in runs {
+        let (algo, start, goal) = (
+            r["algo"].as_str().unwrap(),
+            format!("{},{}", r["start"][0], r["start"][1]),
+            format!("{},{}", r["goal"][0], r["goal"][1]),
+        );
+        let map = format!("{REPO}/tests/data/movingai/dao/arena.map");
+        let p = Command::new(env!("CARGO_BIN_EXE_planlab"))
+            .args(["plan", &map, "--start", &start, "--goal", &goal])
+            .args(["--algo", algo, "--iterations", "20000", "--seed", "0"])
+            .args(["--radius", "0.4", "--json"])
+            .output()
+            .unwrap();
+        if r["cost"].is_null() {
+            assert!(!p.status.success(), "{algo} {start} → {goal}");
+        } else {
+            let plan = json(&p);
+            assert_eq!(plan["cost"], r["cost"], "{algo} {start} → {goal}");
+            assert_eq!(plan["iterations"], r["iterations"], "{algo}");
+        }
+    }
+    let rows = out["planners"].as_array().unwrap();
+    assert_eq!(rows.len(), 2 * ALGOS.len(), "per map, then over all");
+    for row in rows {
+        let algo = row["algo"].as_str().unwrap();
+        let mine: Vec<_> = runs.iter().filter(|r| r["algo"] == algo).collect();
+        assert_eq!(row["runs"], mine.len(), "{algo}");
+        let solved = mine.iter().filter(|r| !r["cost"].is_null()).count();
+        assert_eq!(row["solved"], solved, "{algo}");
+        assert!(row["median_ms"].as_f64().unwrap() > 0.0, "{algo}");
+        if ["rrt-star", "informed-rrt-star", "prm-star", "bit-star"].contains(&algo) {
+            assert_eq!(solved, 3, "{algo} solves every arena row");
+            let gap = row["median_gap"].as_f64().unwrap();
+            assert!(gap.abs() < 0.1, "{algo}: median gap {gap}");
+        }
+    }
+    // The text table names every planner.
+    let o = bench(&["--rows", "1", "--iterations", "500"]);
+    assert!(o.status.success());
+    let text = String::from_utf8(o.stdout).unwrap();
+    for algo in ALGOS {
+        assert!(text.contains(algo), "{algo} missing from\n{text}");
+    }
+}
+
+#[test]
+fn bench_sampling_refuses_bad_input_with_one_line() {
+    for (args, want) in [
+        (&["--algo", "astar"][..], "not a sampling planner"),
+        (&["--rows", "0"][..], "--rows 0"),
+        (&["--iterations", "0"][..], "--iterations 0"),
+        (&["--seeds", "0"][..], "--seeds 0"),
+        (&["--radius", "NaN"][..], "--radius"),
+        (&["--radius", "40"][..], "radius"),
+    ] {
+        let e = error_line(&bench(args));
+        assert!(e.contains(want), "{args:?}: {e}");
+    }
+}

@@ -34,13 +34,6 @@ fn sampled_rows(map: &str, n: usize) -> (OccupancyGrid, Vec<ScenRow>) {
     (grid, picked)
 }
 
-const MAPS: [&str; 4] = [
-    "dao/arena.map",
-    "dao/arena2.map",
-    "random/random512-10-0.map",
-    "maze/maze512-1-0.map",
-];
-
 /// Distance from `p` to the square of cell (c, r), written here rather
 /// than taken from the crate so the check is independent.
 fn to_square(p: Point, c: usize, r: usize) -> f64 {
@@ -433,65 +426,5 @@ fn a_straight_line_solution_ends_the_search() {
             "{name}: ran all {} iterations",
             p.iterations()
         );
-    }
-}
-
-/// Not a check: prints every planner's first-path iteration, cost against
-/// Theta* and time on sampled rows (`PROBE_MAPS`, `PROBE_ALGO`,
-/// `PROBE_ROWS`, `PROBE_ITERS`; run with `--ignored --nocapture`).
-#[test]
-#[ignore]
-fn measure_every_planner_on_sampled_rows() {
-    let only: Option<String> = std::env::var("PROBE_ALGO").ok();
-    let nrows: usize = std::env::var("PROBE_ROWS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(6);
-    let cap: u64 = std::env::var("PROBE_ITERS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(20_000);
-    let maps: Option<String> = std::env::var("PROBE_MAPS").ok();
-    for map in MAPS {
-        if maps
-            .as_deref()
-            .is_some_and(|o| !o.split(',').any(|x| map.contains(x)))
-        {
-            continue;
-        }
-        let (grid, rows) = sampled_rows(map, nrows);
-        let space = Arc::new(DiscSpace::new(&grid, RADIUS, false).unwrap());
-        for row in &rows {
-            let theta = ThetaStar::default()
-                .plan(&PlanGrid::new(&grid, false), row.start, row.goal)
-                .map(|p| p.cost)
-                .unwrap_or(f64::NAN);
-            for (algo, name) in SamplingAlgorithm::ALL {
-                if only
-                    .as_deref()
-                    .is_some_and(|o| !o.split(',').any(|x| x == name))
-                {
-                    continue;
-                }
-                let t = std::time::Instant::now();
-                let mut p = planner(&space, row, algo, 1);
-                let mut marks = Vec::new();
-                while p.iterations() < cap && !p.done() && t.elapsed().as_secs_f64() < 5.0 {
-                    p.step(500);
-                    if [2000, 5000, 10000, 20000, 50000].contains(&p.iterations()) {
-                        marks.push((
-                            p.iterations(),
-                            p.best_cost().map(|c| (c / theta * 1000.0).round() / 1000.0),
-                        ));
-                    }
-                }
-                eprintln!("{map} opt {:.1} theta {theta:.2} {name}: first {:?} best {:?} ratio {:.3} iters {} nodes {} {:?} {marks:?}", row.optimal, p.first_solution_iteration(), p.best_cost(), p.best_cost().unwrap_or(f64::NAN) / theta, p.iterations(), p.node_count(), t.elapsed());
-                if !p.path().is_empty() {
-                    let s = cell_centre(row.start.col, row.start.row);
-                    let g = cell_centre(row.goal.col, row.goal.row);
-                    assert_eq!(invalid(&grid, RADIUS, p.path(), s, g), None);
-                }
-            }
-        }
     }
 }

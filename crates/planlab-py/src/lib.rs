@@ -12,7 +12,7 @@
 
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
-use std::sync::{Mutex, MutexGuard, OnceLock};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
@@ -27,6 +27,11 @@ use planlab_core::metrics::EpisodeMetrics;
 use planlab_core::planners;
 use planlab_core::recipe::Recipe;
 use planlab_core::reproduce::{self, Experiment, RunMetrics};
+use planlab_core::sampling::shortcut::shortcut;
+use planlab_core::sampling::{
+    cell_centre, path_cost, DiscSpace, SamplingAlgorithm, SamplingError, SamplingOptions,
+    SamplingPlanner, SpaceError, MAX_ITERATIONS,
+};
 use planlab_core::scenario::{AnyRun, AnyScenario, FinishedRun, Scenario as CoreScenario};
 use planlab_core::sim::{Column, Episode as CoreEpisode, Outcome, Trace};
 use planlab_core::text::one_line;
@@ -122,9 +127,29 @@ struct Grid {
     /// the first query that needs it: later queries skip that pass over the
     /// map (the CLI's bench builds it once too).
     prepared: [OnceLock<PlanGrid>; 2],
+    /// The sampling planners' free space of the last (radius in cells,
+    /// allow_unknown) asked for: its exact distance transform is a pass over
+    /// the map (about 12 ms on 512 × 512), which a series of queries with
+    /// one disc should pay once, as a benchmark's peer builds its checker
+    /// once per map.
+    disc_space: Mutex<Option<(f64, bool, Arc<DiscSpace>)>>,
 }
 
 impl Grid {
+    /// The free space for a disc of `radius` cells, built once per radius
+    /// in a row (see `disc_space`).
+    fn disc_space(&self, radius: f64, allow_unknown: bool) -> Result<Arc<DiscSpace>, SpaceError> {
+        let mut cached = self.disc_space.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((r, u, space)) = cached.as_ref() {
+            if *r == radius && *u == allow_unknown {
+                return Ok(space.clone());
+            }
+        }
+        let space = Arc::new(DiscSpace::new(&self.grid, radius, allow_unknown)?);
+        *cached = Some((radius, allow_unknown, space.clone()));
+        Ok(space)
+    }
+
     fn of(grid: OccupancyGrid, scenario: Option<&CoreScenario>) -> Grid {
         Grid {
             grid,
@@ -132,6 +157,7 @@ impl Grid {
             goal: scenario.map(|s| s.goal.pos()),
             options: scenario.map_or_else(GridPlanOptions::default, |s| s.grid_planner),
             prepared: Default::default(),
+            disc_space: Mutex::new(None),
         }
     }
 }
@@ -336,18 +362,46 @@ fn cells_array<'py>(py: Python<'py>, cells: &[GridPos]) -> PyResult<Bound<'py, P
     table(py, cells.len(), 2, flat)
 }
 
-/// Plans on `grid` from `start` to `goal` (cells (col, row); default: the
-/// scenario's) with the core's `plan_on_map`, as `planlab plan` does.
-/// Returns a dict: `path` ((n, 2) int array of (col, row)), `cost` (cells),
-/// `length_m`, `expanded`, `keypoints`, `feature_nodes`, `safety`, `note`.
+/// A map for [`plan`]: a [`Grid`] or the path of a map file.
+#[derive(FromPyObject)]
+enum GridOrPath<'py> {
+    Grid(PyRef<'py, Grid>),
+    Path(PathBuf),
+}
+
+/// Plans on `grid` (a `Grid` or a map file's path) from `start` to `goal`
+/// (cells (col, row); default: the scenario's), as `planlab plan` does.
+///
+/// A grid algorithm (`algorithms()`; default astar or the scenario's) runs
+/// the core's `plan_on_map` and returns a dict: `path` ((n, 2) int array of
+/// (col, row)), `cost` (cells), `length_m`, `expanded`, `keypoints`,
+/// `feature_nodes`, `safety`, `note`.
+///
+/// A sampling algorithm (`sampling_algorithms()`: rrt, rrt-connect,
+/// rrt-star, informed-rrt-star, prm, prm-star, bit-star) plans a disc of
+/// `radius` metres (default 0.4 cell) between the cells' centres for
+/// `iterations` (default 10 000), seeded by `seed` (default 0), as `planlab
+/// plan --algo NAME --json` does; `shortcut` shortens the path afterwards
+/// (seeded by `seed` too), `range` (cells) sets the longest extension
+/// (default a tenth of the map's diagonal), `time_limit` (seconds) stops
+/// earlier when the wall clock runs out — the one input that makes a run
+/// depend on the machine. Returns a dict: `algorithm`, `cost` (the path's
+/// length, cells), `length_m`, `iterations`, `first_solution_iteration`,
+/// `nodes`, `path` ((n, 2) float array of (x, y) cells: x along the
+/// columns, y down the rows, a cell's centre at +0.5), `solutions` (list of
+/// (iteration, cost), costs strictly falling), `seed`, `radius` (cells),
+/// `seconds` (wall time of the planning) and, with `shortcut`,
+/// `cost_before_shortcut`. No path within the budget is a `PlanError`, as
+/// in the CLI.
 #[pyfunction]
 #[pyo3(signature = (grid, start = None, goal = None, algo = None, heuristic = None,
     diagonal = None, weight = None, inflate = None, allow_unknown = false,
-    keypoints = false, bottom_up = None, epsilon = None))]
+    keypoints = false, bottom_up = None, epsilon = None, iterations = None, seed = None,
+    radius = None, shortcut = false, range = None, time_limit = None))]
 #[allow(clippy::too_many_arguments)]
 fn plan<'py>(
     py: Python<'py>,
-    grid: &Grid,
+    grid: GridOrPath<'py>,
     start: Option<(i64, i64)>,
     goal: Option<(i64, i64)>,
     algo: Option<&str>,
@@ -359,7 +413,68 @@ fn plan<'py>(
     keypoints: bool,
     bottom_up: Option<f64>,
     epsilon: Option<f64>,
+    iterations: Option<i128>,
+    seed: Option<i128>,
+    radius: Option<f64>,
+    shortcut: bool,
+    range: Option<f64>,
+    time_limit: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let loaded;
+    let grid: &Grid = match &grid {
+        GridOrPath::Grid(g) => g,
+        GridOrPath::Path(p) => {
+            loaded = load_map(py, p.clone())?;
+            &loaded
+        }
+    };
+    let sampling_algo = algo.and_then(|a| SamplingAlgorithm::from_name(a.trim()));
+    if let Some(algorithm) = sampling_algo {
+        let grid_only = [
+            ("heuristic", heuristic.is_some()),
+            ("diagonal", diagonal.is_some()),
+            ("weight", weight.is_some()),
+            ("inflate", inflate.is_some()),
+            ("keypoints", keypoints),
+            ("bottom_up", bottom_up.is_some()),
+            ("epsilon", epsilon.is_some()),
+        ];
+        if let Some((name, _)) = grid_only.iter().find(|f| f.1) {
+            return Err(err::<ParamError>(format!(
+                "{name} applies to the grid planners, not to {}",
+                algorithm.name()
+            )));
+        }
+        let args = SamplingCall {
+            algorithm,
+            iterations,
+            seed,
+            radius,
+            shortcut,
+            range,
+            time_limit,
+            allow_unknown,
+        };
+        return plan_sampling(py, grid, start, goal, &args);
+    }
+    let sampling_only = [
+        ("iterations", iterations.is_some()),
+        ("seed", seed.is_some()),
+        ("radius", radius.is_some()),
+        ("shortcut", shortcut),
+        ("range", range.is_some()),
+        ("time_limit", time_limit.is_some()),
+    ];
+    if let Some((name, _)) = sampling_only.iter().find(|f| f.1) {
+        return Err(err::<ParamError>(format!(
+            "{name} applies to the sampling planners (algo={})",
+            SamplingAlgorithm::ALL
+                .iter()
+                .map(|(_, n)| format!("{n:?}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+    }
     let overrides = GridPlanOverrides {
         algorithm: algo
             .map(|a| Algorithm::from_str(a.trim()))
@@ -420,6 +535,151 @@ fn plan<'py>(
     d.set_item("algorithm", options.algorithm.name())?;
     // E.g. that BFS ignored the map's cell weights; None when nothing to say.
     d.set_item("note", result.note)?;
+    Ok(d)
+}
+
+/// The sampling arguments of [`plan`].
+struct SamplingCall {
+    algorithm: SamplingAlgorithm,
+    iterations: Option<i128>,
+    seed: Option<i128>,
+    radius: Option<f64>,
+    shortcut: bool,
+    range: Option<f64>,
+    time_limit: Option<f64>,
+    allow_unknown: bool,
+}
+
+/// Iterations between two looks at the clock under a `time_limit`: an
+/// iteration costs microseconds, so the limit is overrun by well under a
+/// millisecond, and the clock is read rarely enough not to show.
+const CLOCK_EVERY: u64 = 64;
+
+/// Shortcut attempts after a sampling plan, as `planlab plan --shortcut`.
+const SHORTCUT_ATTEMPTS: usize = 200;
+
+/// `plan` with a sampling algorithm: `plan_on_grid`'s work, stepped so that
+/// a time limit can stop it, then the CLI's answer.
+fn plan_sampling<'py>(
+    py: Python<'py>,
+    grid: &Grid,
+    start: Option<(i64, i64)>,
+    goal: Option<(i64, i64)>,
+    a: &SamplingCall,
+) -> PyResult<Bound<'py, PyDict>> {
+    let name = a.algorithm.name();
+    let iterations = match a.iterations {
+        None => 10_000,
+        Some(n) if (1..=i128::from(MAX_ITERATIONS)).contains(&n) => n as u64,
+        Some(n) => {
+            return Err(err::<ParamError>(format!(
+                "iterations {n}: must be from 1 to {MAX_ITERATIONS}"
+            )))
+        }
+    };
+    let seed = match a.seed {
+        None => 0,
+        Some(s) => u64::try_from(s)
+            .map_err(|_| err::<ParamError>(format!("seed {s}: must be from 0 to {}", u64::MAX)))?,
+    };
+    let res = grid.grid.resolution();
+    let radius = match a.radius {
+        None => 0.4,
+        Some(r) if r.is_finite() && r >= 0.0 => r / res,
+        Some(r) => {
+            return Err(err::<ParamError>(format!(
+                "radius {r}: must be a finite number of metres ≥ 0"
+            )))
+        }
+    };
+    let deadline = match a.time_limit {
+        None => None,
+        Some(t) if t.is_finite() && t > 0.0 => Some(std::time::Duration::from_secs_f64(t)),
+        Some(t) => {
+            return Err(err::<ParamError>(format!(
+                "time_limit {t}: must be a positive number of seconds"
+            )))
+        }
+    };
+    let endpoint = |which: &str, given: Option<(i64, i64)>, own: Option<GridPos>| {
+        let p = match (given, own) {
+            (Some(p), _) => cell(which, p)?,
+            (None, Some(p)) => p,
+            (None, None) => {
+                return Err(err::<ParamError>(format!(
+                    "{which} (COLUMN, ROW) is required for this map"
+                )))
+            }
+        };
+        Ok(cell_centre(p.col, p.row))
+    };
+    let start = endpoint("start", start, grid.start)?;
+    let goal = endpoint("goal", goal, grid.goal)?;
+    let options = SamplingOptions {
+        algorithm: a.algorithm,
+        seed,
+        range: a.range,
+        ..SamplingOptions::default()
+    };
+    let allow_unknown = a.allow_unknown;
+    let shortcut_path = a.shortcut;
+    let outcome = py.detach(|| {
+        let t = std::time::Instant::now();
+        let space = grid.disc_space(radius, allow_unknown)?;
+        let mut planner = SamplingPlanner::new(space, start, goal, &options)?;
+        match deadline {
+            None => {
+                planner.step(iterations);
+            }
+            Some(limit) => {
+                // Chunks give the same run as one call (the core's promise),
+                // so only where it stops depends on the clock.
+                while planner.iterations() < iterations && !planner.done() && t.elapsed() < limit {
+                    planner.step(CLOCK_EVERY.min(iterations - planner.iterations()));
+                }
+            }
+        }
+        let path = match (planner.best_cost(), shortcut_path) {
+            (Some(_), true) => shortcut(planner.space(), planner.path(), seed, SHORTCUT_ATTEMPTS),
+            _ => planner.path().to_vec(),
+        };
+        Ok::<_, SamplingError>((planner, path, t.elapsed().as_secs_f64()))
+    });
+    let (planner, path, seconds) = outcome.map_err(|e| match e {
+        SamplingError::Space(SpaceError::BadRadius(r)) => err::<ParamError>(format!(
+            "radius {}: must be a finite number of metres ≥ 0 and less than half the map's smaller side",
+            r * res
+        )),
+        SamplingError::InCollision { .. } => err::<PlanError>(e),
+        e => err::<ParamError>(e),
+    })?;
+    let Some(raw_cost) = planner.best_cost() else {
+        return Err(err::<PlanError>(format!(
+            "{name}: no path after {} iterations ({} nodes); try more iterations or another seed",
+            planner.iterations(),
+            planner.node_count()
+        )));
+    };
+    let cost = path_cost(&path);
+    let d = PyDict::new(py);
+    d.set_item("algorithm", name)?;
+    d.set_item("cost", cost)?;
+    d.set_item("length_m", cost * res)?;
+    d.set_item("iterations", planner.iterations())?;
+    d.set_item(
+        "first_solution_iteration",
+        planner.first_solution_iteration(),
+    )?;
+    d.set_item("nodes", planner.node_count())?;
+    let flat: Vec<f64> = path.iter().flat_map(|p| [p[0], p[1]]).collect();
+    d.set_item("path", table(py, path.len(), 2, flat)?)?;
+    d.set_item("solutions", planner.solutions().to_vec())?;
+    d.set_item("seed", seed)?;
+    d.set_item("radius", radius)?;
+    d.set_item("seconds", seconds)?;
+    if a.shortcut {
+        d.set_item("cost_before_shortcut", raw_cost)?;
+    }
     Ok(d)
 }
 
@@ -524,10 +784,18 @@ fn reeds_shepp<'py>(
     curve_dict(py, p)
 }
 
-/// The grid algorithms' names (what `plan(algo=…)` accepts).
+/// The grid algorithms' names (what `plan(algo=…)` accepts besides
+/// `sampling_algorithms()`).
 #[pyfunction]
 fn algorithms() -> Vec<&'static str> {
     Algorithm::ALL.iter().map(|(_, n)| *n).collect()
+}
+
+/// The sampling planners' names (`plan(algo=…)` with a disc robot,
+/// iterations and a seed).
+#[pyfunction]
+fn sampling_algorithms() -> Vec<&'static str> {
+    SamplingAlgorithm::ALL.iter().map(|(_, n)| *n).collect()
 }
 
 /// The local planner catalogue (`planlab planners --json`).
@@ -1378,6 +1646,7 @@ fn _planlab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(dubins, m)?)?;
     m.add_function(wrap_pyfunction!(reeds_shepp, m)?)?;
     m.add_function(wrap_pyfunction!(algorithms, m)?)?;
+    m.add_function(wrap_pyfunction!(sampling_algorithms, m)?)?;
     m.add_function(wrap_pyfunction!(planner_catalogue, m)?)?;
     m.add_function(wrap_pyfunction!(batch_episodes, m)?)?;
     m.add_function(wrap_pyfunction!(summarise, m)?)?;

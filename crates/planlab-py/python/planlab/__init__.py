@@ -1,7 +1,8 @@
 """planlab in Python: grid planning, robot episodes and sweeps on the
 planlab core (Rust, through pyo3).
 
-The numbers are those of the ``planlab`` CLI: ``plan`` is ``planlab plan``,
+The numbers are those of the ``planlab`` CLI: ``plan`` is ``planlab plan``
+(grid searches and, with ``algo="rrt-star"`` etc., the sampling planners),
 ``Scenario.run`` is ``planlab run`` (same trace hash), ``batch`` is
 ``planlab batch``, ``reproduce`` is ``planlab reproduce --json``. Every
 error is a :class:`PlanlabError` carrying the core's one-line message.
@@ -37,6 +38,7 @@ from ._planlab import (  # noqa: F401  (re-exported API)
     reeds_shepp,
     reproduce,
     reproduce_ids,
+    sampling_algorithms,
     summarise,
 )
 from ._planlab import planner_catalogue as _planner_catalogue
@@ -134,6 +136,7 @@ __all__ = [
     "planners",
     "reproduce",
     "reproduce_ids",
+    "sampling_algorithms",
     "summarise",
     "sweep",
 ]
