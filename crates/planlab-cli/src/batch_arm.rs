@@ -12,7 +12,7 @@ use planlab_core::batch::{self, arm_metric_values, ArmBatchRun, PlannerSummary};
 use planlab_core::scenario::ArmScenario;
 use rayon::prelude::*;
 
-use crate::batch_cmd::{table, BatchArgs, BatchFooter};
+use crate::batch_cmd::{print_batch, BatchArgs, BatchFooter};
 
 /// One arm episode and its compute time, ms (wall time of the thread that
 /// ran it: the episode's planning, IK and simulation).
@@ -86,21 +86,13 @@ pub fn batch_arm(
         threads: rayon::current_num_threads(),
         seconds,
     };
-    let mut out = String::new();
-    if args.json {
-        for s in &summaries {
-            out += &serde_json::to_string(s).map_err(|e| e.to_string())?;
-            out.push('\n');
-        }
-        out += &serde_json::to_string(&footer).map_err(|e| e.to_string())?;
-        out.push('\n');
-    } else {
-        out = table(&summaries, &footer);
-        out += "\nmin_hand_distance_m is over every run; compute_ms (wall time of an episode, \
-                 planning and simulation) over every run; the others over the reached runs.\n";
-    }
-    let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), out.as_bytes());
-    Ok(())
+    print_batch(
+        &summaries,
+        &footer,
+        args.json,
+        "\nmin_hand_distance_m is over every run; compute_ms (wall time of an episode, \
+         planning and simulation) over every run; the others over the reached runs.\n",
+    )
 }
 
 /// The CSV: a header and one row per episode. `batch_seed` and `jitter_m`

@@ -163,16 +163,27 @@ pub fn batch(path: &Path, args: &BatchArgs<'_>) -> Result<(), String> {
         threads: rayon::current_num_threads(),
         seconds,
     };
+    print_batch(&summaries, &footer, args.json, "")
+}
+
+/// Prints a batch's summaries and footer: JSON lines, or the table
+/// followed by `note` (what the statistics are over, when that differs).
+pub(crate) fn print_batch(
+    summaries: &[PlannerSummary],
+    footer: &BatchFooter<'_>,
+    json: bool,
+    note: &str,
+) -> Result<(), String> {
     let mut out = String::new();
-    if args.json {
-        for s in &summaries {
+    if json {
+        for s in summaries {
             out += &serde_json::to_string(s).map_err(|e| e.to_string())?;
             out.push('\n');
         }
-        out += &serde_json::to_string(&footer).map_err(|e| e.to_string())?;
+        out += &serde_json::to_string(footer).map_err(|e| e.to_string())?;
         out.push('\n');
     } else {
-        out = table(&summaries, &footer);
+        out = table(summaries, footer) + note;
     }
     // A closed pipe (`| head`) is not an error worth a panic.
     let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), out.as_bytes());
@@ -256,7 +267,7 @@ fn runs_csv(rows: &[RunRow], choices: &[PlannerChoice], seed: u64, jitter: f64) 
 }
 
 /// Per planner: success and each metric's mean, median and 95% interval.
-pub(crate) fn table(summaries: &[PlannerSummary], f: &BatchFooter<'_>) -> String {
+fn table(summaries: &[PlannerSummary], f: &BatchFooter<'_>) -> String {
     // The name comes from the file: no escape sequence reaches the terminal.
     let mut s = format!(
         "{} — {} variants (seed {}, jitter {} m), {} episodes on {} threads in {:.1} s\n",
