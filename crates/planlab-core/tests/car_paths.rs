@@ -135,9 +135,7 @@ fn check_path(grid: &OccupancyGrid, start: Pose, goal: Pose, c: &HybridAStarConf
             chord > 0.0 && chord <= 0.5 * grid.resolution() + 1e-9,
             "chord {chord}"
         );
-        let turn = planlab_core::num::wrap_angle(b.yaw - a.yaw).abs();
-        // Curvature of the circle through both poses: 2 sin(Δθ/2) / chord.
-        let kappa = 2.0 * (turn / 2.0).sin() / chord;
+        let kappa = planlab_core::car::max_curvature(&[a, b]);
         assert!(
             kappa <= 1.0 / c.turning_radius * (1.0 + 1e-6),
             "κ {kappa} at {a:?}"

@@ -225,6 +225,7 @@ impl SimHandle {
             terrain: s.terrain,
             seed: s.seed,
             perception: None,
+            global_planner: None,
         })?;
         Ok(SimHandle::wrap(ep))
     }
