@@ -257,6 +257,8 @@ pub struct CarGuide {
     /// The carrot's waypoint.
     carrot: usize,
     revision: u64,
+    /// Paths planned after the first (goal moves, map changes).
+    replans: usize,
     /// The local planner's debug with the car path in it.
     debug: PlannerDebug,
 }
@@ -284,6 +286,7 @@ impl CarGuide {
             progress: 0,
             carrot: 0,
             revision: 0,
+            replans: 0,
             debug: PlannerDebug::default(),
         })
     }
@@ -296,6 +299,11 @@ impl CarGuide {
     /// The path in force.
     pub fn route(&self) -> &CarRoute {
         &self.route
+    }
+
+    /// Paths planned after the first (goal moves, map changes).
+    pub fn replans(&self) -> usize {
+        self.replans
     }
 
     /// The goal heading the path ends with, rad.
@@ -321,6 +329,7 @@ impl CarGuide {
         self.goal_yaw = yaw;
         self.progress = 0;
         self.carrot = 0;
+        self.replans += 1;
         Ok(())
     }
 
