@@ -147,5 +147,53 @@ fn run_with_a_hybrid_astar_global_planner_reaches_the_goal_on_the_path_plan_give
     ]);
     assert!(!ok);
     assert_eq!(err.trim().lines().count(), 1, "{err}");
-    assert!(err.contains("global_planner.turning_radius_m = -2"), "{err}");
+    assert!(
+        err.contains("global_planner.turning_radius_m = -2"),
+        "{err}"
+    );
+}
+
+#[test]
+fn hybrid_astar_plans_a_rectangular_footprint_and_refuses_bad_ones_in_one_line() {
+    let map = format!("{REPO}/assets/maps/turtlebot3.yaml");
+    let run = |extra: &[&str]| {
+        let mut a = vec![
+            "plan",
+            &map,
+            "--algo",
+            "hybrid-astar",
+            "--start",
+            "-2,-0.5,0",
+            "--goal",
+            "2,0.5,90",
+            "--turning-radius",
+            "0.3",
+        ];
+        a.extend_from_slice(extra);
+        planlab(&a)
+    };
+    let (ok, out, err) = run(&["--footprint", "0.3x0.2"]);
+    assert!(ok, "{err}");
+    assert!(out.contains("footprint 0.3 × 0.2 m rectangle"), "{out}");
+    let (ok, out, err) = run(&["--footprint", "0.3x0.2", "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(v["analytic"], true);
+    for (extra, needle) in [
+        (vec!["--footprint", "0.3by0.2"], "LENGTHxWIDTH"),
+        (vec!["--footprint", "nanx0.2"], "footprint rectangle"),
+        (vec!["--footprint", "0.3x-1"], "footprint rectangle"),
+        (
+            vec!["--footprint", "0.3x0.2", "--radius", "0.1"],
+            "give one",
+        ),
+    ] {
+        let (ok, _, err) = run(&extra);
+        assert!(!ok, "{extra:?}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "{extra:?}: {err}");
+    }
+    let (ok, _, err) = planlab(&["plan", &map, "--footprint", "0.3x0.2"]);
+    assert!(!ok);
+    assert!(err.contains("belong to --algo hybrid-astar"), "{err}");
 }

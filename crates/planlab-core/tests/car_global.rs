@@ -88,7 +88,7 @@ fn the_car_path_is_the_one_plan_car_route_gives_and_is_deterministic() {
     let direct = plan_car_route(
         a.map(),
         &spec,
-        a.robot().footprint.circumscribed_radius(),
+        &a.robot().footprint,
         planlab_core::car::Pose::new(st.x, st.y, st.theta),
         g,
         planlab_core::num::atan2(g[1] - st.y, g[0] - st.x),

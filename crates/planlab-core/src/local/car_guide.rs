@@ -6,8 +6,9 @@
 //!
 //! - **Path**: Hybrid A* on the map the planner knows, from the robot's
 //!   pose (its heading too) to the goal with heading `goal_yaw` (default:
-//!   the direction from the start to the goal), with a disc footprint of the
-//!   robot's circumscribed radius + `margin_m`; the poses resampled every
+//!   the direction from the start to the goal), with the robot's footprint
+//!   grown by `margin_m` on every side (a disc, or a rectangle checked by
+//!   the discs covering it); the poses resampled every
 //!   map cell (the scenario's resolution) are the waypoints, the last one
 //!   the exact goal.
 //! - **Carrot**: the robot's progress is the nearest waypoint at or after
@@ -28,7 +29,7 @@ use super::{GoalKind, LocalError, PlannerDebug};
 use crate::car::hybrid_astar::{plan_hybrid_astar, HybridAStarConfig};
 use crate::car::{CarError, Pose};
 use crate::num::{atan2, fmt_num, hypot};
-use crate::world::{RobotState, StaticMap};
+use crate::world::{Footprint, RobotState, StaticMap};
 use serde::{Deserialize, Serialize};
 
 /// Local planners that steer to the observation's goal and keep no global
@@ -163,8 +164,9 @@ pub struct CarRoute {
     pub cusps: usize,
     /// Poses Hybrid A* expanded.
     pub expanded: usize,
-    /// Footprint radius planned with, m.
-    pub footprint_radius: f64,
+    /// The margin planned with, m: the section's, or 0 when the start was
+    /// too close to a wall for it.
+    pub margin_m: f64,
 }
 
 impl CarRoute {
@@ -175,36 +177,42 @@ impl CarRoute {
 }
 
 /// Plans the car path of `spec` on `map` from `from` to `goal` with heading
-/// `goal_yaw`, for a robot of circumscribed radius `robot_radius`. A start
+/// `goal_yaw`, for a robot of footprint `body` grown by the margin. A start
 /// too close to a wall for the margin (the robot drove there) is planned
 /// again without the margin. Errors: [`LocalError::NoGlobalPath`] naming
 /// Hybrid A*'s reason.
 pub fn plan_car_route(
     map: &StaticMap,
     spec: &GlobalPlannerSpec,
-    robot_radius: f64,
+    body: &Footprint,
     from: Pose,
     goal: [f64; 2],
     goal_yaw: f64,
 ) -> Result<CarRoute, LocalError> {
     spec.validate()?;
     let grid = map.solid();
-    let cfg = HybridAStarConfig {
-        turning_radius: spec.turning_radius_m,
-        reverse: spec.reverse,
-        footprint_radius: robot_radius + spec.margin_m,
-        ..HybridAStarConfig::default()
+    let cfg = |margin: f64| {
+        let (footprint_radius, footprint_rect) = match *body {
+            Footprint::Circle { radius } => (radius + margin, None),
+            Footprint::Rectangle { length, width } => (
+                body.circumscribed_radius() + margin,
+                Some((length + 2.0 * margin, width + 2.0 * margin)),
+            ),
+        };
+        HybridAStarConfig {
+            turning_radius: spec.turning_radius_m,
+            reverse: spec.reverse,
+            footprint_radius,
+            footprint_rect,
+            ..HybridAStarConfig::default()
+        }
     };
     let to = Pose::new(goal[0], goal[1], goal_yaw);
-    let (path, radius) = match plan_hybrid_astar(&grid, from, to, &cfg) {
+    let (path, margin) = match plan_hybrid_astar(&grid, from, to, &cfg(spec.margin_m)) {
         Err(CarError::InCollision { .. }) if spec.margin_m > 0.0 => {
-            let bare = HybridAStarConfig {
-                footprint_radius: robot_radius,
-                ..cfg
-            };
-            (plan_hybrid_astar(&grid, from, to, &bare), robot_radius)
+            (plan_hybrid_astar(&grid, from, to, &cfg(0.0)), 0.0)
         }
-        other => (other, cfg.footprint_radius),
+        other => (other, spec.margin_m),
     };
     let path = path.map_err(|e| LocalError::NoGlobalPath(format!("hybrid-astar: {e}")))?;
     // Resample every cell of arc length; cusps are kept (the path turns
@@ -239,7 +247,7 @@ pub fn plan_car_route(
         length: path.length,
         cusps: path.cusps,
         expanded: path.expanded,
-        footprint_radius: radius,
+        margin_m: margin,
     })
 }
 
@@ -249,6 +257,7 @@ pub fn plan_car_route(
 #[derive(Clone, Debug)]
 pub struct CarGuide {
     spec: GlobalPlannerSpec,
+    body: Footprint,
     robot_radius: f64,
     goal_yaw: f64,
     route: CarRoute,
@@ -264,10 +273,11 @@ pub struct CarGuide {
 }
 
 impl CarGuide {
-    /// Plans the path from `start` to `goal` on `map`.
+    /// Plans the path from `start` to `goal` on `map` for a robot of
+    /// footprint `body`.
     pub fn new(
         spec: GlobalPlannerSpec,
-        robot_radius: f64,
+        body: Footprint,
         map: &StaticMap,
         start: &RobotState,
         goal: [f64; 2],
@@ -277,10 +287,11 @@ impl CarGuide {
             .goal_yaw
             .unwrap_or_else(|| atan2(goal[1] - start.y, goal[0] - start.x));
         let from = Pose::new(start.x, start.y, start.theta);
-        let route = plan_car_route(map, &spec, robot_radius, from, goal, goal_yaw)?;
+        let route = plan_car_route(map, &spec, &body, from, goal, goal_yaw)?;
         Ok(Self {
             spec,
-            robot_radius,
+            body,
+            robot_radius: body.circumscribed_radius(),
             goal_yaw,
             route,
             progress: 0,
@@ -325,7 +336,7 @@ impl CarGuide {
             .goal_yaw
             .unwrap_or_else(|| atan2(goal[1] - state.y, goal[0] - state.x));
         let from = Pose::new(state.x, state.y, state.theta);
-        self.route = plan_car_route(map, &self.spec, self.robot_radius, from, goal, yaw)?;
+        self.route = plan_car_route(map, &self.spec, &self.body, from, goal, yaw)?;
         self.goal_yaw = yaw;
         self.progress = 0;
         self.carrot = 0;
@@ -351,16 +362,12 @@ impl CarGuide {
                 .collect();
             if super::dwa::route_blocked(map, &ahead, self.robot_radius) {
                 let from = Pose::new(state.x, state.y, state.theta);
-                if let Ok(r) = plan_car_route(
-                    map,
-                    &self.spec,
-                    self.robot_radius,
-                    from,
-                    goal,
-                    self.goal_yaw,
-                ) {
+                if let Ok(r) =
+                    plan_car_route(map, &self.spec, &self.body, from, goal, self.goal_yaw)
+                {
                     self.route = r;
                     self.progress = 0;
+                    self.replans += 1;
                 }
             }
         }

@@ -415,13 +415,7 @@ fn car_guide(
 ) -> Result<CarGuide, SimError> {
     spec.validate()?;
     spec.check_follower(&choice.name)?;
-    Ok(CarGuide::new(
-        spec,
-        robot.footprint.circumscribed_radius(),
-        map,
-        start,
-        goal,
-    )?)
+    Ok(CarGuide::new(spec, robot.footprint, map, start, goal)?)
 }
 
 /// Mover states at time `t` on `map`.
