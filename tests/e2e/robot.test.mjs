@@ -397,7 +397,11 @@ test('Global planner Hybrid A*: the car path of the CLI is drawn and followed to
   await setSpeed(page, 8);
   await page.click('#play');
   await waitTime(page, 8);
+  // Paused, with the Global planner card in view, for the README.
+  await page.click('#play');
+  await page.locator('#global-summary').scrollIntoViewIfNeeded();
   await page.screenshot({ path: path.join(REPO, 'docs/robot-hybrid-astar-screenshot.png') });
+  await page.click('#play');
   const outcome = await waitOutcome(page);
   assert.equal(outcome, 'reached', await page.textContent('#status'));
   assert.equal(native.outcome, 'reached');

@@ -179,3 +179,17 @@ fn moving_the_goal_replans_the_car_path_and_a_saved_episode_keeps_the_section() 
     let ep = episode(&plain).unwrap();
     assert!(ep.car_guide().is_none());
 }
+
+#[test]
+fn a_rectangular_robot_follows_a_car_path_planned_for_its_rectangle() {
+    let rect = r#"{"shape": "rectangle", "length": 0.5, "width": 0.3}"#;
+    let ep = drive("T-fig3-2.json", &[("robot.footprint", rect)]);
+    assert_eq!(ep.car_guide().unwrap().route().margin_m, 0.1);
+    // Its path is not the preset's 0.25 m disc's.
+    let s = preset("T-fig3-2.json", &HYBRID).unwrap();
+    let disc = episode(&s).unwrap();
+    assert_ne!(
+        disc.car_guide().unwrap().route().length,
+        ep.car_guide().unwrap().route().length
+    );
+}
