@@ -147,8 +147,8 @@ impl DiscChecker {
 
 /// Discs that cover a rectangle centred on a pose (length along the
 /// heading, width across): `n` equal discs centred on the rectangle's
-/// longer axis, each covering a 1/n slice of it, so radius = √((long / 2n)²
-/// + (short / 2)²). `n` is the least for which the discs bulge past the long
+/// longer axis, each covering a 1/n slice of it, so the radius is
+/// √((long / 2n)² + (short / 2)²). `n` is the least for which the discs bulge past the long
 /// sides by at most a quarter cell. The cover is conservative (it contains
 /// the rectangle): at most a quarter cell larger across the long sides, and
 /// past each short end by √((long / 2n)² + (short / 2)²) − long / 2n ≤
