@@ -411,6 +411,18 @@ test('Global planner Hybrid A*: the car path of the CLI is drawn and followed to
   await page.dispatchEvent('#turning-radius', 'change');
   assert.match(await errorText(page), /global_planner\.turning_radius_m = -1/);
   assert.equal(Number(await bodyData(page, 'globalLength')), length);
+  // May reverse: a Reeds-Shepp car path, again the CLI's.
+  await page.fill('#turning-radius', '1');
+  await page.check('#car-reverse');
+  await page.waitForFunction(() => /may reverse/.test(document.getElementById('global-summary').textContent));
+  const back = spawnSync(
+    CLI,
+    ['run', path.join(REPO, 'assets/scenarios', file), '--planner', 'dwa', '--json', '--set', 'global_planner.algorithm=hybrid-astar',
+      '--set', 'global_planner.turning_radius_m=1', '--set', 'global_planner.reverse=true'],
+    { encoding: 'utf8', timeout: 120_000 },
+  );
+  assert.equal(back.status, 0, back.stderr);
+  assert.equal(Number(await bodyData(page, 'globalLength')), JSON.parse(back.stdout).global_path.length_m);
   // Back to none: no car path.
   await page.selectOption('#global-planner', '');
   await page.waitForFunction(() => !document.body.dataset.globalLength && document.body.dataset.state === 'ready');

@@ -63,7 +63,7 @@ export class GlobalPicker {
       body.globalLength = String(g.length_m);
       const swap = this.swapped ? ` The local planner ${this.swapped} plans its own route, so dwa follows the path.` : '';
       this.summary.textContent =
-        `Hybrid A* car path (red): ${g.length_m.toFixed(3)} m, ${g.cusps} cusp${g.cusps === 1 ? '' : 's'}, ${g.expanded} poses expanded; turns no tighter than ${g.spec.turning_radius_m} m.${swap}`;
+        `Hybrid A* car path (red): ${g.length_m.toFixed(3)} m, ${g.cusps} cusp${g.cusps === 1 ? '' : 's'}, ${g.expanded} poses expanded; turns no tighter than ${g.spec.turning_radius_m} m${g.spec.reverse ? ', may reverse' : ''}.${swap}`;
     } else {
       delete body.globalLength;
       this.summary.textContent = 'None: the local planner finds its own way to the goal.';
