@@ -360,3 +360,73 @@ test('every parameter on the panel has a plain-language name; the symbol and con
   assert.deepEqual(problems, []);
   await page.close();
 });
+
+test('Global planner Hybrid A*: the car path of the CLI is drawn and followed to the goal, the same run as planlab run', async () => {
+  assert.ok(fs.existsSync(CLI), 'build target/release/planlab first (cargo build --release -p planlab-cli)');
+  const file = 'T-fig3-2.json';
+  const { page, problems } = await openRobot(file);
+  assert.equal(await page.inputValue('#global-planner'), '');
+  assert.equal(await page.isVisible('#turning-radius'), false);
+  await page.selectOption('#global-planner', 'hybrid-astar');
+  await page.waitForFunction(() => document.body.dataset.globalLength && document.body.dataset.state === 'ready');
+  // The preset's improved-dwa plans its own route: dwa follows the car path.
+  assert.equal(await page.inputValue('#planner'), 'dwa');
+  assert.match(await page.textContent('#global-summary'), /improved-dwa plans its own route/);
+  assert.equal(await page.inputValue('#turning-radius'), '1');
+  const run = spawnSync(
+    CLI,
+    ['run', path.join(REPO, 'assets/scenarios', file), '--planner', 'dwa', '--json',
+      '--set', 'global_planner.algorithm=hybrid-astar', '--set', 'global_planner.turning_radius_m=1'],
+    { encoding: 'utf8', timeout: 120_000 },
+  );
+  assert.equal(run.status, 0, run.stderr);
+  const native = JSON.parse(run.stdout);
+  const length = Number(await bodyData(page, 'globalLength'));
+  assert.equal(length, native.global_path.length_m);
+  // The drawn path: from the start to the goal, its polyline as long as the
+  // car path (waypoints every cell: chords of arcs of radius ≥ 1 m lose
+  // under 0.1 %), longer than the straight line.
+  const pts = await hooks(page, 'globalPath');
+  assert.ok(pts.length > 100, `${pts.length / 2} points`);
+  let drawn = 0;
+  for (let i = 2; i < pts.length; i += 2) drawn += Math.hypot(pts[i] - pts[i - 2], pts[i + 1] - pts[i - 1]);
+  assert.ok(Math.abs(drawn - length) < 1e-3 * length, `drawn ${drawn} m, car path ${length} m`);
+  assert.deepEqual(pts.slice(0, 2), [1.5, 4]);
+  assert.deepEqual(pts.slice(-2), [10.5, 4]);
+  assert.ok(length > 9);
+  await setSpeed(page, 8);
+  await page.click('#play');
+  await waitTime(page, 8);
+  // Paused, with the Global planner card in view, for the README.
+  await page.click('#play');
+  await page.locator('#global-summary').scrollIntoViewIfNeeded();
+  await page.screenshot({ path: path.join(REPO, 'docs/robot-hybrid-astar-screenshot.png') });
+  await page.click('#play');
+  const outcome = await waitOutcome(page);
+  assert.equal(outcome, 'reached', await page.textContent('#status'));
+  assert.equal(native.outcome, 'reached');
+  assert.equal(await bodyData(page, 'traceHash'), BigInt(`0x${native.trace_hash}`).toString());
+  // A bad radius: the core's one-line error, the run in force stays.
+  await page.fill('#turning-radius', '-1');
+  await page.dispatchEvent('#turning-radius', 'change');
+  assert.match(await errorText(page), /global_planner\.turning_radius_m = -1/);
+  assert.equal(Number(await bodyData(page, 'globalLength')), length);
+  // May reverse: a Reeds-Shepp car path, again the CLI's.
+  await page.fill('#turning-radius', '1');
+  await page.check('#car-reverse');
+  await page.waitForFunction(() => /may reverse/.test(document.getElementById('global-summary').textContent));
+  const back = spawnSync(
+    CLI,
+    ['run', path.join(REPO, 'assets/scenarios', file), '--planner', 'dwa', '--json', '--set', 'global_planner.algorithm=hybrid-astar',
+      '--set', 'global_planner.turning_radius_m=1', '--set', 'global_planner.reverse=true'],
+    { encoding: 'utf8', timeout: 120_000 },
+  );
+  assert.equal(back.status, 0, back.stderr);
+  assert.equal(Number(await bodyData(page, 'globalLength')), JSON.parse(back.stdout).global_path.length_m);
+  // Back to none: no car path.
+  await page.selectOption('#global-planner', '');
+  await page.waitForFunction(() => !document.body.dataset.globalLength && document.body.dataset.state === 'ready');
+  assert.equal(await page.isVisible('#turning-radius'), false);
+  assert.deepEqual(problems, []);
+  await page.close();
+});

@@ -268,10 +268,21 @@ pub struct CarArgs {
     pub reverse: bool,
     /// Disc footprint radius, m (default the config's).
     pub radius: Option<f64>,
+    /// Rectangular footprint (length, width), m, instead of the disc.
+    pub rect: Option<(f64, f64)>,
     /// Unknown cells are free.
     pub allow_unknown: bool,
     /// JSON output.
     pub json: bool,
+}
+
+/// `--footprint LxW`: a rectangle's length and width, metres (checked by
+/// Hybrid A*: finite, > 0).
+pub fn parse_footprint(s: &str) -> Result<(f64, f64), String> {
+    let bad = || format!("--footprint {s:?}: expected LENGTHxWIDTH in metres, like 0.6x0.4");
+    let (l, w) = s.split_once(['x', 'X', '×']).ok_or_else(bad)?;
+    let num = |t: &str| t.trim().parse::<f64>().map_err(|_| bad());
+    Ok((num(l)?, num(w)?))
 }
 
 /// Plans a car path with Hybrid A* and prints it.
@@ -285,6 +296,7 @@ pub fn plan_car(map_path: &Path, grid: &OccupancyGrid, a: &CarArgs) -> Result<()
     if let Some(r) = a.radius {
         cfg.footprint_radius = r;
     }
+    cfg.footprint_rect = a.rect;
     let t = Instant::now();
     let p = plan_hybrid_astar(grid, a.start, a.goal, &cfg).map_err(|e| e.to_string())?;
     let micros = t.elapsed().as_secs_f64() * 1e6;
@@ -304,14 +316,17 @@ pub fn plan_car(map_path: &Path, grid: &OccupancyGrid, a: &CarArgs) -> Result<()
         );
     } else {
         outln!(
-            "hybrid-astar on {} ({}×{} cells, {} m/cell), turning radius {} m{}, footprint {} m: length {:.3} m, {} poses, {} expanded, {} cusps, {}, {:.1} µs",
+            "hybrid-astar on {} ({}×{} cells, {} m/cell), turning radius {} m{}, footprint {}: length {:.3} m, {} poses, {} expanded, {} cusps, {}, {:.1} µs",
             map_path.display(),
             grid.width(),
             grid.height(),
             grid.resolution(),
             cfg.turning_radius,
             if cfg.reverse { ", reverse allowed" } else { "" },
-            cfg.footprint_radius,
+            match cfg.footprint_rect {
+                Some((l, w)) => format!("{l} × {w} m rectangle"),
+                None => format!("{} m", cfg.footprint_radius),
+            },
             p.length,
             p.poses.len(),
             p.expanded,

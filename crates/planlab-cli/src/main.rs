@@ -352,6 +352,10 @@ enum Command {
         /// Hybrid A*: the car may reverse (Reeds-Shepp).
         #[arg(long)]
         reverse: bool,
+        /// Hybrid A*: a rectangular footprint LENGTHxWIDTH, metres, centred
+        /// on the pose (instead of the --radius disc), e.g. 0.6x0.4.
+        #[arg(long, value_name = "LxW", allow_hyphen_values = true)]
+        footprint: Option<String>,
         /// JSON output.
         #[arg(long)]
         json: bool,
@@ -788,6 +792,7 @@ fn run(cli: Cli) -> Result<(), String> {
             epsilon,
             turning_radius,
             reverse,
+            footprint,
             json,
             trace_posthoc,
         } => {
@@ -807,6 +812,11 @@ fn run(cli: Cli) -> Result<(), String> {
                 let (Some(start), Some(goal)) = (start, goal) else {
                     return Err("hybrid-astar needs --start X,Y,THETA and --goal X,Y,THETA (metres, degrees)".into());
                 };
+                if footprint.is_some() && radius.is_some() {
+                    return Err(
+                        "--footprint LxW and --radius r are two footprints: give one".into(),
+                    );
+                }
                 let car = grid_cmds::CarArgs {
                     start: grid_cmds::parse_pose(&start, "--start")?,
                     goal: grid_cmds::parse_pose(&goal, "--goal")?,
@@ -814,13 +824,20 @@ fn run(cli: Cli) -> Result<(), String> {
                         .ok_or("hybrid-astar needs --turning-radius R (metres)")?,
                     reverse,
                     radius,
+                    rect: footprint
+                        .as_deref()
+                        .map(grid_cmds::parse_footprint)
+                        .transpose()?,
                     allow_unknown,
                     json,
                 };
                 return grid_cmds::plan_car(&map, &grid, &car);
             }
-            if turning_radius.is_some() || reverse {
-                return Err("--turning-radius and --reverse belong to --algo hybrid-astar".into());
+            if turning_radius.is_some() || reverse || footprint.is_some() {
+                return Err(
+                    "--turning-radius, --reverse and --footprint belong to --algo hybrid-astar"
+                        .into(),
+                );
             }
             let sampling_flags = [
                 ("--iterations", iterations.is_some()),

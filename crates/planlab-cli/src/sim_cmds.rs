@@ -59,6 +59,9 @@ struct RunReport<'a> {
     /// shown what the robot hit.
     #[serde(skip_serializing_if = "Option::is_none")]
     collision_seen: Option<bool>,
+    /// With a `global_planner` section: the car path in force at the end.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    global_path: Option<GlobalPathReport>,
     #[serde(flatten)]
     metrics: &'a EpisodeMetrics,
 }
@@ -81,6 +84,19 @@ pub(crate) fn parse_sets(
                 .ok_or_else(|| format!("--set {edit}: expected PATH=VALUE, like {like}"))
         })
         .collect()
+}
+
+/// The car path of a run with a `global_planner` section.
+#[derive(Serialize)]
+struct GlobalPathReport {
+    algorithm: &'static str,
+    /// Hybrid A*'s path length, m.
+    length_m: f64,
+    cusps: usize,
+    /// Poses Hybrid A* expanded.
+    expanded: usize,
+    /// Paths planned after the first.
+    replans: usize,
 }
 
 /// Reads the scenario at `path` (text `text`) with the run's edits applied
@@ -300,6 +316,13 @@ fn report_episode(
         steps: ep.steps(),
         trace_hash: format!("{hash:016x}"),
         collision_seen: ep.collision_seen(),
+        global_path: ep.car_guide().map(|c| GlobalPathReport {
+            algorithm: "hybrid-astar",
+            length_m: c.route().length,
+            cusps: c.route().cusps,
+            expanded: c.route().expanded,
+            replans: c.replans(),
+        }),
         metrics: m,
     };
     if args.json {
@@ -309,6 +332,13 @@ fn report_episode(
         emit(&metrics_table(m))?;
         emit(&(format!("{:<22}{}", "steps", report.steps) + "\n"))?;
         emit(&(format!("{:<22}{}", "trace hash", report.trace_hash) + "\n"))?;
+        if let Some(g) = &report.global_path {
+            let line = format!(
+                "{:<22}{} {:.3} m, {} cusps, {} replans",
+                "global path", g.algorithm, g.length_m, g.cusps, g.replans
+            );
+            emit(&(line + "\n"))?;
+        }
         if let Some(seen) = report.collision_seen {
             let what = if seen {
                 "yes (the laser had shown it)"

@@ -53,6 +53,7 @@ fn setup() -> EpisodeSetup {
         terrain: Default::default(),
         seed: 1,
         perception: None,
+        global_planner: None,
     }
 }
 

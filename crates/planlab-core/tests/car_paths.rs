@@ -135,9 +135,7 @@ fn check_path(grid: &OccupancyGrid, start: Pose, goal: Pose, c: &HybridAStarConf
             chord > 0.0 && chord <= 0.5 * grid.resolution() + 1e-9,
             "chord {chord}"
         );
-        let turn = planlab_core::num::wrap_angle(b.yaw - a.yaw).abs();
-        // Curvature of the circle through both poses: 2 sin(Δθ/2) / chord.
-        let kappa = 2.0 * (turn / 2.0).sin() / chord;
+        let kappa = planlab_core::car::max_curvature(&[a, b]);
         assert!(
             kappa <= 1.0 / c.turning_radius * (1.0 + 1e-6),
             "κ {kappa} at {a:?}"
@@ -217,4 +215,114 @@ fn hybrid_astar_refuses_bad_input_and_a_walled_off_goal_quickly() {
     };
     let e = plan_hybrid_astar(&g, s, t, &c).unwrap_err();
     assert!(matches!(e, CarError::SearchLimit { limit: 3, .. }), "{e}");
+}
+
+/// Whether a `length` × `width` rectangle centred on `p` overlaps a blocked
+/// cell or leaves `grid` (map frame at the origin, unrotated): exact, by
+/// separating axes (the rectangle's two and the cell's two).
+fn rect_hits(grid: &OccupancyGrid, p: Pose, length: f64, width: f64) -> bool {
+    let res = grid.resolution();
+    let (c, s) = (p.yaw.cos(), p.yaw.sin());
+    let (hl, hw) = (0.5 * length, 0.5 * width);
+    let corners = [(hl, hw), (hl, -hw), (-hl, -hw), (-hl, hw)]
+        .map(|(a, b)| (p.x + a * c - b * s, p.y + a * s + b * c));
+    let (w, h) = (grid.width() as f64 * res, grid.height() as f64 * res);
+    if corners
+        .iter()
+        .any(|&(x, y)| x < 0.0 || y < 0.0 || x > w || y > h)
+    {
+        return true;
+    }
+    let (x0, x1) = corners
+        .iter()
+        .fold((f64::MAX, f64::MIN), |m, q| (m.0.min(q.0), m.1.max(q.0)));
+    let (y0, y1) = corners
+        .iter()
+        .fold((f64::MAX, f64::MIN), |m, q| (m.0.min(q.1), m.1.max(q.1)));
+    let cols = (x0 / res).floor().max(0.0) as usize..=((x1 / res) as usize).min(grid.width() - 1);
+    for col in cols {
+        let ups =
+            (y0 / res).floor().max(0.0) as usize..=((y1 / res) as usize).min(grid.height() - 1);
+        for up in ups {
+            let row = grid.height() - 1 - up;
+            if grid.cells()[row * grid.width() + col] != planlab_core::map::Cell::Occupied {
+                continue;
+            }
+            let sq = [
+                (col as f64 * res, up as f64 * res),
+                ((col + 1) as f64 * res, up as f64 * res),
+                ((col + 1) as f64 * res, (up + 1) as f64 * res),
+                (col as f64 * res, (up + 1) as f64 * res),
+            ];
+            // Separated on some axis: no overlap (touching counts as free).
+            let separated = [(1.0, 0.0), (0.0, 1.0), (c, s), (-s, c)]
+                .iter()
+                .any(|&(ax, ay)| {
+                    let proj = |q: &(f64, f64)| q.0 * ax + q.1 * ay;
+                    let (a0, a1) = corners
+                        .iter()
+                        .map(proj)
+                        .fold((f64::MAX, f64::MIN), |m, v| (m.0.min(v), m.1.max(v)));
+                    let (b0, b1) = sq
+                        .iter()
+                        .map(proj)
+                        .fold((f64::MAX, f64::MIN), |m, v| (m.0.min(v), m.1.max(v)));
+                    a1 <= b0 + 1e-12 || b1 <= a0 + 1e-12
+                });
+            if !separated {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+#[test]
+fn a_rectangular_car_never_puts_its_rectangle_in_a_wall() {
+    let g = room();
+    let (l, w) = (1.2, 0.6);
+    for (reverse, goal) in [
+        (false, Pose::new(17.0, 3.0, 0.0)),
+        (true, Pose::new(17.0, 2.0, PI)),
+    ] {
+        let c = HybridAStarConfig {
+            footprint_rect: Some((l, w)),
+            ..cfg(reverse)
+        };
+        let p = plan_hybrid_astar(&g, Pose::new(3.0, 3.0, 0.0), goal, &c).unwrap();
+        assert!(p.analytic);
+        // Every pose and 1/10 of the way between poses (the heading too).
+        for win in p.poses.windows(2) {
+            let (a, b) = (win[0], win[1]);
+            let turn = planlab_core::num::wrap_angle(b.yaw - a.yaw);
+            for i in 0..=10 {
+                let t = i as f64 / 10.0;
+                let q = Pose::new(
+                    a.x + t * (b.x - a.x),
+                    a.y + t * (b.y - a.y),
+                    a.yaw + t * turn,
+                );
+                assert!(!rect_hits(&g, q, l, w), "rectangle in a wall at {q:?}");
+            }
+        }
+        // It turns within its radius and reaches the goal as the disc does.
+        assert!(
+            planlab_core::car::max_curvature(&p.poses) <= 1.0 / c.turning_radius * (1.0 + 1e-6)
+        );
+        let last = p.poses.last().unwrap();
+        assert!((last.x - goal.x).abs() < 1e-6 && (last.y - goal.y).abs() < 1e-6);
+    }
+    // A bad rectangle is a typed error.
+    for r in [(f64::NAN, 0.5), (1.0, 0.0), (-1.0, 0.5)] {
+        let c = HybridAStarConfig {
+            footprint_rect: Some(r),
+            ..cfg(false)
+        };
+        let e = plan_hybrid_astar(&g, Pose::new(3.0, 3.0, 0.0), Pose::new(17.0, 3.0, 0.0), &c)
+            .unwrap_err();
+        assert!(
+            matches!(&e, CarError::InvalidParameter(m) if m.contains("rectangle")),
+            "{e}"
+        );
+    }
 }

@@ -77,6 +77,7 @@ fn episode(planner: &str, footprint: Footprint) -> Episode {
         terrain: Default::default(),
         seed: 11,
         perception: None,
+        global_planner: None,
     })
     .unwrap()
 }

@@ -36,6 +36,7 @@ fn split_room(gap_cells: usize) -> Episode {
         terrain: Default::default(),
         seed: 0,
         perception: None,
+        global_planner: None,
     })
     .unwrap()
 }

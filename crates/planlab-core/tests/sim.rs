@@ -45,6 +45,7 @@ fn setup(map: StaticMap, start: [f64; 3], goal: [f64; 2]) -> EpisodeSetup {
         terrain: Default::default(),
         seed: 7,
         perception: None,
+        global_planner: None,
     }
 }
 

@@ -699,10 +699,13 @@ fn pose(p: (f64, f64, f64)) -> planlab_core::car::Pose {
 
 /// Hybrid A* for a car (docs/algorithms.md §hybrid-astar), as `planlab
 /// plan --algo hybrid-astar`: `start`, `goal` are (x, y, θ) in world metres
-/// and **radians**. Returns a dict: `poses` ((n, 3) array x, y, θ),
-/// `forward` (bool per pose), `length_m`, `expanded`, `analytic`, `cusps`.
+/// and **radians**; `footprint` = (length, width) m plans a rectangle
+/// instead of the `radius` disc (`--footprint LxW`). Returns a dict:
+/// `poses` ((n, 3) array x, y, θ), `forward` (bool per pose), `length_m`,
+/// `expanded`, `analytic`, `cusps`.
 #[pyfunction]
-#[pyo3(signature = (grid, start, goal, turning_radius, reverse = false, radius = None))]
+#[pyo3(signature = (grid, start, goal, turning_radius, reverse = false, radius = None, footprint = None))]
+#[allow(clippy::too_many_arguments)]
 fn plan_car<'py>(
     py: Python<'py>,
     grid: &Grid,
@@ -711,8 +714,14 @@ fn plan_car<'py>(
     turning_radius: f64,
     reverse: bool,
     radius: Option<f64>,
+    footprint: Option<(f64, f64)>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use planlab_core::car::hybrid_astar::{plan_hybrid_astar, HybridAStarConfig};
+    if radius.is_some() && footprint.is_some() {
+        return Err(err::<ParamError>(
+            "plan_car: radius and footprint are two footprints: give one",
+        ));
+    }
     let mut cfg = HybridAStarConfig {
         turning_radius,
         reverse,
@@ -722,6 +731,7 @@ fn plan_car<'py>(
     if let Some(r) = radius {
         cfg.footprint_radius = r;
     }
+    cfg.footprint_rect = footprint;
     let g = &grid.grid;
     let p = py
         .detach(|| plan_hybrid_astar(g, pose(start), pose(goal), &cfg))
@@ -978,7 +988,9 @@ impl Scenario {
     /// Runs to the end, as `planlab run` does (same planner, seed and
     /// `set` edits: `{"sim.dt": 0.05}`). Returns a dict: `scenario`,
     /// `planner`, `seed`, `steps`, `trace_hash` (hex, `planlab run`'s),
-    /// `metrics` (dict) and `trace` (dict of 1-D arrays; APF and arm runs:
+    /// `metrics` (dict), with a `global_planner` section `global_path`
+    /// (dict: `algorithm`, `length_m`, `cusps`, `expanded`, `replans`), and
+    /// `trace` (dict of 1-D arrays; APF and arm runs:
     /// `path`, an (n, 3) array of points). `mcap`: also write a robot
     /// episode as an MCAP file there (`planlab run --mcap`: Foxglove
     /// schemas, JSON; pose, scan, paths, movers and map per step).
@@ -1031,6 +1043,16 @@ impl Scenario {
                 d.set_item("steps", ep.steps())?;
                 d.set_item("metrics", to_py(py, m)?)?;
                 d.set_item("trace", trace_columns(py, ep.trace())?)?;
+                if let Some(c) = ep.car_guide() {
+                    // As `planlab run --json`'s `global_path`.
+                    let g = PyDict::new(py);
+                    g.set_item("algorithm", "hybrid-astar")?;
+                    g.set_item("length_m", c.route().length)?;
+                    g.set_item("cusps", c.route().cusps)?;
+                    g.set_item("expanded", c.route().expanded)?;
+                    g.set_item("replans", c.replans())?;
+                    d.set_item("global_path", g)?;
+                }
             }
             FinishedRun::Apf(r, m) => {
                 d.set_item("planner", format!("apf:{}", r.mode_label()))?;

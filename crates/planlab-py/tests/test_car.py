@@ -29,3 +29,18 @@ def test_plan_car_reaches_the_exact_goal_and_refuses_a_goal_off_the_map():
     assert r["poses"][-1][0] == pytest.approx(2.0) and r["poses"][-1][2] == pytest.approx(math.pi / 2)
     with pytest.raises(planlab.PlanError, match="off the map"):
         planlab.plan_car(g, (-2.0, -0.5, 0.0), (50.0, 0.5, 0.0), turning_radius=0.3)
+
+
+def test_plan_car_with_a_rectangle_is_the_cli_s_footprint_path(cli):
+    g = planlab.load_map(str(TURTLEBOT))
+    r = planlab.plan_car(g, (-2.0, -0.5, 0.0), (2.0, 0.5, math.pi / 2), turning_radius=0.3,
+                         footprint=(0.3, 0.2))
+    native = cli.json("plan", TURTLEBOT, "--algo", "hybrid-astar", "--start", "-2,-0.5,0",
+                      "--goal", "2,0.5,90", "--turning-radius", "0.3", "--footprint", "0.3x0.2")
+    assert r["length_m"] == native["length_m"]
+    assert r["analytic"]
+    with pytest.raises(planlab.ParamError, match="rectangle"):
+        planlab.plan_car(g, (-2.0, -0.5, 0.0), (2.0, 0.5, 0.0), turning_radius=0.3, footprint=(0.3, -1.0))
+    with pytest.raises(planlab.ParamError, match="give one"):
+        planlab.plan_car(g, (-2.0, -0.5, 0.0), (2.0, 0.5, 0.0), turning_radius=0.3, radius=0.1,
+                         footprint=(0.3, 0.2))

@@ -97,3 +97,31 @@ def test_batch_variant_matches_run_variant(cli):
     want = cli.json("run", DEMO, "--variant", "4", "--seed", "2", "--jitter", "0.4")
     v = planlab.Scenario.from_file(DEMO).variant(4, seed=2, jitter=0.4)
     assert v.run()["trace_hash"] == want["trace_hash"]
+
+
+HYBRID = {"local_planner.name": "dwa", "global_planner.algorithm": "hybrid-astar",
+          "global_planner.turning_radius_m": 1.0}
+
+
+def test_a_hybrid_astar_global_planner_runs_as_planlab_run_and_reaches_the_goal(cli):
+    path = SCENARIOS / "T-fig3-2.json"
+    flags = [f for k, v in HYBRID.items() for f in ("--set", f"{k}={v}")]
+    native = cli.json("run", path, *flags)
+    got = planlab.Scenario.from_file(path).run(set=HYBRID)
+    assert got["trace_hash"] == native["trace_hash"]
+    assert got["metrics"]["outcome"] == "reached"
+    assert got["metrics"].get("collision") is None
+    assert got["global_path"] == native["global_path"]
+    assert got["global_path"]["length_m"] > 9.0
+    # Without the section there is no car path.
+    assert "global_path" not in planlab.Scenario.from_file(path).run(planner="dwa")
+
+
+@pytest.mark.parametrize("radius,needle", [(None, "turning_radius_m"), (-1.0, "turning_radius_m = -1"),
+                                           (float("nan"), "turning_radius_m")])
+def test_a_missing_or_bad_turning_radius_is_a_scenario_error(radius, needle):
+    edits = {k: v for k, v in HYBRID.items() if radius is not None or "turning" not in k}
+    if radius is not None:
+        edits["global_planner.turning_radius_m"] = radius
+    with pytest.raises(planlab.ScenarioError, match=needle):
+        planlab.Scenario.from_file(SCENARIOS / "T-fig3-2.json").run(set=edits)

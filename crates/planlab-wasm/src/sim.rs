@@ -225,6 +225,7 @@ impl SimHandle {
             terrain: s.terrain,
             seed: s.seed,
             perception: None,
+            global_planner: None,
         })?;
         Ok(SimHandle::wrap(ep))
     }
@@ -442,6 +443,25 @@ impl SimHandle {
             }
         };
         Ok(())
+    }
+
+    /// The car path the local planner follows (a scenario's
+    /// `global_planner` section): `{"spec": {…}, "length_m", "cusps",
+    /// "expanded", "replans"}` JSON, or `undefined` without one.
+    #[wasm_bindgen(js_name = globalPath)]
+    pub fn global_path(&self) -> Option<String> {
+        let c = self.ep.car_guide()?;
+        let r = c.route();
+        Some(
+            serde_json::json!({
+                "spec": c.spec(),
+                "length_m": r.length,
+                "cusps": r.cusps,
+                "expanded": r.expanded,
+                "replans": c.replans(),
+            })
+            .to_string(),
+        )
     }
 
     /// [`planlab_core::sim::Episode::route_note`]: one line when every way
@@ -670,4 +690,11 @@ pub fn planners() -> Result<String, JsError> {
         }
     }
     serde_json::to_string(&v).map_err(|e| json_err("planners", e))
+}
+
+/// The local planners a `global_planner` car path can guide
+/// ([`planlab_core::local::car_guide::FOLLOWERS`]), as a JSON list.
+#[wasm_bindgen(js_name = globalFollowers)]
+pub fn global_followers() -> String {
+    serde_json::to_string(&planlab_core::local::car_guide::FOLLOWERS).unwrap_or_default()
 }

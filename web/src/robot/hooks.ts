@@ -40,6 +40,8 @@ export function installRobotHooks(h: HookHost): void {
       return s ? drawnFrame(s.draw(mask(Layer.Movers), 0), mask(Layer.Movers)).movers() : null;
     },
     rollouts: () => h.view.scene.frame.of(Layer.Fan).count(Layer.Fan),
+    /** The global path as drawn: x0, y0, x1, y1, … (m). */
+    globalPath: () => Array.from(h.view.scene.frame.globalPath()),
     /** The fan as drawn: per rollout its colouring value and whether it
      *  was admissible. */
     fan: () => {

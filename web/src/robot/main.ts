@@ -13,6 +13,7 @@ import { pullLive } from '../scene/pull';
 import { SeriesPlots } from './plots';
 import type { PlannerInfo } from '../shell/planner-info';
 import { PlannerPicker } from './planner';
+import { GlobalPicker } from './global';
 import { installShell } from '../shell/help';
 import { installLegend } from '../shell/legend';
 import { robotHelp } from '../shell/help-content';
@@ -152,6 +153,14 @@ const planner = new PlannerPicker({
   guard,
 });
 
+// The global planner card: none or a Hybrid A* car path (global.ts).
+const globalPicker = new GlobalPicker({
+  sim: () => sim,
+  scenarioJson: () => filesMenu.scenarioJson(),
+  load: (text) => loadScenario(text, ui.preset.value || 'scenario'),
+  guard,
+});
+
 // The critics of the planner in force and what colours the fan (critics.ts).
 const critics = new CriticsPanel(el('critics'), el('legend-fan'), {
   changed: (k) => {
@@ -257,6 +266,7 @@ function install(next: SimHandle, keepView = false): void {
   if (map) view.setMap(map, keepView);
   const omni = status.showSetup(sim, map);
   planner.showChoiceOf(sim);
+  globalPicker.showOf(sim);
   plots.clear(omni, sim.hasVehicle);
   status.clear();
   status.note = sim.routeNote() ?? '';

@@ -145,6 +145,70 @@ impl DiscChecker {
     }
 }
 
+/// Discs that cover a rectangle centred on a pose (length along the
+/// heading, width across): `n` equal discs centred on the rectangle's
+/// longer axis, each covering a 1/n slice of it, so the radius is
+/// √((long / 2n)² + (short / 2)²). `n` is the least for which the discs bulge past the long
+/// sides by at most a quarter cell. The cover is conservative (it contains
+/// the rectangle): at most a quarter cell larger across the long sides, and
+/// past each short end by √((long / 2n)² + (short / 2)²) − long / 2n ≤
+/// short / 2 at the end's middle (a disc cannot have a flat end). A disc
+/// footprint is the cover with one disc.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RectCover {
+    /// Radius of each disc, m.
+    pub radius: f64,
+    /// Each disc centre in the body frame (along the heading, to its
+    /// left), m.
+    pub offsets: Vec<(f64, f64)>,
+}
+
+/// Most discs a rectangle cover may use (the bound keeps a hostile size,
+/// 1 km × 1 cm, finite; the cover then bulges more than a quarter cell).
+pub const MAX_COVER_DISCS: usize = 64;
+
+impl RectCover {
+    /// One disc of radius `r` at the pose.
+    pub fn disc(r: f64) -> Self {
+        Self {
+            radius: r,
+            offsets: vec![(0.0, 0.0)],
+        }
+    }
+
+    /// The cover of a `length` × `width` rectangle (finite, > 0) on a map
+    /// of cells `res` m.
+    pub fn new(length: f64, width: f64, res: f64) -> Self {
+        let (long, short) = (length.max(width), length.min(width));
+        let half_s = 0.5 * short;
+        let bulge = 0.25 * res;
+        // Half a slice may be at most this long for the bulge to hold.
+        let half_slice = ((half_s + bulge).powi(2) - half_s * half_s).sqrt();
+        let n = ((0.5 * long / half_slice).ceil().max(1.0) as usize).min(MAX_COVER_DISCS);
+        let slice = long / n as f64;
+        let radius = crate::num::hypot(0.5 * slice, half_s);
+        let offsets = (0..n)
+            .map(|i| {
+                let o = -0.5 * long + slice * (i as f64 + 0.5);
+                if length >= width {
+                    (o, 0.0)
+                } else {
+                    (0.0, o)
+                }
+            })
+            .collect();
+        Self { radius, offsets }
+    }
+
+    /// The disc centres for the body at `p` (map frame).
+    pub fn centres(&self, p: super::Pose) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let (c, s) = (crate::num::cos(p.yaw), crate::num::sin(p.yaw));
+        self.offsets
+            .iter()
+            .map(move |&(a, b)| (p.x + a * c - b * s, p.y + a * s + b * c))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -175,5 +239,33 @@ mod tests {
         assert!(ck.disc_free(4.0, 2.7, 0.3));
         // The wall at column 3, row 1 spans x 1.5..2, y 2..2.5.
         assert!(!ck.disc_free(1.75, 1.8, 0.3));
+    }
+
+    #[test]
+    fn the_rectangle_cover_contains_the_rectangle_and_bulges_at_most_a_quarter_cell() {
+        for (l, w) in [(0.6, 0.4), (2.0, 0.3), (0.3, 0.9), (0.1, 0.1)] {
+            let res = 0.1;
+            let c = RectCover::new(l, w, res);
+            let p = super::super::Pose::new(1.0, 2.0, 0.7);
+            let centres: Vec<(f64, f64)> = c.centres(p).collect();
+            let (co, si) = (0.7f64.cos(), 0.7f64.sin());
+            // Every point of the rectangle is in some disc.
+            for i in 0..=40 {
+                for j in 0..=20 {
+                    let (a, b) = (l * (i as f64 / 40.0 - 0.5), w * (j as f64 / 20.0 - 0.5));
+                    let (x, y) = (1.0 + a * co - b * si, 2.0 + a * si + b * co);
+                    assert!(
+                        centres
+                            .iter()
+                            .any(|&(cx, cy)| (x - cx).hypot(y - cy) <= c.radius + 1e-12),
+                        "{l}×{w}: ({a}, {b}) uncovered"
+                    );
+                }
+            }
+            assert!(
+                c.radius - 0.5 * l.min(w) <= 0.25 * res + 1e-12,
+                "{l}×{w}: {c:?}"
+            );
+        }
     }
 }

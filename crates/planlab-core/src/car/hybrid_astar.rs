@@ -22,9 +22,10 @@
 //!   stops when that curve is collision-free. When the curve is blocked but
 //!   the pose lies in the goal's slot (its cell and heading bin) the path
 //!   ends there: that slot is the goal tolerance.
-//! - **Collision checking**: the disc of radius `footprint_radius` at poses
+//! - **Collision checking**: the disc of radius `footprint_radius` (or the
+//!   discs covering the `footprint_rect` rectangle, [`RectCover`]) at poses
 //!   every half cell along every primitive and shot, grown by a quarter
-//!   cell so the disc swept between two checked poses is covered too.
+//!   cell so the body swept between two checked poses is covered too.
 //! - **Primitive length**: the arc of k heading bins at the turning
 //!   radius, k the least that moves at least √2 cells (Nav2's rule), so
 //!   each primitive leaves its cell.
@@ -34,7 +35,7 @@
 //!   expansions). Ties in the open list go to the pose made first, so the
 //!   same input gives the same path.
 
-use super::footprint::DiscChecker;
+use super::footprint::{DiscChecker, RectCover};
 use super::{advance, check_radius, dubins, reeds_shepp, CarError, CurvePath, Pose, Steer};
 use crate::map::OccupancyGrid;
 use crate::num::{cos, sin, wrap_angle};
@@ -56,8 +57,13 @@ pub struct HybridAStarConfig {
     pub turning_radius: f64,
     /// Whether the car may reverse (Reeds-Shepp instead of Dubins).
     pub reverse: bool,
-    /// Radius of the disc footprint, m.
+    /// Radius of the disc footprint, m (ignored with `footprint_rect`).
     pub footprint_radius: f64,
+    /// A rectangular footprint instead of the disc: (length along the
+    /// heading, width), m, centred on the pose; checked by the discs that
+    /// cover it ([`super::footprint::RectCover`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub footprint_rect: Option<(f64, f64)>,
     /// Heading bins (Nav2 `angle_quantization_bins`).
     pub heading_bins: u32,
     /// Cost factor of a turning primitive, ≥ 1 (Nav2 `non_straight_penalty`).
@@ -82,6 +88,7 @@ impl Default for HybridAStarConfig {
             turning_radius: 1.0,
             reverse: false,
             footprint_radius: 0.2,
+            footprint_rect: None,
             heading_bins: 72,
             non_straight_penalty: 1.2,
             change_penalty: 0.0,
@@ -103,6 +110,13 @@ impl HybridAStarConfig {
             return bad(format!(
                 "footprint radius {r} must be a finite number ≥ 0 (metres)"
             ));
+        }
+        if let Some((l, w)) = self.footprint_rect {
+            if !(l.is_finite() && l > 0.0 && w.is_finite() && w > 0.0) {
+                return bad(format!(
+                    "footprint rectangle {l} × {w} must be two finite numbers > 0 (metres)"
+                ));
+            }
         }
         if !(4..=720).contains(&self.heading_bins) {
             return bad(format!("heading_bins {} must be 4…720", self.heading_bins));
@@ -321,7 +335,14 @@ pub fn plan_hybrid_astar(
     // cell: every point between two checked poses is within a quarter cell
     // of one of them.
     let check_step = 0.5 * res;
-    let ck = DiscChecker::new(grid, cfg.footprint_radius + 0.25 * res, cfg.allow_unknown);
+    // The body: one disc, or the discs covering the rectangle; each grown
+    // by a quarter cell for the motion between checked poses.
+    let cover = match cfg.footprint_rect {
+        Some((l, wd)) => RectCover::new(l, wd, res),
+        None => RectCover::disc(cfg.footprint_radius),
+    };
+    let ck = DiscChecker::new(grid, cover.radius + 0.25 * res, cfg.allow_unknown);
+    let body_free = |p: Pose| cover.centres(p).all(|(x, y)| ck.free(x, y));
     for (which, p) in [("start", s), ("goal", g)] {
         let off = ck.cell_of(p.x, p.y).is_none();
         let world = if which == "start" { start } else { goal };
@@ -332,17 +353,31 @@ pub fn plan_hybrid_astar(
                 y: world.y,
             });
         }
-        if !ck.disc_free(p.x, p.y, cfg.footprint_radius) {
+        if !cover
+            .centres(p)
+            .all(|(x, y)| ck.disc_free(x, y, cover.radius))
+        {
             return Err(CarError::InCollision {
                 which,
                 x: world.x,
                 y: world.y,
-                radius: cfg.footprint_radius,
+                radius: cover.radius,
             });
         }
     }
     let goal_cell = ck.cell_of(g.x, g.y).unwrap_or((0, 0));
-    let h2d = distance_to_goal(&ck, goal_cell, w, h);
+    // The 2D estimate needs only where some body could be: the disc, or
+    // the rectangle's inscribed disc (half its smaller side).
+    let inner = match cfg.footprint_rect {
+        Some((l, wd)) => 0.5 * l.min(wd),
+        None => cfg.footprint_radius,
+    };
+    let h2d = distance_to_goal(
+        &DiscChecker::new(grid, inner + 0.25 * res, cfg.allow_unknown),
+        goal_cell,
+        w,
+        h,
+    );
     let bins = cfg.heading_bins as usize;
     let bin_angle = 2.0 * PI / bins as f64;
     let bin_of = |yaw: f64| ((wrap_angle(yaw) + PI) / bin_angle).floor() as usize % bins;
@@ -425,7 +460,7 @@ pub fn plan_hybrid_astar(
                 let mut free = true;
                 'segs: for seg in &shot.segments {
                     for p in along(at, seg.steer, seg.length) {
-                        if !ck.free(p.x, p.y) {
+                        if !body_free(p) {
                             free = false;
                             break 'segs;
                         }
@@ -457,7 +492,7 @@ pub fn plan_hybrid_astar(
             let mut end = n.pose;
             let mut free = true;
             for p in along(n.pose, prim.steer, len) {
-                if !ck.free(p.x, p.y) {
+                if !body_free(p) {
                     free = false;
                     break;
                 }

@@ -284,6 +284,23 @@ pub fn sample(
     Ok(out)
 }
 
+/// The largest curvature between consecutive poses, 1/m: for each pair,
+/// that of the circle through both positions tangent to the first heading
+/// turned by half the heading change, 2·sin(|Δθ|/2) / chord (exactly 1/r
+/// for two poses on an arc of radius r; 0 on a line). Pairs at the same
+/// position (a cusp) are skipped. Checks that a path never turns tighter
+/// than a turning radius without knowing how it was made.
+pub fn max_curvature(poses: &[Pose]) -> f64 {
+    poses
+        .windows(2)
+        .filter_map(|w| {
+            let (a, b) = (w[0], w[1]);
+            let chord = crate::num::hypot(b.x - a.x, b.y - a.y);
+            (chord > 1e-12).then(|| 2.0 * sin(wrap_angle(b.yaw - a.yaw).abs() / 2.0) / chord)
+        })
+        .fold(0.0, f64::max)
+}
+
 /// `a` modulo 2π, in [0, 2π).
 #[inline]
 pub(crate) fn mod2pi(a: f64) -> f64 {

@@ -6,6 +6,7 @@
 //! state, the goal, the static map and the movers within sensing range (with
 //! their observed velocities). They never read the simulator's future.
 
+pub mod car_guide;
 pub mod cleaning;
 pub mod dual;
 pub mod dwa;

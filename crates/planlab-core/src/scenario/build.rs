@@ -97,6 +97,7 @@ impl Scenario {
         scenario.terrain = Some(setup.terrain.clone());
         scenario.seed = Some(setup.seed);
         scenario.perception = setup.perception;
+        scenario.global_planner = setup.global_planner;
         scenario.validate()?;
         Ok(scenario)
     }
@@ -170,6 +171,7 @@ impl Episode {
             terrain: scenario.terrain.clone().unwrap_or_default(),
             seed: scenario.seed.unwrap_or(0),
             perception: scenario.perception,
+            global_planner: scenario.global_planner,
         })
     }
 

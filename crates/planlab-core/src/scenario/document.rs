@@ -134,6 +134,12 @@ pub struct Scenario {
     /// [`crate::sim::perception`]; default: the planner gets the map).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub perception: Option<crate::sim::PerceptionSpec>,
+    /// A car-like global path the local planner follows: Hybrid A* with
+    /// `turning_radius_m` (required), `reverse`, `goal_yaw`, `margin_m`,
+    /// `lookahead_m` (see [`crate::local::car_guide`]; default: none, the
+    /// local planner steers as it does alone).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub global_planner: Option<crate::local::car_guide::GlobalPlannerSpec>,
 }
 
 /// Most names in a [`set_json_path`] path. No scenario field is nested
@@ -441,6 +447,7 @@ impl Scenario {
             seed: None,
             apf: None,
             perception: None,
+            global_planner: None,
         }
     }
 
@@ -632,6 +639,16 @@ impl Scenario {
         }
         if let Some(a) = &self.apf {
             a.config.validate().map_err(|e| invalid(&e))?;
+        }
+        if let Some(g) = &self.global_planner {
+            g.validate().map_err(|e| invalid(&e))?;
+            let name = self
+                .local_planner
+                .as_ref()
+                .map_or(registry::DEFAULT_PLANNER, |p| p.name.as_str());
+            if registry::is_registered(name) {
+                g.check_follower(name).map_err(|e| invalid(&e))?;
+            }
         }
         if let Some(p) = &self.local_planner {
             if !registry::is_registered(&p.name) {

@@ -180,6 +180,7 @@ mod tests {
             terrain: Default::default(),
             seed: 0,
             perception: None,
+            global_planner: None,
         })
         .unwrap()
     }

@@ -11,9 +11,15 @@ impl Episode {
     /// field, no global path from here) the old planner stays in force.
     /// [`Episode::setup`] then restarts with the new choice.
     pub fn set_planner(&mut self, choice: PlannerChoice) -> Result<(), SimError> {
+        if let Some(c) = &self.car {
+            c.spec().check_follower(&choice.name)?;
+        }
         let mut planner = planners::build(&choice, &self.robot, &self.map, &self.state, self.goal)?;
         planner.set_record_rollouts(self.config.record_rollouts);
         planner.set_seed(self.seed);
+        if let Some(c) = &mut self.car {
+            c.annotate(planner.debug());
+        }
         self.planner = planner;
         self.choice = choice;
         Ok(())

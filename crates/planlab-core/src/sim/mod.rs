@@ -39,6 +39,7 @@ use thiserror::Error;
 
 use crate::lidar::scan::Disc;
 use crate::lidar::{Lidar, Scan};
+use crate::local::car_guide::{CarGuide, GlobalPlannerSpec};
 use crate::local::{GoalKind, LocalError, LocalPlanner, ObservedMover, PlannerDebug};
 use crate::map::io::ScenarioError;
 use crate::map::MapError;
@@ -220,6 +221,9 @@ pub struct EpisodeSetup {
     /// When present the planner does not get the true map: it gets what
     /// this laser has shown ([`perception`]).
     pub perception: Option<PerceptionSpec>,
+    /// When present the local planner follows a car-like global path
+    /// ([`crate::local::car_guide`]) instead of steering at the goal.
+    pub global_planner: Option<GlobalPlannerSpec>,
 }
 
 /// Exact distance (m) from a footprint at `pose` to a disc; ≤ 0 when they
@@ -293,6 +297,9 @@ pub struct Episode {
     /// The laser and the map built from it, when the planner does not get
     /// the true map.
     perception: Option<Perception>,
+    /// The car-like global path the planner follows, when the setup has a
+    /// `global_planner`.
+    car: Option<CarGuide>,
 }
 
 impl std::fmt::Debug for Episode {
@@ -396,6 +403,21 @@ fn check_state(s: &RobotState) -> Result<(), SimError> {
     Ok(())
 }
 
+/// The car path of `spec` for the robot at `start`, once `choice` is known
+/// to follow it.
+fn car_guide(
+    spec: GlobalPlannerSpec,
+    choice: &PlannerChoice,
+    robot: &RobotSpec,
+    map: &StaticMap,
+    start: &RobotState,
+    goal: [f64; 2],
+) -> Result<CarGuide, SimError> {
+    spec.validate()?;
+    spec.check_follower(&choice.name)?;
+    Ok(CarGuide::new(spec, robot.footprint, map, start, goal)?)
+}
+
 /// Mover states at time `t` on `map`.
 fn movers_at(
     movers: &[MoverSpec],
@@ -456,6 +478,7 @@ impl Episode {
             terrain: terrain_spec,
             seed,
             perception: perception_spec,
+            global_planner,
         } = setup;
         config.validate()?;
         robot.validate()?;
@@ -518,6 +541,14 @@ impl Episode {
         let mut planner = planners::build(&choice, &robot, known, &start, goal)?;
         planner.set_record_rollouts(config.record_rollouts);
         planner.set_seed(seed);
+        let car = match global_planner {
+            Some(spec) => {
+                let mut c = car_guide(spec, &choice, &robot, known, &start, goal)?;
+                c.annotate(planner.debug());
+                Some(c)
+            }
+            None => None,
+        };
         let mut ep = Episode {
             max_steps: config.max_steps(),
             progress: (hypot(goal[0] - start.x, goal[1] - start.y), 0.0),
@@ -541,6 +572,7 @@ impl Episode {
             odometry: None,
             accel_z: 0.0,
             perception,
+            car,
         };
         let first = ep.trace_row(Default::default(), None, &ep.movers_at(0.0));
         ep.trace.steps.push(first);
@@ -562,6 +594,7 @@ impl Episode {
             terrain: self.terrain_spec.clone(),
             seed: self.seed,
             perception: self.perception.as_ref().map(|p| *p.spec()),
+            global_planner: self.car.as_ref().map(|c| *c.spec()),
         }
     }
 
@@ -621,7 +654,7 @@ impl Episode {
         movers: &[MoverState],
     ) -> TraceStep {
         let s = &self.state;
-        let d = self.planner.debug();
+        let d = self.planner_debug();
         let goal = if self.steps == 0 {
             self.goal
         } else {
@@ -742,11 +775,16 @@ impl Episode {
                     Some(p) => (p.map(), p.revision(), Some(p.scan())),
                     None => (&self.map, 0, None),
                 };
+                // With a car path the planner steers to its carrot.
+                let goal = match &mut self.car {
+                    Some(c) => c.carrot(map, map_revision, &self.state, self.goal),
+                    None => self.goal,
+                };
                 let obs = crate::local::Observation {
                     time: t,
                     dt,
                     state: &self.state,
-                    goal: self.goal,
+                    goal,
                     map,
                     map_revision,
                     scan,
@@ -754,7 +792,11 @@ impl Episode {
                     odometry: self.odometry,
                     accel_z: self.accel_z,
                 };
-                self.planner.step(&obs)
+                let cmd = self.planner.step(&obs);
+                if let Some(c) = &mut self.car {
+                    c.annotate(self.planner.debug());
+                }
+                cmd
             }
         };
         let cmd = self.robot.feasible(&self.state, raw, dt);
@@ -906,9 +948,19 @@ impl Episode {
             .collect()
     }
 
-    /// What the planner did in its last step.
+    /// What the planner did in its last step (with the car path, when the
+    /// episode has one).
     pub fn planner_debug(&self) -> &PlannerDebug {
-        self.planner.debug()
+        match &self.car {
+            Some(c) => c.debug(),
+            None => self.planner.debug(),
+        }
+    }
+
+    /// The car-like global path the planner follows, when the episode has
+    /// a `global_planner`.
+    pub fn car_guide(&self) -> Option<&CarGuide> {
+        self.car.as_ref()
     }
 
     /// The trace so far: the start (t = 0) and one row per step.
@@ -938,9 +990,32 @@ impl Episode {
                 planners::build(&self.choice, &self.robot, &self.map, &self.state, goal)?;
             planner.set_record_rollouts(self.config.record_rollouts);
             planner.set_seed(self.seed);
+            let car = match &self.car {
+                Some(c) => {
+                    let mut c = car_guide(
+                        *c.spec(),
+                        &self.choice,
+                        &self.robot,
+                        &self.map,
+                        &self.state,
+                        goal,
+                    )?;
+                    c.annotate(planner.debug());
+                    Some(c)
+                }
+                None => None,
+            };
             self.planner = planner;
+            self.car = car;
         } else {
+            // The car path first: a goal it cannot reach leaves everything
+            // as it was.
+            let mut car = self.car.clone();
+            if let Some(c) = &mut car {
+                c.retarget(&self.map, &self.state, goal)?;
+            }
             self.planner.set_goal(&self.map, &self.state, goal)?;
+            self.car = car;
         }
         self.goal = goal;
         let d = hypot(goal[0] - self.state.x, goal[1] - self.state.y);
@@ -1008,6 +1083,7 @@ pub(crate) fn walled_room(
         terrain: TerrainSpec::default(),
         seed,
         perception: None,
+        global_planner: None,
     })
     .expect("the room episode starts")
 }
