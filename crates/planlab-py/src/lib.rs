@@ -1357,37 +1357,33 @@ impl Episode {
 
 // ---------------------------------------------------- batches, sweeps
 
-/// Episodes of `planlab batch` on `scenario` (a robot scenario): for each
-/// variant index in `variants` and each planner in `planners` (names;
-/// empty = the scenario's own), the episode `planlab batch --seed SEED
-/// --jitter JITTER` runs for that row. Returns a list of dicts: `variant`,
-/// `planner`, `seed`, `steps`, `trace_hash` (hex), `metrics`. The GIL is
+/// Episodes of `planlab batch` on `scenario` (a robot or arm scenario):
+/// for each variant index in `variants` and each planner in `planners`
+/// (names; empty = the scenario's own), the episode `planlab batch --seed
+/// SEED --jitter JITTER` runs for that row (jitter `None`: the kind's
+/// default, 0.3 m for a robot, 0.02 m for an arm). Returns a list of dicts:
+/// `variant`, `planner`, `seed`, `trace_hash` (hex), `metrics`, and a
+/// robot's `steps`; an arm row's `metrics` is the whole run (outcome, path
+/// lengths, hand distance, effort; [`summarise`] reads it). The GIL is
 /// released while the episodes run, so threads run them in parallel.
 #[pyfunction]
-#[pyo3(signature = (scenario, variants, planners = Vec::new(), seed = 0, jitter = 0.3))]
+#[pyo3(signature = (scenario, variants, planners = Vec::new(), seed = 0, jitter = None))]
 fn batch_episodes<'py>(
     py: Python<'py>,
     scenario: &Scenario,
     variants: Vec<i64>,
     planners: Vec<String>,
     seed: u64,
-    jitter: f64,
+    jitter: Option<f64>,
 ) -> PyResult<Bound<'py, PyList>> {
+    let jitter = jitter.unwrap_or_else(|| batch::default_jitter(scenario.parsed.kind()));
+    if let AnyScenario::Arm(base) = &scenario.parsed {
+        return arm_batch_episodes(py, base, variants, planners, seed, jitter);
+    }
     let (base, grid) = scenario.robot()?;
     let choices = batch::planner_choices(base, &planners)
         .map_err(|e| err::<ParamError>(format!("planners: {e}")))?;
-    let mut idx = Vec::with_capacity(variants.len());
-    for v in variants {
-        match u32::try_from(v) {
-            Ok(k) if k < batch::MAX_VARIANTS => idx.push(k),
-            _ => {
-                return Err(err::<ParamError>(format!(
-                    "variant {v}: must be from 0 to {}",
-                    batch::MAX_VARIANTS - 1
-                )))
-            }
-        }
-    }
+    let idx = variant_indices(variants)?;
     let runs = py.detach(|| -> Result<Vec<batch::BatchRun>, batch::BatchError> {
         let mut out = Vec::with_capacity(idx.len() * choices.len());
         for &k in &idx {
@@ -1411,6 +1407,60 @@ fn batch_episodes<'py>(
         d.set_item("steps", r.steps)?;
         d.set_item("trace_hash", format!("{:016x}", r.trace_hash))?;
         d.set_item("metrics", to_py(py, &r.metrics)?)?;
+        list.append(d)?;
+    }
+    Ok(list)
+}
+
+/// The variant indices of a batch, checked.
+fn variant_indices(variants: Vec<i64>) -> PyResult<Vec<u32>> {
+    variants
+        .into_iter()
+        .map(|v| match u32::try_from(v) {
+            Ok(k) if k < batch::MAX_VARIANTS => Ok(k),
+            _ => Err(err::<ParamError>(format!(
+                "variant {v}: must be from 0 to {}",
+                batch::MAX_VARIANTS - 1
+            ))),
+        })
+        .collect()
+}
+
+/// [`batch_episodes`] of an arm scenario: the rows of `planlab batch` of an
+/// arm file (the core's `batch::arm_variant` and `run_arm_variant`).
+fn arm_batch_episodes<'py>(
+    py: Python<'py>,
+    base: &planlab_core::scenario::ArmScenario,
+    variants: Vec<i64>,
+    planners: Vec<String>,
+    seed: u64,
+    jitter: f64,
+) -> PyResult<Bound<'py, PyList>> {
+    let planners = batch::arm_planners(base, &planners)
+        .map_err(|e| err::<ParamError>(format!("planners: {e}")))?;
+    let idx = variant_indices(variants)?;
+    let runs = py.detach(|| -> Result<Vec<batch::ArmBatchRun>, batch::BatchError> {
+        let mut out = Vec::with_capacity(idx.len() * planners.len());
+        for &k in &idx {
+            let v = batch::arm_variant(base, k, seed, jitter)?;
+            for &p in &planners {
+                out.push(batch::run_arm_variant(&v, k, p)?);
+            }
+        }
+        Ok(out)
+    });
+    let runs = runs.map_err(|e| match e {
+        batch::BatchError::BadJitter(_) => err::<ParamError>(e),
+        _ => err::<ScenarioError>(e),
+    })?;
+    let list = PyList::empty(py);
+    for r in &runs {
+        let d = PyDict::new(py);
+        d.set_item("variant", r.variant)?;
+        d.set_item("planner", &r.planner)?;
+        d.set_item("seed", r.seed)?;
+        d.set_item("trace_hash", format!("{:016x}", r.trace_hash))?;
+        d.set_item("metrics", to_py(py, r)?)?;
         list.append(d)?;
     }
     Ok(list)
@@ -1561,15 +1611,25 @@ fn barn_stats<'py>(py: Python<'py>, runs: &Bound<'py, PyList>) -> PyResult<Bound
 }
 
 /// Per-planner statistics of batch runs (`planlab batch --json`'s summary
-/// lines): `runs` is a list of metrics dicts of one planner.
+/// lines): `runs` is a list of metrics dicts of one planner — a robot's,
+/// or an arm row's whole run (told apart by its `joint_path_length_rad`;
+/// without the CLI's compute time).
 #[pyfunction]
 fn summarise<'py>(
     py: Python<'py>,
     planner: &str,
     runs: &Bound<'py, PyList>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let runs: Vec<EpisodeMetrics> =
-        serde_json::from_value(from_py(runs.as_any())?).map_err(err::<ParamError>)?;
+    let tree = from_py(runs.as_any())?;
+    let arm = tree
+        .get(0)
+        .is_some_and(|r| r.get("joint_path_length_rad").is_some());
+    if arm {
+        let runs: Vec<batch::ArmBatchRun> =
+            serde_json::from_value(tree).map_err(err::<ParamError>)?;
+        return to_py(py, &batch::summarise_arm(planner, &runs, &[]));
+    }
+    let runs: Vec<EpisodeMetrics> = serde_json::from_value(tree).map_err(err::<ParamError>)?;
     to_py(py, &batch::summarise(planner, &runs))
 }
 

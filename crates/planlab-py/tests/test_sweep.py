@@ -69,3 +69,32 @@ def test_reproduce_equals_planlab_reproduce(cli, args):
     assert planlab.reproduce(exp, variants=n) == want[0]
     assert exp in planlab.reproduce_ids()
 
+
+
+ARM = SCENARIOS / "T-tab5-3.json"
+
+
+def test_arm_batch_equals_planlab_batch_of_the_arm_scenario(cli, tmp_path):
+    """An arm scenario's batch (APF and RRT-Connect on variants of T-tab5-3
+    with the table top) is `planlab batch`'s, row for row, and its
+    summaries are the CLI's without the CLI's compute time."""
+    import json
+
+    doc = json.loads(ARM.read_text())
+    doc["arm"]["table_z_m"] = 0.72
+    planners = ["apf", "rrt-connect"]
+    got = planlab.batch(doc, planners=planners, variants=2, seed=5)
+    rows = cli.csv("batch", ARM, "--planners", ",".join(planners), "--variants", "2",
+                   "--seed", "5", "--set", "arm.table_z_m=0.72", out=tmp_path / "arm.csv")
+    assert {(int(r["variant"]), r["planner"]): (r["trace_hash"], r["outcome"]) for r in rows} == {
+        (r["variant"], r["planner"]): (r["trace_hash"], r["metrics"]["metrics"]["outcome"])
+        for r in got["runs"]
+    }
+    lines = cli.json_lines("batch", ARM, "--planners", ",".join(planners), "--variants", "2",
+                           "--seed", "5", "--set", "arm.table_z_m=0.72")
+    assert lines[-1]["jitter_m"] == 0.02
+    for mine, theirs in zip(got["summaries"], lines[:-1]):
+        del theirs["metrics"]["compute_ms"]
+        assert mine == theirs
+    with pytest.raises(planlab.ParamError, match="unknown arm planner `dwa`"):
+        planlab.batch(doc, planners=["dwa"], variants=1)

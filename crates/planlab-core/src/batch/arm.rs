@@ -7,7 +7,7 @@
 
 use std::collections::BTreeMap;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::{variant_seed, BatchError, PlannerSummary, Stat, MAX_DRAWS};
 use crate::apf::scene::path_hash;
@@ -107,8 +107,9 @@ fn in_ball(rng: &mut Rng, r: f64) -> [f64; 3] {
     }
 }
 
-/// One finished arm episode of a batch.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// One finished arm episode of a batch (its JSON is the Python package's
+/// arm batch row, read back by its `summarise_arm`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ArmBatchRun {
     /// Variant index.
     pub variant: u32,

@@ -11,7 +11,7 @@ error is a :class:`PlanlabError` carrying the core's one-line message.
 from __future__ import annotations
 
 import os
-from typing import Iterable, Union
+from typing import Iterable, Optional, Union
 
 from ._planlab import (  # noqa: F401  (re-exported API)
     Episode,
@@ -82,10 +82,13 @@ def batch(
     planners: Iterable[str] = (),
     variants: int = 20,
     seed: int = 0,
-    jitter: float = 0.3,
+    jitter: Optional[float] = None,
 ) -> dict:
-    """``planlab batch``: ``variants`` seeded variants of a robot scenario
-    run by each planner (default: the scenario's own).
+    """``planlab batch``: ``variants`` seeded variants of a robot or arm
+    scenario run by each planner (default: the scenario's own; an arm's
+    planners are ``apf`` and ``rrt-connect``). ``jitter`` (m) defaults to
+    the kind's: 0.3 for a robot (start, goal and movers), 0.02 for an arm
+    (the tool's start and goal; the hand's speed varies by ±20 %).
 
     Returns ``{"runs": [...], "summaries": [...]}``: one dict per episode
     (``variant``, ``planner``, ``seed``, ``steps``, ``trace_hash``,

@@ -53,7 +53,7 @@ class SweepResult:
 
 
 def _run_block(doc: dict, base_dir: str, variants: Sequence[int], planners: Sequence[str],
-               seed: int, jitter: float) -> List[dict]:
+               seed: int, jitter: Optional[float]) -> List[dict]:
     """One task: the scenario document, a block of variant indices, every
     planner. Imports planlab itself so it runs in any worker process."""
     import planlab
@@ -96,7 +96,7 @@ def sweep(
     planners: Sequence[str] = (),
     variants: int = 20,
     seed: int = 0,
-    jitter: float = 0.3,
+    jitter: Optional[float] = None,
     backend: str = "local",
     workers: Optional[int] = None,
     min_task_seconds: float = 0.05,
@@ -107,7 +107,7 @@ def sweep(
     --jitter JITTER`` would, and collects one row per episode.
 
     ``scenarios``: a path, dict or :class:`planlab.Scenario`, or a list of
-    them (robot scenarios). ``backend``: ``"local"`` (a thread pool of
+    them (robot or arm scenarios). ``backend``: ``"local"`` (a thread pool of
     ``workers`` threads; the core releases the GIL) or ``"ray"`` (Ray
     tasks; when Ray is not initialised yet, ``ray.init(**ray_init)`` is
     called, which joins the cluster in ``RAY_ADDRESS`` when that is set and
