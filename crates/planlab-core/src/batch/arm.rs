@@ -108,7 +108,7 @@ fn in_ball(rng: &mut Rng, r: f64) -> [f64; 3] {
 }
 
 /// One finished arm episode of a batch (its JSON is the Python package's
-/// arm batch row, read back by its `summarise_arm`).
+/// arm batch row, read back by its `summarise`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ArmBatchRun {
     /// Variant index.
