@@ -1394,22 +1394,39 @@ fn batch_episodes<'py>(
         }
         Ok(out)
     });
-    let runs = runs.map_err(|e| match e {
-        batch::BatchError::BadJitter(_) => err::<ParamError>(e),
-        _ => err::<ScenarioError>(e),
-    })?;
+    let runs = runs.map_err(batch_error)?;
     let list = PyList::empty(py);
     for r in &runs {
-        let d = PyDict::new(py);
-        d.set_item("variant", r.variant)?;
-        d.set_item("planner", &r.planner)?;
-        d.set_item("seed", r.seed)?;
+        let d = batch_row(py, r.variant, &r.planner, r.seed)?;
         d.set_item("steps", r.steps)?;
         d.set_item("trace_hash", format!("{:016x}", r.trace_hash))?;
         d.set_item("metrics", to_py(py, &r.metrics)?)?;
         list.append(d)?;
     }
     Ok(list)
+}
+
+/// A batch's error: a bad jitter is the caller's parameter, the rest the
+/// scenario's.
+fn batch_error(e: batch::BatchError) -> PyErr {
+    match e {
+        batch::BatchError::BadJitter(_) => err::<ParamError>(e),
+        _ => err::<ScenarioError>(e),
+    }
+}
+
+/// A batch row's dict with the keys every kind has.
+fn batch_row<'py>(
+    py: Python<'py>,
+    variant: u32,
+    planner: &str,
+    seed: u64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("variant", variant)?;
+    d.set_item("planner", planner)?;
+    d.set_item("seed", seed)?;
+    Ok(d)
 }
 
 /// The variant indices of a batch, checked.
@@ -1449,16 +1466,10 @@ fn arm_batch_episodes<'py>(
         }
         Ok(out)
     });
-    let runs = runs.map_err(|e| match e {
-        batch::BatchError::BadJitter(_) => err::<ParamError>(e),
-        _ => err::<ScenarioError>(e),
-    })?;
+    let runs = runs.map_err(batch_error)?;
     let list = PyList::empty(py);
     for r in &runs {
-        let d = PyDict::new(py);
-        d.set_item("variant", r.variant)?;
-        d.set_item("planner", &r.planner)?;
-        d.set_item("seed", r.seed)?;
+        let d = batch_row(py, r.variant, &r.planner, r.seed)?;
         d.set_item("trace_hash", format!("{:016x}", r.trace_hash))?;
         d.set_item("metrics", to_py(py, r)?)?;
         list.append(d)?;
