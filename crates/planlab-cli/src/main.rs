@@ -456,6 +456,13 @@ enum Command {
         /// List the experiments (clauses, family, deviations) without running.
         #[arg(long)]
         list: bool,
+        /// Run the family (60 variants unless --variants says) and show,
+        /// per perturbation, its range, the reason for it, and how the
+        /// share of variants where the relation holds splits at the median
+        /// of what it drew: which perturbation the verdict is most
+        /// sensitive to.
+        #[arg(long)]
+        explain: bool,
     },
     /// Run the planners on BARN worlds (Perille et al. 2020; the BARN
     /// Challenge): the Jackal with only its laser in an unknown cluttered
@@ -752,6 +759,7 @@ fn run(cli: Cli) -> Result<(), String> {
             sweep,
             write_variants,
             list,
+            explain,
         } => reproduce_cmd::reproduce(&reproduce_cmd::ReproduceArgs {
             id: id.as_deref(),
             json,
@@ -760,6 +768,7 @@ fn run(cli: Cli) -> Result<(), String> {
             sweep: sweep.as_deref(),
             write_variants: write_variants.as_deref(),
             list,
+            explain,
         }),
         Command::Scen {
             map,

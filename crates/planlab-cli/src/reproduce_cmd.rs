@@ -31,7 +31,13 @@ pub struct ReproduceArgs<'a> {
     pub write_variants: Option<&'a Path>,
     /// List the experiments' definitions instead of running them.
     pub list: bool,
+    /// Show the family's sensitivity per perturbation (runs the family,
+    /// [`EXPLAIN_VARIANTS`] variants unless `variants` says).
+    pub explain: bool,
 }
+
+/// Family size of `--explain` without `--variants`: the README's verdict run.
+pub const EXPLAIN_VARIANTS: u32 = 60;
 
 /// `planlab reproduce`.
 pub fn reproduce(args: &ReproduceArgs<'_>) -> Result<(), String> {
@@ -80,7 +86,10 @@ pub fn reproduce(args: &ReproduceArgs<'_>) -> Result<(), String> {
         None => vec![None],
         Some(s) => parse_sweep(s)?.into_iter().map(Some).collect(),
     };
-    if args.variants.is_none() && (args.sweep.is_some() || args.write_variants.is_some()) {
+    if args.variants.is_none()
+        && !args.explain
+        && (args.sweep.is_some() || args.write_variants.is_some())
+    {
         return Err("--sweep and --write-variants need --variants N".into());
     }
     if let Some(dir) = args.write_variants {
@@ -132,7 +141,8 @@ fn one<M: RunMetrics>(
     table: fn(&ExperimentResult<M>) -> String,
 ) -> Result<(), String> {
     let at = |e: &dyn std::fmt::Display| format!("{}: {e}", exp.id);
-    let Some(n) = args.variants else {
+    let variants = args.variants.or(args.explain.then_some(EXPLAIN_VARIANTS));
+    let Some(n) = variants else {
         let r = reproduce::run(exp).map_err(|e| at(&e))?;
         return if args.json {
             emit(&(serde_json::to_string(&r).map_err(|e| e.to_string())? + "\n"))
@@ -160,9 +170,62 @@ fn one<M: RunMetrics>(
     let f = reproduce::summarise(exp, args.seed, label, &results);
     if args.json {
         emit(&(serde_json::to_string(&f).map_err(|e| e.to_string())? + "\n"))
+    } else if args.explain {
+        emit(&(family_table(&f) + &explain_table(&f)))
     } else {
         emit(&family_table(&f))
     }
+}
+
+/// `--explain`: per perturbation its range, why, and the median split of
+/// the drawn number that moves the relation most.
+fn explain_table(f: &FamilyResult) -> String {
+    let mut s = format!(
+        "  sensitivity: {}\n  {:<16}{:<34}{:<18}{}\n",
+        f.sensitivity.summary,
+        "perturbation",
+        "drawn number (split at median)",
+        "holds below",
+        "holds at/above"
+    );
+    for (p, r) in f
+        .sensitivity
+        .perturbations
+        .iter()
+        .zip(&f.family.perturbations)
+    {
+        let range = serde_json::to_value(r.perturbation)
+            .ok()
+            .and_then(|v| v.as_object().cloned())
+            .map(|m| {
+                m.iter()
+                    .filter(|(k, _)| *k != "kind")
+                    .map(|(k, v)| format!("{k} {v}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            })
+            .unwrap_or_default();
+        match &p.split {
+            Some(sp) => s.push_str(&format!(
+                "  {:<16}{:<34}{:<18}{}\n",
+                p.perturbation,
+                format!("{} @ {}", sp.value, planlab_core::num::fmt_num(sp.at)),
+                share_short(&sp.below),
+                share_short(&sp.above)
+            )),
+            None => s.push_str(&format!(
+                "  {:<16}{:<34}\n",
+                p.perturbation, "(no ordered number: a seed)"
+            )),
+        }
+        s.push_str(&format!("      range: {range}\n      why: {}\n", p.why));
+    }
+    s.push('\n');
+    s
+}
+
+fn share_short(s: &reproduce::Share) -> String {
+    format!("{}/{} [{:.2}, {:.2}]", s.k, s.n, s.ci95[0], s.ci95[1])
 }
 
 fn share(s: &reproduce::Share) -> String {
@@ -233,6 +296,7 @@ fn family_table(f: &FamilyResult) -> String {
         ));
     }
     s.push_str(&format!("  {:<30}{}\n", "all clauses", share(&f.joint)));
+    s.push_str(&format!("  most sensitive: {}\n", f.sensitivity.summary));
     if !f.deviations.is_empty() {
         s.push_str("  not from the paper:\n");
         for d in &f.deviations {

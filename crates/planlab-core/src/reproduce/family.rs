@@ -9,9 +9,14 @@
 //! from an [`Rng`] seeded by the family seed, k and the preset, so the
 //! same (seed, k) gives the same scene on every target and thread.
 //!
-//! The ranges are fixed per experiment in its module, before any result
-//! was looked at: start or goal moved 5–20 cm, a mover ±20 % speed, a
-//! block moved, another seed, scaled to each scene's size.
+//! The ranges are fixed per experiment in its module, each with the reason
+//! it keeps the paper's scene the same situation ([`Range::why`]): start
+//! or goal moved 5–50 cm, a mover ±20 % speed, a block moved, another
+//! seed, scaled to each scene's size; the potential-field scenes move
+//! their points across the part of the 0.15 m repulsion range (or the
+//! mover's offset band) that still is the paper's situation, and an
+//! experiment's scene check ([`super::Experiment::scene`]) states that
+//! situation as a test.
 
 use serde::Serialize;
 use serde_json::{json, Value};
@@ -78,6 +83,35 @@ pub enum Perturbation {
     /// The episode seed (noise, the hand's variation) replaced by the
     /// variant's own seed.
     Seed,
+    /// A point moved by an offset uniform in a box, each axis in its own
+    /// `[lo, hi]` (m; a zero-width axis keeps that coordinate): `start` or
+    /// `goal` (2D, the scenario's endpoints), `apf.obstacles` (every
+    /// potential-field obstacle's centre, its velocity scaled by a factor
+    /// uniform in [1 − `speed_rel`, 1 + `speed_rel`]) or the dotted path of
+    /// an `[x, y(, z)]` array (`apf.start`). Unlike a disc it can keep a
+    /// point on a line or an offset within a band.
+    Box {
+        /// `start`, `goal`, `apf.obstacles` or a dotted path.
+        what: &'static str,
+        /// Offset range along x, m.
+        x: [f64; 2],
+        /// Offset range along y, m.
+        y: [f64; 2],
+        /// Offset range along z, m (3D points only).
+        z: [f64; 2],
+        /// Largest relative speed change (`apf.obstacles` only).
+        speed_rel: f64,
+    },
+}
+
+/// A perturbation with the reason its range keeps the paper's scene.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Range {
+    /// The perturbation.
+    #[serde(flatten)]
+    pub perturbation: Perturbation,
+    /// Why this range is the paper's situation (written before running).
+    pub why: &'static str,
 }
 
 impl Perturbation {
@@ -97,10 +131,19 @@ impl Perturbation {
         }
     }
 
+    /// This perturbation with the reason for its range.
+    pub fn because(self, why: &'static str) -> Range {
+        Range {
+            perturbation: self,
+            why,
+        }
+    }
+
     /// A short name for reports (`start`, `movers`, `arm.goal` …).
     pub fn name(&self) -> String {
         match self {
             Perturbation::Endpoint { which, .. } => (*which).to_string(),
+            Perturbation::Box { what, .. } => (*what).to_string(),
             Perturbation::Movers { .. } => "movers".into(),
             Perturbation::ApfObstacles { .. } => "apf.obstacles".into(),
             Perturbation::Blocks { .. } => "blocks".into(),
@@ -116,7 +159,7 @@ impl Perturbation {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Family {
     /// Applied in order.
-    pub perturbations: Vec<Perturbation>,
+    pub perturbations: Vec<Range>,
 }
 
 /// Draws tried per variant before giving up: a draw is rejected when a
@@ -150,6 +193,8 @@ pub struct Draw {
     pub what: String,
     /// The drawn value (an offset in m, a factor, a seed).
     pub value: Value,
+    /// Index of the family's perturbation that drew it.
+    pub of: usize,
 }
 
 impl Family {
@@ -170,8 +215,12 @@ impl Family {
         }
         let vseed = variant_seed(seed, k);
         let mut rng = Rng::new(vseed ^ text_hash(preset_text)).fork(u64::from(attempt));
-        for p in &self.perturbations {
-            apply_one(p, &mut tree, &mut rng, vseed, &mut draws)?;
+        for (i, p) in self.perturbations.iter().enumerate() {
+            let from = draws.len();
+            apply_one(&p.perturbation, &mut tree, &mut rng, vseed, &mut draws)?;
+            for d in &mut draws[from..] {
+                d.of = i;
+            }
         }
         Ok((tree, draws))
     }
@@ -249,27 +298,16 @@ fn apply_one(
             draws.push(Draw {
                 what: "seed".into(),
                 value: json!(vseed),
+                of: 0,
             });
         }
         Perturbation::Endpoint { which, radius_m } => {
-            let sc = Scenario::from_value(tree)?;
-            let grid = sc
-                .inline_grid()?
-                .ok_or_else(|| bad("a family's preset needs an inline map".into()))?;
-            let w = if which == "start" {
-                sc.start_world(&grid)
-            } else {
-                sc.goal_world(&grid)
-            };
             let d = in_ball(rng, radius_m, 2);
-            let (x, y) = (w[0] + d[0], w[1] + d[1]);
-            // Off the map the point stays; the run check then rejects it or not.
-            if let Some((col, row)) = grid.world_to_cell(x, y) {
-                tree[which] = json!({"col": col, "row": row, "world": {"x": x, "y": y}});
-            }
+            move_endpoint(tree, which, d)?;
             draws.push(Draw {
                 what: format!("{which} shift m"),
                 value: json!([d[0], d[1]]),
+                of: 0,
             });
         }
         Perturbation::Movers {
@@ -289,6 +327,7 @@ fn apply_one(
                 draws.push(Draw {
                     what: format!("mover {id} shift m, speed ×"),
                     value: json!([d[0], d[1], f]),
+                    of: 0,
                 });
             }
         }
@@ -306,16 +345,61 @@ fn apply_one(
                     .map_or(2, |a| a.len().clamp(2, 3));
                 let d = in_ball(rng, radius_m, dims);
                 let f = factor(rng, speed_rel);
-                if let Some(c) = o.get_mut("centre") {
-                    shift_array(c, d);
-                }
-                if let Some(v) = o.get_mut("velocity") {
-                    scale_array(v, f);
-                }
+                move_apf_obstacle(o, d, f);
                 draws.push(Draw {
                     what: format!("apf obstacle {i} shift m, speed ×"),
                     value: json!([d[0], d[1], d[2], f]),
+                    of: 0,
                 });
+            }
+        }
+        Perturbation::Box {
+            what,
+            x,
+            y,
+            z,
+            speed_rel,
+        } => {
+            let in_box = |rng: &mut Rng| [x, y, z].map(|[lo, hi]| rng.range(lo, hi));
+            match what {
+                "start" | "goal" => {
+                    let d = in_box(rng);
+                    move_endpoint(tree, what, d)?;
+                    draws.push(Draw {
+                        what: format!("{what} shift m"),
+                        value: json!([d[0], d[1]]),
+                        of: 0,
+                    });
+                }
+                "apf.obstacles" => {
+                    let Some(Value::Array(obs)) = at_path(tree, what) else {
+                        return Ok(());
+                    };
+                    for (i, o) in obs.iter_mut().enumerate() {
+                        let d = in_box(rng);
+                        let f = factor(rng, speed_rel);
+                        move_apf_obstacle(o, d, f);
+                        draws.push(Draw {
+                            what: format!("apf obstacle {i} shift m, speed ×"),
+                            value: json!([d[0], d[1], d[2], f]),
+                            of: 0,
+                        });
+                    }
+                }
+                path => {
+                    let v = at_path(tree, path)
+                        .ok_or_else(|| bad(format!("family: the preset has no `{path}`")))?;
+                    let dims = v.as_array().map_or(2, |a| a.len().clamp(2, 3));
+                    let d = in_box(rng);
+                    if !shift_array(v, d) {
+                        return Err(bad(format!("family: `{path}` is not a point")));
+                    }
+                    draws.push(Draw {
+                        what: format!("{path} shift m"),
+                        value: json!(&d[..dims]),
+                        of: 0,
+                    });
+                }
             }
         }
         Perturbation::Point { path, radius_m } => {
@@ -329,6 +413,7 @@ fn apply_one(
             draws.push(Draw {
                 what: format!("{path} shift m"),
                 value: json!(&d[..dims]),
+                of: 0,
             });
         }
         Perturbation::Scale { path, rel } => {
@@ -342,6 +427,7 @@ fn apply_one(
             draws.push(Draw {
                 what: format!("{path} ×"),
                 value: json!(f),
+                of: 0,
             });
         }
         Perturbation::Blocks { cells } => {
@@ -357,11 +443,43 @@ fn apply_one(
                 draws.push(Draw {
                     what: format!("block {i} shift cells"),
                     value: json!(o),
+                    of: 0,
                 });
             }
         }
     }
     Ok(())
+}
+
+/// Moves the scenario's `start` or `goal` by `d` (its world point and
+/// cell); off the map the point stays, and the run check then rejects the
+/// draw or not.
+fn move_endpoint(tree: &mut Value, which: &str, d: [f64; 3]) -> Result<(), ScenarioError> {
+    let sc = Scenario::from_value(tree)?;
+    let grid = sc
+        .inline_grid()?
+        .ok_or_else(|| bad("a family's preset needs an inline map".into()))?;
+    let w = if which == "start" {
+        sc.start_world(&grid)
+    } else {
+        sc.goal_world(&grid)
+    };
+    let (x, y) = (w[0] + d[0], w[1] + d[1]);
+    if let Some((col, row)) = grid.world_to_cell(x, y) {
+        tree[which] = json!({"col": col, "row": row, "world": {"x": x, "y": y}});
+    }
+    Ok(())
+}
+
+/// Shifts a potential-field obstacle's centre by `d` and scales its
+/// velocity by `f`.
+fn move_apf_obstacle(o: &mut Value, d: [f64; 3], f: f64) {
+    if let Some(c) = o.get_mut("centre") {
+        shift_array(c, d);
+    }
+    if let Some(v) = o.get_mut("velocity") {
+        scale_array(v, f);
+    }
 }
 
 /// Shifts a mover's motion by `d` and scales its speed by `f`.
@@ -518,13 +636,14 @@ mod tests {
     fn family() -> Family {
         Family {
             perturbations: vec![
-                Perturbation::start(0.2),
-                Perturbation::goal(0.2),
+                Perturbation::start(0.2).because("test"),
+                Perturbation::goal(0.2).because("test"),
                 Perturbation::Movers {
                     radius_m: 0.2,
                     speed_rel: 0.2,
-                },
-                Perturbation::Seed,
+                }
+                .because("test"),
+                Perturbation::Seed.because("test"),
             ],
         }
     }

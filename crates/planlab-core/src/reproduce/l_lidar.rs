@@ -70,14 +70,22 @@ fn with(name: &'static str, scenario: &'static str, planner: &'static str) -> Ru
 fn family() -> Family {
     Family {
         perturbations: vec![
-            Perturbation::start(0.5),
-            Perturbation::goal(0.5),
-            Perturbation::Blocks { cells: 2 },
+            Perturbation::start(0.5).because(
+                "up to 0.5 m on maps 20–26 m across: the same side of the same obstacles",
+            ),
+            Perturbation::goal(0.5).because(
+                "up to 0.5 m: the goal stays where the figure puts it (inside the U, behind the walls)",
+            ),
+            Perturbation::Blocks { cells: 2 }.because(
+                "free-standing walls moved by up to 2 cells (0.2 m) per axis: the same layout, \
+                 not the same pixels",
+            ),
             Perturbation::Movers {
                 radius_m: 0.3,
                 speed_rel: 0.2,
-            },
-            Perturbation::Seed,
+            }
+            .because("movers' paths shifted up to 0.3 m and speeds ±20 %: they still cross the way"),
+            Perturbation::Seed.because("another seed of the scan noise: the scene is unchanged"),
         ],
     }
 }
@@ -272,6 +280,7 @@ fn compared(n: u32, scenario: &'static str, planner: &'static str) -> Experiment
         family: family(),
         deviations: deviations(n != 8),
         figures: None,
+        scene: None,
     }
 }
 
@@ -345,6 +354,7 @@ pub fn experiments() -> Vec<Experiment> {
             family: family(),
             deviations: deviations(true),
             figures: None,
+            scene: None,
         })
         .collect();
     v.extend(PEERS.iter().map(|&(n, s, _, p, _)| compared(n, s, p)));
@@ -363,6 +373,7 @@ pub fn experiments() -> Vec<Experiment> {
         family: family(),
         deviations: deviations(false),
         figures: None,
+        scene: None,
     });
     v.push(Experiment {
         id: "L-tab2",
@@ -415,6 +426,7 @@ pub fn experiments() -> Vec<Experiment> {
         family: family(),
         deviations: deviations(true),
         figures: None,
+        scene: None,
     });
     v
 }

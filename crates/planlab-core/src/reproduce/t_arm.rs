@@ -77,16 +77,19 @@ pub fn experiments() -> Vec<PathExperiment> {
                 Perturbation::Point {
                     path: "arm.start",
                     radius_m: 0.02,
-                },
+                }
+                .because("the gripper's start within 2 cm: still in front of the shoulder"),
                 Perturbation::Point {
                     path: "arm.goal",
                     radius_m: 0.02,
-                },
+                }
+                .because("the object within 2 cm: still the stapler on the left-front"),
                 Perturbation::Scale {
                     path: "arm.hand.speed",
                     rel: 0.2,
-                },
-                Perturbation::Seed,
+                }
+                .because("the person's reach ±20 % in speed: the same reach across the table"),
+                Perturbation::Seed.because("another seed of the hand's variation"),
             ],
         },
         deviations: vec![
@@ -129,5 +132,6 @@ pub fn experiments() -> Vec<PathExperiment> {
             },
         ],
         figures: None,
+        scene: None,
     }]
 }

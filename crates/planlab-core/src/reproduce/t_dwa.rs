@@ -59,20 +59,37 @@ fn length_ratio(r: &R, name: &str) -> Option<f64> {
 
 /// The family of the open-room scenes: start, goal and movers moved, mover
 /// speeds ±20 %, free-standing blocks up to 2 cells (0.2 m), a new seed.
-fn room_family(goal_m: f64, movers_m: f64) -> Family {
+fn room_family(goal_m: f64, goal_why: &'static str, movers_m: f64) -> Family {
     Family {
         perturbations: vec![
-            Perturbation::start(0.2),
-            Perturbation::goal(goal_m),
+            Perturbation::start(0.2).because(
+                "up to 0.2 m, less than the robot's 0.25 m radius: it starts where the figure \
+                 starts it, facing the same obstacles",
+            ),
+            Perturbation::goal(goal_m).because(goal_why),
             Perturbation::Movers {
                 radius_m: movers_m,
                 speed_rel: 0.2,
-            },
-            Perturbation::Blocks { cells: 2 },
-            Perturbation::Seed,
+            }
+            .because(
+                "mover paths shifted a little (0.2 m; 0.05 m in the Fig 3-13 scenes, whose \
+                 gaps are tight) and speeds ±20 %: they still cross or block the robot's way \
+                 as drawn, at the speeds the thesis's classes (static, slow, ordinary) name",
+            ),
+            Perturbation::Blocks { cells: 2 }.because(
+                "free-standing obstacles moved by up to 2 cells (0.2 m) per axis: the same \
+                 layout as drawn, not the same pixels (the room's walls stay)",
+            ),
+            Perturbation::Seed.because("another noise seed: the scene itself is unchanged"),
         ],
     }
 }
+
+/// The goal range of the scenes where the goal is anywhere in the open.
+const GOAL_OPEN: &str = "up to 0.2 m: the goal stays in the same open part of the room";
+/// The goal range of Fig 3-13, whose goal lies 0.36 m from a disc.
+const GOAL_NEAR_DISC: &str = "up to 5 cm: the goal's 0.36 m gap to the disc's surface (Fig 3-13) \
+     stays 0.31–0.41 m, beyond the robot's footprint and within the disc's reach";
 
 /// The values of the \[T\] ch. 3 planners that the thesis does not give.
 fn planner_deviations() -> Vec<Deviation> {
@@ -206,9 +223,10 @@ pub fn experiments() -> Vec<Experiment> {
                     None,
                 ),
             ],
-            family: room_family(0.2, 0.2),
+            family: room_family(0.2, GOAL_OPEN, 0.2),
             deviations: planner_deviations(),
             figures: None,
+            scene: None,
         },
         Experiment {
             id: "T-fig3-11",
@@ -231,9 +249,10 @@ pub fn experiments() -> Vec<Experiment> {
                     None,
                 ),
             ],
-            family: room_family(0.2, 0.2),
+            family: room_family(0.2, GOAL_OPEN, 0.2),
             deviations: planner_deviations(),
             figures: None,
+            scene: None,
         },
         Experiment {
             id: "T-fig3-13a",
@@ -251,9 +270,10 @@ pub fn experiments() -> Vec<Experiment> {
             ],
             // The scene is the goal's distance to the disc: goal and disc move
             // by at most 5 cm so a variant stays a "goal near an obstacle".
-            family: room_family(0.05, 0.05),
+            family: room_family(0.05, GOAL_NEAR_DISC, 0.05),
             deviations: planner_deviations(),
             figures: None,
+            scene: None,
         },
         Experiment {
             id: "T-fig3-13b",
@@ -267,9 +287,10 @@ pub fn experiments() -> Vec<Experiment> {
                 circles_clause("dwa"),
                 circles_clause("fusion-53"),
             ],
-            family: room_family(0.05, 0.05),
+            family: room_family(0.05, GOAL_NEAR_DISC, 0.05),
             deviations: planner_deviations(),
             figures: None,
+            scene: None,
         },
         Experiment {
             id: "T-tab3-2",
@@ -318,9 +339,10 @@ pub fn experiments() -> Vec<Experiment> {
                     }),
                 ),
             ],
-            family: room_family(0.2, 0.2),
+            family: room_family(0.2, GOAL_OPEN, 0.2),
             deviations: planner_deviations(),
             figures: None,
+            scene: None,
         },
     ]
 }
