@@ -81,6 +81,12 @@ test('gallery cards: verdict badge, success intervals, clauses with effects, dev
       })),
       clauses: [...c.querySelectorAll('.gclauses li')].map((li) => li.textContent),
       deviations: c.querySelectorAll('.gdev li').length,
+      sensitivity: c.querySelector('.gsensum')?.textContent ?? null,
+      splits: [...c.querySelectorAll('.gsenstable tr[data-perturbation]')].map((tr) => ({
+        name: tr.dataset.perturbation,
+        why: tr.title,
+        cells: [...tr.querySelectorAll('td')].map((td) => td.textContent),
+      })),
     })),
   );
   assert.equal(cards.length, 27);
@@ -113,6 +119,18 @@ test('gallery cards: verdict badge, success intervals, clauses with effects, dev
       if (cl.effect) assert.match(c.clauses[i], /median|no variant had both/, `${c.id}: effect shown`);
     });
     assert.equal(c.deviations, r.deviations.length, `${c.id}: deviations`);
+    // Sensitivity: the summary, and per perturbation its reason and both halves.
+    assert.equal(c.sensitivity, `Most sensitive to: ${r.sensitivity.summary}`, `${c.id}: sensitivity summary`);
+    assert.equal(c.splits.length, r.sensitivity.perturbations.length, `${c.id}: one row per perturbation`);
+    r.sensitivity.perturbations.forEach((p, i) => {
+      assert.equal(c.splits[i].name, p.perturbation);
+      assert.equal(c.splits[i].why, p.why);
+      assert.ok(p.why.length > 0, `${c.id} ${p.perturbation}: a reason for its range`);
+      if (p.split) {
+        assert.ok(c.splits[i].cells[1].startsWith(`${p.split.below.k}/${p.split.below.n} · `), c.splits[i].cells[1]);
+        assert.ok(c.splits[i].cells[2].startsWith(`${p.split.above.k}/${p.split.above.n} · `), c.splits[i].cells[2]);
+      }
+    });
   }
   // T-fig3-2 has results and a badge, colour-coded.
   const t32 = cards.find((c) => c.id === 'T-fig3-2');
@@ -123,6 +141,8 @@ test('gallery cards: verdict badge, success intervals, clauses with effects, dev
   await page.$eval('#exp-T-fig3-2', (c) => c.scrollIntoView());
   await page.click('#exp-T-fig3-2 .gdev summary');
   assert.equal(await page.$eval('#exp-T-fig3-2 .gdev', (d) => d.open), true);
+  await page.click('#exp-T-fig3-2 .gsensdet summary');
+  assert.equal(await page.$eval('#exp-T-fig3-2 .gsensdet', (d) => d.open), true);
   // The card stays inside the page width (no horizontal overflow).
   assert.ok((await page.evaluate(() => document.documentElement.scrollWidth)) <= 1367);
   await (await page.$('#exp-T-fig3-2')).screenshot({ path: path.join(SCREENSHOTS, 'variant-gallery-card.png') });
@@ -169,7 +189,7 @@ test('robot page: variant 3 of T-fig3-2 (improved, seed 0) replays the CLI trace
   await ready(page);
   assert.equal(await page.evaluate(() => document.body.dataset.variant), '2');
   await page.waitForSelector('#variant-label');
-  assert.equal(await page.textContent('#variant-label'), 'variant 2 of 30, seed 0');
+  assert.equal(await page.textContent('#variant-label'), 'variant 2 of 60, seed 0');
   await page.click('#variant-random');
   await page.waitForURL((u) => !/variant=2(&|$)/.test(u.search));
   await ready(page);
@@ -181,14 +201,14 @@ test('robot page: variant 3 of T-fig3-2 (improved, seed 0) replays the CLI trace
 
 test('APF page: a variant of T-fig4-6 opens and runs; a bad variant link shows the core message', async () => {
   const { page, problems } = await newPage();
-  await page.goto(`${session.base}apf.html?scenario=T-fig4-6.json&set=apf.config.mode%3Dsampling&run=1&exp=T-fig4-6&as=sampling&variant=2&seed=0&of=30`);
+  await page.goto(`${session.base}apf.html?scenario=T-fig4-6.json&set=apf.config.mode%3Dsampling&run=1&exp=T-fig4-6&as=sampling&variant=2&seed=0&of=60`);
   await page.waitForFunction(() => ['ready', 'error'].includes(document.body.dataset.state), null, { timeout: 30_000 });
   assert.equal(await errorText(page), null);
   assert.equal(await page.evaluate(() => document.body.dataset.variant), '2');
   assert.equal(await page.inputValue('#mode'), 'sampling');
   await ended(page, 60_000);
   await page.waitForSelector('#variant-label');
-  assert.equal(await page.textContent('#variant-label'), 'variant 2 of 30, seed 0');
+  assert.equal(await page.textContent('#variant-label'), 'variant 2 of 60, seed 0');
   await screenshot(page, 'variant-apf.png');
 
   // Unknown run, and a variant past the family's bound: the core's words, the preset still open.

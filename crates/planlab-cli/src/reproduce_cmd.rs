@@ -215,7 +215,7 @@ fn explain_table(f: &FamilyResult) -> String {
             )),
             None => s.push_str(&format!(
                 "  {:<16}{:<34}\n",
-                p.perturbation, "(no ordered number: a seed)"
+                p.perturbation, "(nothing ordered drawn: a seed, or nothing to move)"
             )),
         }
         s.push_str(&format!("      range: {range}\n      why: {}\n", p.why));

@@ -87,6 +87,55 @@ fn family_json_has_verdict_shares_effects_and_deviations() {
 }
 
 #[test]
+fn explain_names_every_perturbation_with_its_reason_and_split() {
+    let o = planlab(&["reproduce", "T-fig4-8", "--explain", "--variants", "9"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    let f = json_lines(&planlab(&[
+        "reproduce",
+        "T-fig4-8",
+        "--variants",
+        "9",
+        "--json",
+    ]))
+    .remove(0);
+    let sens = &f["sensitivity"];
+    assert!(
+        text.contains(&format!(
+            "sensitivity: {}",
+            sens["summary"].as_str().unwrap()
+        )),
+        "{text}"
+    );
+    assert!(text.contains("most sensitive: "), "{text}");
+    let perts = sens["perturbations"].as_array().unwrap();
+    assert_eq!(
+        perts.len(),
+        f["family"]["perturbations"].as_array().unwrap().len()
+    );
+    for p in perts {
+        let why = p["why"].as_str().unwrap();
+        assert!(!why.is_empty());
+        assert!(text.contains(&format!("why: {why}")), "{why}\n{text}");
+        if let Some(sp) = p["split"].as_object() {
+            let below = format!("{}/{}", sp["below"]["k"], sp["below"]["n"]);
+            assert!(text.contains(&below), "{below}\n{text}");
+        }
+    }
+    // The verdict rule, with the interval: reproduced needs both.
+    let (rate, lo) = (
+        f["joint"]["rate"].as_f64().unwrap(),
+        f["joint"]["ci95"][0].as_f64().unwrap(),
+    );
+    assert_eq!(
+        f["verdict"] == "reproduced",
+        rate >= 0.8 && lo >= 0.65,
+        "{}",
+        f["joint"]
+    );
+}
+
+#[test]
 fn path_and_arm_variants_replay_through_planlab_run() {
     replays("T-fig4-10", 3);
     replays("T-tab5-3", 2);

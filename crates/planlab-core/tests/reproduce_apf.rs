@@ -83,3 +83,25 @@ fn the_apf_figures_and_table_are_registered() {
         assert!(ids.contains(&id), "{id} missing from {ids:?}");
     }
 }
+
+#[test]
+fn fig4_6_minimum_is_a_saddle_one_millimetre_off_the_line_basic_apf_reaches() {
+    // The README's reading of T-fig4-6: basic APF is stuck only with start,
+    // disc and goal exactly on one line; a disc 1 mm off it is slid round.
+    use planlab_core::apf::ApfMetrics;
+    use planlab_core::reproduce::RunMetrics;
+    let exp = find_path("T-fig4-6").unwrap();
+    let basic = exp.runs.iter().find(|r| r.name == "apf").unwrap();
+    let preset: serde_json::Value = serde_json::from_str(basic.scenario_json).unwrap();
+    for (y, want) in [
+        ("0", Outcome::Stuck),
+        ("0.001", Outcome::Reached),
+        ("0.02", Outcome::Reached),
+    ] {
+        let extra = [("apf.obstacles.0.centre".to_string(), format!("[0.5,{y}]"))];
+        let tree = reproduce::run_tree(basic, &preset, &extra).unwrap();
+        let (m, _) = ApfMetrics::run_tree(&tree).unwrap();
+        assert_eq!(m.outcome, want, "disc at y = {y}: {m:?}");
+        assert!(m.min_obstacle_distance_m > 0.0, "disc at y = {y}: {m:?}");
+    }
+}

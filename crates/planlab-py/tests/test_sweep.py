@@ -70,6 +70,22 @@ def test_reproduce_equals_planlab_reproduce(cli, args):
     assert exp in planlab.reproduce_ids()
 
 
+def test_reproduce_family_carries_interval_and_sensitivity():
+    fam = planlab.reproduce("T-fig4-6", variants=8)
+    joint = fam["joint"]
+    lo, hi = joint["ci95"]
+    assert 0 <= lo <= joint["rate"] <= hi <= 1 and joint["n"] == 8
+    # The rule: reproduced needs >= 80 % and a Wilson lower bound >= 0.65.
+    if fam["verdict"] == "reproduced":
+        assert joint["rate"] >= 0.8 and lo >= 0.65
+    sens = fam["sensitivity"]
+    assert sens["summary"]
+    # One entry per perturbation, each with the reason for its range.
+    assert len(sens["perturbations"]) == len(fam["family"]["perturbations"])
+    assert [p["why"] for p in sens["perturbations"]] == [p["why"] for p in fam["family"]["perturbations"]]
+    assert all(p["why"] for p in sens["perturbations"])
+
+
 
 ARM = SCENARIOS / "T-tab5-3.json"
 

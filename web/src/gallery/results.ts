@@ -36,6 +36,19 @@ export interface FamilyResult {
   }[];
   deviations: { what: string; path: string | null; ours: string; paper: string }[];
   redraws: number;
+  /** Which perturbation the whole relation is most sensitive to (median
+   *  split of every drawn number); absent in results written before it. */
+  sensitivity?: Sensitivity;
+}
+
+/** `Sensitivity` of the core (reproduce/sensitivity.rs). */
+export interface Sensitivity {
+  summary: string;
+  perturbations: {
+    perturbation: string;
+    why: string;
+    split: { value: string; at: number; below: Share; above: Share } | null;
+  }[];
 }
 
 function h<K extends keyof HTMLElementTagNameMap>(tag: K, cls: string, text?: string): HTMLElementTagNameMap[K] {
@@ -68,6 +81,45 @@ export function effectText(e: NonNullable<FamilyResult['clauses'][number]['effec
   const v = (x: number) => (e.kind === 'ratio' ? `×${num(x)}` : `${x > 0 ? '+' : ''}${num(x)}`);
   const ci = m.ci95 ? ` [${num(m.ci95[0])}, ${num(m.ci95[1])}]` : ' (too few variants for a 95 % interval)';
   return `median ${v(m.median)}${unit}${ci} · n = ${m.n}`;
+}
+
+/** "Most sensitive to" and, folded, every perturbation's range reason and
+ *  how the whole relation splits at the median of its drawn number. */
+export function sensitivitySection(sens: Sensitivity): HTMLElement {
+  const box = h('div', 'gsens');
+  const line = h('p', 'gsensum');
+  line.append(h('b', '', 'Most sensitive to: '), document.createTextNode(sens.summary));
+  box.append(line);
+  const det = h('details', 'gsensdet');
+  det.append(h('summary', '', `Per perturbation (${sens.perturbations.length}): why its range, where the relation holds`));
+  const t = h('table', 'gtable gsenstable');
+  const head = h('tr', '');
+  head.append(h('th', '', 'perturbation'), h('th', '', 'split at the median'), h('th', '', 'holds below'), h('th', '', 'holds at or above'));
+  t.append(head);
+  for (const p of sens.perturbations) {
+    const tr = h('tr', '');
+    tr.dataset.perturbation = p.perturbation;
+    tr.title = p.why;
+    const name = h('th', '', p.perturbation);
+    const why = h('div', 'gwhy', p.why);
+    name.append(why);
+    tr.append(name);
+    if (p.split) {
+      tr.append(
+        h('td', '', `${p.split.value} @ ${num(p.split.at)}`),
+        h('td', 'num', shareText(p.split.below)),
+        h('td', 'num', shareText(p.split.above)),
+      );
+    } else {
+      const td = h('td', '', 'no ordered number (a seed) or every variant drew the same');
+      td.colSpan = 3;
+      tr.append(td);
+    }
+    t.append(tr);
+  }
+  det.append(t);
+  box.append(det);
+  return box;
 }
 
 const VERDICT_CLASS: Record<FamilyResult['verdict'], string> = {
@@ -157,6 +209,8 @@ export function resultsSection(e: GalleryEntry, r: FamilyResult | undefined): HT
     ul.append(li);
   }
   sec.append(h('div', 'gsub', 'Clauses of the relation'), ul);
+
+  if (r.sensitivity) sec.append(sensitivitySection(r.sensitivity));
 
   // Deviations: every value not from the paper.
   const det = h('details', 'gdev');
