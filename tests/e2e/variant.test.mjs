@@ -82,10 +82,11 @@ test('gallery cards: verdict badge, success intervals, clauses with effects, dev
       clauses: [...c.querySelectorAll('.gclauses li')].map((li) => li.textContent),
       deviations: c.querySelectorAll('.gdev li').length,
       sensitivity: c.querySelector('.gsensum')?.textContent ?? null,
-      splits: [...c.querySelectorAll('.gsenstable tr[data-perturbation]')].map((tr) => ({
-        name: tr.dataset.perturbation,
-        why: tr.title,
-        cells: [...tr.querySelectorAll('td')].map((td) => td.textContent),
+      splits: [...c.querySelectorAll('.gsenslist li[data-perturbation]')].map((li) => ({
+        name: li.dataset.perturbation,
+        why: li.querySelector('.gwhy').textContent,
+        below: li.querySelector('.gbelow')?.textContent ?? null,
+        above: li.querySelector('.gabove')?.textContent ?? null,
       })),
     })),
   );
@@ -127,8 +128,8 @@ test('gallery cards: verdict badge, success intervals, clauses with effects, dev
       assert.equal(c.splits[i].why, p.why);
       assert.ok(p.why.length > 0, `${c.id} ${p.perturbation}: a reason for its range`);
       if (p.split) {
-        assert.ok(c.splits[i].cells[1].startsWith(`${p.split.below.k}/${p.split.below.n} · `), c.splits[i].cells[1]);
-        assert.ok(c.splits[i].cells[2].startsWith(`${p.split.above.k}/${p.split.above.n} · `), c.splits[i].cells[2]);
+        assert.ok(c.splits[i].below.startsWith(`${p.split.below.k}/${p.split.below.n} · `), c.splits[i].below);
+        assert.ok(c.splits[i].above.startsWith(`${p.split.above.k}/${p.split.above.n} · `), c.splits[i].above);
       }
     });
   }
@@ -146,6 +147,11 @@ test('gallery cards: verdict badge, success intervals, clauses with effects, dev
   // The card stays inside the page width (no horizontal overflow).
   assert.ok((await page.evaluate(() => document.documentElement.scrollWidth)) <= 1367);
   await (await page.$('#exp-T-fig3-2')).screenshot({ path: path.join(SCREENSHOTS, 'variant-gallery-card.png') });
+  // A card whose verdict hangs on one perturbation says which.
+  await page.$eval('#exp-T-fig4-8', (c) => c.scrollIntoView());
+  assert.match(await page.textContent('#exp-T-fig4-8 .gsensum'), /fails mostly when goal x shift m/);
+  await page.click('#exp-T-fig4-8 .gsensdet summary');
+  await (await page.$('#exp-T-fig4-8 .gresults')).screenshot({ path: path.join(SCREENSHOTS, 'variant-gallery-sensitivity.png') });
   await screenshot(page, 'variant-gallery-1366.png');
 
   // A random-variant link opens the robot page on that variant.
@@ -189,7 +195,7 @@ test('robot page: variant 3 of T-fig3-2 (improved, seed 0) replays the CLI trace
   await ready(page);
   assert.equal(await page.evaluate(() => document.body.dataset.variant), '2');
   await page.waitForSelector('#variant-label');
-  assert.equal(await page.textContent('#variant-label'), 'variant 2 of 60, seed 0');
+  assert.equal(await page.textContent('#variant-label'), 'variant 2 of 30, seed 0');
   await page.click('#variant-random');
   await page.waitForURL((u) => !/variant=2(&|$)/.test(u.search));
   await ready(page);

@@ -92,32 +92,27 @@ export function sensitivitySection(sens: Sensitivity): HTMLElement {
   box.append(line);
   const det = h('details', 'gsensdet');
   det.append(h('summary', '', `Per perturbation (${sens.perturbations.length}): why its range, where the relation holds`));
-  const t = h('table', 'gtable gsenstable');
-  const head = h('tr', '');
-  head.append(h('th', '', 'perturbation'), h('th', '', 'split at the median'), h('th', '', 'holds below'), h('th', '', 'holds at or above'));
-  t.append(head);
+  // A list, not a table: the card is narrow and the reasons are sentences.
+  const ul = h('ul', 'gsenslist');
   for (const p of sens.perturbations) {
-    const tr = h('tr', '');
-    tr.dataset.perturbation = p.perturbation;
-    tr.title = p.why;
-    const name = h('th', '', p.perturbation);
-    const why = h('div', 'gwhy', p.why);
-    name.append(why);
-    tr.append(name);
+    const li = h('li', '');
+    li.dataset.perturbation = p.perturbation;
+    li.append(h('b', '', p.perturbation));
     if (p.split) {
-      tr.append(
-        h('td', '', `${p.split.value} @ ${num(p.split.at)}`),
-        h('td', 'num', shareText(p.split.below)),
-        h('td', 'num', shareText(p.split.above)),
+      li.append(
+        h('span', 'gsplit', ` · ${p.split.value} split at ${num(p.split.at)}: holds `),
+        h('span', 'gbelow num', shareText(p.split.below)),
+        h('span', 'gsplit', ' below, '),
+        h('span', 'gabove num', shareText(p.split.above)),
+        h('span', 'gsplit', ' at or above'),
       );
     } else {
-      const td = h('td', '', 'no ordered number (a seed) or every variant drew the same');
-      td.colSpan = 3;
-      tr.append(td);
+      li.append(h('span', 'gsplit', ' · nothing ordered drawn (a seed, or nothing to move)'));
     }
-    t.append(tr);
+    li.append(h('div', 'gwhy', p.why));
+    ul.append(li);
   }
-  det.append(t);
+  det.append(ul);
   box.append(det);
   return box;
 }
