@@ -243,7 +243,9 @@ impl Screen {
             let (q, _) = closest_along([s.x, s.y], p, [v[0] * t_rest, v[1] * t_rest]);
             let d = hypot(q[0] - s.x, q[1] - s.y);
             // Keep on NaN: only a mover surely out of reach is left out.
-            if !(d - self.rest_reach > reach + 1e-6) {
+            if (d - self.rest_reach).partial_cmp(&(reach + 1e-6))
+                != Some(std::cmp::Ordering::Greater)
+            {
                 self.rest_movers.push((p, v, r));
             }
         }
@@ -786,7 +788,9 @@ impl Screen {
                 .max(0.0);
             let reach = base + r;
             // Kept on NaN: only a mover surely out of reach is left out.
-            if !(gx * gx + gy * gy > reach * reach) {
+            if (gx * gx + gy * gy).partial_cmp(&(reach * reach))
+                != Some(std::cmp::Ordering::Greater)
+            {
                 mask |= 1 << j;
             }
         }
