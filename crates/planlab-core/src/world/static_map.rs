@@ -142,8 +142,10 @@ impl StaticMap {
             return 0.0;
         }
         // lx, ly are positive here, so truncation is floor (no libm call on
-        // targets without SSE4.1; the values are the same).
-        let (cx, cy) = (lx as usize, ly as usize);
+        // targets without SSE4.1; the values are the same). Through i64: a
+        // signed conversion is one instruction on x86-64, an unsigned one
+        // a branchy sequence, and below `w`, `h` both give the same value.
+        let (cx, cy) = (lx as i64 as usize, ly as i64 as usize);
         // Inside a blocked cell the distance is 0 whatever the neighbours say.
         if self.blocked[(h - 1 - cy.min(h - 1)) * w + cx.min(w - 1)] {
             return 0.0;

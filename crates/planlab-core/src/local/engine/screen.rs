@@ -132,6 +132,12 @@ pub struct Screen {
     brake_steps: usize,
     /// Every perceived mover (position, velocity, radius), for rest checks.
     all_movers: Vec<([f64; 2], [f64; 2], f64)>,
+    /// The movers of `all_movers` whose predicted path comes within reach
+    /// of a rest point at most `rest_reach` m from the robot (in order): the
+    /// others cannot make such a point unsafe.
+    rest_movers: Vec<([f64; 2], [f64; 2], f64)>,
+    /// Distance from the robot within which `rest_movers` decide, m.
+    rest_reach: f64,
     /// Collision threshold: 0, or the current clearance when the robot
     /// already sits inside the margin (it may leave, not go deeper).
     limit: f64,
@@ -160,6 +166,8 @@ impl Screen {
             va_steps: 0,
             brake_steps: 0,
             all_movers: Vec::new(),
+            rest_movers: Vec::new(),
+            rest_reach: -1.0,
             limit: 0.0,
             stat0: 0.0,
             horizon: 0.0,
@@ -216,6 +224,51 @@ impl Screen {
         self.stat0 = stat0;
         self.dt = dt;
         self.horizon = horizon;
+        // Rest points of this cycle's checks: a rollout's end, a braking
+        // rollout's rest, the stranding check's braking after one period;
+        // none is farther than this (a looser bound only keeps more movers;
+        // a point beyond it is checked against every mover).
+        self.rest_reach = v_abs * (t_total + dt) * (1.0 + 1e-6) + 1e-6;
+        self.cull_rest_movers(s);
+    }
+
+    /// Fills `rest_movers`: the movers whose predicted path
+    /// ([`Self::rest_unsafe`]) comes within their reach, plus `rest_reach`
+    /// and a margin, of the robot.
+    fn cull_rest_movers(&mut self, s: &RobotState) {
+        self.rest_movers.clear();
+        let t_rest = self.rest_time();
+        for &(p, v, r) in &self.all_movers {
+            let reach = r + self.r_eff + self.limit + 1e-9;
+            let (q, _) = closest_along([s.x, s.y], p, [v[0] * t_rest, v[1] * t_rest]);
+            let d = hypot(q[0] - s.x, q[1] - s.y);
+            // Keep on NaN: only a mover surely out of reach is left out.
+            if (d - self.rest_reach).partial_cmp(&(reach + 1e-6))
+                != Some(std::cmp::Ordering::Greater)
+            {
+                self.rest_movers.push((p, v, r));
+            }
+        }
+    }
+
+    /// How far ahead a mover's path counts for a robot at rest, s.
+    fn rest_time(&self) -> f64 {
+        if self.cfg.predict_movers {
+            REST_HORIZONS * self.steps as f64 * self.h
+        } else {
+            0.0
+        }
+    }
+
+    /// [`Self::rest_unsafe`] for a rest point of this cycle's checks: only
+    /// the movers that can reach it are asked (the answer is the same).
+    fn rest_unsafe_near(&self, s: &RobotState, x: f64, y: f64) -> bool {
+        let (dx, dy) = (x - s.x, y - s.y);
+        if dx * dx + dy * dy <= self.rest_reach * self.rest_reach {
+            self.rest_unsafe_among(&self.rest_movers, x, y)
+        } else {
+            self.rest_unsafe_among(&self.all_movers, x, y)
+        }
     }
 
     /// How many steps to integrate `sample` for: the horizon, or as far as
@@ -249,9 +302,13 @@ impl Screen {
         let (speeds, v0) = (&traj.speeds, traj.sample.cmd.v);
         let step_len = |i: usize| speeds.get(i).copied().unwrap_or(v0).abs() * h * (1.0 + 1e-9);
         let const_len = speeds.is_empty().then(|| step_len(0));
+        let len_of = |i: usize| const_len.unwrap_or_else(|| step_len(i));
+        let start = [s.x, s.y];
+        let mut cull = MoverCull::new(self);
         for (i, &p) in traj.points[..traj.horizon].iter().enumerate() {
-            let stat = probe.at(p, const_len.unwrap_or_else(|| step_len(i)));
-            let c = self.mover_clearance(stat, p[0], p[1], i + 1, horizon);
+            self.cull_at(&mut cull, &traj.points, start, i, len_of);
+            let stat = probe.at(p, len_of(i));
+            let c = self.mover_clearance_in(stat, p[0], p[1], i + 1, horizon, cull.mask());
             min_c = min_c.min(c);
             if c <= limit {
                 collided = true;
@@ -276,15 +333,18 @@ impl Screen {
                 };
                 rest = p;
                 shown = k;
-                let stat = map.clearance(p[0], p[1]) - self.r_eff - self.slack;
-                if self.mover_clearance(stat, p[0], p[1], k, horizon) <= limit {
+                // Only `≤ limit` is asked here: the skipping probe and the
+                // culled movers give the same answer.
+                self.cull_at(&mut cull, &traj.points, start, k - 1, len_of);
+                let stat = probe.at(p, len_of(k - 1));
+                if self.mover_clearance_in(stat, p[0], p[1], k, horizon, cull.mask()) <= limit {
                     collided = true;
                     break;
                 }
                 k += 1;
             }
         }
-        if decel > 0.0 && !collided && self.rest_unsafe(rest[0], rest[1]) {
+        if decel > 0.0 && !collided && self.rest_unsafe_near(s, rest[0], rest[1]) {
             // Stopping here would leave the robot in a mover's way.
             collided = true;
         }
@@ -297,10 +357,11 @@ impl Screen {
             && !collided
             && self.cfg.predict_movers
             && !self.all_movers.is_empty()
-            && self.rest_unsafe(rest[0], rest[1])
+            && self.rest_unsafe_near(s, rest[0], rest[1])
         {
             let next = integrate(s, Command { v, vy: 0.0, w }, self.dt);
-            stranded = self.braking_collides_from(map, &next, self.extra_rows, None, false);
+            stranded =
+                self.braking_collides_from(map, &next, self.extra_rows, None, false, Some(s));
         }
         // V_a: the arc must be free of contact for the braking time. A
         // rollout that collides is out anyway, so within the horizon the
@@ -317,8 +378,9 @@ impl Screen {
                     va_ok = false;
                     break;
                 };
-                let stat = probe.at(p, step_len(k - 1));
-                if self.mover_clearance(stat, p[0], p[1], k, horizon) <= limit {
+                self.cull_at(&mut cull, &traj.points, start, k - 1, len_of);
+                let stat = probe.at(p, len_of(k - 1));
+                if self.mover_clearance_in(stat, p[0], p[1], k, horizon, cull.mask()) <= limit {
                     va_ok = false;
                     break;
                 }
@@ -337,7 +399,7 @@ impl Screen {
     /// from `s` hits something within the horizon, movers predicted as in
     /// the last cycle: then the fallback evades instead of braking.
     pub fn braking_collides(&self, map: &StaticMap, s: &RobotState) -> bool {
-        self.braking_collides_from(map, s, 0, None, false)
+        self.braking_collides_from(map, s, 0, None, false, None)
     }
 
     /// Number of rows in the movers' position table.
@@ -362,12 +424,13 @@ impl Screen {
     /// out of the way of what keeps coming. Without mover prediction the
     /// movers stand still and only overlap counts.
     fn rest_unsafe(&self, x: f64, y: f64) -> bool {
-        let t_rest = if self.cfg.predict_movers {
-            REST_HORIZONS * self.steps as f64 * self.h
-        } else {
-            0.0
-        };
-        self.all_movers.iter().any(|&(p, v, r)| {
+        self.rest_unsafe_among(&self.all_movers, x, y)
+    }
+
+    /// [`Self::rest_unsafe`] against `movers` only.
+    fn rest_unsafe_among(&self, movers: &[([f64; 2], [f64; 2], f64)], x: f64, y: f64) -> bool {
+        let t_rest = self.rest_time();
+        movers.iter().any(|&(p, v, r)| {
             // Distance from (x, y) to the segment p + v·t, t ∈ [0, t_rest].
             let (dx, dy) = (v[0] * t_rest, v[1] * t_rest);
             let len2 = dx * dx + dy * dy;
@@ -463,6 +526,10 @@ impl Screen {
     /// movers' predicted future; with `turn_to`, the turn rate follows the
     /// fallback's turn toward that goal instead of braking to 0; with
     /// `to_rest`, followed until the robot stands even past the horizon.
+    /// `near`: the cycle's robot state, when `s` is a state of this cycle's
+    /// checks (the stranding check): the rest test then asks only the
+    /// movers that can reach it, and the static look-ups start from the
+    /// robot's.
     fn braking_collides_from(
         &self,
         map: &StaticMap,
@@ -470,6 +537,7 @@ impl Screen {
         row0: usize,
         turn_to: Option<[f64; 2]>,
         to_rest: bool,
+        near: Option<&RobotState>,
     ) -> bool {
         let l = &self.limits;
         let h = self.h;
@@ -487,16 +555,37 @@ impl Screen {
         } else {
             self.steps
         };
+        let row_of = |k: usize| (k + row0).min(rows.saturating_sub(1));
+        // Only `≤ limit` is asked of the clearance below, so skipping
+        // look-ups far from walls ([`Probe`]) and movers out of reach
+        // ([`MoverCull`]) gives the same answers.
+        let mut probe = Probe::new(map, self, self.horizon);
+        match near {
+            Some(s0) => probe.since = hypot(s.x - s0.x, s.y - s0.y) * (1.0 + 1e-9) + 1e-9,
+            None => probe.last = f64::NEG_INFINITY,
+        }
+        let mut cull = MoverCull::new(self);
         for k in 1..=n {
+            if cull.due(k - 1) {
+                // |v| never grows while braking: the next steps stay
+                // within this of the current position.
+                let steps = CULL_CHUNK.min(n + 1 - k);
+                let rho = (v.abs() * h * (1.0 + 1e-9) + 1e-9) * steps as f64;
+                let (ka, kb) = (row_of(k), row_of(k + steps - 1));
+                cull.mask = self.near_movers([st.x, st.y], rho, ka, kb);
+                cull.end = k - 1 + steps;
+            }
             v = toward_zero(v, l.acc_v * h);
             w = match turn_to {
                 Some(g) => self.turn_toward(&st, g, h),
                 None => toward_zero(w, l.acc_w * h),
             };
             st = integrate(&st, Command { v, vy: 0.0, w }, h);
-            let stat = map.clearance(st.x, st.y) - self.r_eff - self.slack;
-            let row = (k + row0).min(rows.saturating_sub(1));
-            if self.mover_clearance(stat, st.x, st.y, row, self.horizon) <= self.limit {
+            let stat = probe.at([st.x, st.y], v.abs() * h * (1.0 + 1e-9) + 1e-9);
+            let row = row_of(k);
+            if self.mover_clearance_in(stat, st.x, st.y, row, self.horizon, cull.mask())
+                <= self.limit
+            {
                 return true;
             }
             // Turning on the spot moves no part of a round footprint.
@@ -505,7 +594,10 @@ impl Screen {
                 break;
             }
         }
-        self.rest_unsafe(st.x, st.y)
+        match near {
+            Some(s0) => self.rest_unsafe_near(s0, st.x, st.y),
+            None => self.rest_unsafe(st.x, st.y),
+        }
     }
 
     /// The fallback's turn rate toward `goal`: the rate that closes the
@@ -531,8 +623,8 @@ impl Screen {
         let turn = self.cfg.rotate_in_place
             && self.round
             && (s.v == 0.0
-                || !self.braking_collides_from(map, s, 0, Some(goal), true)
-                || self.braking_collides_from(map, s, 0, None, true));
+                || !self.braking_collides_from(map, s, 0, Some(goal), true, None)
+                || self.braking_collides_from(map, s, 0, None, true, None));
         let w = if turn {
             self.turn_toward(s, goal, dt)
         } else {
@@ -626,6 +718,143 @@ impl Screen {
             }
         }
         best
+    }
+
+    /// [`Self::mover_clearance`] over the movers of `mask` only (bit j:
+    /// kept mover j; `None`: all), in the same order: the same value when
+    /// the movers left out are those [`Self::near_movers`] rules out.
+    #[inline(always)]
+    fn mover_clearance_in(
+        &self,
+        stat: f64,
+        x: f64,
+        y: f64,
+        k: usize,
+        horizon: f64,
+        mask: Option<u64>,
+    ) -> f64 {
+        let Some(mut mask) = mask else {
+            return self.mover_clearance(stat, x, y, k, horizon);
+        };
+        let mut best = stat;
+        let n = self.mover_rad.len();
+        let row = &self.mover_pos[k * n..(k + 1) * n];
+        while mask != 0 {
+            let j = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let (p, r) = (row[j], self.mover_rad[j]);
+            // The body of `mover_clearance`, operation for operation.
+            let (dx, dy) = (p[0] - x, p[1] - y);
+            let d2 = dx * dx + dy * dy;
+            let lim = best.min(horizon) + r + self.r_eff;
+            if lim <= 0.0 || d2 < lim * lim {
+                best = best.min(d2.sqrt() - r - self.r_eff);
+            }
+        }
+        best
+    }
+
+    /// The kept movers (bit j: mover j; 1 ≤ movers ≤ 64) that may come
+    /// within `horizon` of a footprint centred within `rho` of `c` at
+    /// rollout steps `ka..=kb` (rows of the table).
+    ///
+    /// A mover left out is farther than `horizon + r + r_eff` (plus a
+    /// margin far above rounding) from every such centre, where
+    /// [`Self::mover_clearance`]'s `lim` never exceeds that: it would not
+    /// take its square root, or (deep in a collision, `lim ≤ 0`) would take
+    /// one larger than the clearance it has, so leaving it out changes no
+    /// bit. Its positions over the rows lie on the segment between rows
+    /// `ka` and `kb` (constant velocity), so within their bounding box.
+    fn near_movers(&self, c: [f64; 2], rho: f64, ka: usize, kb: usize) -> u64 {
+        let n = self.mover_rad.len();
+        let all = u64::MAX >> (64 - n);
+        if kb * n + n > self.mover_pos.len() {
+            // Past the table (the full loop would index out of it too).
+            return all;
+        }
+        let (a, b) = (
+            &self.mover_pos[ka * n..ka * n + n],
+            &self.mover_pos[kb * n..kb * n + n],
+        );
+        let margin = 1e-6 + 1e-9 * (c[0].abs() + c[1].abs());
+        let base = rho + self.horizon + self.r_eff + margin;
+        let mut mask = 0u64;
+        for (j, ((pa, pb), &r)) in a.iter().zip(b).zip(&self.mover_rad).enumerate() {
+            let gx = (pa[0].min(pb[0]) - c[0])
+                .max(c[0] - pa[0].max(pb[0]))
+                .max(0.0);
+            let gy = (pa[1].min(pb[1]) - c[1])
+                .max(c[1] - pa[1].max(pb[1]))
+                .max(0.0);
+            let reach = base + r;
+            // Kept on NaN: only a mover surely out of reach is left out.
+            if (gx * gx + gy * gy).partial_cmp(&(reach * reach))
+                != Some(std::cmp::Ordering::Greater)
+            {
+                mask |= 1 << j;
+            }
+        }
+        mask
+    }
+
+    /// Starts a new chunk of [`MoverCull`] at rollout point `i` of
+    /// `points` (rolled out from `start`, step `j` at most `step_len(j)`
+    /// long) when the last one has run out.
+    #[inline(always)]
+    fn cull_at(
+        &self,
+        cull: &mut MoverCull,
+        points: &[[f64; 2]],
+        start: [f64; 2],
+        i: usize,
+        step_len: impl Fn(usize) -> f64,
+    ) {
+        if cull.due(i) {
+            let c = if i == 0 { start } else { points[i - 1] };
+            let end = (i + CULL_CHUNK).min(points.len());
+            let mut rho = 0.0;
+            for j in i..end {
+                rho += step_len(j) + 1e-9;
+            }
+            cull.mask = self.near_movers(c, rho, i + 1, end);
+            cull.end = end;
+        }
+    }
+}
+
+/// Rollout steps per chunk of [`MoverCull`]: long enough that the bound is
+/// computed rarely, short enough that it stays tight.
+const CULL_CHUNK: usize = 8;
+
+/// The kept movers that can matter for the next few steps of a rollout
+/// ([`Screen::near_movers`]), so the per-step clearance asks only those.
+/// Off with no movers or more than 64 (one bit each).
+struct MoverCull {
+    on: bool,
+    mask: u64,
+    /// First step index the mask no longer covers.
+    end: usize,
+}
+
+impl MoverCull {
+    fn new(screen: &Screen) -> Self {
+        Self {
+            on: (1..=64).contains(&screen.mover_rad.len()),
+            mask: 0,
+            end: 0,
+        }
+    }
+
+    /// Whether step index `i` needs a new mask.
+    #[inline(always)]
+    fn due(&self, i: usize) -> bool {
+        self.on && i >= self.end
+    }
+
+    /// The mask for [`Screen::mover_clearance_in`].
+    #[inline(always)]
+    fn mask(&self) -> Option<u64> {
+        self.on.then_some(self.mask)
     }
 }
 
