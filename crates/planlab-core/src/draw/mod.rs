@@ -521,6 +521,9 @@ mod tests {
         assert!(d.items.is_empty() && d.data.is_empty() && d.cells.is_empty());
     }
 
+    // The order check is a debug assertion (a slip in drawing code, never
+    // input), so only a build with debug assertions can show it.
+    #[cfg(debug_assertions)]
     #[test]
     #[should_panic(expected = "layer order")]
     fn an_item_of_an_earlier_layer_after_a_later_one_is_refused() {
