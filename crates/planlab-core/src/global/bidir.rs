@@ -316,7 +316,10 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
     /// Expands cell `i` in direction `SIDE` unless it is a stale entry;
     /// whether it was expanded.
     #[inline(always)]
-    fn expand<const SIDE: usize, const RULE: u8, const WEIGHTED: bool>(&mut self, i: usize) -> bool {
+    fn expand<const SIDE: usize, const RULE: u8, const WEIGHTED: bool>(
+        &mut self,
+        i: usize,
+    ) -> bool {
         let Some(pair) = self.words.get_mut(i) else {
             return false;
         };
