@@ -286,12 +286,9 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         }
         let mut expanded = 0usize;
         let mut side = 1;
-        loop {
-            let (Some(kf), Some(kb)) = (self.open[0].min_key(), self.open[1].min_key()) else {
-                // One direction has reached every cell it can: μ is the
-                // optimum (or there is no path).
-                break;
-            };
+        // Until one direction has reached every cell it can (μ is then the
+        // optimum, or there is no path) or the stop rule holds.
+        while let (Some(kf), Some(kb)) = (self.open[0].min_key(), self.open[1].min_key()) {
             if self.mu != u64::MAX && kf + kb >= 2 * (self.mu + self.off) {
                 break;
             }
