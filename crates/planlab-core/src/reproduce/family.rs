@@ -386,35 +386,11 @@ fn apply_one(
                         });
                     }
                 }
-                path => {
-                    let v = at_path(tree, path)
-                        .ok_or_else(|| bad(format!("family: the preset has no `{path}`")))?;
-                    let dims = v.as_array().map_or(2, |a| a.len().clamp(2, 3));
-                    let d = in_box(rng);
-                    if !shift_array(v, d) {
-                        return Err(bad(format!("family: `{path}` is not a point")));
-                    }
-                    draws.push(Draw {
-                        what: format!("{path} shift m"),
-                        value: json!(&d[..dims]),
-                        of: 0,
-                    });
-                }
+                path => shift_point(tree, path, draws, |_| in_box(rng))?,
             }
         }
         Perturbation::Point { path, radius_m } => {
-            let v = at_path(tree, path)
-                .ok_or_else(|| bad(format!("family: the preset has no `{path}`")))?;
-            let dims = v.as_array().map_or(2, |a| a.len().clamp(2, 3));
-            let d = in_ball(rng, radius_m, dims);
-            if !shift_array(v, d) {
-                return Err(bad(format!("family: `{path}` is not a point")));
-            }
-            draws.push(Draw {
-                what: format!("{path} shift m"),
-                value: json!(&d[..dims]),
-                of: 0,
-            });
+            shift_point(tree, path, draws, |dims| in_ball(rng, radius_m, dims))?
         }
         Perturbation::Scale { path, rel } => {
             let v = at_path(tree, path)
@@ -468,6 +444,29 @@ fn move_endpoint(tree: &mut Value, which: &str, d: [f64; 3]) -> Result<(), Scena
     if let Some((col, row)) = grid.world_to_cell(x, y) {
         tree[which] = json!({"col": col, "row": row, "world": {"x": x, "y": y}});
     }
+    Ok(())
+}
+
+/// Shifts the point at dotted `path` of `tree` by `offset(dims)` (2 or 3
+/// components, as the point has) and records the draw.
+fn shift_point(
+    tree: &mut Value,
+    path: &str,
+    draws: &mut Vec<Draw>,
+    offset: impl FnOnce(usize) -> [f64; 3],
+) -> Result<(), ScenarioError> {
+    let v =
+        at_path(tree, path).ok_or_else(|| bad(format!("family: the preset has no `{path}`")))?;
+    let dims = v.as_array().map_or(2, |a| a.len().clamp(2, 3));
+    let d = offset(dims);
+    if !shift_array(v, d) {
+        return Err(bad(format!("family: `{path}` is not a point")));
+    }
+    draws.push(Draw {
+        what: format!("{path} shift m"),
+        value: json!(&d[..dims]),
+        of: 0,
+    });
     Ok(())
 }
 

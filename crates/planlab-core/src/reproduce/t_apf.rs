@@ -249,9 +249,13 @@ fn family_3d() -> Family {
     }
 }
 
+/// A scene's first obstacle's centre and radius, and the robot's start and
+/// goal.
+type Geometry = ([f64; 3], f64, [f64; 3], [f64; 3]);
+
 /// The scene's first obstacle: centre, radius and the robot's start and goal
 /// (2D from the scenario's endpoints, 3D from `apf.start`/`apf.goal`).
-fn geometry(tree: &Value) -> Result<([f64; 3], f64, [f64; 3], [f64; 3]), String> {
+fn geometry(tree: &Value) -> Result<Geometry, String> {
     let num = |v: &Value| v.as_f64().ok_or("not a number".to_string());
     let point = |v: &Value| -> Result<[f64; 3], String> {
         let a = v.as_array().ok_or("not a point")?;
