@@ -6,7 +6,6 @@
 //! expanded, or a typed [`PlanError`].
 
 pub mod astar;
-mod bidir;
 pub mod bottom_up;
 pub mod classic;
 pub mod dstar_lite;
