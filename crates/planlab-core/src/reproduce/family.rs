@@ -335,23 +335,9 @@ fn apply_one(
             radius_m,
             speed_rel,
         } => {
-            let Some(Value::Array(obs)) = at_path(tree, "apf.obstacles") else {
-                return Ok(());
-            };
-            for (i, o) in obs.iter_mut().enumerate() {
-                let dims = o
-                    .get("centre")
-                    .and_then(Value::as_array)
-                    .map_or(2, |a| a.len().clamp(2, 3));
-                let d = in_ball(rng, radius_m, dims);
-                let f = factor(rng, speed_rel);
-                move_apf_obstacle(o, d, f);
-                draws.push(Draw {
-                    what: format!("apf obstacle {i} shift m, speed ×"),
-                    value: json!([d[0], d[1], d[2], f]),
-                    of: 0,
-                });
-            }
+            move_apf_obstacles(tree, draws, |dims| {
+                (in_ball(rng, radius_m, dims), factor(rng, speed_rel))
+            });
         }
         Perturbation::Box {
             what,
@@ -371,21 +357,10 @@ fn apply_one(
                         of: 0,
                     });
                 }
-                "apf.obstacles" => {
-                    let Some(Value::Array(obs)) = at_path(tree, what) else {
-                        return Ok(());
-                    };
-                    for (i, o) in obs.iter_mut().enumerate() {
-                        let d = in_box(rng);
-                        let f = factor(rng, speed_rel);
-                        move_apf_obstacle(o, d, f);
-                        draws.push(Draw {
-                            what: format!("apf obstacle {i} shift m, speed ×"),
-                            value: json!([d[0], d[1], d[2], f]),
-                            of: 0,
-                        });
-                    }
-                }
+                "apf.obstacles" => move_apf_obstacles(tree, draws, |_| {
+                    let d = in_box(rng);
+                    (d, factor(rng, speed_rel))
+                }),
                 path => shift_point(tree, path, draws, |_| in_box(rng))?,
             }
         }
@@ -445,6 +420,32 @@ fn move_endpoint(tree: &mut Value, which: &str, d: [f64; 3]) -> Result<(), Scena
         tree[which] = json!({"col": col, "row": row, "world": {"x": x, "y": y}});
     }
     Ok(())
+}
+
+/// Moves every obstacle of `apf.obstacles` (if the preset has any) by the
+/// offset and speed factor `draw(dims)` gives it (`dims`: its centre's 2 or
+/// 3 components) and records the draws.
+fn move_apf_obstacles(
+    tree: &mut Value,
+    draws: &mut Vec<Draw>,
+    mut draw: impl FnMut(usize) -> ([f64; 3], f64),
+) {
+    let Some(Value::Array(obs)) = at_path(tree, "apf.obstacles") else {
+        return;
+    };
+    for (i, o) in obs.iter_mut().enumerate() {
+        let dims = o
+            .get("centre")
+            .and_then(Value::as_array)
+            .map_or(2, |a| a.len().clamp(2, 3));
+        let (d, f) = draw(dims);
+        move_apf_obstacle(o, d, f);
+        draws.push(Draw {
+            what: format!("apf obstacle {i} shift m, speed ×"),
+            value: json!([d[0], d[1], d[2], f]),
+            of: 0,
+        });
+    }
 }
 
 /// Shifts the point at dotted `path` of `tree` by `offset(dims)` (2 or 3

@@ -707,17 +707,26 @@ impl Screen {
         let n = self.mover_rad.len();
         if n > 0 {
             let row = &self.mover_pos[k * n..(k + 1) * n];
-            for (p, &r) in row.iter().zip(&self.mover_rad) {
-                let (dx, dy) = (p[0] - x, p[1] - y);
-                let d2 = dx * dx + dy * dy;
-                let lim = best.min(horizon) + r + self.r_eff;
-                // Only a closer mover needs the square root.
-                if lim <= 0.0 || d2 < lim * lim {
-                    best = best.min(d2.sqrt() - r - self.r_eff);
-                }
+            for (&p, &r) in row.iter().zip(&self.mover_rad) {
+                best = self.closer(best, p, r, x, y, horizon);
             }
         }
         best
+    }
+
+    /// `best`, or the clearance to the mover at `p` of radius `r` if that
+    /// is smaller: one step of [`Self::mover_clearance`].
+    #[inline(always)]
+    fn closer(&self, best: f64, p: [f64; 2], r: f64, x: f64, y: f64, horizon: f64) -> f64 {
+        let (dx, dy) = (p[0] - x, p[1] - y);
+        let d2 = dx * dx + dy * dy;
+        let lim = best.min(horizon) + r + self.r_eff;
+        // Only a closer mover needs the square root.
+        if lim <= 0.0 || d2 < lim * lim {
+            best.min(d2.sqrt() - r - self.r_eff)
+        } else {
+            best
+        }
     }
 
     /// [`Self::mover_clearance`] over the movers of `mask` only (bit j:
@@ -742,14 +751,7 @@ impl Screen {
         while mask != 0 {
             let j = mask.trailing_zeros() as usize;
             mask &= mask - 1;
-            let (p, r) = (row[j], self.mover_rad[j]);
-            // The body of `mover_clearance`, operation for operation.
-            let (dx, dy) = (p[0] - x, p[1] - y);
-            let d2 = dx * dx + dy * dy;
-            let lim = best.min(horizon) + r + self.r_eff;
-            if lim <= 0.0 || d2 < lim * lim {
-                best = best.min(d2.sqrt() - r - self.r_eff);
-            }
+            best = self.closer(best, row[j], self.mover_rad[j], x, y, horizon);
         }
         best
     }
