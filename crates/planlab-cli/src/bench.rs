@@ -70,11 +70,13 @@ fn matches(cost: f64, optimal: f64) -> bool {
 
 /// Runs the three planners over `rows` `reps` times each, and more until
 /// each has run for [`MIN_SECONDS`] (the fastest repetition counts), and
-/// checks every cost against the row's optimum.
+/// checks every cost against the row's optimum; then each planner of
+/// `only` (every other `--algo` planner when empty) as a [`PlannerRow`].
 pub fn bench_grid(
     grid: &OccupancyGrid,
     rows: &[ScenRow],
     reps: usize,
+    only: &[Algorithm],
 ) -> Result<BenchReport, String> {
     check_count("--reps", reps, MAX_BENCH_REPS)?;
     if rows.is_empty() {
@@ -120,7 +122,9 @@ pub fn bench_grid(
     })?;
     let mut planners = Vec::new();
     for (algo, name) in Algorithm::ALL {
-        if matches!(algo, Algorithm::AStar | Algorithm::Jps) {
+        if matches!(algo, Algorithm::AStar | Algorithm::Jps)
+            || !(only.is_empty() || only.contains(&algo))
+        {
             continue;
         }
         let options = GridPlanOptions {
@@ -565,10 +569,10 @@ mod tests {
             pathfinding_cost(&pg, GridPos::new(0, 0), GridPos::new(1, 1)),
             Some(2.0)
         );
-        let report = bench_grid(&g, &[row((0, 0), (1, 1), 2.0)], 1).unwrap();
+        let report = bench_grid(&g, &[row((0, 0), (1, 1), 2.0)], 1, &[]).unwrap();
         assert_eq!(report.rows, 1);
         // A wrong optimum is reported, not averaged away.
-        let err = bench_grid(&g, &[row((0, 0), (1, 1), 1.5)], 1).unwrap_err();
+        let err = bench_grid(&g, &[row((0, 0), (1, 1), 1.5)], 1, &[]).unwrap_err();
         assert!(err.contains("row 0"), "{err}");
     }
 

@@ -218,6 +218,10 @@ enum BenchKind {
         /// each planner has been timed for 0.2 s; the fastest is kept).
         #[arg(long, default_value_t = 3)]
         reps: usize,
+        /// Only these further planners beside A* and JPS, comma-separated
+        /// `--algo` names (e.g. bidirectional-astar) [default: all].
+        #[arg(long, value_delimiter = ',')]
+        algo: Vec<String>,
     },
     /// Sampling planners on Moving AI rows against Theta*: per map and
     /// planner, runs solved, the median cost gap to Theta* and the median
@@ -949,13 +953,27 @@ fn run(cli: Cli) -> Result<(), String> {
             grid_cmds::plan(&map, &grid, &args)
         }
         Command::Bench {
-            kind: BenchKind::Grid { map, scen, reps },
+            kind:
+                BenchKind::Grid {
+                    map,
+                    scen,
+                    reps,
+                    algo,
+                },
         } => {
+            let only = algo
+                .iter()
+                .map(|n| {
+                    n.trim()
+                        .parse::<Algorithm>()
+                        .map_err(|e| format!("--algo: {e}"))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
             let grid = load::load_movingai(&map)?;
             let rows = load::load_scen(&scen)?;
             planlab_core::map::io::movingai::check_scen_against_map(&rows, &grid)
                 .map_err(|e| format!("{} does not fit {}: {e}", scen.display(), map.display()))?;
-            let report = bench::bench_grid(&grid, &rows, reps.max(1))?;
+            let report = bench::bench_grid(&grid, &rows, reps.max(1), &only)?;
             outln!(
                 "{}",
                 serde_json::to_string(&report).map_err(|e| e.to_string())?

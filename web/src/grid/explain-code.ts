@@ -55,9 +55,10 @@ const CODE: Record<string, CodeLine[]> = {
   ],
   'bidirectional-astar': [
     ['open_f ← {start};  open_b ← {goal};  μ ← ∞', 'start'],
-    ['while both are non-empty and μ > max(min f in open_f, min f in open_b):'],
-    ['  side ← the list with fewer entries'],
-    ['  n ← take its open cell with the lowest f = g + h (h towards the other end)', 'expand'],
+    ['p(m) ← (h(m, goal) − h(m, start)) / 2;  key_f = g_f + p,  key_b = g_b − p'],
+    ['while min key_f + min key_b < μ  (both lists non-empty):'],
+    ['  side ← the list with the smaller least key', 'expand'],
+    ['  n ← take its open cell with the lowest key;  μ ← min(μ, g_f(n) + g_b(n))', 'expand'],
     ['  for each neighbour m of n (not expanded on this side):'],
     ['    if g(n) + cost(n, m) < g_side(m):'],
     ['      g_side(m) ← g(n) + cost(n, m);  put m in that list', 'open'],

@@ -134,10 +134,10 @@ struct Query<'a, O: ?Sized> {
     obs: &'a mut O,
 }
 
-const NEVER: u8 = 0;
-const NO_CORNER_CUTTING: u8 = 1;
-const ONE_SIDE_FREE: u8 = 2;
-const ALWAYS: u8 = 3;
+pub(crate) const NEVER: u8 = 0;
+pub(crate) const NO_CORNER_CUTTING: u8 = 1;
+pub(crate) const ONE_SIDE_FREE: u8 = 2;
+pub(crate) const ALWAYS: u8 = 3;
 
 fn by_rule<E: Estimate, O: SearchObserver + ?Sized>(
     q: Query<'_, O>,
@@ -155,7 +155,7 @@ fn by_rule<E: Estimate, O: SearchObserver + ?Sized>(
 /// Whether a diagonal move is legal under `RULE`, given its side cells and
 /// its target cell.
 #[inline(always)]
-fn diagonal_ok<const RULE: u8>(side_a: bool, side_b: bool, target: bool) -> bool {
+pub(crate) fn diagonal_ok<const RULE: u8>(side_a: bool, side_b: bool, target: bool) -> bool {
     target
         && match RULE {
             NO_CORNER_CUTTING => side_a && side_b,

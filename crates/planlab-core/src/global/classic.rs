@@ -454,29 +454,18 @@ impl Greedy {
 super::grid_planner_via_search!(Greedy);
 
 /// Bidirectional A* (Pohl 1971): one A* from the start towards the goal and
-/// one from the goal towards the start, expanding the side with the smaller
-/// open list; stops when the best meeting cost μ is no more than the larger
-/// of the two smallest f values (then no path through unexpanded cells can
-/// be cheaper), which keeps it optimal with an admissible, consistent
-/// heuristic.
+/// one from the goal towards the start, each ordered by the average
+/// potential of Ikeda et al. (1994) so that both are consistent, with the
+/// meeting test on every relaxation and expansion and the stopping rule of
+/// Goldberg & Harrelson (2005): optimal with a consistent heuristic. It
+/// runs on the fast planners' fixed-point search machinery
+/// (`global::bidir`; docs/algorithms.md §classic).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct BidirectionalAStar {
     /// Diagonal move rule.
     pub diagonal: Diagonal,
     /// Estimate, towards the goal forwards and towards the start backwards.
     pub heuristic: Heuristic,
-}
-
-/// Smallest key of `heap`, dropping entries of cells closed since.
-fn top_key(heap: &mut BinaryHeap<Entry>, nodes: &Nodes) -> Option<f64> {
-    while let Some(e) = heap.peek() {
-        if nodes.closed(e.idx) || e.g > nodes.g(e.idx) {
-            heap.pop();
-        } else {
-            return Some(e.key);
-        }
-    }
-    None
 }
 
 impl BidirectionalAStar {
@@ -489,86 +478,7 @@ impl BidirectionalAStar {
         goal: GridPos,
         obs: &mut O,
     ) -> Result<Path, PlanError> {
-        if let Some(p) = prelude(grid, start, goal)? {
-            return Ok(p);
-        }
-        let w = grid.width();
-        let (heuristic, diagonal) = (self.heuristic, self.diagonal);
-        with_nodes(grid, |[fwd, bwd]| {
-            let roots = [start, goal];
-            let mut heaps = [BinaryHeap::new(), BinaryHeap::new()];
-            for (side, nodes) in [&mut *fwd, &mut *bwd].into_iter().enumerate() {
-                let (root, other) = (roots[side], roots[1 - side]);
-                let h = estimate(heuristic, root, other);
-                nodes.set(index(w, root), 0.0, NONE);
-                heaps[side].push(Entry {
-                    key: h,
-                    g: 0.0,
-                    idx: index(w, root),
-                });
-                emit(obs, || open_event(root, None, 0.0, h));
-            }
-            let (mut best, mut meet) = (f64::INFINITY, None);
-            let mut expanded = 0;
-            while let (Some(kf), Some(kb)) =
-                (top_key(&mut heaps[0], fwd), top_key(&mut heaps[1], bwd))
-            {
-                if best <= kf.max(kb) {
-                    break;
-                }
-                let side = usize::from(heaps[1].len() < heaps[0].len());
-                let (this, that) = if side == 0 {
-                    (&mut *fwd, &*bwd)
-                } else {
-                    (&mut *bwd, &*fwd)
-                };
-                let Some(Entry { idx: i, .. }) = heaps[side].pop() else {
-                    break;
-                };
-                this.close(i);
-                expanded += 1;
-                let here = pos(w, i);
-                emit(obs, || SearchEvent::Close { cell: here });
-                let g = this.g(i);
-                let target = roots[1 - side];
-                let heap = &mut heaps[side];
-                // Backwards, `q` is a predecessor: the move q → here costs
-                // the weight of `here`.
-                let moves = if side == 0 {
-                    for_each_move
-                } else {
-                    for_each_move_into
-                };
-                moves(grid, here, diagonal, |q, c| {
-                    let j = index(w, q);
-                    let ng = g + c;
-                    if this.closed(j) || ng >= this.g(j) {
-                        return;
-                    }
-                    this.set(j, ng, i as u32);
-                    let h = estimate(heuristic, q, target);
-                    heap.push(Entry {
-                        key: ng + h,
-                        g: ng,
-                        idx: j,
-                    });
-                    emit(obs, || open_event(q, Some(here), ng, h));
-                    let through = ng + that.g(j);
-                    if through < best {
-                        best = through;
-                        meet = Some(j);
-                    }
-                });
-            }
-            let Some(m) = meet else {
-                return Err(PlanError::Unreachable { expanded });
-            };
-            let mut cells = fwd.chain(w, m);
-            let mut back = bwd.chain(w, m);
-            back.reverse();
-            cells.extend(back.into_iter().skip(1));
-            Ok(path_of(grid, cells, expanded))
-        })
+        super::bidir::search(grid, start, goal, self.diagonal, self.heuristic, obs)
     }
 }
 super::grid_planner_via_search!(BidirectionalAStar);

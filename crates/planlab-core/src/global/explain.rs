@@ -129,7 +129,7 @@ impl OpenOrder {
             Algorithm::BidirectionalAStar => OpenOrder {
                 priority: Priority::F { weight: 1.0 },
                 ties: None,
-                missing: "it keeps two open lists, one per direction (h towards the goal forwards, towards the start backwards), and expands the side whose heap is shorter, stale entries included; the events say neither the side of a cell nor the heap lengths, so no open list is shown",
+                missing: "it keeps two open lists, one per direction, each ordered by g plus the average potential (h to the other end − h to its own end) / 2, and expands the side with the smaller least key; the events do not say which side a cell belongs to, so no open list is shown",
             },
             Algorithm::IdaStar => OpenOrder {
                 priority: Priority::F { weight: 1.0 },

@@ -6,6 +6,7 @@
 //! expanded, or a typed [`PlanError`].
 
 pub mod astar;
+mod bidir;
 pub mod bottom_up;
 pub mod classic;
 pub mod dstar_lite;

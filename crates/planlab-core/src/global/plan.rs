@@ -126,7 +126,7 @@ impl Algorithm {
             Algorithm::SafeAStar => "[S] §1 (docs/algorithms.md §safe-astar): A* with a safety term over a 24-neighbourhood",
             Algorithm::Bfs => "E. F. Moore, \"The shortest path through a maze\", Proc. Int. Symp. Theory of Switching, 1959; Cormen et al., Introduction to Algorithms, §22.2",
             Algorithm::Greedy => "J. E. Doran, D. Michie, \"Experiments with the Graph Traverser program\", Proc. R. Soc. A 294, 1966; Russell & Norvig, AIMA, §3.5.1",
-            Algorithm::BidirectionalAStar => "I. Pohl, \"Bi-directional search\", Machine Intelligence 6, 1971; stopping rule: Goldberg & Harrelson, SODA 2005",
+            Algorithm::BidirectionalAStar => "I. Pohl, \"Bi-directional search\", Machine Intelligence 6, 1971; average potential: Ikeda et al. 1994; stopping rule: Goldberg & Harrelson, SODA 2005",
             Algorithm::IdaStar => "R. E. Korf, \"Depth-first iterative-deepening: An optimal admissible tree search\", Artificial Intelligence 27, 1985",
             Algorithm::ThetaStar => "A. Nash, K. Daniel, S. Koenig, A. Felner, \"Theta*: Any-Angle Path Planning on Grids\", AAAI 2007",
             Algorithm::DStarLite => "S. Koenig, M. Likhachev, \"D* Lite\", AAAI 2002",

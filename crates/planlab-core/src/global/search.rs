@@ -73,6 +73,9 @@ pub(crate) trait OpenList {
     fn push(&mut self, f: u64, g: u64, idx: usize);
     /// Removes the best entry's cell.
     fn pop(&mut self) -> Option<usize>;
+    /// The smallest `f` in the list (stale entries included, so a lower
+    /// bound on the best live entry's), `None` when it is empty.
+    fn min_key(&mut self) -> Option<u64>;
     /// Empties the list, keeping its allocations.
     fn clear(&mut self);
 }
@@ -98,6 +101,11 @@ impl OpenList for BinaryQueue {
     #[inline(always)]
     fn pop(&mut self) -> Option<usize> {
         self.0.pop().map(|k| (k as u32) as usize)
+    }
+
+    #[inline(always)]
+    fn min_key(&mut self) -> Option<u64> {
+        self.0.peek().map(|&k| !((k >> 64) as u64))
     }
 
     fn clear(&mut self) {
@@ -138,30 +146,13 @@ impl Default for RadixQueue {
     }
 }
 
-impl OpenList for RadixQueue {
-    #[inline(always)]
-    fn push(&mut self, f: u64, g: u64, idx: usize) {
-        let p = payload(g, idx);
-        if f <= self.last {
-            // `f < last` cannot happen with a consistent heuristic; were it
-            // to, the entry is still better than every bucketed one.
-            self.top.push(p);
-        } else {
-            let b = (64 - (f ^ self.last).leading_zeros()) as usize;
-            if let Some(bucket) = self.buckets.get_mut(b) {
-                bucket.push((f, p));
-                self.occupied |= 1 << (b - 1);
-            }
-        }
-    }
-
-    #[inline(always)]
-    fn pop(&mut self) -> Option<usize> {
-        if let Some(p) = self.top.pop() {
-            return Some((p as u32) as usize);
-        }
+impl RadixQueue {
+    /// With `top` empty: moves the entries of the lowest non-empty bucket
+    /// whose `f` is the smallest onto `top` (making it `last`) and the rest
+    /// to lower buckets. `false` when the queue is empty.
+    fn refill(&mut self) -> bool {
         if self.occupied == 0 {
-            return None;
+            return false;
         }
         let b = self.occupied.trailing_zeros() as usize + 1;
         self.occupied &= !(1 << (b - 1));
@@ -184,7 +175,41 @@ impl OpenList for RadixQueue {
         }
         moving.clear();
         self.spare = moving;
+        true
+    }
+}
+
+impl OpenList for RadixQueue {
+    #[inline(always)]
+    fn push(&mut self, f: u64, g: u64, idx: usize) {
+        let p = payload(g, idx);
+        if f <= self.last {
+            // `f < last` cannot happen with a consistent heuristic; were it
+            // to, the entry is still better than every bucketed one.
+            self.top.push(p);
+        } else {
+            let b = (64 - (f ^ self.last).leading_zeros()) as usize;
+            if let Some(bucket) = self.buckets.get_mut(b) {
+                bucket.push((f, p));
+                self.occupied |= 1 << (b - 1);
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<usize> {
+        if let Some(p) = self.top.pop() {
+            return Some((p as u32) as usize);
+        }
+        if !self.refill() {
+            return None;
+        }
         self.top.pop().map(|p| (p as u32) as usize)
+    }
+
+    #[inline(always)]
+    fn min_key(&mut self) -> Option<u64> {
+        (!self.top.is_empty() || self.refill()).then_some(self.last)
     }
 
     fn clear(&mut self) {
@@ -232,13 +257,7 @@ impl SearchSpace {
         }
         self.radix.clear();
         self.binary.clear();
-        let mut tag = self.tag >> TAG_SHIFT;
-        if tag == 0 {
-            // Tags exhausted (or first use): forget every earlier search.
-            self.words.fill(u64::MAX);
-            tag = MAX_TAG;
-        }
-        self.tag = (tag - 1) << TAG_SHIFT;
+        self.tag = next_tag(self.tag, || self.words.fill(u64::MAX));
     }
 
     /// The word of an open cell reached at cost `g` by move `dir`.
@@ -253,6 +272,61 @@ impl SearchSpace {
     pub fn reached(&self, idx: usize) -> Option<(u64, u64)> {
         let w = *self.words.get(idx)?;
         (w >> TAG_SHIFT == self.tag >> TAG_SHIFT).then_some(((w >> G_SHIFT) & G_MASK, w & DIR_MASK))
+    }
+}
+
+/// The tag (`tag << TAG_SHIFT`) of the search after the one tagged `tag`;
+/// calls `forget` (which must set every word to `u64::MAX`) first when the
+/// tags are exhausted, or on first use.
+fn next_tag(tag: u64, forget: impl FnOnce()) -> u64 {
+    let mut tag = tag >> TAG_SHIFT;
+    if tag == 0 {
+        forget();
+        tag = MAX_TAG;
+    }
+    (tag - 1) << TAG_SHIFT
+}
+
+/// The search space of bidirectional A* ([`super::bidir`]): one search word
+/// per padded cell and direction (forward, backward) side by side, so the
+/// meeting test reads the other direction's word from the cache line it
+/// just wrote, and an open list of each kind per direction. Same word
+/// layout and generation tags as [`SearchSpace`].
+#[derive(Debug, Default)]
+pub(crate) struct PairSpace {
+    /// Forward and backward search word per padded cell.
+    pub words: Vec<[u64; 2]>,
+    /// `tag << TAG_SHIFT` of the current search.
+    pub tag: u64,
+    /// Open lists for monotone searches, forward and backward.
+    pub radix: [RadixQueue; 2],
+    /// Open lists for the others.
+    pub binary: [BinaryQueue; 2],
+}
+
+impl PairSpace {
+    /// Prepares for a search over `cells` padded cells.
+    pub fn reset(&mut self, cells: usize) {
+        if self.words.len() < cells {
+            self.words.resize(cells, [u64::MAX; 2]);
+        }
+        self.radix.iter_mut().for_each(OpenList::clear);
+        self.binary.iter_mut().for_each(OpenList::clear);
+        self.tag = next_tag(self.tag, || self.words.fill([u64::MAX; 2]));
+    }
+
+    /// Whether `word` was written by the current search.
+    #[inline(always)]
+    pub fn current(tag: u64, word: u64) -> bool {
+        word >> TAG_SHIFT == tag >> TAG_SHIFT
+    }
+
+    /// Cost and arrival direction of a cell reached in direction `side`
+    /// (0 forward, 1 backward) in the current search, open or closed.
+    #[inline(always)]
+    pub fn reached(&self, side: usize, idx: usize) -> Option<(u64, u64)> {
+        let w = *self.words.get(idx)?.get(side)?;
+        Self::current(self.tag, w).then_some(((w >> G_SHIFT) & G_MASK, w & DIR_MASK))
     }
 }
 
@@ -362,6 +436,15 @@ pub(crate) fn walk_back(
 
 thread_local! {
     static SPACE: RefCell<SearchSpace> = RefCell::new(SearchSpace::default());
+    static PAIR: RefCell<PairSpace> = RefCell::new(PairSpace::default());
+}
+
+/// As [`with_space`], with this thread's [`PairSpace`].
+pub(crate) fn with_pair_space<R>(f: impl FnOnce(&mut PairSpace) -> R) -> R {
+    PAIR.with(|cell| match cell.try_borrow_mut() {
+        Ok(mut space) => f(&mut space),
+        Err(_) => f(&mut PairSpace::default()),
+    })
 }
 
 /// Runs `f` with this thread's search space (a fresh one if it is already in
