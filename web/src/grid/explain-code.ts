@@ -57,7 +57,7 @@ const CODE: Record<string, CodeLine[]> = {
     ['open_f ← {start};  open_b ← {goal};  μ ← ∞', 'start'],
     ['p(m) ← (h(m, goal) − h(m, start)) / 2;  key_f = g_f + p,  key_b = g_b − p'],
     ['while min key_f + min key_b < μ  (both lists non-empty):'],
-    ['  side ← the list with the smaller least key', 'expand'],
+    ['  side ← the list with the smaller least key'],
     ['  n ← take its open cell with the lowest key;  μ ← min(μ, g_f(n) + g_b(n))', 'expand'],
     ['  for each neighbour m of n (not expanded on this side):'],
     ['    if g(n) + cost(n, m) < g_side(m):'],
