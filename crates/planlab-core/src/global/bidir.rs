@@ -27,9 +27,13 @@
 //! search at one of key ≥ min key_b, so costs at least μ. Without the
 //! shared offset this is their rule top_f + top_r ≥ μ + p_r(t).
 //!
-//! The direction expanded next is the one with the smaller least key (on
-//! a tie, the other one than last time), which grows the two searches
-//! evenly in reduced cost.
+//! The direction expanded next is the one that has popped fewer entries
+//! (Pohl's cardinality rule; the stop rule holds for any order): it
+//! expands fewer cells than taking the smaller least key. Backwards the
+//! moves are generated in the mirrored order so both searches follow the
+//! same one of many equal-cost paths and meet halfway. Cells that cannot
+//! lie on a path cheaper than μ are closed without expansion
+//! (docs/algorithms.md §classic).
 
 use super::astar::{diagonal_ok, ALWAYS, NEVER, NO_CORNER_CUTTING, ONE_SIDE_FREE};
 use super::events::emit;
@@ -86,17 +90,23 @@ fn by_rule<E: Estimate, O: SearchObserver + ?Sized>(
     diagonal: Diagonal,
     est: E,
 ) -> Result<Path, PlanError> {
-    match diagonal {
-        Diagonal::Never => run::<E, NEVER, O>(q, est),
-        Diagonal::NoCornerCutting => run::<E, NO_CORNER_CUTTING, O>(q, est),
-        Diagonal::OneSideFree => run::<E, ONE_SIDE_FREE, O>(q, est),
-        Diagonal::Always => run::<E, ALWAYS, O>(q, est),
-    }
+    // The corner rule and the weighting are runtime values, not const
+    // generics as in A*: one copy of the loop per estimate keeps the wasm
+    // modules small (a copy per rule and weighting grew them by 200 kB), at
+    // the price of two well-predicted branches in the relaxations.
+    let rule = match diagonal {
+        Diagonal::Never => NEVER,
+        Diagonal::NoCornerCutting => NO_CORNER_CUTTING,
+        Diagonal::OneSideFree => ONE_SIDE_FREE,
+        Diagonal::Always => ALWAYS,
+    };
+    run(q, est, rule)
 }
 
-fn run<E: Estimate, const RULE: u8, O: SearchObserver + ?Sized>(
+fn run<E: Estimate, O: SearchObserver + ?Sized>(
     q: Query<'_, O>,
     est: E,
+    rule: u8,
 ) -> Result<Path, PlanError> {
     let Query {
         grid,
@@ -113,13 +123,11 @@ fn run<E: Estimate, const RULE: u8, O: SearchObserver + ?Sized>(
         binary,
         ..
     } = &mut *space;
-    let (meet, expanded) = match (E::MONOTONE, grid.is_weighted()) {
-        (true, false) => Bidir::new(grid, (s, t), words, radix, tag, est, obs).run::<RULE, false>(),
-        (true, true) => Bidir::new(grid, (s, t), words, radix, tag, est, obs).run::<RULE, true>(),
-        (false, false) => {
-            Bidir::new(grid, (s, t), words, binary, tag, est, obs).run::<RULE, false>()
-        }
-        (false, true) => Bidir::new(grid, (s, t), words, binary, tag, est, obs).run::<RULE, true>(),
+    let ends = (s, t);
+    let (meet, expanded) = if E::MONOTONE {
+        Bidir::new(grid, ends, words, radix, tag, est, obs, rule).run()
+    } else {
+        Bidir::new(grid, ends, words, binary, tag, est, obs, rule).run()
     };
     let Some(m) = meet else {
         return Err(PlanError::Unreachable { expanded });
@@ -195,6 +203,10 @@ struct Bidir<'a, E, Q, O: ?Sized> {
     /// Cheapest start–goal cost seen, and the cell it runs through.
     mu: u64,
     meet: Option<usize>,
+    /// The corner rule (`NEVER` … `ALWAYS` of [`super::astar`]).
+    rule: u8,
+    /// Whether moves cost by the weight of a cell (`global::weights`).
+    weighted: bool,
 }
 
 impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O> {
@@ -207,6 +219,7 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         tag: u64,
         est: E,
         obs: &'a mut O,
+        rule: u8,
     ) -> Self {
         let stride = grid.stride();
         let ends = [xy(s, stride), xy(t, stride)];
@@ -226,6 +239,8 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             off: span + 1,
             mu: u64::MAX,
             meet: None,
+            rule,
+            weighted: grid.is_weighted(),
         }
     }
 
@@ -234,15 +249,6 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
     fn h_to(&self, k: usize, x: usize, y: usize) -> u64 {
         let (ex, ey) = self.ends[k];
         self.est.h(x.abs_diff(ex), y.abs_diff(ey))
-    }
-
-    /// Direction `SIDE`'s key of `(x, y)` reached at cost `g`, and the
-    /// estimate towards the other end (what the Open event reports).
-    #[inline(always)]
-    fn key<const SIDE: usize>(&self, x: usize, y: usize, g: u64) -> (u64, u64) {
-        let towards = self.h_to(1 - SIDE, x, y);
-        let back = self.h_to(SIDE, x, y);
-        ((2 * g + towards + self.off).saturating_sub(back), towards)
     }
 
     /// Whether `word` (of either direction) belongs to this search.
@@ -265,9 +271,9 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
     }
 
     /// The search: the meeting cell (`None`: no path) and the cells
-    /// expanded. `WEIGHTED`: a move costs its length times the weight of the
-    /// cell it enters (backwards: of the cell expanded).
-    fn run<const RULE: u8, const WEIGHTED: bool>(mut self) -> (Option<usize>, usize) {
+    /// expanded. On a weighted grid a move costs its length times the
+    /// weight of the cell it enters (backwards: of the cell expanded).
+    fn run(mut self) -> (Option<usize>, usize) {
         for side in 0..2 {
             let root = self.roots[side];
             if let Some(pair) = self.words.get_mut(root) {
@@ -285,38 +291,34 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             });
         }
         let mut expanded = 0usize;
-        let mut side = 1;
+        let mut side;
+        let mut counts = [0usize; 2];
         // Until one direction has reached every cell it can (μ is then the
         // optimum, or there is no path) or the stop rule holds.
         while let (Some(kf), Some(kb)) = (self.open[0].min_key(), self.open[1].min_key()) {
             if self.mu != u64::MAX && kf + kb >= 2 * (self.mu + self.off) {
                 break;
             }
-            side = match kf.cmp(&kb) {
-                std::cmp::Ordering::Less => 0,
-                std::cmp::Ordering::Greater => 1,
-                std::cmp::Ordering::Equal => 1 - side,
-            };
+            side = usize::from(counts[1] < counts[0]);
+            let _ = (kf, kb);
             let Some(i) = self.open[side].pop() else {
                 break;
             };
             let done = if side == 0 {
-                self.expand::<0, RULE, WEIGHTED>(i)
+                self.expand::<0>(i)
             } else {
-                self.expand::<1, RULE, WEIGHTED>(i)
+                self.expand::<1>(i)
             };
             expanded += usize::from(done);
+            counts[side] += 1;
         }
         (self.meet, expanded)
     }
 
-    /// Expands cell `i` in direction `SIDE` unless it is a stale entry;
-    /// whether it was expanded.
+    /// Closes cell `i` in direction `SIDE` and, unless pruned, generates
+    /// its neighbours; `false` for a stale entry.
     #[inline(always)]
-    fn expand<const SIDE: usize, const RULE: u8, const WEIGHTED: bool>(
-        &mut self,
-        i: usize,
-    ) -> bool {
+    fn expand<const SIDE: usize>(&mut self, i: usize) -> bool {
         let Some(pair) = self.words.get_mut(i) else {
             return false;
         };
@@ -334,9 +336,18 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             cell: grid.pos_of(i),
         });
         let stride = self.stride;
+        let (x, y) = xy(i, stride);
+        // Pruning (both keep the stopping rule's argument: every path through
+        // `i` costs at least μ). Closed from the other side as well: g and
+        // the other g are final and their sum is in μ already. Or
+        // g + h(i, other end) ≥ μ.
+        // The cell still counts as closed, like A*'s goal, whose
+        // neighbours are not generated either.
+        if (self.current(other) && other & OPEN == 0) || g + self.h_to(1 - SIDE, x, y) >= self.mu {
+            return true;
+        }
         let free = self.free;
         let is_free = |j: usize| free.get(j).copied().unwrap_or(false);
-        let (x, y) = xy(i, stride);
         // Free cells are interior, so these never wrap; a wrapped index
         // would simply read as blocked.
         let up = i.wrapping_sub(stride);
@@ -348,64 +359,243 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         let weights = self.weights;
         let weight = |j: usize| weights.get(j).map_or(1, |&w| u64::from(w));
         // Backwards, the move runs from the neighbour into `i`: `i` pays.
-        let here_weight = if WEIGHTED && SIDE == 1 { weight(i) } else { 1 };
+        let weighted = self.weighted;
+        let here_weight = if weighted && SIDE == 1 { weight(i) } else { 1 };
+        // Everything the relaxations touch in locals: stores through the
+        // words slice would otherwise make the compiler reload fields.
+        let (tag, off, est, rule) = (self.tag, self.off, self.est, self.rule);
+        let ((ox, oy), (mx, my)) = (self.ends[1 - SIDE], self.ends[SIDE]);
+        let (mut mu, mut meet) = (self.mu, self.meet);
+        let words = &mut *self.words;
+        let open = &mut self.open[SIDE];
+        let obs = &mut *self.obs;
 
         macro_rules! relax {
             ($j:expr, $nx:expr, $ny:expr, $cost:expr, $dir:expr) => {{
                 let j: usize = $j;
-                let ng = if WEIGHTED {
+                let ng = if weighted {
                     let w = if SIDE == 0 { weight(j) } else { here_weight };
                     g + $cost * w
                 } else {
                     g + $cost
                 };
-                let new = self.tag | ng << G_SHIFT | $dir;
-                if let Some(pair) = self.words.get_mut(j) {
+                let new = tag | ng << G_SHIFT | $dir;
+                if let Some(pair) = words.get_mut(j) {
                     if improves(pair[SIDE], new) {
                         pair[SIDE] = new;
                         let other = pair[1 - SIDE];
-                        self.meet_at(j, ng, other);
-                        let (nx, ny) = ($nx, $ny);
-                        let (key, towards) = self.key::<SIDE>(nx, ny, ng);
-                        self.open[SIDE].push(key, ng, j);
-                        let est = self.est;
-                        emit(self.obs, || SearchEvent::Open {
-                            cell: grid.pos_of(j),
-                            parent: Some(grid.pos_of(i)),
-                            g: cells(ng),
-                            h: est.unweighted_cells(towards),
-                        });
+                        // The meeting test (see `meet_at`).
+                        if PairSpace::current(tag, other) {
+                            let through = ng + ((other >> G_SHIFT) & G_MASK);
+                            if through < mu {
+                                mu = through;
+                                meet = Some(j);
+                            }
+                        }
+                        let (nx, ny): (usize, usize) = ($nx, $ny);
+                        let towards = est.h(nx.abs_diff(ox), ny.abs_diff(oy));
+                        // Left out of the open list when no path through it
+                        // can beat μ (its word stays, for the meeting test).
+                        if ng + towards < mu {
+                            let back = est.h(nx.abs_diff(mx), ny.abs_diff(my));
+                            let key = (2 * ng + towards + off).saturating_sub(back);
+                            open.push(key, ng, j);
+                            emit(obs, || SearchEvent::Open {
+                                cell: grid.pos_of(j),
+                                parent: Some(grid.pos_of(i)),
+                                g: cells(ng),
+                                h: est.unweighted_cells(towards),
+                            });
+                        }
                     }
                 }
             }};
         }
 
-        if n {
-            relax!(up, x, y - 1, STRAIGHT, dir_index(0, -1));
+        macro_rules! straight {
+            () => {
+                if n {
+                    relax!(up, x, y - 1, STRAIGHT, dir_index(0, -1));
+                }
+                if so {
+                    relax!(down, x, y + 1, STRAIGHT, dir_index(0, 1));
+                }
+                if we {
+                    relax!(i - 1, x - 1, y, STRAIGHT, dir_index(-1, 0));
+                }
+                if e {
+                    relax!(i + 1, x + 1, y, STRAIGHT, dir_index(1, 0));
+                }
+            };
         }
-        if so {
-            relax!(down, x, y + 1, STRAIGHT, dir_index(0, 1));
+        macro_rules! diagonal {
+            () => {
+                if rule != NEVER {
+                    if diagonal_rule_ok(rule, n, we, is_free(up.wrapping_sub(1))) {
+                        relax!(up - 1, x - 1, y - 1, DIAG, dir_index(-1, -1));
+                    }
+                    if diagonal_rule_ok(rule, n, e, is_free(up.wrapping_add(1))) {
+                        relax!(up + 1, x + 1, y - 1, DIAG, dir_index(1, -1));
+                    }
+                    if diagonal_rule_ok(rule, so, we, is_free(down - 1)) {
+                        relax!(down - 1, x - 1, y + 1, DIAG, dir_index(-1, 1));
+                    }
+                    if diagonal_rule_ok(rule, so, e, is_free(down + 1)) {
+                        relax!(down + 1, x + 1, y + 1, DIAG, dir_index(1, 1));
+                    }
+                }
+            };
         }
-        if we {
-            relax!(i - 1, x - 1, y, STRAIGHT, dir_index(-1, 0));
+        // Among equal keys the open list pops the latest pushed, so the
+        // forward search takes diagonal moves first. Backwards, straight
+        // moves go first: the two searches then trace the same one of the
+        // many equal-cost paths (diagonal moves first from the start, last
+        // towards the goal) and meet halfway instead of running past each
+        // other along the two sides of their parallelogram.
+        if SIDE == 0 {
+            straight!();
+            diagonal!();
+        } else {
+            diagonal!();
+            straight!();
         }
-        if e {
-            relax!(i + 1, x + 1, y, STRAIGHT, dir_index(1, 0));
-        }
-        if RULE != NEVER {
-            if diagonal_ok::<RULE>(n, we, is_free(up.wrapping_sub(1))) {
-                relax!(up - 1, x - 1, y - 1, DIAG, dir_index(-1, -1));
-            }
-            if diagonal_ok::<RULE>(n, e, is_free(up.wrapping_add(1))) {
-                relax!(up + 1, x + 1, y - 1, DIAG, dir_index(1, -1));
-            }
-            if diagonal_ok::<RULE>(so, we, is_free(down - 1)) {
-                relax!(down - 1, x - 1, y + 1, DIAG, dir_index(-1, 1));
-            }
-            if diagonal_ok::<RULE>(so, e, is_free(down + 1)) {
-                relax!(down + 1, x + 1, y + 1, DIAG, dir_index(1, 1));
-            }
-        }
+        self.mu = mu;
+        self.meet = meet;
         true
+    }
+}
+
+/// Whether a diagonal move is legal under the corner `rule` (`NEVER` …
+/// `ALWAYS`), given its side cells and its target cell.
+#[inline(always)]
+fn diagonal_rule_ok(rule: u8, side_a: bool, side_b: bool, target: bool) -> bool {
+    match rule {
+        NO_CORNER_CUTTING => diagonal_ok::<NO_CORNER_CUTTING>(side_a, side_b, target),
+        ONE_SIDE_FREE => diagonal_ok::<ONE_SIDE_FREE>(side_a, side_b, target),
+        ALWAYS => diagonal_ok::<ALWAYS>(side_a, side_b, target),
+        _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::global::astar::{AStar, AStarConfig};
+    use crate::global::classic::BidirectionalAStar;
+    use crate::global::{Diagonal, GridPlanner, GridPos, Heuristic, PlanGrid};
+    use crate::map::OccupancyGrid;
+
+    /// A seeded grid of `w × h` cells, about `density` of them blocked.
+    fn random_grid(w: usize, h: usize, density: u64, seed: u64) -> PlanGrid {
+        let mut state = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
+        let text = (0..h)
+            .map(|_| {
+                (0..w)
+                    .map(|_| {
+                        state = state
+                            .wrapping_mul(6364136223846793005)
+                            .wrapping_add(1442695040888963407);
+                        if (state >> 33) % 100 < density {
+                            '#'
+                        } else {
+                            '.'
+                        }
+                    })
+                    .collect::<String>()
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        PlanGrid::new(&OccupancyGrid::from_ascii(&text).unwrap(), false)
+    }
+
+    #[test]
+    fn equals_astar_under_every_corner_rule_and_consistent_estimate() {
+        let rules = [
+            Diagonal::Never,
+            Diagonal::NoCornerCutting,
+            Diagonal::OneSideFree,
+            Diagonal::Always,
+        ];
+        let mut compared = 0;
+        for seed in 0..12 {
+            let grid = random_grid(23, 17, 30, seed);
+            let free: Vec<GridPos> = (0..17)
+                .flat_map(|y| (0..23).map(move |x| GridPos::new(x, y)))
+                .filter(|&p| grid.is_free(p.col as i64, p.row as i64))
+                .collect();
+            for (k, diagonal) in rules.into_iter().enumerate() {
+                // Manhattan is consistent only without diagonal moves.
+                let estimates: &[Heuristic] = if diagonal == Diagonal::Never {
+                    &[Heuristic::Manhattan, Heuristic::Octile, Heuristic::Zero]
+                } else {
+                    &[
+                        Heuristic::Octile,
+                        Heuristic::Euclidean,
+                        Heuristic::Chebyshev,
+                        Heuristic::Zero,
+                    ]
+                };
+                for &heuristic in estimates {
+                    let astar = AStar::new(AStarConfig {
+                        heuristic,
+                        weight: 1.0,
+                        diagonal,
+                    })
+                    .unwrap();
+                    let bidir = BidirectionalAStar {
+                        diagonal,
+                        heuristic,
+                    };
+                    for q in 0..6 {
+                        let s = free[(q * 37 + k * 11 + seed as usize) % free.len()];
+                        let t = free[(q * 53 + k * 7 + 5) % free.len()];
+                        match (astar.plan(&grid, s, t), bidir.plan(&grid, s, t)) {
+                            (Ok(a), Ok(b)) => {
+                                assert!(
+                                    (a.cost - b.cost).abs() < 1e-9,
+                                    "seed {seed} {diagonal:?} {heuristic:?} {s:?}->{t:?}: A* {} bidirectional {}",
+                                    a.cost,
+                                    b.cost
+                                );
+                                assert!(grid.path_is_free(&b.cells, diagonal));
+                                assert_eq!((b.cells.first(), b.cells.last()), (Some(&s), Some(&t)));
+                                compared += 1;
+                            }
+                            (Err(_), Err(_)) => {}
+                            (a, b) => {
+                                panic!("seed {seed} {diagonal:?} {s:?}->{t:?}: {a:?} vs {b:?}")
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(compared > 500, "only {compared} reachable queries");
+    }
+
+    #[test]
+    fn meets_halfway_on_an_open_grid_expanding_about_the_path_only() {
+        // Many equal-cost paths join the corners of an open grid; the two
+        // searches must follow the same one and meet, not run past each
+        // other along two sides of the parallelogram.
+        let text = (0..30)
+            .map(|_| ".".repeat(60))
+            .collect::<Vec<_>>()
+            .join("\n");
+        let grid = PlanGrid::new(&OccupancyGrid::from_ascii(&text).unwrap(), false);
+        for (s, t) in [
+            (GridPos::new(0, 0), GridPos::new(59, 17)),
+            (GridPos::new(3, 29), GridPos::new(50, 2)),
+            (GridPos::new(59, 0), GridPos::new(10, 29)),
+        ] {
+            let a = AStar::default().plan(&grid, s, t).unwrap();
+            let b = BidirectionalAStar::default().plan(&grid, s, t).unwrap();
+            assert!((a.cost - b.cost).abs() < 1e-9);
+            assert!(
+                b.expanded <= b.cells.len() + 2,
+                "{s:?}->{t:?}: {} expanded for a path of {} cells",
+                b.expanded,
+                b.cells.len()
+            );
+        }
     }
 }
