@@ -82,10 +82,6 @@ fn check_benchmark(map: &str, scen: &str) {
             .unwrap_or_else(|e| panic!("reading {rel}: {e}"))
     };
     let grid = PlanGrid::new(&parse_map(&read(map)).unwrap(), false);
-    // The same map with JPS+ jump distances: the search it runs must be the
-    // scanning one, step for step.
-    let mut tabled = grid.clone();
-    tabled.precompute_jumps();
     let rows = parse_scen(&read(scen)).unwrap();
     assert!(rows.len() > 100, "{scen} has only {} rows", rows.len());
     let planners: [(&str, &dyn GridPlanner); 2] =
@@ -109,10 +105,6 @@ fn check_benchmark(map: &str, scen: &str) {
                     }
                     if name == "JPS" {
                         jps_expanded += path.expanded;
-                        let plus = planner.plan(&tabled, row.start, row.goal);
-                        if plus.as_ref() != Ok(&path) {
-                            failures.push(format!("row {k} JPS+: {plus:?} ≠ scanning JPS"));
-                        }
                     } else {
                         astar_expanded += path.expanded;
                     }

@@ -126,129 +126,6 @@ impl Jps {
     }
 }
 
-/// JPS+ jump distances (Harabor & Grastien 2014, "Improving Jump Point
-/// Search", §JPS+): for every padded cell and each of the eight [`DIRS`],
-/// how far the jump from that cell goes, ignoring the goal. `d > 0`: the
-/// jump stops at a jump point `d` moves away (straight: a cell with a
-/// forced neighbour; diagonal: a cell from which a straight jump along
-/// either component finds one). `d ≤ 0`: no jump point; `−d` free moves
-/// before a blocked one. The goal's row and column are checked at search
-/// time, so one table serves every query on the grid.
-#[derive(Clone)]
-pub(crate) struct JumpTable {
-    dist: Vec<[i16; 8]>,
-}
-
-impl std::fmt::Debug for JumpTable {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "JumpTable({} cells)", self.dist.len())
-    }
-}
-
-impl JumpTable {
-    /// The distances of a padded bitmap (blocked border); `None` when a side
-    /// is too long for `i16` distances.
-    pub(crate) fn new(free: &[bool], stride: usize) -> Option<Self> {
-        let height = free.len() / stride.max(1);
-        if stride.max(height) >= i16::MAX as usize || stride < 3 || height < 3 {
-            return None;
-        }
-        let at = |i: usize| free.get(i).copied().unwrap_or(false);
-        let mut dist = vec![[0i16; 8]; free.len()];
-        let off = |dx: isize, dy: isize| dy * stride as isize + dx;
-        // Each cell's distance follows from its successor's, so every
-        // direction walks the interior from its far end. Bit 0 of the order
-        // reverses x, bit 1 reverses y.
-        for (dir, &(dx, dy)) in DIRS.iter().enumerate() {
-            let xs: Vec<usize> = if dx > 0 {
-                (1..stride - 1).rev().collect()
-            } else {
-                (1..stride - 1).collect()
-            };
-            let ys: Vec<usize> = if dy > 0 {
-                (1..height - 1).rev().collect()
-            } else {
-                (1..height - 1).collect()
-            };
-            for &y in &ys {
-                for &x in &xs {
-                    let c = y * stride + x;
-                    if !at(c) {
-                        continue;
-                    }
-                    let n = c.wrapping_add_signed(off(dx, dy));
-                    let stop = if dx != 0 && dy != 0 {
-                        // No corner cutting: both sides of the move free.
-                        if !(at(c.wrapping_add_signed(dx)) && at(c.wrapping_add_signed(off(0, dy))))
-                        {
-                            false
-                        } else {
-                            let row = dist.get(n).map_or(0, |d| d[dir_index(dx, 0) as usize]);
-                            let col = dist.get(n).map_or(0, |d| d[dir_index(0, dy) as usize]);
-                            at(n) && (row > 0 || col > 0)
-                        }
-                    } else {
-                        // A forced neighbour: free beside `n`, blocked beside `c`.
-                        let side = off(dy, dx);
-                        at(n)
-                            && [side, -side].iter().any(|&s| {
-                                at(n.wrapping_add_signed(s)) && !at(c.wrapping_add_signed(s))
-                            })
-                    };
-                    let open = at(n)
-                        && (dx == 0
-                            || dy == 0
-                            || (at(c.wrapping_add_signed(dx))
-                                && at(c.wrapping_add_signed(off(0, dy)))));
-                    let d = if !open {
-                        0
-                    } else if stop {
-                        1
-                    } else {
-                        let m = dist.get(n).map_or(0, |d| d[dir]);
-                        if m > 0 {
-                            m + 1
-                        } else {
-                            m - 1
-                        }
-                    };
-                    if let Some(cell) = dist.get_mut(c) {
-                        cell[dir] = d;
-                    }
-                }
-            }
-        }
-        Some(Self { dist })
-    }
-
-    /// The distance from padded cell `i` in direction `dir`.
-    #[inline(always)]
-    fn get(&self, i: usize, dir: u64) -> isize {
-        self.dist
-            .get(i)
-            .and_then(|d| d.get(dir as usize))
-            .map_or(0, |&d| d as isize)
-    }
-}
-
-/// A jump of `d` (a [`JumpTable`] distance) from position `pos` along a
-/// line holding the goal at `target` (`usize::MAX`: not on this line), in
-/// direction `step` (±1): the position where an online scan would stop.
-#[inline(always)]
-fn table_jump(pos: usize, d: isize, target: usize, step: isize) -> Option<usize> {
-    let to_goal = (target as isize)
-        .wrapping_sub(pos as isize)
-        .wrapping_mul(step);
-    let reach = d.abs();
-    if to_goal > 0 && to_goal <= reach && target != usize::MAX {
-        Some(target)
-    } else if d > 0 {
-        Some(pos.wrapping_add_signed(d * step))
-    } else {
-        None
-    }
-}
-
 const CORNERS: bool = true;
 const MARK_EVERY: usize = 8;
 
@@ -256,8 +133,6 @@ const MARK_EVERY: usize = 8;
 struct Jumper<'a> {
     free: &'a [bool],
     lines: &'a LineBits,
-    /// JPS+ distances, when the grid has them.
-    table: Option<&'a JumpTable>,
     stride: usize,
     /// Goal, padded index and coordinates.
     t: usize,
@@ -275,10 +150,6 @@ impl Jumper<'_> {
     #[inline(always)]
     fn horizontal(&self, x: usize, y: usize, dx: isize) -> Option<usize> {
         let target = if y == self.gy { self.gx } else { usize::MAX };
-        if let Some(table) = self.table {
-            let d = table.get(y * self.stride + x, dir_index(dx, 0));
-            return table_jump(x, d, target, dx);
-        }
         if dx > 0 {
             self.lines.rows.jump_forward(y, x, target)
         } else {
@@ -290,10 +161,6 @@ impl Jumper<'_> {
     #[inline(always)]
     fn vertical(&self, x: usize, y: usize, dy: isize) -> Option<usize> {
         let target = if x == self.gx { self.gy } else { usize::MAX };
-        if let Some(table) = self.table {
-            let d = table.get(y * self.stride + x, dir_index(0, dy));
-            return table_jump(y, d, target, dy);
-        }
         if dy > 0 {
             self.lines.cols.jump_forward(x, y, target)
         } else {
@@ -465,41 +332,17 @@ impl<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Search<'_, E, Q, O> {
         let (mut x, mut y, mut n) = (x, y, 0u64);
         let from = y * stride + x;
         let mut i = from;
-        let step = step_y + DX;
         loop {
-            // Moves to the next cell where a straight jump may find a jump
-            // point: the next cell when scanning; with JPS+ distances, the
-            // next diagonal jump point or the crossing of the goal's row or
-            // column, whichever is nearer.
-            let k = if let Some(table) = self.jumper.table {
-                let d = table.get(i, dir_index(DX, DY));
-                let kx = (self.jumper.gx as isize - x as isize) * DX;
-                let ky = (self.jumper.gy as isize - y as isize) * DY;
-                let goal = if kx > 0 && ky > 0 { kx.min(ky) } else { 0 };
-                if goal > 0 && goal <= d.abs() && (d <= 0 || goal < d) {
-                    goal
-                } else if d > 0 {
-                    d
-                } else {
-                    let last = i.wrapping_add_signed(-d * step);
-                    self.diagonal_event(from, last, false);
-                    return;
-                }
-            } else {
-                let side_x = i.wrapping_add_signed(DX);
-                if !(free(side_x)
-                    && free(i.wrapping_add_signed(step_y))
-                    && free(side_x.wrapping_add_signed(step_y)))
-                {
-                    self.diagonal_event(from, i, false);
-                    return;
-                }
-                1
-            };
-            i = i.wrapping_add_signed(k * step);
-            x = x.wrapping_add_signed(k * DX);
-            y = y.wrapping_add_signed(k * DY);
-            n += k as u64;
+            let side_x = i.wrapping_add_signed(DX);
+            let next = side_x.wrapping_add_signed(step_y);
+            if !(free(side_x) && free(i.wrapping_add_signed(step_y)) && free(next)) {
+                self.diagonal_event(from, i, false);
+                return;
+            }
+            i = next;
+            x = x.wrapping_add_signed(DX);
+            y = y.wrapping_add_signed(DY);
+            n += 1;
             if i == t {
                 break;
             }
@@ -676,7 +519,6 @@ fn search<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized>(
         jumper: Jumper {
             free: grid.padded(),
             lines: grid.lines(),
-            table: grid.jump_table(),
             stride,
             t,
             gx,
@@ -759,91 +601,6 @@ mod tests {
             .cells
             .windows(2)
             .all(|w| w[0].col.abs_diff(w[1].col) <= 1 && w[0].row.abs_diff(w[1].row) <= 1));
-    }
-
-    /// Deterministic xorshift stream for the grid tests.
-    fn rng(seed: u64) -> impl FnMut() -> u64 {
-        let mut state = seed | 1;
-        move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        }
-    }
-
-    /// Random grids whose widths straddle the 64-cell words the straight
-    /// scans read (the padded stride is the width + 2), with obstacle
-    /// densities from open to cluttered, and queries including start = goal
-    /// and adjacent goals: JPS, with and without JPS+ distances, costs what
-    /// A* costs, and JPS+ repeats the scanning search exactly.
-    #[test]
-    fn jump_tables_repeat_the_scanning_search_and_match_astar() {
-        let mut rnd = rng(0x9e37_79b9_7f4a_7c15);
-        let mut compared = 0;
-        for (width, height) in [
-            (62, 9),
-            (63, 7),
-            (64, 11),
-            (65, 6),
-            (127, 5),
-            (129, 8),
-            (5, 70),
-        ] {
-            for density in [0u64, 5, 15, 30, 45] {
-                let mut plain = PlanGrid::from_fn(width, height, |_, _| rnd() % 100 >= density);
-                let mut table = plain.clone();
-                table.precompute_jumps();
-                assert!(table.jump_table().is_some());
-                let free: Vec<GridPos> = (0..width * height)
-                    .map(|i| GridPos::new((i % width) as u32, (i / width) as u32))
-                    .filter(|p| plain.is_free(p.col as i64, p.row as i64))
-                    .collect();
-                if free.is_empty() {
-                    continue;
-                }
-                for q in 0..40 {
-                    let a = free[rnd() as usize % free.len()];
-                    let b = match q % 4 {
-                        0 => a,
-                        1 => GridPos::new((a.col + 1).min(width as u32 - 1), a.row),
-                        _ => free[rnd() as usize % free.len()],
-                    };
-                    let astar = AStar::default().plan(&plain, a, b);
-                    let scan = Jps::default().plan(&plain, a, b);
-                    let jump = Jps::default().plan(&table, a, b);
-                    let what = format!("{width}x{height} density {density}: {a:?} -> {b:?}");
-                    match (&astar, &scan, &jump) {
-                        (Ok(x), Ok(y), Ok(z)) => {
-                            assert!((x.cost - y.cost).abs() < 1e-9, "{what}: {x:?} {y:?}");
-                            assert_eq!(y, z, "{what}");
-                            assert!(plain.path_is_free(&z.cells, Diagonal::NoCornerCutting));
-                            compared += 1;
-                        }
-                        (Err(_), Err(_), Err(_)) => {
-                            assert!(!plain.is_free(b.col as i64, b.row as i64) || scan == jump);
-                        }
-                        _ => panic!("{what}: {astar:?} / {scan:?} / {jump:?}"),
-                    }
-                }
-                // An edit drops the distances; the next search rebuilds them.
-                let (c, r) = (width / 2, height / 2);
-                let now = plain.is_free(c as i64, r as i64);
-                plain.set_free(c, r, !now);
-                table.set_free(c, r, !now);
-                let (a, b) = (free[0], free[free.len() - 1]);
-                assert_eq!(
-                    Jps::default().plan(&plain, a, b),
-                    Jps::default().plan(&table, a, b),
-                    "{width}x{height} density {density} after an edit"
-                );
-                assert_eq!(
-                    table.jump_table().map(|t| t.dist.clone()),
-                    JumpTable::new(plain.padded(), plain.stride()).map(|t| t.dist)
-                );
-            }
-        }
-        assert!(compared > 500, "only {compared} queries had paths");
     }
 
     #[test]

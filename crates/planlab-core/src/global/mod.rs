@@ -296,12 +296,6 @@ pub struct PlanGrid {
     /// grids, e.g. the ones planners build every replan, never need it) and
     /// then kept in step with `free`.
     lines: std::sync::OnceLock<search::LineBits>,
-    /// JPS+ jump distances, when [`PlanGrid::precompute_jumps`] asked for
-    /// them: built then, dropped by an edit and rebuilt on the next use
-    /// (`None` inside when the grid is too large for them).
-    jumps: std::sync::OnceLock<Option<jps::JumpTable>>,
-    /// Whether [`PlanGrid::precompute_jumps`] was called.
-    keep_jumps: bool,
     /// Traversal weight per padded cell (1..=9; the border 1), or `None` on
     /// a unit-cost grid: a move costs its length times the weight of the
     /// cell it enters (docs/algorithms.md §weights; `weights.rs`).
@@ -334,8 +328,6 @@ impl PlanGrid {
             stride,
             free,
             lines: std::sync::OnceLock::new(),
-            jumps: std::sync::OnceLock::new(),
-            keep_jumps: false,
             weights: None,
         }
     }
@@ -345,30 +337,6 @@ impl PlanGrid {
     pub(crate) fn lines(&self) -> &search::LineBits {
         self.lines
             .get_or_init(|| search::LineBits::new(&self.free, self.stride, self.height + 2))
-    }
-
-    /// Precomputes Jump Point Search's jump distances for this grid (JPS+,
-    /// Harabor & Grastien 2014): every later [`jps::Jps`] search on it
-    /// looks jumps up instead of scanning for them. Worth it for a grid
-    /// that answers many queries; it costs 16 bytes a cell and about as
-    /// long as a few searches to build. Edits keep it: an edited grid
-    /// rebuilds the table on its next search. Grids with a side longer
-    /// than 32 000 cells keep scanning.
-    pub fn precompute_jumps(&mut self) {
-        self.keep_jumps = true;
-        self.jump_table();
-    }
-
-    /// The JPS+ jump distances, if [`PlanGrid::precompute_jumps`] asked for
-    /// them and the grid is small enough.
-    #[inline]
-    pub(crate) fn jump_table(&self) -> Option<&jps::JumpTable> {
-        if !self.keep_jumps {
-            return None;
-        }
-        self.jumps
-            .get_or_init(|| jps::JumpTable::new(&self.free, self.stride))
-            .as_ref()
     }
 
     /// Width in cells.
@@ -399,9 +367,6 @@ impl PlanGrid {
             if let Some(lines) = self.lines.get_mut() {
                 lines.set(col + 1, row + 1, free);
             }
-            // One cell changes jump distances along whole rows, columns
-            // and diagonals: rebuild on the next search.
-            self.jumps.take();
         }
     }
 
