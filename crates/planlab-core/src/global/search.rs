@@ -52,6 +52,14 @@ pub(crate) const DIRS: [(isize, isize); 8] = [
 /// Index in [`DIRS`] of the move `(dx, dy)` (each −1, 0 or 1, not both 0).
 #[inline(always)]
 pub(crate) const fn dir_index(dx: isize, dy: isize) -> u64 {
+    // Straight moves by arithmetic: the scans call this with run-time
+    // directions, where the match compiled to a chain of branches.
+    if dx == 0 {
+        return 2 + (dy < 0) as u64;
+    }
+    if dy == 0 {
+        return (dx < 0) as u64;
+    }
     match (dx, dy) {
         (1, 0) => 0,
         (-1, 0) => 1,
