@@ -145,17 +145,25 @@ impl StaticMap {
         // targets without SSE4.1; the values are the same). Through i64: a
         // signed conversion is one instruction on x86-64, an unsigned one
         // a branchy sequence, and below `w`, `h` both give the same value.
-        let (cx, cy) = (lx as i64 as usize, ly as i64 as usize);
+        let (cx, cy) = (
+            (lx as i64 as usize).min(w - 1),
+            (ly as i64 as usize).min(h - 1),
+        );
         // Inside a blocked cell the distance is 0 whatever the neighbours say.
-        if self.blocked[(h - 1 - cy.min(h - 1)) * w + cx.min(w - 1)] {
+        if self.blocked[(h - 1 - cy) * w + cx] {
             return 0.0;
         }
-        let edge = lx.min(ly).min(w as f64 - lx).min(h as f64 - ly) * self.res;
-        // Cell-centre lattice coordinates (u up from the bottom row);
-        // fx, fy > −0.5, so floor is −1 below 0 and truncation above.
+        // No NaN reaches here (the comparisons above), and nothing is ±0, so
+        // `<` picks what `f64::min` would, without its NaN handling.
+        let lo = |a: f64, b: f64| if b < a { b } else { a };
+        let edge = lo(lo(lo(lx, ly), w as f64 - lx), h as f64 - ly) * self.res;
+        // Cell-centre lattice coordinates (u up from the bottom row). With
+        // cx ≤ lx < cx + 1, fx = lx − 0.5 lies in [cx − ½, cx + ½], so its
+        // floor is cx − 1 (−1 in the first half cell) below cx, else cx:
+        // no second conversion.
         let (fx, fy) = (lx - 0.5, ly - 0.5);
-        let ix = if fx < 0.0 { -1 } else { fx as isize };
-        let iy = if fy < 0.0 { -1 } else { fy as isize };
+        let ix = cx as isize - isize::from(fx < cx as f64);
+        let iy = cy as isize - isize::from(fy < cy as f64);
         let (tx, ty) = (fx - ix as f64, fy - iy as f64);
         let (c0, c1) = (ix.max(0) as usize, ((ix + 1) as usize).min(w - 1));
         let (u0, u1) = (iy.max(0) as usize, ((iy + 1) as usize).min(h - 1));
@@ -165,7 +173,12 @@ impl StaticMap {
         let v01 = self.clear[r1 + c0];
         let v11 = self.clear[r1 + c1];
         let v = (v00 * (1.0 - tx) + v10 * tx) * (1.0 - ty) + (v01 * (1.0 - tx) + v11 * tx) * ty;
-        v.min(edge)
+        // `f64::min`: a NaN blend (an infinite field times 0) gives the edge.
+        if v < edge {
+            v
+        } else {
+            edge
+        }
     }
 
     /// Exact test: does the footprint at `pose` overlap a blocked cell or
@@ -272,6 +285,97 @@ mod tests {
         .with_frame(1.0, Pose2::default())
         .unwrap();
         StaticMap::new(g, true).unwrap()
+    }
+
+    /// `clearance` as written before its conversions and minima were
+    /// trimmed: the reference its values must match bit for bit.
+    fn clearance_reference(m: &StaticMap, x: f64, y: f64) -> f64 {
+        let (w, h) = (m.grid.width(), m.grid.height());
+        let (lx, ly) = m.local(x, y);
+        if !(lx > 0.0 && ly > 0.0 && lx < w as f64 && ly < h as f64) {
+            return 0.0;
+        }
+        let (cx, cy) = (lx as i64 as usize, ly as i64 as usize);
+        if m.blocked[(h - 1 - cy.min(h - 1)) * w + cx.min(w - 1)] {
+            return 0.0;
+        }
+        let edge = lx.min(ly).min(w as f64 - lx).min(h as f64 - ly) * m.res;
+        let (fx, fy) = (lx - 0.5, ly - 0.5);
+        let ix = if fx < 0.0 { -1 } else { fx as isize };
+        let iy = if fy < 0.0 { -1 } else { fy as isize };
+        let (tx, ty) = (fx - ix as f64, fy - iy as f64);
+        let (c0, c1) = (ix.max(0) as usize, ((ix + 1) as usize).min(w - 1));
+        let (u0, u1) = (iy.max(0) as usize, ((iy + 1) as usize).min(h - 1));
+        let (r0, r1) = ((h - 1 - u0) * w, (h - 1 - u1) * w);
+        let v00 = m.clear[r0 + c0];
+        let v10 = m.clear[r0 + c1];
+        let v01 = m.clear[r1 + c0];
+        let v11 = m.clear[r1 + c1];
+        let v = (v00 * (1.0 - tx) + v10 * tx) * (1.0 - ty) + (v01 * (1.0 - tx) + v11 * tx) * ty;
+        v.min(edge)
+    }
+
+    #[test]
+    fn clearance_keeps_every_bit_of_the_reference_blend() {
+        let mut rng = crate::num::Rng::new(5);
+        let rows =
+            "#.........##\n....#.......\n.....#......\n..........#.\n............\n..#.........\n";
+        let walled = OccupancyGrid::from_ascii(rows)
+            .unwrap()
+            .with_frame(
+                0.1,
+                Pose2 {
+                    x: -0.35,
+                    y: 1.2,
+                    yaw: 0.0,
+                },
+            )
+            .unwrap();
+        // No blocked cell: an infinite field, whose blend can be NaN.
+        let open = OccupancyGrid::from_ascii("....\n....\n")
+            .unwrap()
+            .with_frame(0.5, Pose2::default())
+            .unwrap();
+        for (g, x0, y0, side) in [(walled, -0.4, 1.15, 1.3), (open, -0.1, -0.1, 2.3)] {
+            let m = StaticMap::new(g, true).unwrap();
+            let res = m.res;
+            let mut points: Vec<(f64, f64)> = (0..200_000)
+                .map(|_| (rng.range(x0, x0 + side), rng.range(y0, y0 + side)))
+                .collect();
+            // Cell borders and centres, where the floors change.
+            for i in 0..30 {
+                for j in 0..30 {
+                    let (x, y) = (m.ox + i as f64 * 0.5 * res, m.oy + j as f64 * 0.5 * res);
+                    points.push((x, y));
+                    points.push((x.next_up_compat(), y.next_down_compat()));
+                }
+            }
+            for (x, y) in points {
+                let (a, b) = (m.clearance(x, y), clearance_reference(&m, x, y));
+                assert_eq!(a.to_bits(), b.to_bits(), "({x}, {y}): {a} vs {b}");
+            }
+        }
+    }
+
+    trait Ulp {
+        fn next_up_compat(self) -> Self;
+        fn next_down_compat(self) -> Self;
+    }
+
+    impl Ulp for f64 {
+        // (f64::next_up is newer than the crate's MSRV.) Finite here.
+        fn next_up_compat(self) -> f64 {
+            if self == 0.0 {
+                f64::from_bits(1)
+            } else if self > 0.0 {
+                f64::from_bits(self.to_bits() + 1)
+            } else {
+                f64::from_bits(self.to_bits() - 1)
+            }
+        }
+        fn next_down_compat(self) -> f64 {
+            -(-self).next_up_compat()
+        }
     }
 
     #[test]

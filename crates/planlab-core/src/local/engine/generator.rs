@@ -203,9 +203,119 @@ pub struct DynamicWindow {
     dual: bool,
     vs: Vec<f64>,
     ws: Vec<f64>,
-    /// θ of the last start heading and its (sin, cos): one sin/cos a
+    /// The rollouts' headings per turn rate for the last start heading.
+    headings: std::cell::RefCell<Headings>,
+}
+
+/// Most (sin, cos) pairs [`Headings`] keeps (1 MiB); a window with more
+/// samples × steps rolls out past it (same values, computed per rollout).
+const MAX_HEADING_ENTRIES: usize = 1 << 16;
+
+/// The headings (sin θ_k, cos θ_k) of the rollouts from one start heading
+/// θ_0, per turn rate ω: θ_k depends on θ_0 and ω only, so every speed of
+/// the window shares a turn rate's row. The rotation recurrence (a chain of
+/// dependent multiplies, the rollout's critical path) then runs once per
+/// ω instead of once per sample; each value is the one it would compute.
+#[derive(Debug, Clone, Default)]
+struct Headings {
+    /// θ_0 (its bits; `None`: no row yet) and its (sin, cos): one sin/cos a
     /// cycle, not one a rollout.
-    start_dir: std::cell::Cell<(f64, f64, f64)>,
+    start: Option<(u64, f64, f64)>,
+    /// Rows in use: `rows[..used]` (the others keep their allocations).
+    rows: Vec<HeadingRow>,
+    used: usize,
+    /// Row of the last rollout: samples run through the turn rates in the
+    /// same order for every speed, so the next is usually the one after.
+    last: usize,
+    /// Pairs held by the rows in use.
+    entries: usize,
+    /// One rollout's row when the table is full.
+    spare: HeadingRow,
+}
+
+/// One turn rate's headings: `dirs[k]` before step k.
+#[derive(Debug, Clone, Default)]
+struct HeadingRow {
+    /// ω's bits.
+    w: u64,
+    /// (sin ωh, cos ωh): the exact rotation of one step.
+    rot: (f64, f64),
+    dirs: Vec<[f64; 2]>,
+}
+
+impl HeadingRow {
+    fn reset(&mut self, w: f64, h: f64, start: [f64; 2]) {
+        self.w = w.to_bits();
+        self.rot = (sin(w * h), cos(w * h));
+        self.dirs.clear();
+        self.dirs.push(start);
+    }
+
+    /// Extends the row to `len` headings; returns how many it added.
+    fn extend_to(&mut self, len: usize) -> usize {
+        let before = self.dirs.len();
+        let (sd, cd) = self.rot;
+        while self.dirs.len() < len {
+            let [sn, cs] = self.dirs[self.dirs.len() - 1];
+            self.dirs.push([sn * cd + cs * sd, cs * cd - sn * sd]);
+        }
+        self.dirs.len() - before
+    }
+}
+
+impl Headings {
+    /// The headings of a rollout from `theta` at turn rate `w`, step `h`
+    /// (the same for every call), at least `len` of them.
+    fn row(&mut self, theta: f64, w: f64, h: f64, len: usize) -> &[[f64; 2]] {
+        let (s0, c0) = match self.start {
+            Some((bits, s0, c0)) if bits == theta.to_bits() => (s0, c0),
+            _ => {
+                let d = (sin(theta), cos(theta));
+                self.start = Some((theta.to_bits(), d.0, d.1));
+                self.used = 0;
+                self.entries = 0;
+                d
+            }
+        };
+        let wb = w.to_bits();
+        let next = if self.last + 1 < self.used {
+            self.last + 1
+        } else {
+            0
+        };
+        let found = if next < self.used && self.rows[next].w == wb {
+            Some(next)
+        } else {
+            self.rows[..self.used].iter().position(|r| r.w == wb)
+        };
+        let i = match found {
+            Some(i) => i,
+            None if self.entries + len <= MAX_HEADING_ENTRIES => {
+                if self.used == self.rows.len() {
+                    self.rows.push(HeadingRow::default());
+                }
+                self.rows[self.used].reset(w, h, [s0, c0]);
+                self.entries += 1;
+                self.used += 1;
+                self.used - 1
+            }
+            None => {
+                self.spare.reset(w, h, [s0, c0]);
+                self.spare.extend_to(len);
+                return &self.spare.dirs;
+            }
+        };
+        if self.rows[i].dirs.len() < len && self.entries + len > MAX_HEADING_ENTRIES {
+            // Full: this rollout's row outside the table.
+            let start = self.rows[i].dirs[0];
+            self.spare.reset(w, h, start);
+            self.spare.extend_to(len);
+            return &self.spare.dirs;
+        }
+        self.last = i;
+        self.entries += self.rows[i].extend_to(len);
+        &self.rows[i].dirs
+    }
 }
 
 impl DynamicWindow {
@@ -231,28 +341,9 @@ impl DynamicWindow {
             dual,
             vs: Vec::new(),
             ws: Vec::new(),
-            start_dir: std::cell::Cell::new((0.0, 0.0, 1.0)),
+            headings: std::cell::RefCell::new(Headings::default()),
         }
     }
-}
-
-/// One rollout step of `h` s at speed `v`: the position advances along
-/// the heading whose (sin, cos) is `sc`, then the heading turns by the
-/// exact rotation `rot` = (sin ωh, cos ωh) — the Euler update of
-/// `integrate` without a sin/cos per step.
-#[inline(always)]
-fn arc_step(
-    p: &mut [f64; 2],
-    (sn, cs): (&mut f64, &mut f64),
-    v: f64,
-    (sd, cd): (f64, f64),
-    h: f64,
-) {
-    p[0] += v * *cs * h;
-    p[1] += v * *sn * h;
-    let (ns, nc) = (*sn * cd + *cs * sd, *cs * cd - *sn * sd);
-    *sn = ns;
-    *cs = nc;
 }
 
 impl TrajectoryGenerator for DynamicWindow {
@@ -319,27 +410,23 @@ impl TrajectoryGenerator for DynamicWindow {
         traj.clear(sample, h);
         let s = obs.state;
         let (v, w, decel) = (sample.cmd.v, sample.cmd.w, sample.decel);
-        // cos/sin of θ_k = θ_0 + kωh advance by an exact rotation (one
-        // sin/cos per sample instead of per step; deterministic).
-        let rot = (sin(w * h), cos(w * h));
-        let (theta, s0, c0) = self.start_dir.get();
-        let (mut sn, mut cs) = if theta.to_bits() == s.theta.to_bits() {
-            (s0, c0)
-        } else {
-            let d = (sin(s.theta), cos(s.theta));
-            self.start_dir.set((s.theta, d.0, d.1));
-            d
-        };
+        // cos/sin of θ_k = θ_0 + kωh advance by an exact rotation, shared by
+        // the samples of one ω ([`Headings`]; deterministic). The Euler
+        // update x += v·cos θ_k·h, y += v·sin θ_k·h of `integrate`.
+        let mut headings = self.headings.borrow_mut();
+        let dirs = headings.row(s.theta, w, h, steps + 1);
         let mut p = [s.x, s.y];
         let mut vk = v;
         if decel > 0.0 {
-            for _ in 0..steps {
+            for k in 0..steps {
                 traj.speeds.push(vk);
-                arc_step(&mut p, (&mut sn, &mut cs), vk, rot, h);
+                let [sn, cs] = dirs[k];
+                p[0] += vk * cs * h;
+                p[1] += vk * sn * h;
                 vk = (vk - decel * h).max(0.0);
                 traj.points.push(p);
                 if traj.with_dirs {
-                    traj.dirs.push([sn, cs]);
+                    traj.dirs.push(dirs[k + 1]);
                 }
                 if vk == 0.0 && traj.points.len() >= self.steps {
                     // At rest past the horizon: nothing more moves.
@@ -348,20 +435,142 @@ impl TrajectoryGenerator for DynamicWindow {
             }
         } else {
             // Constant speed: `speeds` stays empty ([`Trajectory::speed`]).
-            // (`extend` over an exact-size range: one reservation, no
+            // (`extend` over an exact-size iterator: one reservation, no
             // capacity check a step.)
-            let with_dirs = traj.with_dirs;
-            let dirs = &mut traj.dirs;
-            traj.points.extend((0..steps).map(|_| {
-                arc_step(&mut p, (&mut sn, &mut cs), vk, rot, h);
-                if with_dirs {
-                    dirs.push([sn, cs]);
-                }
+            traj.points.extend(dirs[..steps].iter().map(|&[sn, cs]| {
+                p[0] += vk * cs * h;
+                p[1] += vk * sn * h;
                 p
             }));
+            if traj.with_dirs {
+                traj.dirs.extend_from_slice(&dirs[1..=steps]);
+            }
         }
         traj.final_speed = vk;
         traj.horizon = self.steps.min(traj.points.len());
         traj.end_theta = wrap_angle(s.theta + w * h * self.steps as f64);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::local::testkit;
+    use crate::world::RobotState;
+
+    /// The rollout as integrated before [`Headings`]: the rotation
+    /// recurrence run along each rollout.
+    fn recurrence(s: &RobotState, sample: Sample, steps: usize, h: f64) -> Vec<[f64; 4]> {
+        let (sd, cd) = (sin(sample.cmd.w * h), cos(sample.cmd.w * h));
+        let (mut sn, mut cs) = (sin(s.theta), cos(s.theta));
+        let (mut p, mut vk) = ([s.x, s.y], sample.cmd.v);
+        let mut out = Vec::new();
+        for _ in 0..steps {
+            p[0] += vk * cs * h;
+            p[1] += vk * sn * h;
+            (sn, cs) = (sn * cd + cs * sd, cs * cd - sn * sd);
+            if sample.decel > 0.0 {
+                vk = (vk - sample.decel * h).max(0.0);
+            }
+            out.push([p[0], p[1], sn, cs]);
+        }
+        out
+    }
+
+    fn rolled(g: &DynamicWindow, s: &RobotState, sample: Sample, steps: usize) -> Vec<[f64; 4]> {
+        let map = testkit::map(&".".repeat(40), 0.1);
+        let obs = Observation {
+            time: 0.0,
+            dt: 0.1,
+            state: s,
+            goal: [3.0, 0.05],
+            map: &map,
+            map_revision: 0,
+            scan: None,
+            movers: &[],
+            odometry: None,
+            accel_z: 0.0,
+        };
+        let mut traj = Trajectory {
+            with_dirs: true,
+            ..Default::default()
+        };
+        g.rollout(&obs, sample, steps, &mut traj);
+        let n = traj.points.len();
+        (0..n)
+            .map(|k| {
+                let (p, d) = (traj.points[k], traj.dirs[k]);
+                [p[0], p[1], d[0], d[1]]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn rollouts_sharing_a_turn_rate_keep_every_bit_of_their_own_recurrence() {
+        let limits = RobotLimits::default();
+        let g = DynamicWindow::new(limits, (0.01, 0.01), (4, 7), (3.0, 0.1), false);
+        let states = [
+            RobotState {
+                x: 1.0,
+                y: 2.0,
+                theta: 0.4,
+                ..Default::default()
+            },
+            RobotState {
+                x: -3.0,
+                y: 0.5,
+                theta: -2.9,
+                ..Default::default()
+            },
+        ];
+        for s in &states {
+            for v in [0.1, 0.35, 0.6] {
+                for w in [-0.7, -0.1, 0.0, 0.3, 0.7] {
+                    for (decel, steps) in [(0.0, 30), (0.5, 45), (0.0, 12)] {
+                        let sample = Sample {
+                            cmd: Command { v, vy: 0.0, w },
+                            decel,
+                        };
+                        let mut want = recurrence(s, sample, steps, 0.1);
+                        let got = rolled(&g, s, sample, steps);
+                        // A braking rollout stops once at rest past the horizon.
+                        want.truncate(got.len());
+                        assert_eq!(
+                            got.iter()
+                                .flatten()
+                                .map(|x| x.to_bits())
+                                .collect::<Vec<_>>(),
+                            want.iter()
+                                .flatten()
+                                .map(|x| x.to_bits())
+                                .collect::<Vec<_>>(),
+                            "v {v} w {w} decel {decel}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_full_heading_table_rolls_out_the_same_values() {
+        let limits = RobotLimits::default();
+        let g = DynamicWindow::new(limits, (0.01, 0.01), (4, 7), (3.0, 0.1), false);
+        let s = RobotState {
+            theta: 1.1,
+            ..Default::default()
+        };
+        let sample = |w| Sample {
+            cmd: Command { v: 0.4, vy: 0.0, w },
+            decel: 0.0,
+        };
+        let first = rolled(&g, &s, sample(0.2), 30);
+        g.headings.borrow_mut().entries = MAX_HEADING_ENTRIES - 10;
+        // A new turn rate, and a known one grown past its row, both spill.
+        let spilled = rolled(&g, &s, sample(-0.4), 30);
+        let grown = rolled(&g, &s, sample(0.2), 60);
+        assert_eq!(spilled, recurrence(&s, sample(-0.4), 30, 0.1));
+        assert_eq!(grown, recurrence(&s, sample(0.2), 60, 0.1));
+        assert_eq!(&grown[..30], &first[..]);
     }
 }
