@@ -28,10 +28,10 @@
 
 use super::events::emit;
 use super::search::{
-    cells, check_size, dir_index, finish, improves, trivial_path, with_space, xy, Estimate,
-    FixedHeuristic, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DIAG, G_MASK, G_SHIFT,
-    OPEN, STRAIGHT,
+    cells, check_size, finish, improves, trivial_path, with_space, xy, Estimate, FixedHeuristic,
+    OctileEstimate, OpenList, SearchSpace, ZeroEstimate, G_MASK, G_SHIFT, OPEN,
 };
+use super::search::{diagonal_moves, straight_moves};
 use super::{
     check_weight, Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent,
     SearchObserver,
@@ -288,31 +288,16 @@ fn search<
             }};
         }
 
-        if n {
-            relax!(up, x, y - 1, STRAIGHT, dir_index(0, -1));
-        }
-        if so {
-            relax!(down, x, y + 1, STRAIGHT, dir_index(0, 1));
-        }
-        if we {
-            relax!(i - 1, x - 1, y, STRAIGHT, dir_index(-1, 0));
-        }
-        if e {
-            relax!(i + 1, x + 1, y, STRAIGHT, dir_index(1, 0));
-        }
+        straight_moves!(relax, i, (up, down), (x, y), [n, so, we, e]);
         if RULE != NEVER {
-            if diagonal_ok::<RULE>(n, we, is_free(up.wrapping_sub(1))) {
-                relax!(up - 1, x - 1, y - 1, DIAG, dir_index(-1, -1));
-            }
-            if diagonal_ok::<RULE>(n, e, is_free(up.wrapping_add(1))) {
-                relax!(up + 1, x + 1, y - 1, DIAG, dir_index(1, -1));
-            }
-            if diagonal_ok::<RULE>(so, we, is_free(down - 1)) {
-                relax!(down - 1, x - 1, y + 1, DIAG, dir_index(-1, 1));
-            }
-            if diagonal_ok::<RULE>(so, e, is_free(down + 1)) {
-                relax!(down + 1, x + 1, y + 1, DIAG, dir_index(1, 1));
-            }
+            diagonal_moves!(
+                relax,
+                diagonal_ok::<RULE>,
+                is_free,
+                (up, down),
+                (x, y),
+                [n, so, we, e]
+            );
         }
     }
     (false, expanded)

@@ -38,10 +38,10 @@
 use super::astar::{diagonal_ok, ALWAYS, NEVER, NO_CORNER_CUTTING, ONE_SIDE_FREE};
 use super::events::emit;
 use super::search::{
-    cells, check_size, dir_index, improves, trivial_path, unit_path_cost, with_pair_space, xy,
-    Estimate, FixedHeuristic, OctileEstimate, OpenList, PairSpace, ZeroEstimate, DIAG, DIRS,
-    G_MASK, G_SHIFT, OPEN, STRAIGHT,
+    cells, check_size, improves, path_of, trivial_path, with_pair_space, xy, Estimate,
+    FixedHeuristic, OctileEstimate, OpenList, PairSpace, ZeroEstimate, DIRS, G_MASK, G_SHIFT, OPEN,
 };
+use super::search::{diagonal_moves, straight_moves};
 use super::{Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent, SearchObserver};
 
 /// Bidirectional A* from `start` to `goal` under `diagonal`, with `heuristic`
@@ -142,15 +142,7 @@ fn run<E: Estimate, O: SearchObserver + ?Sized>(
         }
         _ => Vec::new(),
     };
-    Ok(Path {
-        cost: if grid.is_weighted() {
-            grid.path_cost(&cells)
-        } else {
-            unit_path_cost(&cells)
-        },
-        cells,
-        expanded,
-    })
+    Ok(path_of(grid, cells, expanded))
 }
 
 /// The cells from `root` to `m` along direction `side`'s arrival moves,
@@ -412,37 +404,16 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             }};
         }
 
+        let ok = |a: bool, b: bool, target: bool| diagonal_rule_ok(rule, a, b, target);
         macro_rules! straight {
             () => {
-                if n {
-                    relax!(up, x, y - 1, STRAIGHT, dir_index(0, -1));
-                }
-                if so {
-                    relax!(down, x, y + 1, STRAIGHT, dir_index(0, 1));
-                }
-                if we {
-                    relax!(i - 1, x - 1, y, STRAIGHT, dir_index(-1, 0));
-                }
-                if e {
-                    relax!(i + 1, x + 1, y, STRAIGHT, dir_index(1, 0));
-                }
+                straight_moves!(relax, i, (up, down), (x, y), [n, so, we, e])
             };
         }
         macro_rules! diagonal {
             () => {
                 if rule != NEVER {
-                    if diagonal_rule_ok(rule, n, we, is_free(up.wrapping_sub(1))) {
-                        relax!(up - 1, x - 1, y - 1, DIAG, dir_index(-1, -1));
-                    }
-                    if diagonal_rule_ok(rule, n, e, is_free(up.wrapping_add(1))) {
-                        relax!(up + 1, x + 1, y - 1, DIAG, dir_index(1, -1));
-                    }
-                    if diagonal_rule_ok(rule, so, we, is_free(down - 1)) {
-                        relax!(down - 1, x - 1, y + 1, DIAG, dir_index(-1, 1));
-                    }
-                    if diagonal_rule_ok(rule, so, e, is_free(down + 1)) {
-                        relax!(down + 1, x + 1, y + 1, DIAG, dir_index(1, 1));
-                    }
+                    diagonal_moves!(relax, ok, is_free, (up, down), (x, y), [n, so, we, e]);
                 }
             };
         }

@@ -346,6 +346,20 @@ pub(crate) fn improves(old: u64, new: u64) -> bool {
     old | DIR_MASK > new | DIR_MASK
 }
 
+/// The path through `cells` with its cost on `grid` (in `f64` from the
+/// moves, weighted where the grid is).
+pub(crate) fn path_of(grid: &PlanGrid, cells: Vec<GridPos>, expanded: usize) -> Path {
+    Path {
+        cost: if grid.is_weighted() {
+            grid.path_cost(&cells)
+        } else {
+            unit_path_cost(&cells)
+        },
+        cells,
+        expanded,
+    }
+}
+
 /// The end of every search: `Unreachable` if `t` was not reached, else the
 /// walked-back path with its cost.
 pub(crate) fn finish(
@@ -360,15 +374,7 @@ pub(crate) fn finish(
     }
     // The walk cannot fail (see `walk_back`); an empty path would be a bug.
     let cells = walk_back(grid, |i| space.reached(i), s, t).unwrap_or_default();
-    Ok(Path {
-        cost: if grid.is_weighted() {
-            grid.path_cost(&cells)
-        } else {
-            unit_path_cost(&cells)
-        },
-        cells,
-        expanded,
-    })
+    Ok(path_of(grid, cells, expanded))
 }
 
 /// Walks back from `t` to `s` along the stored arrival directions. From a
@@ -800,6 +806,97 @@ impl LineBits {
         }
     }
 }
+
+/// The four straight moves out of padded cell `$i` at `($x, $y)`:
+/// `$relax!(j, nx, ny, cost, dir)` for each whose cell is free (`$n`, `$s`,
+/// `$w`, `$e`: north at `$up`, south at `$down`, west, east). Shared by A*
+/// and bidirectional A*, which differ in what a relaxation does.
+macro_rules! straight_moves {
+    ($relax:ident, $i:expr, ($up:expr, $down:expr), ($x:expr, $y:expr), [$n:expr, $s:expr, $w:expr, $e:expr]) => {
+        if $n {
+            $relax!(
+                $up,
+                $x,
+                $y - 1,
+                $crate::global::search::STRAIGHT,
+                $crate::global::search::dir_index(0, -1)
+            );
+        }
+        if $s {
+            $relax!(
+                $down,
+                $x,
+                $y + 1,
+                $crate::global::search::STRAIGHT,
+                $crate::global::search::dir_index(0, 1)
+            );
+        }
+        if $w {
+            $relax!(
+                $i - 1,
+                $x - 1,
+                $y,
+                $crate::global::search::STRAIGHT,
+                $crate::global::search::dir_index(-1, 0)
+            );
+        }
+        if $e {
+            $relax!(
+                $i + 1,
+                $x + 1,
+                $y,
+                $crate::global::search::STRAIGHT,
+                $crate::global::search::dir_index(1, 0)
+            );
+        }
+    };
+}
+pub(crate) use straight_moves;
+
+/// The four diagonal moves, each relaxed when `$ok(side, side, target)`
+/// allows it under the corner rule (`$free`: whether a padded cell is free);
+/// the rest as in [`straight_moves`].
+macro_rules! diagonal_moves {
+    ($relax:ident, $ok:expr, $free:expr, ($up:expr, $down:expr), ($x:expr, $y:expr), [$n:expr, $s:expr, $w:expr, $e:expr]) => {
+        if $ok($n, $w, $free($up.wrapping_sub(1))) {
+            $relax!(
+                $up - 1,
+                $x - 1,
+                $y - 1,
+                $crate::global::search::DIAG,
+                $crate::global::search::dir_index(-1, -1)
+            );
+        }
+        if $ok($n, $e, $free($up.wrapping_add(1))) {
+            $relax!(
+                $up + 1,
+                $x + 1,
+                $y - 1,
+                $crate::global::search::DIAG,
+                $crate::global::search::dir_index(1, -1)
+            );
+        }
+        if $ok($s, $w, $free($down - 1)) {
+            $relax!(
+                $down - 1,
+                $x - 1,
+                $y + 1,
+                $crate::global::search::DIAG,
+                $crate::global::search::dir_index(-1, 1)
+            );
+        }
+        if $ok($s, $e, $free($down + 1)) {
+            $relax!(
+                $down + 1,
+                $x + 1,
+                $y + 1,
+                $crate::global::search::DIAG,
+                $crate::global::search::dir_index(1, 1)
+            );
+        }
+    };
+}
+pub(crate) use diagonal_moves;
 
 #[cfg(test)]
 mod tests {
