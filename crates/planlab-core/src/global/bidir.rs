@@ -249,17 +249,10 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         PairSpace::current(self.tag, word)
     }
 
-    /// Lowers μ to `g` plus the other direction's cost in `other`, if that
-    /// word is this search's and the sum is cheaper.
+    /// Lowers μ through cell `idx` (see [`meet_at`]).
     #[inline(always)]
     fn meet_at(&mut self, idx: usize, g: u64, other: u64) {
-        if self.current(other) {
-            let through = g + ((other >> G_SHIFT) & G_MASK);
-            if through < self.mu {
-                self.mu = through;
-                self.meet = Some(idx);
-            }
-        }
+        meet_at(self.tag, (&mut self.mu, &mut self.meet), idx, g, other);
     }
 
     /// The search: the meeting cell (`None`: no path) and the cells
@@ -376,14 +369,7 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
                     if improves(pair[SIDE], new) {
                         pair[SIDE] = new;
                         let other = pair[1 - SIDE];
-                        // The meeting test (see `meet_at`).
-                        if PairSpace::current(tag, other) {
-                            let through = ng + ((other >> G_SHIFT) & G_MASK);
-                            if through < mu {
-                                mu = through;
-                                meet = Some(j);
-                            }
-                        }
+                        meet_at(tag, (&mut mu, &mut meet), j, ng, other);
                         let (nx, ny): (usize, usize) = ($nx, $ny);
                         let towards = est.h(nx.abs_diff(ox), ny.abs_diff(oy));
                         // Left out of the open list when no path through it
@@ -433,6 +419,20 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         self.mu = mu;
         self.meet = meet;
         true
+    }
+}
+
+/// The meeting test: lowers μ (and its cell) to `g` plus the other
+/// direction's cost in `other` through cell `idx`, if that word is of the
+/// search tagged `tag` and the sum is cheaper.
+#[inline(always)]
+fn meet_at(tag: u64, (mu, meet): (&mut u64, &mut Option<usize>), idx: usize, g: u64, other: u64) {
+    if PairSpace::current(tag, other) {
+        let through = g + ((other >> G_SHIFT) & G_MASK);
+        if through < *mu {
+            *mu = through;
+            *meet = Some(idx);
+        }
     }
 }
 
