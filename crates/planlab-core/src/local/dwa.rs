@@ -490,18 +490,7 @@ mod tests {
                 w,
                 ..at(10.0, 10.0, 0.3)
             };
-            let obs = Observation {
-                time: 0.0,
-                dt: 0.1,
-                state: &s,
-                goal: [19.0, 19.0],
-                map: &map,
-                map_revision: 0,
-                scan: None,
-                movers: &[],
-                odometry: None,
-                accel_z: 0.0,
-            };
+            let obs = testkit::observation(&s, [19.0, 19.0], &map);
             let c = p.step(&obs);
             assert!(
                 c.v >= (v - l.acc_v * 0.1 - 1e-12).max(0.0)
@@ -537,18 +526,7 @@ mod tests {
             v: 0.3,
             ..at(0.35, 0.35, 0.0)
         };
-        let obs = Observation {
-            time: 0.0,
-            dt: 0.1,
-            state: &s,
-            goal: [0.35, 5.0],
-            map: &map,
-            map_revision: 0,
-            scan: None,
-            movers: &[],
-            odometry: None,
-            accel_z: 0.0,
-        };
+        let obs = testkit::observation(&s, [0.35, 5.0], &map);
         let c = p.step(&obs);
         assert_eq!(p.debug().mode, "no-admissible");
         assert!((c.v - 0.28).abs() < 1e-12, "{c:?}");

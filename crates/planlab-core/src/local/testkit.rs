@@ -110,3 +110,24 @@ pub fn run(
     }
     out
 }
+
+/// An observation at time 0 (dt 0.1 s) of `state` heading for `goal` on
+/// `map`, with no scan, movers or odometry.
+pub fn observation<'a>(
+    state: &'a RobotState,
+    goal: [f64; 2],
+    map: &'a StaticMap,
+) -> Observation<'a> {
+    Observation {
+        time: 0.0,
+        dt: 0.1,
+        state,
+        goal,
+        map,
+        map_revision: 0,
+        scan: None,
+        movers: &[],
+        odometry: None,
+        accel_z: 0.0,
+    }
+}

@@ -479,18 +479,7 @@ mod tests {
 
     fn rolled(g: &DynamicWindow, s: &RobotState, sample: Sample, steps: usize) -> Vec<[f64; 4]> {
         let map = testkit::map(&".".repeat(40), 0.1);
-        let obs = Observation {
-            time: 0.0,
-            dt: 0.1,
-            state: s,
-            goal: [3.0, 0.05],
-            map: &map,
-            map_revision: 0,
-            scan: None,
-            movers: &[],
-            odometry: None,
-            accel_z: 0.0,
-        };
+        let obs = testkit::observation(s, [3.0, 0.05], &map);
         let mut traj = Trajectory {
             with_dirs: true,
             ..Default::default()

@@ -556,18 +556,7 @@ mod tests {
             w: 0.0,
             ..Default::default()
         };
-        let obs = Observation {
-            time: 0.0,
-            dt: 0.1,
-            state: &s,
-            goal: [3.0, 0.05],
-            map: &map,
-            map_revision: 0,
-            scan: None,
-            movers: &[],
-            odometry: None,
-            accel_z: 0.0,
-        };
+        let obs = testkit::observation(&s, [3.0, 0.05], &map);
         e.plan(
             &obs,
             &StepRequest {
@@ -630,18 +619,7 @@ mod tests {
             w: -1.0,
             ..Default::default()
         };
-        let obs = Observation {
-            time: 0.0,
-            dt: 0.1,
-            state: &s,
-            goal: [1.0, 0.0],
-            map: &map,
-            map_revision: 0,
-            scan: None,
-            movers: &[],
-            odometry: None,
-            accel_z: 0.0,
-        };
+        let obs = testkit::observation(&s, [1.0, 0.0], &map);
         let r = none.plan(&obs, &StepRequest::to([1.0, 0.0]));
         assert_eq!(r.admissible, 0);
         assert_eq!(r.cmd, Command::default());
