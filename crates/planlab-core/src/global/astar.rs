@@ -29,7 +29,7 @@
 use super::events::emit;
 use super::search::{
     cells, check_size, finish, improves, trivial_path, with_space, xy, Estimate, FixedHeuristic,
-    OctileEstimate, OpenList, SearchSpace, ZeroEstimate, G_MASK, G_SHIFT, OPEN,
+    OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DEFAULT_SPAN, G_MASK, G_SHIFT, OPEN,
 };
 use super::search::{diagonal_moves, straight_moves};
 use super::{
@@ -178,7 +178,14 @@ fn run<E: Estimate, const RULE: u8, O: SearchObserver + ?Sized>(
     } = q;
     let s = grid.padded_index(start);
     let t = grid.padded_index(goal);
-    space.reset(grid.padded().len());
+    // A move costs at most DIAG times the heaviest weight.
+    let heaviest = if grid.is_weighted() {
+        crate::map::MAX_WEIGHT
+    } else {
+        1
+    };
+    let span = DEFAULT_SPAN * u64::from(heaviest);
+    space.reset(grid.padded().len(), span);
     let tag = space.open_word(0, 0);
     let SearchSpace {
         words,

@@ -4,7 +4,7 @@
 //! Two searches, one from the start and one from the goal, each a plain A*
 //! over the machinery of [`super::astar`]: fixed-point integer costs, one
 //! search word per cell and direction behind a generation tag
-//! ([`PairSpace`]), the radix queue for consistent estimates.
+//! ([`PairSpace`]), the bucket queue for consistent estimates.
 //!
 //! **The potential.** Each direction orders its open list by g plus the
 //! *average potential* of Ikeda et al. (1994): forwards

@@ -51,7 +51,7 @@ impl Priority {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Ties {
-    /// The radix queue of A*, Dijkstra and JPS with a consistent heuristic
+    /// The bucket queue of A*, Dijkstra and JPS with a consistent heuristic
     /// and weight 1: equal fixed-point f, the cell opened last first.
     LatestOpened,
     /// The binary heap of A* and JPS otherwise: equal fixed-point f, larger
@@ -92,7 +92,7 @@ impl OpenOrder {
     /// The order of the planner `options` choose.
     pub fn of(options: &GridPlanOptions) -> OpenOrder {
         let w = options.weight;
-        // A* and JPS take their fixed-point radix queue for the two
+        // A* and JPS take their fixed-point bucket queue for the two
         // consistent estimates they special-case, their heap otherwise
         // (astar.rs `AStar::search`, jps.rs).
         let radix = |h: Heuristic, weight: f64| {

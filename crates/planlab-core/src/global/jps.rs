@@ -35,8 +35,8 @@ use super::classic::jps4;
 use super::events::emit;
 use super::search::{
     cells, check_size, dir_index, finish, improves, trivial_path, with_space, xy, Estimate,
-    FixedHeuristic, LineBits, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DIAG, DIRS,
-    DIR_MASK, G_MASK, G_SHIFT, OPEN, STRAIGHT,
+    FixedHeuristic, LineBits, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DEFAULT_SPAN,
+    DIAG, DIRS, DIR_MASK, G_MASK, G_SHIFT, OPEN, STRAIGHT,
 };
 use super::{Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent, SearchObserver};
 use serde::{Deserialize, Serialize};
@@ -495,7 +495,8 @@ fn run<E: Estimate, O: SearchObserver + ?Sized>(
     obs: &mut O,
     est: E,
 ) -> Result<Path, PlanError> {
-    space.reset(grid.padded().len());
+    // Jumps longer than a few cells overflow the span; that stays correct.
+    space.reset(grid.padded().len(), DEFAULT_SPAN * 16);
     let tag = space.open_word(0, 0);
     let (s, t) = (grid.padded_index(start), grid.padded_index(goal));
     let SearchSpace {
