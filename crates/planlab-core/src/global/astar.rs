@@ -31,7 +31,7 @@ use super::search::{
     cells, check_size, finish, improves, trivial_path, with_space, xy, Estimate, FixedHeuristic,
     OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DEFAULT_SPAN, G_MASK, G_SHIFT, OPEN,
 };
-use super::search::{diagonal_moves, straight_moves};
+use super::search::{diagonal_moves, straight_free, straight_moves};
 use super::{
     check_weight, Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent,
     SearchObserver,
@@ -225,10 +225,9 @@ fn search<
     est: E,
     obs: &mut O,
 ) -> (bool, usize) {
-    let free = grid.padded();
     let stride = grid.stride();
     let (gx, gy) = xy(t, stride);
-    let is_free = |j: usize| free.get(j).copied().unwrap_or(false);
+    let neighbours = grid.neighbours();
     let weights = grid.padded_weights().unwrap_or(&[]);
 
     if let Some(w) = words.get_mut(s) {
@@ -265,10 +264,8 @@ fn search<
         // would simply read as blocked.
         let up = i.wrapping_sub(stride);
         let down = i + stride;
-        let n = is_free(up);
-        let so = is_free(down);
-        let we = is_free(i.wrapping_sub(1));
-        let e = is_free(i + 1);
+        let nb = neighbours.get(i).copied().unwrap_or(0);
+        let [n, so, we, e] = straight_free(nb);
 
         macro_rules! relax {
             ($j:expr, $nx:expr, $ny:expr, $cost:expr, $dir:expr) => {{
@@ -300,7 +297,7 @@ fn search<
             diagonal_moves!(
                 relax,
                 diagonal_ok::<RULE>,
-                is_free,
+                nb,
                 (up, down),
                 (x, y),
                 [n, so, we, e]

@@ -41,7 +41,7 @@ use super::search::{
     cells, check_size, improves, path_of, trivial_path, with_pair_space, xy, Estimate,
     FixedHeuristic, OctileEstimate, OpenList, PairSpace, ZeroEstimate, DIRS, G_MASK, G_SHIFT, OPEN,
 };
-use super::search::{diagonal_moves, straight_moves};
+use super::search::{diagonal_moves, straight_free, straight_moves};
 use super::{Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent, SearchObserver};
 
 /// Bidirectional A* from `start` to `goal` under `diagonal`, with `heuristic`
@@ -175,7 +175,8 @@ fn chain(
 /// from the start, 1 backwards from the goal.
 struct Bidir<'a, E, Q, O: ?Sized> {
     grid: &'a PlanGrid,
-    free: &'a [bool],
+    /// Neighbour bits per padded cell (`PlanGrid::neighbours`).
+    neighbours: &'a [u8],
     weights: &'a [u8],
     stride: usize,
     words: &'a mut [[u64; 2]],
@@ -218,7 +219,7 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         let span = est.h(ends[0].0.abs_diff(ends[1].0), ends[0].1.abs_diff(ends[1].1));
         Self {
             grid,
-            free: grid.padded(),
+            neighbours: grid.neighbours(),
             weights: grid.padded_weights().unwrap_or(&[]),
             stride,
             words,
@@ -331,16 +332,12 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         if (self.current(other) && other & OPEN == 0) || g + self.h_to(1 - SIDE, x, y) >= self.mu {
             return true;
         }
-        let free = self.free;
-        let is_free = |j: usize| free.get(j).copied().unwrap_or(false);
         // Free cells are interior, so these never wrap; a wrapped index
         // would simply read as blocked.
         let up = i.wrapping_sub(stride);
         let down = i + stride;
-        let n = is_free(up);
-        let so = is_free(down);
-        let we = is_free(i.wrapping_sub(1));
-        let e = is_free(i + 1);
+        let nb = self.neighbours.get(i).copied().unwrap_or(0);
+        let [n, so, we, e] = straight_free(nb);
         let weights = self.weights;
         let weight = |j: usize| weights.get(j).map_or(1, |&w| u64::from(w));
         // Backwards, the move runs from the neighbour into `i`: `i` pays.
@@ -399,7 +396,7 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         macro_rules! diagonal {
             () => {
                 if rule != NEVER {
-                    diagonal_moves!(relax, ok, is_free, (up, down), (x, y), [n, so, we, e]);
+                    diagonal_moves!(relax, ok, nb, (up, down), (x, y), [n, so, we, e]);
                 }
             };
         }

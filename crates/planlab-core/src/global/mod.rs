@@ -297,6 +297,11 @@ pub struct PlanGrid {
     /// grids, e.g. the ones planners build every replan, never need it) and
     /// then kept in step with `free`.
     lines: std::sync::OnceLock<search::LineBits>,
+    /// Per padded cell, which of its eight neighbours are passable (bit
+    /// `k`: the move [`search::DIRS`]`[k]`); built on A*'s first use and
+    /// then kept in step with `free`, so an expansion reads one byte
+    /// instead of eight.
+    neighbours: std::sync::OnceLock<Vec<u8>>,
     /// Traversal weight per padded cell (1..=9; the border 1), or `None` on
     /// a unit-cost grid: a move costs its length times the weight of the
     /// cell it enters (docs/algorithms.md §weights; `weights.rs`).
@@ -329,6 +334,7 @@ impl PlanGrid {
             stride,
             free,
             lines: std::sync::OnceLock::new(),
+            neighbours: std::sync::OnceLock::new(),
             weights: None,
         }
     }
@@ -338,6 +344,13 @@ impl PlanGrid {
     pub(crate) fn lines(&self) -> &search::LineBits {
         self.lines
             .get_or_init(|| search::LineBits::new(&self.free, self.stride, self.height + 2))
+    }
+
+    /// The passable neighbours of every padded cell (see the field).
+    #[inline]
+    pub(crate) fn neighbours(&self) -> &[u8] {
+        self.neighbours
+            .get_or_init(|| search::neighbour_bits(&self.free, self.stride))
     }
 
     /// Width in cells.
@@ -364,9 +377,13 @@ impl PlanGrid {
     /// Marks a cell passable or blocked (no-op off the map).
     pub fn set_free(&mut self, col: usize, row: usize, free: bool) {
         if col < self.width && row < self.height {
-            self.free[(row + 1) * self.stride + col + 1] = free;
+            let i = (row + 1) * self.stride + col + 1;
+            self.free[i] = free;
             if let Some(lines) = self.lines.get_mut() {
                 lines.set(col + 1, row + 1, free);
+            }
+            if let Some(bits) = self.neighbours.get_mut() {
+                search::set_neighbour_bit(bits, i, self.stride, free);
             }
         }
     }

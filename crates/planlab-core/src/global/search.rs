@@ -50,6 +50,65 @@ pub(crate) const DIRS: [(isize, isize); 8] = [
     (-1, -1),
 ];
 
+/// Padded-index offset of each move in [`DIRS`].
+fn dir_offset(k: usize, stride: usize) -> isize {
+    DIRS.get(k).map_or(0, |&(dx, dy)| dy * stride as isize + dx)
+}
+
+/// For each padded cell, bit `k` set when the cell one move [`DIRS`]`[k]`
+/// away is passable (the border's own bits stay 0: no search expands it).
+pub(crate) fn neighbour_bits(free: &[bool], stride: usize) -> Vec<u8> {
+    let n = free.len();
+    let mut out = vec![0u8; n];
+    if n < 2 * stride + 2 {
+        return out;
+    }
+    // Cells stride + 1 .. n − stride − 1 have all eight neighbours in
+    // range; one pass per direction over shifted slices, which the compiler
+    // vectorises.
+    let (lo, hi) = (stride + 1, n - stride - 1);
+    for k in 0..DIRS.len() {
+        let off = dir_offset(k, stride);
+        let from = lo.wrapping_add_signed(off);
+        let Some(src) = free.get(from..from + (hi - lo)) else {
+            continue;
+        };
+        if let Some(dst) = out.get_mut(lo..hi) {
+            for (d, &f) in dst.iter_mut().zip(src) {
+                *d |= u8::from(f) << k;
+            }
+        }
+    }
+    out
+}
+
+/// Updates the neighbour bits around padded cell `i` after it became
+/// passable (`free`) or blocked.
+pub(crate) fn set_neighbour_bit(bits: &mut [u8], i: usize, stride: usize, free: bool) {
+    for k in 0..DIRS.len() {
+        // The cell one move `k` away sees `i` one move back, i.e. as the
+        // direction with both offsets negated: index k ^ 1 for straight
+        // moves, 7 − (k − 4) for diagonal ones.
+        let back = if k < 4 { k ^ 1 } else { 11 - k };
+        let j = i.wrapping_add_signed(dir_offset(k, stride));
+        if let Some(b) = bits.get_mut(j) {
+            if free {
+                *b |= 1 << back;
+            } else {
+                *b &= !(1 << back);
+            }
+        }
+    }
+}
+
+/// The passability of the four straight neighbours `[n, s, w, e]` in a
+/// cell's neighbour bits.
+#[inline(always)]
+pub(crate) fn straight_free(nb: u8) -> [bool; 4] {
+    let bit = |dx, dy| nb & 1 << dir_index(dx, dy) != 0;
+    [bit(0, -1), bit(0, 1), bit(-1, 0), bit(1, 0)]
+}
+
 /// Index in [`DIRS`] of the move `(dx, dy)` (each −1, 0 or 1, not both 0).
 #[inline(always)]
 pub(crate) const fn dir_index(dx: isize, dy: isize) -> u64 {
@@ -952,11 +1011,15 @@ macro_rules! straight_moves {
 pub(crate) use straight_moves;
 
 /// The four diagonal moves, each relaxed when `$ok(side, side, target)`
-/// allows it under the corner rule (`$free`: whether a padded cell is free);
-/// the rest as in [`straight_moves`].
+/// allows it under the corner rule (`$nb`: the cell's neighbour bits, see
+/// [`neighbour_bits`]); the rest as in [`straight_moves`].
 macro_rules! diagonal_moves {
-    ($relax:ident, $ok:expr, $free:expr, ($up:expr, $down:expr), ($x:expr, $y:expr), [$n:expr, $s:expr, $w:expr, $e:expr]) => {
-        if $ok($n, $w, $free($up.wrapping_sub(1))) {
+    ($relax:ident, $ok:expr, $nb:expr, ($up:expr, $down:expr), ($x:expr, $y:expr), [$n:expr, $s:expr, $w:expr, $e:expr]) => {
+        if $ok(
+            $n,
+            $w,
+            $nb & 1 << $crate::global::search::dir_index(-1, -1) != 0,
+        ) {
             $relax!(
                 $up - 1,
                 $x - 1,
@@ -965,7 +1028,11 @@ macro_rules! diagonal_moves {
                 $crate::global::search::dir_index(-1, -1)
             );
         }
-        if $ok($n, $e, $free($up.wrapping_add(1))) {
+        if $ok(
+            $n,
+            $e,
+            $nb & 1 << $crate::global::search::dir_index(1, -1) != 0,
+        ) {
             $relax!(
                 $up + 1,
                 $x + 1,
@@ -974,7 +1041,11 @@ macro_rules! diagonal_moves {
                 $crate::global::search::dir_index(1, -1)
             );
         }
-        if $ok($s, $w, $free($down - 1)) {
+        if $ok(
+            $s,
+            $w,
+            $nb & 1 << $crate::global::search::dir_index(-1, 1) != 0,
+        ) {
             $relax!(
                 $down - 1,
                 $x - 1,
@@ -983,7 +1054,11 @@ macro_rules! diagonal_moves {
                 $crate::global::search::dir_index(-1, 1)
             );
         }
-        if $ok($s, $e, $free($down + 1)) {
+        if $ok(
+            $s,
+            $e,
+            $nb & 1 << $crate::global::search::dir_index(1, 1) != 0,
+        ) {
             $relax!(
                 $down + 1,
                 $x + 1,
@@ -1054,6 +1129,44 @@ mod tests {
             ),
         ) {
             replay_bucket_queue(1 << span_exp, &ops);
+        }
+    }
+
+    /// Every padded cell's neighbour bits against its eight neighbours read
+    /// one by one.
+    fn assert_neighbour_bits(grid: &PlanGrid) {
+        let (free, stride, bits) = (grid.padded(), grid.stride(), grid.neighbours());
+        assert_eq!(bits.len(), free.len());
+        for y in 1..free.len() / stride - 1 {
+            for x in 1..stride - 1 {
+                let i = y * stride + x;
+                for (k, &(dx, dy)) in DIRS.iter().enumerate() {
+                    let j = (i as isize + dy * stride as isize + dx) as usize;
+                    assert_eq!(bits[i] >> k & 1 == 1, free[j], "cell ({x}, {y}) move {k}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn neighbour_bits_match_the_grid_before_and_after_edits() {
+        // Sizes around the vectorised passes' chunks, pseudo-random walls.
+        for (w, h) in [(1, 1), (2, 3), (7, 5), (33, 17), (64, 9)] {
+            let mut state = (w * 31 + h) as u64;
+            let mut coin = move || {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                state >> 61 < 3
+            };
+            let mut grid = PlanGrid::from_fn(w, h, |_, _| coin());
+            assert_neighbour_bits(&grid);
+            for k in 0..(w * h * 2) {
+                let (c, r) = ((k * 7) % w, (k * 13) % h);
+                let free = !grid.is_free(c as i64, r as i64);
+                grid.set_free(c, r, free);
+            }
+            assert_neighbour_bits(&grid);
         }
     }
 
