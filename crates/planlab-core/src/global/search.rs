@@ -182,7 +182,7 @@ impl OpenList for BinaryQueue {
 }
 
 /// Buckets in [`BucketQueue`]'s ring (a power of two).
-const RING: usize = 1024;
+const RING: usize = 256;
 /// Words of the ring's occupancy bitmap.
 const RING_WORDS: usize = RING / 64;
 
@@ -196,8 +196,9 @@ const RING_WORDS: usize = RING / 64;
 /// entries within that window sit in a ring of buckets of `2^shift` fixed-
 /// point units each, so a push is an append and a pop walks to the next
 /// occupied bucket. The distinct `f` values of an A* open list on the
-/// Moving AI maps lie thousands of units apart while the span is ~1.3·10⁶
-/// units, so a bucket nearly always holds a single `f` and is handed to the
+/// Moving AI maps lie thousands of units apart (random512-10-0: 99.8 % of
+/// the gaps ≥ 2¹⁴) while the span is ~1.3·10⁶ units, so a bucket of 2¹³
+/// units nearly always holds a single `f` and is handed to the
 /// top stack whole; one holding several is split, keeping push order. This
 /// replaced a radix heap (Ahuja et al. 1990) that moved an entry between
 /// buckets 1.6–2.7 times on average. Entries beyond the window (long JPS
