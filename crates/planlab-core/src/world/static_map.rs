@@ -26,6 +26,10 @@ pub struct StaticMap {
     res: f64,
     ox: f64,
     oy: f64,
+    /// Width and height in cells as f64 (exact): `usize as f64` is a
+    /// branchy sequence on x86-64, and `clearance` needs both every call.
+    wf: f64,
+    hf: f64,
 }
 
 impl StaticMap {
@@ -65,6 +69,8 @@ impl StaticMap {
             res,
             ox: origin.x,
             oy: origin.y,
+            wf: grid.width() as f64,
+            hf: grid.height() as f64,
             grid,
             blocked,
             clear,
@@ -138,13 +144,14 @@ impl StaticMap {
     pub fn clearance(&self, x: f64, y: f64) -> f64 {
         let (w, h) = (self.grid.width(), self.grid.height());
         let (lx, ly) = self.local(x, y);
-        if !(lx > 0.0 && ly > 0.0 && lx < w as f64 && ly < h as f64) {
+        if !(lx > 0.0 && ly > 0.0 && lx < self.wf && ly < self.hf) {
             return 0.0;
         }
         // lx, ly are positive here, so truncation is floor (no libm call on
         // targets without SSE4.1; the values are the same). Through i64: a
         // signed conversion is one instruction on x86-64, an unsigned one
-        // a branchy sequence, and below `w`, `h` both give the same value.
+        // a branchy sequence, and below `w`, `h` both give the same value
+        // (so do the conversions back to f64 below, exact either way).
         let (cx, cy) = (
             (lx as i64 as usize).min(w - 1),
             (ly as i64 as usize).min(h - 1),
@@ -156,14 +163,14 @@ impl StaticMap {
         // No NaN reaches here (the comparisons above), and nothing is ±0, so
         // `<` picks what `f64::min` would, without its NaN handling.
         let lo = |a: f64, b: f64| if b < a { b } else { a };
-        let edge = lo(lo(lo(lx, ly), w as f64 - lx), h as f64 - ly) * self.res;
+        let edge = lo(lo(lo(lx, ly), self.wf - lx), self.hf - ly) * self.res;
         // Cell-centre lattice coordinates (u up from the bottom row). With
         // cx ≤ lx < cx + 1, fx = lx − 0.5 lies in [cx − ½, cx + ½], so its
         // floor is cx − 1 (−1 in the first half cell) below cx, else cx:
         // no second conversion.
         let (fx, fy) = (lx - 0.5, ly - 0.5);
-        let ix = cx as isize - isize::from(fx < cx as f64);
-        let iy = cy as isize - isize::from(fy < cy as f64);
+        let ix = cx as isize - isize::from(fx < cx as i64 as f64);
+        let iy = cy as isize - isize::from(fy < cy as i64 as f64);
         let (tx, ty) = (fx - ix as f64, fy - iy as f64);
         let (c0, c1) = (ix.max(0) as usize, ((ix + 1) as usize).min(w - 1));
         let (u0, u1) = (iy.max(0) as usize, ((iy + 1) as usize).min(h - 1));
