@@ -23,6 +23,14 @@ pub struct StaticMap {
     /// Per cell: distance (m) from the cell centre to the nearest blocked
     /// cell's boundary, conservative (centre distance − half a cell).
     clear: Vec<f64>,
+    /// `clear` for [`StaticMap::clearance`]'s blend: rows bottom-up (u),
+    /// with a border of one cell on every side repeating the edge cells,
+    /// so the blend's four corners need neither clamping nor row flipping:
+    /// `pad[(u + 1) * (w + 2) + c + 1]` for u in −1..=h, c in −1..=w holds
+    /// the field at the nearest cell (the clamped indices of before).
+    pad: Vec<f64>,
+    /// `blocked` with rows bottom-up, for the same look-up.
+    blocked_up: Vec<bool>,
     res: f64,
     ox: f64,
     oy: f64,
@@ -61,11 +69,22 @@ impl StaticMap {
                 .map_err(|e| WorldError::UnsupportedMap(e.to_string()))?;
         }
         let res = grid.resolution();
-        let clear = distance_field(&solid)
+        let clear: Vec<f64> = distance_field(&solid)
             .into_iter()
             .map(|d| (d - 0.5 * res).max(0.0))
             .collect();
+        let (w, h) = (grid.width(), grid.height());
+        let mut pad = Vec::with_capacity((w + 2) * (h + 2));
+        for u in 0..h + 2 {
+            let row = (h - 1 - (u.max(1) - 1).min(h - 1)) * w;
+            pad.extend((0..w + 2).map(|c| clear[row + (c.max(1) - 1).min(w - 1)]));
+        }
+        let blocked_up = (0..h)
+            .flat_map(|u| blocked[(h - 1 - u) * w..(h - u) * w].iter().copied())
+            .collect();
         Ok(Self {
+            pad,
+            blocked_up,
             res,
             ox: origin.x,
             oy: origin.y,
@@ -142,22 +161,20 @@ impl StaticMap {
     /// the exact test.
     #[inline(always)]
     pub fn clearance(&self, x: f64, y: f64) -> f64 {
-        let (w, h) = (self.grid.width(), self.grid.height());
+        let w = self.grid.width();
         let (lx, ly) = self.local(x, y);
         if !(lx > 0.0 && ly > 0.0 && lx < self.wf && ly < self.hf) {
             return 0.0;
         }
         // lx, ly are positive here, so truncation is floor (no libm call on
-        // targets without SSE4.1; the values are the same). Through i64: a
+        // targets without SSE4.1; the values are the same), and below the
+        // width and height (so the cell is on the map). Through i64: a
         // signed conversion is one instruction on x86-64, an unsigned one
-        // a branchy sequence, and below `w`, `h` both give the same value
-        // (so do the conversions back to f64 below, exact either way).
-        let (cx, cy) = (
-            (lx as i64 as usize).min(w - 1),
-            (ly as i64 as usize).min(h - 1),
-        );
+        // a branchy sequence (so are the conversions back to f64 below,
+        // exact either way).
+        let (cx, cy) = (lx as i64, ly as i64);
         // Inside a blocked cell the distance is 0 whatever the neighbours say.
-        if self.blocked[(h - 1 - cy) * w + cx] {
+        if self.blocked_up[cy as usize * w + cx as usize] {
             return 0.0;
         }
         // No NaN reaches here (the comparisons above), and nothing is ±0, so
@@ -169,16 +186,16 @@ impl StaticMap {
         // floor is cx − 1 (−1 in the first half cell) below cx, else cx:
         // no second conversion.
         let (fx, fy) = (lx - 0.5, ly - 0.5);
-        let ix = cx as isize - isize::from(fx < cx as i64 as f64);
-        let iy = cy as isize - isize::from(fy < cy as i64 as f64);
+        let ix = cx - i64::from(fx < cx as f64);
+        let iy = cy - i64::from(fy < cy as f64);
         let (tx, ty) = (fx - ix as f64, fy - iy as f64);
-        let (c0, c1) = (ix.max(0) as usize, ((ix + 1) as usize).min(w - 1));
-        let (u0, u1) = (iy.max(0) as usize, ((iy + 1) as usize).min(h - 1));
-        let (r0, r1) = ((h - 1 - u0) * w, (h - 1 - u1) * w);
-        let v00 = self.clear[r0 + c0];
-        let v10 = self.clear[r0 + c1];
-        let v01 = self.clear[r1 + c0];
-        let v11 = self.clear[r1 + c1];
+        // ix ≥ −1 and iy ≥ −1: the padded field's corner (ix, iy), rows up.
+        let row = w + 2;
+        let i0 = (iy + 1) as usize * row + (ix + 1) as usize;
+        let v00 = self.pad[i0];
+        let v10 = self.pad[i0 + 1];
+        let v01 = self.pad[i0 + row];
+        let v11 = self.pad[i0 + row + 1];
         let v = (v00 * (1.0 - tx) + v10 * tx) * (1.0 - ty) + (v01 * (1.0 - tx) + v11 * tx) * ty;
         // `f64::min`: a NaN blend (an infinite field times 0) gives the edge.
         if v < edge {
