@@ -138,6 +138,10 @@ pub struct Screen {
     rest_movers: Vec<([f64; 2], [f64; 2], f64)>,
     /// Distance from the robot within which `rest_movers` decide, m.
     rest_reach: f64,
+    /// Per chunk `q` of [`MoverCull`] in [`Self::check`] (rollout points
+    /// 8q ..): the kept movers (bits) that may be near some rollout's chunk;
+    /// [`Self::near_movers`] keeps a subset of these ([`Self::chunk_cands`]).
+    cands: Vec<u64>,
     /// Collision threshold: 0, or the current clearance when the robot
     /// already sits inside the margin (it may leave, not go deeper).
     limit: f64,
@@ -167,6 +171,7 @@ impl Screen {
             brake_steps: 0,
             all_movers: Vec::new(),
             rest_movers: Vec::new(),
+            cands: Vec::new(),
             rest_reach: -1.0,
             limit: 0.0,
             stat0: 0.0,
@@ -230,6 +235,7 @@ impl Screen {
         // a point beyond it is checked against every mover).
         self.rest_reach = v_abs * (t_total + dt) * (1.0 + 1e-6) + 1e-6;
         self.cull_rest_movers(s);
+        self.chunk_cands(s, v_abs);
     }
 
     /// Fills `rest_movers`: the movers whose predicted path
@@ -572,7 +578,7 @@ impl Screen {
                 let steps = CULL_CHUNK.min(n + 1 - k);
                 let rho = (v.abs() * h * (1.0 + 1e-9) + 1e-9) * steps as f64;
                 let (ka, kb) = (row_of(k), row_of(k + steps - 1));
-                cull.mask = self.near_movers([st.x, st.y], rho, ka, kb);
+                cull.mask = self.near_movers([st.x, st.y], rho, ka, kb, u64::MAX);
                 cull.end = k - 1 + steps;
             }
             v = toward_zero(v, l.acc_v * h);
@@ -767,7 +773,10 @@ impl Screen {
     /// one larger than the clearance it has, so leaving it out changes no
     /// bit. Its positions over the rows lie on the segment between rows
     /// `ka` and `kb` (constant velocity), so within their bounding box.
-    fn near_movers(&self, c: [f64; 2], rho: f64, ka: usize, kb: usize) -> u64 {
+    ///
+    /// Only the movers of `cands` are asked: the others are known to be out
+    /// of reach ([`Self::chunk_cands`]), so the mask is the same.
+    fn near_movers(&self, c: [f64; 2], rho: f64, ka: usize, kb: usize, cands: u64) -> u64 {
         let n = self.mover_rad.len();
         let all = u64::MAX >> (64 - n);
         if kb * n + n > self.mover_pos.len() {
@@ -781,7 +790,11 @@ impl Screen {
         let margin = 1e-6 + 1e-9 * (c[0].abs() + c[1].abs());
         let base = rho + self.horizon + self.r_eff + margin;
         let mut mask = 0u64;
-        for (j, ((pa, pb), &r)) in a.iter().zip(b).zip(&self.mover_rad).enumerate() {
+        let mut bits = cands & all;
+        while bits != 0 {
+            let j = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let (pa, pb, r) = (&a[j], &b[j], self.mover_rad[j]);
             let gx = (pa[0].min(pb[0]) - c[0])
                 .max(c[0] - pa[0].max(pb[0]))
                 .max(0.0);
@@ -797,6 +810,39 @@ impl Screen {
             }
         }
         mask
+    }
+
+    /// Fills `cands` for rollouts from `s` at speeds up to `v_abs`. Chunk q
+    /// starts at rollout point i = 8q: its centre (the point before) lies
+    /// within R = i·L of `s`, L bounding a step's length as
+    /// [`Self::check`] does, and its reach is at most 8·(L + 1e-9). A mover
+    /// farther from `s`, over the chunk's rows (a box holding every
+    /// shorter chunk's), than R + reach + horizon + r_eff + its radius, plus
+    /// [`Self::near_movers`]' margin at the farthest such centre and 1e-6
+    /// for rounding, is farther than `near_movers`' reach from every
+    /// centre, so it never enters a rollout's mask.
+    fn chunk_cands(&mut self, s: &RobotState, v_abs: f64) {
+        self.cands.clear();
+        let n = self.mover_rad.len();
+        if !(1..=64).contains(&n) {
+            return;
+        }
+        let rows = self.mover_rows();
+        let longest = self.steps.max(self.va_steps).max(self.brake_steps);
+        let len = v_abs * self.h * (1.0 + 1e-9);
+        let c = [s.x, s.y];
+        let mut i = 0;
+        while i < longest && i + 1 < rows {
+            let kb = (i + CULL_CHUNK).min(rows - 1);
+            let far = i as f64 * len * (1.0 + 1e-9);
+            let rho = CULL_CHUNK as f64 * (len + 1e-9) * (1.0 + 1e-9);
+            let margin = 1e-6 + 1e-9 * (c[0].abs() + c[1].abs() + 2.0 * far);
+            let reach = far + rho + margin + 1e-6;
+            // near_movers' own test from `s`, `reach` for its ρ.
+            self.cands
+                .push(self.near_movers(c, reach, i + 1, kb, u64::MAX));
+            i += CULL_CHUNK;
+        }
     }
 
     /// Starts a new chunk of [`MoverCull`] at rollout point `i` of
@@ -818,7 +864,12 @@ impl Screen {
             for j in i..end {
                 rho += step_len(j) + 1e-9;
             }
-            cull.mask = self.near_movers(c, rho, i + 1, end);
+            // Chunks start every CULL_CHUNK points from the robot's state.
+            let cands = match i % CULL_CHUNK {
+                0 => self.cands.get(i / CULL_CHUNK).copied().unwrap_or(u64::MAX),
+                _ => u64::MAX,
+            };
+            cull.mask = self.near_movers(c, rho, i + 1, end, cands);
             cull.end = end;
         }
     }
@@ -900,5 +951,99 @@ impl<'a> Probe<'a> {
             self.since = 0.0;
             self.last
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::generator::{DynamicWindow, TrajectoryGenerator, WindowRequest};
+    use super::*;
+    use crate::local::testkit;
+    use crate::num::Rng;
+
+    fn walled() -> StaticMap {
+        let mut ascii = "#".repeat(60) + "\n";
+        for r in 0..38 {
+            let inner: String = (0..58)
+                .map(|c| {
+                    let block = (r == 12 || r == 25) && (10..30).contains(&c);
+                    if block || (c == 40 && (5..20).contains(&r)) {
+                        '#'
+                    } else {
+                        '.'
+                    }
+                })
+                .collect();
+            ascii += &format!("#{inner}#\n");
+        }
+        ascii += &"#".repeat(60);
+        testkit::map(&ascii, 0.1)
+    }
+
+    /// Every rollout of a cycle judged with the per-chunk candidates and
+    /// with every kept mover asked: the same verdict and the same
+    /// clearance, bit for bit.
+    #[test]
+    fn chunk_candidates_change_no_verdict_and_no_bit() {
+        let map = walled();
+        let robot = RobotSpec::default();
+        let cfg = ScreenConfig {
+            dist_cap: 1.0,
+            safety_margin: 0.05,
+            predict_movers: true,
+            admissible_window: true,
+            rotate_in_place: true,
+            emergency: None,
+        };
+        let mut rng = Rng::new(29);
+        let mut kept_out = 0u32;
+        for scene in 0..60 {
+            let movers: Vec<ObservedMover> = (0..2 + scene % 30)
+                .map(|id| ObservedMover {
+                    id,
+                    pos: [rng.range(0.3, 5.7), rng.range(0.3, 3.7)],
+                    vel: [rng.range(-0.8, 0.8), rng.range(-0.8, 0.8)],
+                    radius: rng.range(0.05, 0.4),
+                })
+                .collect();
+            let s = RobotState {
+                x: rng.range(1.0, 5.0),
+                y: rng.range(0.5, 3.5),
+                theta: rng.range(-3.1, 3.1),
+                v: rng.range(0.0, 1.0),
+                w: rng.range(-0.5, 0.5),
+                ..Default::default()
+            };
+            let mut gen =
+                DynamicWindow::new(robot.limits, (0.05, 0.05), (7, 11), (3.0, 0.1), false);
+            let mut obs = testkit::observation(&s, [5.5, 2.0], &map);
+            obs.movers = &movers;
+            let req = WindowRequest {
+                dt: 0.1,
+                hold_v: None,
+                braking: scene % 2 == 0,
+            };
+            let mut samples = Vec::new();
+            let window = gen.samples(&obs, &req, &mut samples);
+            let mut screen = Screen::new(cfg, &robot, gen.horizon());
+            screen.prepare(&obs, &window, 0.1);
+            let mut all = screen.clone();
+            all.cands.clear();
+            let n = screen.kept_movers();
+            kept_out += screen
+                .cands
+                .iter()
+                .map(|c| (u64::MAX >> (64 - n.clamp(1, 64))).count_ones() - c.count_ones())
+                .sum::<u32>();
+            let mut traj = Trajectory::default();
+            for sample in samples {
+                gen.rollout(&obs, sample, screen.steps_for(&sample), &mut traj);
+                let mut again = traj.clone();
+                let (a, b) = (screen.check(&obs, &mut traj), all.check(&obs, &mut again));
+                assert_eq!(a, b, "scene {scene} {sample:?}");
+                assert_eq!(traj.min_clearance.to_bits(), again.min_clearance.to_bits());
+            }
+        }
+        assert!(kept_out > 100, "{kept_out}");
     }
 }
