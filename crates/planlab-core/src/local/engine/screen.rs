@@ -571,6 +571,7 @@ impl Screen {
             None => probe.last = f64::NEG_INFINITY,
         }
         let mut cull = MoverCull::new(self);
+        let mut stat = 0.0;
         for k in 1..=n {
             if cull.due(k - 1) {
                 // |v| never grows while braking: the next steps stay
@@ -586,8 +587,28 @@ impl Screen {
                 Some(g) => self.turn_toward(&st, g, h),
                 None => toward_zero(w, l.acc_w * h),
             };
-            st = integrate(&st, Command { v, vy: 0.0, w }, h);
-            let stat = probe.at([st.x, st.y], v.abs() * h * (1.0 + 1e-9) + 1e-9);
+            let at = (st.x, st.y);
+            st = if v == 0.0 && w == 0.0 && st.x != 0.0 && st.y != 0.0 {
+                // At rest: `integrate` moves it by ±0, which leaves a nonzero
+                // coordinate as it is, and turns it by 0 — without its sine
+                // and cosine.
+                RobotState {
+                    theta: wrap_angle(st.theta + w * h),
+                    v,
+                    vy: 0.0,
+                    w,
+                    ..st
+                }
+            } else {
+                integrate(&st, Command { v, vy: 0.0, w }, h)
+            };
+            // Standing where the last step ended: the same static part (the
+            // probe's value stands for it either way, and only `≤ limit` is
+            // asked), without a look-up; no distance driven, so the probe
+            // need not advance.
+            if k == 1 || st.x.to_bits() != at.0.to_bits() || st.y.to_bits() != at.1.to_bits() {
+                stat = probe.at([st.x, st.y], v.abs() * h * (1.0 + 1e-9) + 1e-9);
+            }
             let row = row_of(k);
             if self.mover_clearance_in(stat, st.x, st.y, row, self.horizon, cull.mask())
                 <= self.limit
