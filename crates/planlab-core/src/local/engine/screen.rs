@@ -568,10 +568,14 @@ impl Screen {
         let mut probe = Probe::new(map, self, self.horizon);
         match near {
             Some(s0) => probe.since = hypot(s.x - s0.x, s.y - s0.y) * (1.0 + 1e-9) + 1e-9,
-            None => probe.last = f64::NEG_INFINITY,
+            None => {
+                probe.last = f64::NEG_INFINITY;
+                probe.free = f64::NEG_INFINITY;
+            }
         }
         let mut cull = MoverCull::new(self);
-        let mut stat = 0.0;
+        // `None`: above the threshold, and no mover was near.
+        let mut stat = None;
         for k in 1..=n {
             if cull.due(k - 1) {
                 // |v| never grows while braking: the next steps stay
@@ -606,13 +610,21 @@ impl Screen {
             // probe's value stands for it either way, and only `≤ limit` is
             // asked), without a look-up; no distance driven, so the probe
             // need not advance.
-            if k == 1 || st.x.to_bits() != at.0.to_bits() || st.y.to_bits() != at.1.to_bits() {
-                stat = probe.at([st.x, st.y], v.abs() * h * (1.0 + 1e-9) + 1e-9);
+            let moved =
+                k == 1 || st.x.to_bits() != at.0.to_bits() || st.y.to_bits() != at.1.to_bits();
+            let mask = cull.mask();
+            if moved || stat.is_none() {
+                let len = if moved {
+                    v.abs() * h * (1.0 + 1e-9) + 1e-9
+                } else {
+                    0.0
+                };
+                stat = probe.above([st.x, st.y], len, self.limit, self.no_movers(mask));
             }
             let row = row_of(k);
-            if self.mover_clearance_in(stat, st.x, st.y, row, self.horizon, cull.mask())
-                <= self.limit
-            {
+            if stat.is_some_and(|c| {
+                self.mover_clearance_in(c, st.x, st.y, row, self.horizon, mask) <= self.limit
+            }) {
                 return true;
             }
             // Turning on the spot moves no part of a round footprint.
@@ -783,6 +795,13 @@ impl Screen {
         best
     }
 
+    /// Whether [`Self::mover_clearance_in`] with `mask` asks no mover (its
+    /// value is then the static part).
+    #[inline(always)]
+    fn no_movers(&self, mask: Option<u64>) -> bool {
+        mask == Some(0) || self.mover_rad.is_empty()
+    }
+
     /// The kept movers (bit j: mover j; 1 ≤ movers ≤ 64) that may come
     /// within `horizon` of a footprint centred within `rho` of `c` at
     /// rollout steps `ka..=kb` (rows of the table).
@@ -939,12 +958,24 @@ impl MoverCull {
 /// horizon + a cell, the point's value is above the horizon and every
 /// decision (capped critic, V_a, collision) is the same as with the exact
 /// value.
+///
+/// Where only comparisons with a floor are asked of the point's value and
+/// no mover is near ([`Probe::above`]), the same bound spares look-ups
+/// above that floor; the jump at blocked cells is left out of it within
+/// `free` of the last look-up, where no point lies in a blocked cell or
+/// off the map (the field exceeds the distance to them by under a cell:
+/// ≤ 0.21 cell in the blend at the nearest blocked centre, ≤ 0.71 between
+/// that centre and its cell's boundary).
 struct Probe<'a> {
     map: &'a StaticMap,
     r_eff: f64,
     slack: f64,
     skip_above: f64,
+    /// A cell, m: the field's jump at blocked-cell borders.
+    cell: f64,
     last: f64,
+    /// The map clearance at the last look-up less a cell and a margin.
+    free: f64,
     since: f64,
 }
 
@@ -955,13 +986,16 @@ impl<'a> Probe<'a> {
             r_eff: screen.r_eff,
             slack: screen.slack,
             skip_above: horizon + map.grid().resolution(),
+            cell: map.grid().resolution(),
             last: screen.stat0,
+            free: screen.stat0 + screen.r_eff + screen.slack - map.grid().resolution() - 1e-9,
             since: 0.0,
         }
     }
 
     /// The static clearance (minus the footprint) at `p`, reached after a
-    /// step of at most `step_len` m.
+    /// step of at most `step_len` m. (`free` is not kept: a probe uses this
+    /// or [`Self::above`], not both.)
     #[inline(always)]
     fn at(&mut self, p: [f64; 2], step_len: f64) -> f64 {
         self.since += step_len;
@@ -972,6 +1006,32 @@ impl<'a> Probe<'a> {
             self.since = 0.0;
             self.last
         }
+    }
+
+    /// As [`Self::at`] — or, with `alone` (no mover to compare the value
+    /// with), `None` when it is surely above `floor`.
+    #[inline(always)]
+    fn above(&mut self, p: [f64; 2], step_len: f64, floor: f64, alone: bool) -> Option<f64> {
+        self.since += step_len;
+        let b = self.last - std::f64::consts::SQRT_2 * self.since;
+        if b > self.skip_above {
+            return Some(self.skip_above);
+        }
+        if alone {
+            let jump = if self.since < self.free {
+                0.0
+            } else {
+                self.cell
+            };
+            if b - jump - 1e-9 >= floor {
+                return None;
+            }
+        }
+        let c = self.map.clearance(p[0], p[1]);
+        self.last = c - self.r_eff - self.slack;
+        self.free = c - self.cell - 1e-9;
+        self.since = 0.0;
+        Some(self.last)
     }
 }
 
@@ -1066,5 +1126,33 @@ mod tests {
             }
         }
         assert!(kept_out > 100, "{kept_out}");
+    }
+
+    /// [`Probe`]'s bound: the static clearance at a point is above its
+    /// value at an earlier one less √2 times the distance between them,
+    /// and less a cell unless the point is closer to the earlier one than
+    /// that one's clearance less a cell.
+    #[test]
+    fn the_clearance_field_keeps_the_probe_s_bound() {
+        let map = walled();
+        let mut rng = Rng::new(3);
+        let res = map.grid().resolution();
+        let mut near = 0;
+        for _ in 0..400_000 {
+            let q = [rng.range(-0.2, 6.2), rng.range(-0.2, 4.2)];
+            let len = rng.range(0.0, 1.0) * rng.uniform();
+            let a = rng.range(0.0, std::f64::consts::TAU);
+            let p = [
+                q[0] + len * crate::num::cos(a),
+                q[1] + len * crate::num::sin(a),
+            ];
+            let (cq, cp) = (map.clearance(q[0], q[1]), map.clearance(p[0], p[1]));
+            let since = len * (1.0 + 1e-9);
+            let jump = if since < cq - res - 1e-9 { 0.0 } else { res };
+            near += usize::from(jump == 0.0 && cp < cq);
+            let bound = cq - std::f64::consts::SQRT_2 * since - jump - 1e-9;
+            assert!(cp > bound, "{q:?} -> {p:?}: {cp} vs {bound}");
+        }
+        assert!(near > 10_000, "{near}");
     }
 }
