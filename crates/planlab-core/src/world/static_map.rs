@@ -377,11 +377,11 @@ mod tests {
             let m = StaticMap::new(g, true).unwrap();
             let res = m.res;
             // The per-cell field and flags, against the grid they come from.
-            let (w, h) = (m.grid.width(), m.grid.height());
+            let w = m.grid.width();
             let field = distance_field(&m.solid());
-            for i in 0..w * h {
+            for (i, d) in field.iter().enumerate() {
                 let (c, r) = ((i % w) as i64, (i / w) as i64);
-                let want = (field[i] - 0.5 * res).max(0.0);
+                let want = (d - 0.5 * res).max(0.0);
                 assert_eq!(m.cell_clearance(c, r).to_bits(), want.to_bits(), "cell {i}");
                 let cell = m.grid.cells()[i];
                 assert_eq!(m.is_blocked(c, r), cell != Cell::Free, "cell {i}");
