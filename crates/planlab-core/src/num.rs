@@ -49,6 +49,16 @@ pub fn cos(x: f64) -> f64 {
     libm::cos(x)
 }
 
+/// `(sin(x), cos(x))`, bit for bit, with one argument reduction instead of
+/// two: libm's `sincos` runs the same reduction and kernels as its `sin`
+/// and `cos`. (Its tiny-argument shortcut starts at 2⁻²⁷·√2, `sin`'s at
+/// 2⁻²⁶; in between `sin` returns x and the kernel x + x³·(…), which
+/// rounds to x since x³/6 is below half an ulp of x.)
+#[inline]
+pub fn sin_cos(x: f64) -> (f64, f64) {
+    libm::sincos(x)
+}
+
 /// Two-argument arctangent (deterministic across targets).
 #[inline]
 pub fn atan2(y: f64, x: f64) -> f64 {
@@ -162,6 +172,42 @@ impl Rng {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sin_cos_keeps_every_bit_of_sin_and_cos() {
+        let mut rng = Rng::new(11);
+        let mut xs: Vec<f64> = vec![
+            0.0,
+            -0.0,
+            f64::MIN_POSITIVE,
+            f64::from_bits(1),
+            PI,
+            -PI,
+            0.5 * PI,
+            0.25 * PI,
+            1e300,
+            f64::INFINITY,
+            f64::NAN,
+        ];
+        // Every scale, across the tiny-argument thresholds and π/4.
+        for e in -60..12 {
+            for _ in 0..2_000 {
+                let x = rng.range(-1.0, 1.0) * 2f64.powi(e);
+                xs.push(x);
+            }
+        }
+        for b in [0x3e46_a09e_u64, 0x3e50_0000, 0x3fe9_21fb] {
+            for lo in [0u64, 1, 0x7fff_ffff, 0xffff_ffff] {
+                let x = f64::from_bits((b << 32) | lo);
+                xs.extend([x, -x, f64::from_bits(x.to_bits() - 1)]);
+            }
+        }
+        for x in xs {
+            let (s, c) = sin_cos(x);
+            assert_eq!(s.to_bits(), sin(x).to_bits(), "sin {x:e}");
+            assert_eq!(c.to_bits(), cos(x).to_bits(), "cos {x:e}");
+        }
+    }
 
     #[test]
     fn wrap_angle_lands_in_half_open_interval() {

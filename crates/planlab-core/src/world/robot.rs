@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{check_min, check_positive, WorldError};
-use crate::num::{cos, sin, wrap_angle};
+use crate::num::{sin_cos, wrap_angle};
 
 /// Drive type.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -209,7 +209,7 @@ impl RobotSpec {
 /// y += (v sinθ + v_y cosθ)Δt, θ += ωΔt. The command becomes the new velocity.
 #[inline]
 pub fn integrate(state: &RobotState, cmd: Command, dt: f64) -> RobotState {
-    let (s, c) = (sin(state.theta), cos(state.theta));
+    let (s, c) = sin_cos(state.theta);
     RobotState {
         x: state.x + (cmd.v * c - cmd.vy * s) * dt,
         y: state.y + (cmd.v * s + cmd.vy * c) * dt,

@@ -19,13 +19,23 @@ use crate::num::{cos, sin};
 #[derive(Debug, Clone)]
 pub struct StaticMap {
     grid: OccupancyGrid,
-    blocked: Vec<bool>,
+    /// Per cell, rows bottom-up (u = h − 1 − row): whether it blocks.
+    blocked_up: Vec<bool>,
     /// Per cell: distance (m) from the cell centre to the nearest blocked
-    /// cell's boundary, conservative (centre distance − half a cell).
-    clear: Vec<f64>,
+    /// cell's boundary, conservative (centre distance − half a cell). Rows
+    /// bottom-up with a border of one cell on every side repeating the
+    /// edge cells, so [`StaticMap::clearance`]'s blend needs neither
+    /// clamping nor row flipping for its four corners:
+    /// `pad[(u + 1) * (w + 2) + c + 1]` for u in −1..=h, c in −1..=w holds
+    /// the field at the nearest cell.
+    pad: Vec<f64>,
     res: f64,
     ox: f64,
     oy: f64,
+    /// Width and height in cells as f64 (exact): `usize as f64` is a
+    /// branchy sequence on x86-64, and `clearance` needs both every call.
+    wf: f64,
+    hf: f64,
 }
 
 impl StaticMap {
@@ -39,9 +49,10 @@ impl StaticMap {
                 origin.yaw
             )));
         }
-        let blocked: Vec<bool> = grid
-            .cells()
-            .iter()
+        // Grids are never empty (w, h ≥ 1).
+        let (w, h) = (grid.width(), grid.height());
+        let blocked_up: Vec<bool> = (0..h)
+            .flat_map(|u| &grid.cells()[(h - 1 - u) * w..(h - u) * w])
             .map(|c| match c {
                 Cell::Occupied => true,
                 Cell::Unknown => unknown_is_obstacle,
@@ -49,25 +60,46 @@ impl StaticMap {
             })
             .collect();
         let mut solid = grid.clone();
-        for (i, &b) in blocked.iter().enumerate() {
-            let (c, r) = (i % grid.width(), i / grid.width());
+        for (i, &b) in blocked_up.iter().enumerate() {
+            let (c, r) = (i % w, h - 1 - i / w);
             let cell = if b { Cell::Occupied } else { Cell::Free };
             solid
                 .set(c, r, cell)
                 .map_err(|e| WorldError::UnsupportedMap(e.to_string()))?;
         }
         let res = grid.resolution();
-        let clear = distance_field(&solid)
-            .into_iter()
-            .map(|d| (d - 0.5 * res).max(0.0))
-            .collect();
+        // In the field's own allocation (local maps are rebuilt every step,
+        // and a second large buffer a step made the allocator return and
+        // refetch memory from the system each time): rows bottom-up, the
+        // margin applied, then spread out to the padded layout.
+        let mut pad = distance_field(&solid);
+        pad.reverse();
+        for row in pad.chunks_exact_mut(w) {
+            row.reverse();
+        }
+        for d in pad.iter_mut() {
+            *d = (*d - 0.5 * res).max(0.0);
+        }
+        let row = w + 2;
+        pad.resize(row * (h + 2), 0.0);
+        // Last row first: each lands beyond every row still to move.
+        for u in (0..h).rev() {
+            let at = (u + 1) * row;
+            pad.copy_within(u * w..u * w + w, at + 1);
+            pad[at] = pad[at + 1];
+            pad[at + w + 1] = pad[at + w];
+        }
+        pad.copy_within(row..2 * row, 0);
+        pad.copy_within(h * row..(h + 1) * row, (h + 1) * row);
         Ok(Self {
+            pad,
+            blocked_up,
             res,
             ox: origin.x,
             oy: origin.y,
+            wf: grid.width() as f64,
+            hf: grid.height() as f64,
             grid,
-            blocked,
-            clear,
         })
     }
 
@@ -76,8 +108,9 @@ impl StaticMap {
     /// in the same frame — what a costmap's static layer holds.
     pub fn solid(&self) -> OccupancyGrid {
         let mut g = self.grid.clone();
-        for (i, &b) in self.blocked.iter().enumerate() {
-            let (c, r) = (i % g.width(), i / g.width());
+        let (w, h) = (g.width(), g.height());
+        for (i, &b) in self.blocked_up.iter().enumerate() {
+            let (c, r) = (i % w, h - 1 - i / w);
             // In bounds by construction.
             let _ = g.set(c, r, if b { Cell::Occupied } else { Cell::Free });
         }
@@ -106,7 +139,8 @@ impl StaticMap {
         {
             return true;
         }
-        self.blocked[row as usize * self.grid.width() + col as usize]
+        let u = self.grid.height() - 1 - row as usize;
+        self.blocked_up[u * self.grid.width() + col as usize]
     }
 
     /// The per-cell clearance field at (col, row), metres: the distance
@@ -119,7 +153,8 @@ impl StaticMap {
         {
             return 0.0;
         }
-        self.clear[row as usize * self.grid.width() + col as usize]
+        let u = self.grid.height() - 1 - row as usize;
+        self.pad[(u + 1) * (self.grid.width() + 2) + col as usize + 1]
     }
 
     /// Fractional cell coordinates of a world point (x right, y *up* from the
@@ -136,42 +171,41 @@ impl StaticMap {
     /// the exact test.
     #[inline(always)]
     pub fn clearance(&self, x: f64, y: f64) -> f64 {
-        let (w, h) = (self.grid.width(), self.grid.height());
+        let w = self.grid.width();
         let (lx, ly) = self.local(x, y);
-        if !(lx > 0.0 && ly > 0.0 && lx < w as f64 && ly < h as f64) {
+        if !(lx > 0.0 && ly > 0.0 && lx < self.wf && ly < self.hf) {
             return 0.0;
         }
         // lx, ly are positive here, so truncation is floor (no libm call on
-        // targets without SSE4.1; the values are the same). Through i64: a
+        // targets without SSE4.1; the values are the same), and below the
+        // width and height (so the cell is on the map). Through i64: a
         // signed conversion is one instruction on x86-64, an unsigned one
-        // a branchy sequence, and below `w`, `h` both give the same value.
-        let (cx, cy) = (
-            (lx as i64 as usize).min(w - 1),
-            (ly as i64 as usize).min(h - 1),
-        );
+        // a branchy sequence (so are the conversions back to f64 below,
+        // exact either way).
+        let (cx, cy) = (lx as i64, ly as i64);
         // Inside a blocked cell the distance is 0 whatever the neighbours say.
-        if self.blocked[(h - 1 - cy) * w + cx] {
+        if self.blocked_up[cy as usize * w + cx as usize] {
             return 0.0;
         }
         // No NaN reaches here (the comparisons above), and nothing is ±0, so
         // `<` picks what `f64::min` would, without its NaN handling.
         let lo = |a: f64, b: f64| if b < a { b } else { a };
-        let edge = lo(lo(lo(lx, ly), w as f64 - lx), h as f64 - ly) * self.res;
+        let edge = lo(lo(lo(lx, ly), self.wf - lx), self.hf - ly) * self.res;
         // Cell-centre lattice coordinates (u up from the bottom row). With
         // cx ≤ lx < cx + 1, fx = lx − 0.5 lies in [cx − ½, cx + ½], so its
         // floor is cx − 1 (−1 in the first half cell) below cx, else cx:
         // no second conversion.
         let (fx, fy) = (lx - 0.5, ly - 0.5);
-        let ix = cx as isize - isize::from(fx < cx as f64);
-        let iy = cy as isize - isize::from(fy < cy as f64);
+        let ix = cx - i64::from(fx < cx as f64);
+        let iy = cy - i64::from(fy < cy as f64);
         let (tx, ty) = (fx - ix as f64, fy - iy as f64);
-        let (c0, c1) = (ix.max(0) as usize, ((ix + 1) as usize).min(w - 1));
-        let (u0, u1) = (iy.max(0) as usize, ((iy + 1) as usize).min(h - 1));
-        let (r0, r1) = ((h - 1 - u0) * w, (h - 1 - u1) * w);
-        let v00 = self.clear[r0 + c0];
-        let v10 = self.clear[r0 + c1];
-        let v01 = self.clear[r1 + c0];
-        let v11 = self.clear[r1 + c1];
+        // ix ≥ −1 and iy ≥ −1: the padded field's corner (ix, iy), rows up.
+        let row = w + 2;
+        let i0 = (iy + 1) as usize * row + (ix + 1) as usize;
+        let v00 = self.pad[i0];
+        let v10 = self.pad[i0 + 1];
+        let v01 = self.pad[i0 + row];
+        let v11 = self.pad[i0 + row + 1];
         let v = (v00 * (1.0 - tx) + v10 * tx) * (1.0 - ty) + (v01 * (1.0 - tx) + v11 * tx) * ty;
         // `f64::min`: a NaN blend (an infinite field times 0) gives the edge.
         if v < edge {
@@ -296,7 +330,10 @@ mod tests {
             return 0.0;
         }
         let (cx, cy) = (lx as i64 as usize, ly as i64 as usize);
-        if m.blocked[(h - 1 - cy.min(h - 1)) * w + cx.min(w - 1)] {
+        // The per-cell arrays as they were (rows top-down, no border).
+        let blocked = |i: usize| m.is_blocked((i % w) as i64, (i / w) as i64);
+        let clear = |i: usize| m.cell_clearance((i % w) as i64, (i / w) as i64);
+        if blocked((h - 1 - cy.min(h - 1)) * w + cx.min(w - 1)) {
             return 0.0;
         }
         let edge = lx.min(ly).min(w as f64 - lx).min(h as f64 - ly) * m.res;
@@ -307,10 +344,10 @@ mod tests {
         let (c0, c1) = (ix.max(0) as usize, ((ix + 1) as usize).min(w - 1));
         let (u0, u1) = (iy.max(0) as usize, ((iy + 1) as usize).min(h - 1));
         let (r0, r1) = ((h - 1 - u0) * w, (h - 1 - u1) * w);
-        let v00 = m.clear[r0 + c0];
-        let v10 = m.clear[r0 + c1];
-        let v01 = m.clear[r1 + c0];
-        let v11 = m.clear[r1 + c1];
+        let v00 = clear(r0 + c0);
+        let v10 = clear(r0 + c1);
+        let v01 = clear(r1 + c0);
+        let v11 = clear(r1 + c1);
         let v = (v00 * (1.0 - tx) + v10 * tx) * (1.0 - ty) + (v01 * (1.0 - tx) + v11 * tx) * ty;
         v.min(edge)
     }
@@ -339,6 +376,16 @@ mod tests {
         for (g, x0, y0, side) in [(walled, -0.4, 1.15, 1.3), (open, -0.1, -0.1, 2.3)] {
             let m = StaticMap::new(g, true).unwrap();
             let res = m.res;
+            // The per-cell field and flags, against the grid they come from.
+            let w = m.grid.width();
+            let field = distance_field(&m.solid());
+            for (i, d) in field.iter().enumerate() {
+                let (c, r) = ((i % w) as i64, (i / w) as i64);
+                let want = (d - 0.5 * res).max(0.0);
+                assert_eq!(m.cell_clearance(c, r).to_bits(), want.to_bits(), "cell {i}");
+                let cell = m.grid.cells()[i];
+                assert_eq!(m.is_blocked(c, r), cell != Cell::Free, "cell {i}");
+            }
             let mut points: Vec<(f64, f64)> = (0..200_000)
                 .map(|_| (rng.range(x0, x0 + side), rng.range(y0, y0 + side)))
                 .collect();

@@ -138,6 +138,10 @@ pub struct Screen {
     rest_movers: Vec<([f64; 2], [f64; 2], f64)>,
     /// Distance from the robot within which `rest_movers` decide, m.
     rest_reach: f64,
+    /// Per chunk `q` of [`MoverCull`] in [`Self::check`] (rollout points
+    /// 8q ..): the kept movers (bits) that may be near some rollout's chunk;
+    /// [`Self::near_movers`] keeps a subset of these ([`Self::chunk_cands`]).
+    cands: Vec<u64>,
     /// Collision threshold: 0, or the current clearance when the robot
     /// already sits inside the margin (it may leave, not go deeper).
     limit: f64,
@@ -167,6 +171,7 @@ impl Screen {
             brake_steps: 0,
             all_movers: Vec::new(),
             rest_movers: Vec::new(),
+            cands: Vec::new(),
             rest_reach: -1.0,
             limit: 0.0,
             stat0: 0.0,
@@ -230,6 +235,7 @@ impl Screen {
         // a point beyond it is checked against every mover).
         self.rest_reach = v_abs * (t_total + dt) * (1.0 + 1e-6) + 1e-6;
         self.cull_rest_movers(s);
+        self.chunk_cands(s, v_abs);
     }
 
     /// Fills `rest_movers`: the movers whose predicted path
@@ -562,9 +568,14 @@ impl Screen {
         let mut probe = Probe::new(map, self, self.horizon);
         match near {
             Some(s0) => probe.since = hypot(s.x - s0.x, s.y - s0.y) * (1.0 + 1e-9) + 1e-9,
-            None => probe.last = f64::NEG_INFINITY,
+            None => {
+                probe.last = f64::NEG_INFINITY;
+                probe.free = f64::NEG_INFINITY;
+            }
         }
         let mut cull = MoverCull::new(self);
+        // `None`: above the threshold, and no mover was near.
+        let mut stat = None;
         for k in 1..=n {
             if cull.due(k - 1) {
                 // |v| never grows while braking: the next steps stay
@@ -572,7 +583,7 @@ impl Screen {
                 let steps = CULL_CHUNK.min(n + 1 - k);
                 let rho = (v.abs() * h * (1.0 + 1e-9) + 1e-9) * steps as f64;
                 let (ka, kb) = (row_of(k), row_of(k + steps - 1));
-                cull.mask = self.near_movers([st.x, st.y], rho, ka, kb);
+                cull.mask = self.near_movers([st.x, st.y], rho, ka, kb, u64::MAX);
                 cull.end = k - 1 + steps;
             }
             v = toward_zero(v, l.acc_v * h);
@@ -580,12 +591,40 @@ impl Screen {
                 Some(g) => self.turn_toward(&st, g, h),
                 None => toward_zero(w, l.acc_w * h),
             };
-            st = integrate(&st, Command { v, vy: 0.0, w }, h);
-            let stat = probe.at([st.x, st.y], v.abs() * h * (1.0 + 1e-9) + 1e-9);
+            let at = (st.x, st.y);
+            st = if v == 0.0 && w == 0.0 && st.x != 0.0 && st.y != 0.0 {
+                // At rest: `integrate` moves it by ±0, which leaves a nonzero
+                // coordinate as it is, and turns it by 0 — without its sine
+                // and cosine.
+                RobotState {
+                    theta: wrap_angle(st.theta + w * h),
+                    v,
+                    vy: 0.0,
+                    w,
+                    ..st
+                }
+            } else {
+                integrate(&st, Command { v, vy: 0.0, w }, h)
+            };
+            // Standing where the last step ended: the same static part (the
+            // probe's value stands for it either way, and only `≤ limit` is
+            // asked), without a look-up; no distance driven, so the probe
+            // need not advance.
+            let moved =
+                k == 1 || st.x.to_bits() != at.0.to_bits() || st.y.to_bits() != at.1.to_bits();
+            let mask = cull.mask();
+            if moved || stat.is_none() {
+                let len = if moved {
+                    v.abs() * h * (1.0 + 1e-9) + 1e-9
+                } else {
+                    0.0
+                };
+                stat = probe.above([st.x, st.y], len, self.limit, self.no_movers(mask));
+            }
             let row = row_of(k);
-            if self.mover_clearance_in(stat, st.x, st.y, row, self.horizon, cull.mask())
-                <= self.limit
-            {
+            if stat.is_some_and(|c| {
+                self.mover_clearance_in(c, st.x, st.y, row, self.horizon, mask) <= self.limit
+            }) {
                 return true;
             }
             // Turning on the spot moves no part of a round footprint.
@@ -756,6 +795,13 @@ impl Screen {
         best
     }
 
+    /// Whether [`Self::mover_clearance_in`] with `mask` asks no mover (its
+    /// value is then the static part).
+    #[inline(always)]
+    fn no_movers(&self, mask: Option<u64>) -> bool {
+        mask == Some(0) || self.mover_rad.is_empty()
+    }
+
     /// The kept movers (bit j: mover j; 1 ≤ movers ≤ 64) that may come
     /// within `horizon` of a footprint centred within `rho` of `c` at
     /// rollout steps `ka..=kb` (rows of the table).
@@ -767,7 +813,10 @@ impl Screen {
     /// one larger than the clearance it has, so leaving it out changes no
     /// bit. Its positions over the rows lie on the segment between rows
     /// `ka` and `kb` (constant velocity), so within their bounding box.
-    fn near_movers(&self, c: [f64; 2], rho: f64, ka: usize, kb: usize) -> u64 {
+    ///
+    /// Only the movers of `cands` are asked: the others are known to be out
+    /// of reach ([`Self::chunk_cands`]), so the mask is the same.
+    fn near_movers(&self, c: [f64; 2], rho: f64, ka: usize, kb: usize, cands: u64) -> u64 {
         let n = self.mover_rad.len();
         let all = u64::MAX >> (64 - n);
         if kb * n + n > self.mover_pos.len() {
@@ -781,7 +830,11 @@ impl Screen {
         let margin = 1e-6 + 1e-9 * (c[0].abs() + c[1].abs());
         let base = rho + self.horizon + self.r_eff + margin;
         let mut mask = 0u64;
-        for (j, ((pa, pb), &r)) in a.iter().zip(b).zip(&self.mover_rad).enumerate() {
+        let mut bits = cands & all;
+        while bits != 0 {
+            let j = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            let (pa, pb, r) = (&a[j], &b[j], self.mover_rad[j]);
             let gx = (pa[0].min(pb[0]) - c[0])
                 .max(c[0] - pa[0].max(pb[0]))
                 .max(0.0);
@@ -797,6 +850,39 @@ impl Screen {
             }
         }
         mask
+    }
+
+    /// Fills `cands` for rollouts from `s` at speeds up to `v_abs`. Chunk q
+    /// starts at rollout point i = 8q: its centre (the point before) lies
+    /// within R = i·L of `s`, L bounding a step's length as
+    /// [`Self::check`] does, and its reach is at most 8·(L + 1e-9). A mover
+    /// farther from `s`, over the chunk's rows (a box holding every
+    /// shorter chunk's), than R + reach + horizon + r_eff + its radius, plus
+    /// [`Self::near_movers`]' margin at the farthest such centre and 1e-6
+    /// for rounding, is farther than `near_movers`' reach from every
+    /// centre, so it never enters a rollout's mask.
+    fn chunk_cands(&mut self, s: &RobotState, v_abs: f64) {
+        self.cands.clear();
+        let n = self.mover_rad.len();
+        if !(1..=64).contains(&n) {
+            return;
+        }
+        let rows = self.mover_rows();
+        let longest = self.steps.max(self.va_steps).max(self.brake_steps);
+        let len = v_abs * self.h * (1.0 + 1e-9);
+        let c = [s.x, s.y];
+        let mut i = 0;
+        while i < longest && i + 1 < rows {
+            let kb = (i + CULL_CHUNK).min(rows - 1);
+            let far = i as f64 * len * (1.0 + 1e-9);
+            let rho = CULL_CHUNK as f64 * (len + 1e-9) * (1.0 + 1e-9);
+            let margin = 1e-6 + 1e-9 * (c[0].abs() + c[1].abs() + 2.0 * far);
+            let reach = far + rho + margin + 1e-6;
+            // near_movers' own test from `s`, `reach` for its ρ.
+            self.cands
+                .push(self.near_movers(c, reach, i + 1, kb, u64::MAX));
+            i += CULL_CHUNK;
+        }
     }
 
     /// Starts a new chunk of [`MoverCull`] at rollout point `i` of
@@ -818,7 +904,12 @@ impl Screen {
             for j in i..end {
                 rho += step_len(j) + 1e-9;
             }
-            cull.mask = self.near_movers(c, rho, i + 1, end);
+            // Chunks start every CULL_CHUNK points from the robot's state.
+            let cands = match i % CULL_CHUNK {
+                0 => self.cands.get(i / CULL_CHUNK).copied().unwrap_or(u64::MAX),
+                _ => u64::MAX,
+            };
+            cull.mask = self.near_movers(c, rho, i + 1, end, cands);
             cull.end = end;
         }
     }
@@ -867,12 +958,24 @@ impl MoverCull {
 /// horizon + a cell, the point's value is above the horizon and every
 /// decision (capped critic, V_a, collision) is the same as with the exact
 /// value.
+///
+/// Where only comparisons with a floor are asked of the point's value and
+/// no mover is near ([`Probe::above`]), the same bound spares look-ups
+/// above that floor; the jump at blocked cells is left out of it within
+/// `free` of the last look-up, where no point lies in a blocked cell or
+/// off the map (the field exceeds the distance to them by under a cell:
+/// ≤ 0.21 cell in the blend at the nearest blocked centre, ≤ 0.71 between
+/// that centre and its cell's boundary).
 struct Probe<'a> {
     map: &'a StaticMap,
     r_eff: f64,
     slack: f64,
     skip_above: f64,
+    /// A cell, m: the field's jump at blocked-cell borders.
+    cell: f64,
     last: f64,
+    /// The map clearance at the last look-up less a cell and a margin.
+    free: f64,
     since: f64,
 }
 
@@ -883,13 +986,16 @@ impl<'a> Probe<'a> {
             r_eff: screen.r_eff,
             slack: screen.slack,
             skip_above: horizon + map.grid().resolution(),
+            cell: map.grid().resolution(),
             last: screen.stat0,
+            free: screen.stat0 + screen.r_eff + screen.slack - map.grid().resolution() - 1e-9,
             since: 0.0,
         }
     }
 
     /// The static clearance (minus the footprint) at `p`, reached after a
-    /// step of at most `step_len` m.
+    /// step of at most `step_len` m. (`free` is not kept: a probe uses this
+    /// or [`Self::above`], not both.)
     #[inline(always)]
     fn at(&mut self, p: [f64; 2], step_len: f64) -> f64 {
         self.since += step_len;
@@ -900,5 +1006,153 @@ impl<'a> Probe<'a> {
             self.since = 0.0;
             self.last
         }
+    }
+
+    /// As [`Self::at`] — or, with `alone` (no mover to compare the value
+    /// with), `None` when it is surely above `floor`.
+    #[inline(always)]
+    fn above(&mut self, p: [f64; 2], step_len: f64, floor: f64, alone: bool) -> Option<f64> {
+        self.since += step_len;
+        let b = self.last - std::f64::consts::SQRT_2 * self.since;
+        if b > self.skip_above {
+            return Some(self.skip_above);
+        }
+        if alone {
+            let jump = if self.since < self.free {
+                0.0
+            } else {
+                self.cell
+            };
+            if b - jump - 1e-9 >= floor {
+                return None;
+            }
+        }
+        let c = self.map.clearance(p[0], p[1]);
+        self.last = c - self.r_eff - self.slack;
+        self.free = c - self.cell - 1e-9;
+        self.since = 0.0;
+        Some(self.last)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::generator::{DynamicWindow, TrajectoryGenerator, WindowRequest};
+    use super::*;
+    use crate::local::testkit;
+    use crate::num::Rng;
+
+    fn walled() -> StaticMap {
+        let mut ascii = "#".repeat(60) + "\n";
+        for r in 0..38 {
+            let inner: String = (0..58)
+                .map(|c| {
+                    let block = (r == 12 || r == 25) && (10..30).contains(&c);
+                    if block || (c == 40 && (5..20).contains(&r)) {
+                        '#'
+                    } else {
+                        '.'
+                    }
+                })
+                .collect();
+            ascii += &format!("#{inner}#\n");
+        }
+        ascii += &"#".repeat(60);
+        testkit::map(&ascii, 0.1)
+    }
+
+    /// Every rollout of a cycle judged with the per-chunk candidates and
+    /// with every kept mover asked: the same verdict and the same
+    /// clearance, bit for bit.
+    #[test]
+    fn chunk_candidates_change_no_verdict_and_no_bit() {
+        let map = walled();
+        let robot = RobotSpec::default();
+        let cfg = ScreenConfig {
+            dist_cap: 1.0,
+            safety_margin: 0.05,
+            predict_movers: true,
+            admissible_window: true,
+            rotate_in_place: true,
+            emergency: None,
+        };
+        let mut rng = Rng::new(29);
+        let mut kept_out = 0u32;
+        for scene in 0..60 {
+            let movers: Vec<ObservedMover> = (0..2 + scene % 30)
+                .map(|id| ObservedMover {
+                    id,
+                    pos: [rng.range(0.3, 5.7), rng.range(0.3, 3.7)],
+                    vel: [rng.range(-0.8, 0.8), rng.range(-0.8, 0.8)],
+                    radius: rng.range(0.05, 0.4),
+                })
+                .collect();
+            let s = RobotState {
+                x: rng.range(1.0, 5.0),
+                y: rng.range(0.5, 3.5),
+                theta: rng.range(-3.1, 3.1),
+                v: rng.range(0.0, 1.0),
+                w: rng.range(-0.5, 0.5),
+                ..Default::default()
+            };
+            let mut gen =
+                DynamicWindow::new(robot.limits, (0.05, 0.05), (7, 11), (3.0, 0.1), false);
+            let mut obs = testkit::observation(&s, [5.5, 2.0], &map);
+            obs.movers = &movers;
+            let req = WindowRequest {
+                dt: 0.1,
+                hold_v: None,
+                braking: scene % 2 == 0,
+            };
+            let mut samples = Vec::new();
+            let window = gen.samples(&obs, &req, &mut samples);
+            let mut screen = Screen::new(cfg, &robot, gen.horizon());
+            screen.prepare(&obs, &window, 0.1);
+            let mut all = screen.clone();
+            all.cands.clear();
+            let n = screen.kept_movers();
+            kept_out += screen
+                .cands
+                .iter()
+                .map(|c| (u64::MAX >> (64 - n.clamp(1, 64))).count_ones() - c.count_ones())
+                .sum::<u32>();
+            let mut traj = Trajectory::default();
+            for sample in samples {
+                gen.rollout(&obs, sample, screen.steps_for(&sample), &mut traj);
+                let mut again = traj.clone();
+                let (a, b) = (screen.check(&obs, &mut traj), all.check(&obs, &mut again));
+                assert_eq!(a, b, "scene {scene} {sample:?}");
+                assert_eq!(traj.min_clearance.to_bits(), again.min_clearance.to_bits());
+            }
+        }
+        assert!(kept_out > 100, "{kept_out}");
+    }
+
+    /// [`Probe`]'s bound: the static clearance at a point is above its
+    /// value at an earlier one less √2 times the distance between them,
+    /// and less a cell unless the point is closer to the earlier one than
+    /// that one's clearance less a cell.
+    #[test]
+    fn the_clearance_field_keeps_the_probe_s_bound() {
+        let map = walled();
+        let mut rng = Rng::new(3);
+        let res = map.grid().resolution();
+        let mut near = 0;
+        for _ in 0..400_000 {
+            let q = [rng.range(-0.2, 6.2), rng.range(-0.2, 4.2)];
+            let len = rng.range(0.0, 1.0) * rng.uniform();
+            let a = rng.range(0.0, std::f64::consts::TAU);
+            let p = [
+                q[0] + len * crate::num::cos(a),
+                q[1] + len * crate::num::sin(a),
+            ];
+            let (cq, cp) = (map.clearance(q[0], q[1]), map.clearance(p[0], p[1]));
+            let since = len * (1.0 + 1e-9);
+            let jump = if since < cq - res - 1e-9 { 0.0 } else { res };
+            near += usize::from(jump == 0.0 && cp < cq);
+            let bound = cq - std::f64::consts::SQRT_2 * since - jump - 1e-9;
+            assert!(cp > bound, "{q:?} -> {p:?}: {cp} vs {bound}");
+        }
+        assert!(near > 10_000, "{near}");
     }
 }
