@@ -360,11 +360,7 @@ mod tests {
 
     #[test]
     fn dijkstra_expands_more_than_astar_for_the_same_cost() {
-        let text = (0..20)
-            .map(|_| ".".repeat(20))
-            .collect::<Vec<_>>()
-            .join("\n");
-        let g = grid(&text);
+        let g = PlanGrid::from_fn(20, 20, |_, _| true);
         let (a, b) = (GridPos::new(0, 0), GridPos::new(19, 7));
         let astar = AStar::default().plan(&g, a, b).unwrap();
         let dijkstra = AStar::dijkstra(Diagonal::NoCornerCutting)

@@ -85,11 +85,9 @@ pub(crate) fn neighbour_bits(free: &[bool], stride: usize) -> Vec<u8> {
 /// Updates the neighbour bits around padded cell `i` after it became
 /// passable (`free`) or blocked.
 pub(crate) fn set_neighbour_bit(bits: &mut [u8], i: usize, stride: usize, free: bool) {
-    for k in 0..DIRS.len() {
-        // The cell one move `k` away sees `i` one move back, i.e. as the
-        // direction with both offsets negated: index k ^ 1 for straight
-        // moves, 7 − (k − 4) for diagonal ones.
-        let back = if k < 4 { k ^ 1 } else { 11 - k };
+    for (k, &(dx, dy)) in DIRS.iter().enumerate() {
+        // The cell one move `k` away sees `i` one move back.
+        let back = dir_index(-dx, -dy);
         let j = i.wrapping_add_signed(dir_offset(k, stride));
         if let Some(b) = bits.get_mut(j) {
             if free {

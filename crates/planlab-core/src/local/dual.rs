@@ -476,18 +476,7 @@ mod tests {
     }
 
     fn obs<'a>(s: &'a RobotState, map: &'a StaticMap) -> Observation<'a> {
-        Observation {
-            time: 0.0,
-            dt: 0.1,
-            state: s,
-            goal: GOAL,
-            map,
-            map_revision: 0,
-            scan: None,
-            movers: &[],
-            odometry: None,
-            accel_z: 0.0,
-        }
+        testkit::observation(s, GOAL, map)
     }
 
     #[test]

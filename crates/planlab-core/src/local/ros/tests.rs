@@ -44,18 +44,7 @@ fn state(x: f64, y: f64, theta: f64, v: f64) -> RobotState {
 }
 
 fn obs<'a>(map: &'a StaticMap, s: &'a RobotState, goal: [f64; 2]) -> Observation<'a> {
-    Observation {
-        time: 0.0,
-        dt: 0.1,
-        state: s,
-        goal,
-        map,
-        map_revision: 0,
-        scan: None,
-        movers: &[],
-        odometry: None,
-        accel_z: 0.0,
-    }
+    testkit::observation(s, goal, map)
 }
 
 fn ctx<'a>(
