@@ -189,15 +189,15 @@ fn run<E: Estimate, const RULE: u8, O: SearchObserver + ?Sized>(
     let tag = space.open_word(0, 0);
     let SearchSpace {
         words,
-        radix,
+        buckets,
         binary,
         ..
     } = &mut *space;
     // Weighted cells get their own copy of the loop, so unit grids pay
     // nothing for them.
     let (reached, expanded) = match (E::MONOTONE, grid.is_weighted()) {
-        (true, false) => search::<E, RULE, _, O, false>(grid, s, t, words, radix, tag, est, obs),
-        (true, true) => search::<E, RULE, _, O, true>(grid, s, t, words, radix, tag, est, obs),
+        (true, false) => search::<E, RULE, _, O, false>(grid, s, t, words, buckets, tag, est, obs),
+        (true, true) => search::<E, RULE, _, O, true>(grid, s, t, words, buckets, tag, est, obs),
         (false, false) => search::<E, RULE, _, O, false>(grid, s, t, words, binary, tag, est, obs),
         (false, true) => search::<E, RULE, _, O, true>(grid, s, t, words, binary, tag, est, obs),
     };

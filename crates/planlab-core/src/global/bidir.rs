@@ -119,13 +119,13 @@ fn run<E: Estimate, O: SearchObserver + ?Sized>(
     let tag = space.tag;
     let PairSpace {
         words,
-        radix,
+        buckets,
         binary,
         ..
     } = &mut *space;
     let ends = (s, t);
     let (meet, expanded) = if E::MONOTONE {
-        Bidir::new(grid, ends, words, radix, tag, est, obs, rule).run()
+        Bidir::new(grid, ends, words, buckets, tag, est, obs, rule).run()
     } else {
         Bidir::new(grid, ends, words, binary, tag, est, obs, rule).run()
     };

@@ -95,11 +95,11 @@ impl OpenOrder {
         // A* and JPS take their fixed-point bucket queue for the two
         // consistent estimates they special-case, their heap otherwise
         // (astar.rs `AStar::search`, jps.rs).
-        let radix = |h: Heuristic, weight: f64| {
+        let bucketed = |h: Heuristic, weight: f64| {
             matches!(h, Heuristic::Zero) || (h == Heuristic::Octile && weight == 1.0)
         };
         let fixed = |weight: f64, h: Heuristic| {
-            let ties = if radix(h, weight) {
+            let ties = if bucketed(h, weight) {
                 Ties::LatestOpened
             } else {
                 Ties::CoarseDeeperLaterCell

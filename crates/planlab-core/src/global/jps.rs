@@ -503,12 +503,12 @@ fn run<E: Estimate, O: SearchObserver + ?Sized>(
     let (s, t) = (grid.padded_index(start), grid.padded_index(goal));
     let SearchSpace {
         words,
-        radix,
+        buckets,
         binary,
         ..
     } = &mut *space;
     let (reached, expanded) = if E::MONOTONE {
-        search(grid, s, t, words, radix, tag, est, obs)
+        search(grid, s, t, words, buckets, tag, est, obs)
     } else {
         search(grid, s, t, words, binary, tag, est, obs)
     };

@@ -384,7 +384,7 @@ pub(crate) struct SearchSpace {
     /// `tag << TAG_SHIFT` of the current search.
     pub tag: u64,
     /// Open list for monotone searches.
-    pub radix: BucketQueue,
+    pub buckets: BucketQueue,
     /// Open list for the others (weighted or inconsistent heuristics).
     pub binary: BinaryQueue,
 }
@@ -396,7 +396,7 @@ impl SearchSpace {
         if self.words.len() < cells {
             self.words.resize(cells, u64::MAX);
         }
-        self.radix.reset(span);
+        self.buckets.reset(span);
         self.binary.clear();
         self.tag = next_tag(self.tag, || self.words.fill(u64::MAX));
     }
@@ -440,7 +440,7 @@ pub(crate) struct PairSpace {
     /// `tag << TAG_SHIFT` of the current search.
     pub tag: u64,
     /// Open lists for monotone searches, forward and backward.
-    pub radix: [BucketQueue; 2],
+    pub buckets: [BucketQueue; 2],
     /// Open lists for the others.
     pub binary: [BinaryQueue; 2],
 }
@@ -452,7 +452,7 @@ impl PairSpace {
             self.words.resize(cells, [u64::MAX; 2]);
         }
         // Keys are 2g + h − h': a move adds at most four times its cost.
-        self.radix
+        self.buckets
             .iter_mut()
             .for_each(|q| q.reset(2 * DEFAULT_SPAN));
         self.binary.iter_mut().for_each(OpenList::clear);
