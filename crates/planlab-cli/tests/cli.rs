@@ -242,6 +242,49 @@ fn bench_grid_takes_paths_shorter_than_the_8_connected_optimum() {
     );
 }
 
+/// JPS+ on arena: every row at the optimum through `scen`, and `bench grid`
+/// times its queries apart from building its table (`setup_ms`), with the
+/// expansions of JPS (the same jump points).
+#[test]
+fn jps_plus_solves_every_arena_row_and_bench_grid_reports_its_table_apart() {
+    let (map, scen) = (
+        data("movingai/dao/arena.map"),
+        data("movingai/dao/arena.map.scen"),
+    );
+    let o = planlab(&["scen", s(&map), s(&scen), "--algo", "jps-plus", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let v: Value = serde_json::from_str(out.lines().last().unwrap()).unwrap();
+    assert_eq!(
+        (v["mismatches"].as_u64(), v["rows"].as_u64()),
+        (Some(0), Some(160)),
+        "{v}"
+    );
+    let o = planlab(&[
+        "bench",
+        "grid",
+        s(&map),
+        s(&scen),
+        "--reps",
+        "1",
+        "--algo",
+        "jps-plus",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    let rows = v["planners"].as_array().unwrap();
+    assert_eq!(rows.len(), 1, "{v}");
+    let plus = &rows[0];
+    assert_eq!(plus["algo"], "jps-plus");
+    assert_eq!(plus["solved"], plus["rows"]);
+    assert!(
+        (plus["cost_ratio"].as_f64().unwrap() - 1.0).abs() < 1e-3,
+        "{plus}"
+    );
+    assert!(plus["setup_ms"].as_f64().unwrap() > 0.0, "{plus}");
+    assert!(plus["ms"].as_f64().unwrap() > 0.0, "{plus}");
+}
+
 #[test]
 fn plan_uses_a_scenarios_endpoints_and_options_and_flags_override_them() {
     let demo = repo("assets/scenarios/grid-demo.json");

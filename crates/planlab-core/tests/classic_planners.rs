@@ -444,7 +444,7 @@ const NEW: [Algorithm; 6] = [
 
 #[test]
 fn every_algorithm_has_a_name_reference_and_summary() {
-    assert_eq!(Algorithm::ALL.len(), 10);
+    assert_eq!(Algorithm::ALL.len(), 11);
     for (a, name) in Algorithm::ALL {
         assert_eq!(name.parse::<Algorithm>().unwrap(), a);
         assert_eq!(serde_json::to_string(&a).unwrap(), format!("\"{name}\""));

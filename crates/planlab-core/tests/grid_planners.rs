@@ -84,12 +84,21 @@ fn check_benchmark(map: &str, scen: &str) {
     let grid = PlanGrid::new(&parse_map(&read(map)).unwrap(), false);
     let rows = parse_scen(&read(scen)).unwrap();
     assert!(rows.len() > 100, "{scen} has only {} rows", rows.len());
-    let planners: [(&str, &dyn GridPlanner); 2] =
-        [("A*", &AStar::default()), ("JPS", &Jps::default())];
+    let plus = Jps::new(JpsConfig {
+        preprocess: true,
+        ..JpsConfig::default()
+    })
+    .unwrap();
+    let planners: [(&str, &dyn GridPlanner); 3] = [
+        ("A*", &AStar::default()),
+        ("JPS", &Jps::default()),
+        ("JPS+", &plus),
+    ];
     let mut failures = Vec::new();
     let mut jps_expanded = 0usize;
     let mut astar_expanded = 0usize;
     for (k, row) in rows.iter().enumerate() {
+        let mut jps_row = None;
         for (name, planner) in planners {
             match planner.plan(&grid, row.start, row.goal) {
                 Ok(path) => {
@@ -103,10 +112,22 @@ fn check_benchmark(map: &str, scen: &str) {
                     if let Some(why) = illegal(&grid, &path, row.start, row.goal, NCC) {
                         failures.push(format!("row {k} {name}: {why}"));
                     }
-                    if name == "JPS" {
-                        jps_expanded += path.expanded;
-                    } else {
-                        astar_expanded += path.expanded;
+                    match name {
+                        "JPS" => {
+                            jps_expanded += path.expanded;
+                            jps_row = Some(path);
+                        }
+                        // JPS+ reads JPS's jumps from a table: the same
+                        // jump points, the same path.
+                        "JPS+" => {
+                            let same = jps_row.as_ref().is_some_and(|j| {
+                                j.expanded == path.expanded && j.cells == path.cells
+                            });
+                            if !same {
+                                failures.push(format!("row {k} JPS+: differs from JPS"));
+                            }
+                        }
+                        _ => astar_expanded += path.expanded,
                     }
                 }
                 Err(e) => failures.push(format!("row {k} {name}: {e}")),
@@ -297,9 +318,11 @@ proptest! {
         check_optimal("A*", &grid, q, NCC, AStar::default().plan(&grid, start, goal), best)?;
         check_optimal("Dijkstra", &grid, q, NCC, AStar::dijkstra(NCC).plan(&grid, start, goal), best)?;
         check_optimal("JPS", &grid, q, NCC, Jps::default().plan(&grid, start, goal), best)?;
+        let plus = Jps::new(JpsConfig { preprocess: true, ..JpsConfig::default() }).unwrap();
+        check_optimal("JPS+", &grid, q, NCC, plus.plan(&grid, start, goal), best)?;
         for h in [Heuristic::Euclidean, Heuristic::Chebyshev, Heuristic::Zero] {
             check_optimal("A* admissible", &grid, q, NCC, astar(h, 1.0, NCC).plan(&grid, start, goal), best)?;
-            let jps = Jps::new(JpsConfig { heuristic: h, diagonal: NCC }).unwrap();
+            let jps = Jps::new(JpsConfig { heuristic: h, ..JpsConfig::default() }).unwrap();
             check_optimal("JPS admissible", &grid, q, NCC, jps.plan(&grid, start, goal), best)?;
         }
     }

@@ -18,7 +18,7 @@ def rows_of(map_path, every=1):
     return rows[::every]
 
 
-@pytest.mark.parametrize("algo", ["astar", "jps", "dijkstra"])
+@pytest.mark.parametrize("algo", ["astar", "jps", "jps-plus", "dijkstra"])
 def test_costs_equal_the_moving_ai_optimum_on_arena(algo):
     grid = planlab.load_map(ARENA)
     rows = rows_of(ARENA)
@@ -32,9 +32,23 @@ def test_costs_equal_the_moving_ai_optimum_on_arena(algo):
         assert tuple(path[0]) == start and tuple(path[-1]) == goal
         # Every step is one of the 8 moves, onto a free cell.
         steps = np.abs(np.diff(path, axis=0))
-        if algo != "jps":
+        if algo not in ("jps", "jps-plus"):
             assert steps.max() <= 1
         assert not grid.occupancy[path[:, 1], path[:, 0]].any()
+
+
+def test_jps_plus_returns_jps_paths_and_refuses_four_connected_moves():
+    grid = planlab.load_map(ARENA)
+    assert "jps-plus" in planlab.algorithms()
+    for r in rows_of(ARENA, every=7):
+        start, goal = (int(r[0]), int(r[1])), (int(r[2]), int(r[3]))
+        jps = planlab.plan(grid, start, goal, algo="jps")
+        plus = planlab.plan(grid, start, goal, algo="jps-plus")
+        assert plus["path"].tolist() == jps["path"].tolist()
+        assert plus["expanded"] == jps["expanded"]
+        assert plus["cost"] == jps["cost"]
+    with pytest.raises(planlab.ParamError, match="no_corner_cutting"):
+        planlab.plan(grid, (1, 10), (10, 10), algo="jps-plus", diagonal="never")
 
 
 @pytest.mark.parametrize("map_path", [MAZE, RANDOM])

@@ -21,7 +21,12 @@ mod tests {
     #[test]
     fn solves_every_row_to_the_scenario_optimum() {
         let map = movingai::parse_map(ARENA).unwrap();
-        for algorithm in [Algorithm::AStar, Algorithm::Dijkstra, Algorithm::Jps] {
+        for algorithm in [
+            Algorithm::AStar,
+            Algorithm::Dijkstra,
+            Algorithm::Jps,
+            Algorithm::JpsPlus,
+        ] {
             let options = GridPlanOptions {
                 algorithm,
                 ..Default::default()

@@ -89,6 +89,18 @@ const CODE: Record<string, CodeLine[]> = {
     ['      g(j) ← g(n) + |n j|;  parent(j) ← n;  put j in open', 'open'],
     ['return "no path"'],
   ],
+  'jps-plus': [
+    ['table ← every cell\'s jump distance in each of the 8 directions (once per map)', 'start'],
+    ['open ← {start};  g(start) ← 0', 'start'],
+    ['while open is not empty:'],
+    ['  n ← take the open cell with the lowest f = g + h', 'expand'],
+    ['  if n = goal: return the jump points joined by straight runs'],
+    ['  for each direction d the move into n leaves open (pruned):'],
+    ['    j ← the cell table(n, d) steps away (or the goal, if nearer)', 'line'],
+    ['    if j is a jump point and g(n) + |n j| < g(j):'],
+    ['      g(j) ← g(n) + |n j|;  parent(j) ← n;  put j in open', 'open'],
+    ['return "no path"'],
+  ],
   'theta-star': [
     ['open ← {start};  g(start) ← 0', 'start'],
     ['while open is not empty:'],

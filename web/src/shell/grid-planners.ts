@@ -9,6 +9,7 @@ export const GRID_PLANNERS: { name: string; label: string }[] = [
   { name: 'bidirectional-astar', label: 'Bidirectional A*' },
   { name: 'ida-star', label: 'IDA*' },
   { name: 'jps', label: 'Jump Point Search' },
+  { name: 'jps-plus', label: 'JPS+ (precomputed jumps)' },
   { name: 'theta-star', label: 'Theta* (any-angle)' },
   { name: 'dstar-lite', label: 'D* Lite (incremental)' },
   { name: 'safe-astar', label: 'Safe A* (Ge & Li)' },

@@ -109,10 +109,11 @@ impl OpenOrder {
         match options.algorithm {
             Algorithm::AStar => fixed(w, options.heuristic),
             Algorithm::Dijkstra => fixed(1.0, Heuristic::Zero),
-            Algorithm::Jps if options.diagonal == Diagonal::Never => {
+            Algorithm::Jps | Algorithm::JpsPlus if options.diagonal == Diagonal::Never => {
                 OpenOrder::full(Priority::F { weight: 1.0 }, Ties::DeeperEarlierCell)
             }
             Algorithm::Jps => fixed(1.0, options.heuristic),
+            Algorithm::JpsPlus => fixed(1.0, Heuristic::Octile),
             Algorithm::ThetaStar => {
                 OpenOrder::full(Priority::F { weight: 1.0 }, Ties::DeeperEarlierCell)
             }
@@ -217,6 +218,7 @@ impl Algorithm {
             Algorithm::AStar => (true, false, false, "finds a shortest path (with the octile heuristic and weight 1; a weight w > 1 gives up to w times longer); always finds a path if one exists; moves along the grid; not incremental"),
             Algorithm::Dijkstra => (true, false, false, "finds a shortest path; always finds a path if one exists; moves along the grid; not incremental"),
             Algorithm::Jps => (true, false, false, "finds a shortest path (the same cost as A*); always finds a path if one exists; moves along the grid, jumping over straight runs; not incremental"),
+            Algorithm::JpsPlus => (true, false, false, "finds a shortest path (the same path as JPS); always finds a path if one exists; moves along the grid, jumping over straight runs by precomputed distances; not incremental (the table is rebuilt after an edit)"),
             Algorithm::SafeAStar => (true, false, false, "not the shortest: trades length for distance from walls; always finds a path if one exists; moves from grid cell to grid cell, up to two cells at a time (24 directions); not incremental"),
             Algorithm::Bfs => (true, false, false, "fewest moves, which is the shortest path only without diagonals; always finds a path if one exists; moves along the grid; not incremental"),
             Algorithm::Greedy => (true, false, false, "not the shortest: follows the estimate alone; always finds a path if one exists (each cell is expanded at most once); moves along the grid; not incremental"),

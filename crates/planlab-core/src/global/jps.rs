@@ -33,6 +33,7 @@
 
 use super::classic::jps4;
 use super::events::emit;
+use super::jump_table::JumpTable;
 use super::search::{
     cells, check_size, dir_index, finish, improves, trivial_path, with_space, xy, Estimate,
     FixedHeuristic, LineBits, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DEFAULT_SPAN,
@@ -50,6 +51,14 @@ pub struct JpsConfig {
     /// Diagonal rule: [`Diagonal::NoCornerCutting`] (the default) or
     /// [`Diagonal::Never`].
     pub diagonal: Diagonal,
+    /// JPS+: read jump distances from a table built on the grid's first
+    /// such query and kept with it (dropped by an edit), instead of scanning
+    /// (see [`super::jump_table`]). The same jump points and paths; faster
+    /// where many queries share a map. Only with
+    /// [`Diagonal::NoCornerCutting`] and the octile heuristic (exact on an
+    /// open 8-connected grid; one compiled search keeps the web modules
+    /// small).
+    pub preprocess: bool,
 }
 
 impl Default for JpsConfig {
@@ -57,6 +66,7 @@ impl Default for JpsConfig {
         Self {
             heuristic: Heuristic::Octile,
             diagonal: Diagonal::NoCornerCutting,
+            preprocess: false,
         }
     }
 }
@@ -77,6 +87,19 @@ impl Jps {
                 "jump point search supports the no_corner_cutting and never diagonal rules, \
                  not {:?}; use A* for moves that cut corners",
                 config.diagonal
+            )));
+        }
+        if config.preprocess && config.diagonal != Diagonal::NoCornerCutting {
+            return Err(PlanError::InvalidConfig(format!(
+                "the JPS+ jump table is built for the no_corner_cutting diagonal rule, not {:?}; \
+                 use jps",
+                config.diagonal
+            )));
+        }
+        if config.preprocess && config.heuristic != Heuristic::Octile {
+            return Err(PlanError::InvalidConfig(format!(
+                "JPS+ searches with the octile heuristic, not {:?}; use jps for other estimates",
+                config.heuristic
             )));
         }
         Ok(Self { config })
@@ -117,11 +140,23 @@ impl Jps {
         if start == goal {
             return Ok(trivial_path(start));
         }
-        let heuristic = self.config.heuristic;
-        with_space(|space| match heuristic {
-            Heuristic::Octile => run(grid, start, goal, space, obs, OctileEstimate),
-            Heuristic::Zero => run(grid, start, goal, space, obs, ZeroEstimate),
-            h => run(grid, start, goal, space, obs, FixedHeuristic::new(h, 1.0)),
+        let ends = (start, goal);
+        let stride = grid.stride();
+        if self.config.preprocess {
+            JumpTable::check(grid)?;
+            let table = grid.jump_table();
+            let scans = AnyScans::Table(TableScans { table, stride });
+            return with_space(|space| run(grid, ends, space, obs, OctileEstimate, scans));
+        }
+        let scans = AnyScans::Lines(LineScans {
+            lines: grid.lines(),
+            free: grid.padded(),
+            stride,
+        });
+        with_space(|space| match self.config.heuristic {
+            Heuristic::Octile => run(grid, ends, space, obs, OctileEstimate, scans),
+            Heuristic::Zero => run(grid, ends, space, obs, ZeroEstimate, scans),
+            h => run(grid, ends, space, obs, FixedHeuristic::new(h, 1.0), scans),
         })
     }
 }
@@ -129,10 +164,196 @@ impl Jps {
 const CORNERS: bool = true;
 const MARK_EVERY: usize = 8;
 
-/// Read-only view of the grid for jumping.
-struct Jumper<'a> {
-    free: &'a [bool],
+/// How a search finds where jumps stop: by scanning the bit-packed lines
+/// (online JPS, [`LineScans`]) or by reading the precomputed distances of
+/// JPS+ ([`TableScans`]). Both stop at the same cells, so the two searches
+/// expand the same jump points and return the same paths.
+trait Scans {
+    /// Straight jump along row `y` from column `x` (towards `dx`): the
+    /// column of the first jump point, or of `target` if it comes first;
+    /// `None` when the jump runs into an obstacle.
+    fn horizontal(&self, x: usize, y: usize, dx: isize, target: usize) -> Option<usize>;
+    /// As [`Scans::horizontal`], along column `x` from row `y`.
+    fn vertical(&self, x: usize, y: usize, dy: isize, target: usize) -> Option<usize>;
+    /// Diagonal jump from padded cell `i` = `(x, y)` along `(DX, DY)`: `Ok(k)`
+    /// when the `k`-th step (k ≥ 1) is a cell where the straight scans must
+    /// run (it may be a jump point, or in the goal's row or column), `Err(k)`
+    /// when the move after `k` free steps is illegal and nothing before it
+    /// needs a look. One step at a time online; whole runs with the table.
+    fn diagonal_run<const DX: isize, const DY: isize>(
+        &self,
+        i: usize,
+        x: usize,
+        y: usize,
+        goal: (usize, usize),
+    ) -> Result<usize, usize>;
+}
+
+/// Online JPS: scans over [`LineBits`], 64 cells a word.
+struct LineScans<'a> {
     lines: &'a LineBits,
+    free: &'a [bool],
+    stride: usize,
+}
+
+impl Scans for LineScans<'_> {
+    #[inline(always)]
+    fn horizontal(&self, x: usize, y: usize, dx: isize, target: usize) -> Option<usize> {
+        if dx > 0 {
+            self.lines.rows.jump_forward(y, x, target)
+        } else {
+            self.lines.rows.jump_backward(y, x, target)
+        }
+    }
+
+    #[inline(always)]
+    fn vertical(&self, x: usize, y: usize, dy: isize, target: usize) -> Option<usize> {
+        if dy > 0 {
+            self.lines.cols.jump_forward(x, y, target)
+        } else {
+            self.lines.cols.jump_backward(x, y, target)
+        }
+    }
+
+    #[inline(always)]
+    fn diagonal_run<const DX: isize, const DY: isize>(
+        &self,
+        i: usize,
+        _: usize,
+        _: usize,
+        _: (usize, usize),
+    ) -> Result<usize, usize> {
+        let free = |i: usize| self.free.get(i).copied().unwrap_or(false);
+        let side_x = i.wrapping_add_signed(DX);
+        let side_y = i.wrapping_add_signed(DY * self.stride as isize);
+        if free(side_x) && free(side_y) && free(side_y.wrapping_add_signed(DX)) {
+            Ok(1)
+        } else {
+            Err(0)
+        }
+    }
+}
+
+/// JPS+: the jump distances of a [`JumpTable`].
+struct TableScans<'a> {
+    table: &'a JumpTable,
+    stride: usize,
+}
+
+impl TableScans<'_> {
+    /// The straight jump from `pos` along a line towards `d` (±1) whose
+    /// table entry is `e`, with the goal at `target` on that line.
+    #[inline(always)]
+    fn straight(pos: usize, d: isize, e: i16, target: usize) -> Option<usize> {
+        let stop = pos.wrapping_add_signed(d * e.unsigned_abs() as isize);
+        let before = if d > 0 {
+            target > pos && target < stop
+        } else {
+            target < pos && target > stop
+        };
+        if before {
+            Some(target)
+        } else if e > 0 {
+            Some(stop)
+        } else {
+            None
+        }
+    }
+}
+
+impl Scans for TableScans<'_> {
+    #[inline(always)]
+    fn horizontal(&self, x: usize, y: usize, dx: isize, target: usize) -> Option<usize> {
+        let e = self.table.get(y * self.stride + x, (dx < 0) as usize);
+        Self::straight(x, dx, e, target)
+    }
+
+    #[inline(always)]
+    fn vertical(&self, x: usize, y: usize, dy: isize, target: usize) -> Option<usize> {
+        let e = self.table.get(y * self.stride + x, 2 + (dy < 0) as usize);
+        Self::straight(y, dy, e, target)
+    }
+
+    #[inline(always)]
+    fn diagonal_run<const DX: isize, const DY: isize>(
+        &self,
+        i: usize,
+        x: usize,
+        y: usize,
+        (gx, gy): (usize, usize),
+    ) -> Result<usize, usize> {
+        let e = self.table.get(i, dir_index(DX, DY) as usize);
+        // Steps to the goal's column and row, if ahead (the straight scans
+        // there see the goal, which the table leaves out).
+        let ahead = |from: usize, to: usize, d: isize| {
+            let k = if d > 0 {
+                to.wrapping_sub(from)
+            } else {
+                from.wrapping_sub(to)
+            };
+            if k == 0 {
+                usize::MAX
+            } else {
+                k
+            }
+        };
+        let goal = ahead(x, gx, DX).min(ahead(y, gy, DY));
+        let d = e.unsigned_abs() as usize;
+        if e > 0 {
+            Ok(d.min(goal))
+        } else if goal < d {
+            Ok(goal)
+        } else {
+            Err(d - 1)
+        }
+    }
+}
+
+/// Either way of scanning, chosen per query. One search instantiation
+/// serves both (the branch is the same every call, so it predicts
+/// perfectly): a second copy of the search for JPS+ added 20 kB to every
+/// wasm module that links the grid planners.
+enum AnyScans<'a> {
+    Lines(LineScans<'a>),
+    Table(TableScans<'a>),
+}
+
+impl Scans for AnyScans<'_> {
+    #[inline(always)]
+    fn horizontal(&self, x: usize, y: usize, dx: isize, target: usize) -> Option<usize> {
+        match self {
+            Self::Lines(s) => s.horizontal(x, y, dx, target),
+            Self::Table(s) => s.horizontal(x, y, dx, target),
+        }
+    }
+
+    #[inline(always)]
+    fn vertical(&self, x: usize, y: usize, dy: isize, target: usize) -> Option<usize> {
+        match self {
+            Self::Lines(s) => s.vertical(x, y, dy, target),
+            Self::Table(s) => s.vertical(x, y, dy, target),
+        }
+    }
+
+    #[inline(always)]
+    fn diagonal_run<const DX: isize, const DY: isize>(
+        &self,
+        i: usize,
+        x: usize,
+        y: usize,
+        goal: (usize, usize),
+    ) -> Result<usize, usize> {
+        match self {
+            Self::Lines(s) => s.diagonal_run::<DX, DY>(i, x, y, goal),
+            Self::Table(s) => s.diagonal_run::<DX, DY>(i, x, y, goal),
+        }
+    }
+}
+
+/// Read-only view of the grid for jumping.
+struct Jumper<'a, S> {
+    free: &'a [bool],
+    scans: S,
     stride: usize,
     /// Goal, padded index and coordinates.
     t: usize,
@@ -140,7 +361,7 @@ struct Jumper<'a> {
     gy: usize,
 }
 
-impl Jumper<'_> {
+impl<S: Scans> Jumper<'_, S> {
     #[inline(always)]
     fn free(&self, i: usize) -> bool {
         self.free.get(i).copied().unwrap_or(false)
@@ -150,22 +371,14 @@ impl Jumper<'_> {
     #[inline(always)]
     fn horizontal(&self, x: usize, y: usize, dx: isize) -> Option<usize> {
         let target = if y == self.gy { self.gx } else { usize::MAX };
-        if dx > 0 {
-            self.lines.rows.jump_forward(y, x, target)
-        } else {
-            self.lines.rows.jump_backward(y, x, target)
-        }
+        self.scans.horizontal(x, y, dx, target)
     }
 
     /// Straight jump along the column from `(x, y)`: the jump point's row.
     #[inline(always)]
     fn vertical(&self, x: usize, y: usize, dy: isize) -> Option<usize> {
         let target = if x == self.gx { self.gy } else { usize::MAX };
-        if dy > 0 {
-            self.lines.cols.jump_forward(x, y, target)
-        } else {
-            self.lines.cols.jump_backward(x, y, target)
-        }
+        self.scans.vertical(x, y, dy, target)
     }
 }
 
@@ -177,8 +390,8 @@ fn padded_pos(i: usize, stride: usize) -> GridPos {
 }
 
 /// One search's mutable state.
-struct Search<'a, E, Q, O: ?Sized> {
-    jumper: Jumper<'a>,
+struct Search<'a, E, Q, O: ?Sized, S> {
+    jumper: Jumper<'a, S>,
     words: &'a mut [u64],
     open: &'a mut Q,
     /// Open word of cost 0 (see [`SearchSpace::open_word`]).
@@ -189,7 +402,7 @@ struct Search<'a, E, Q, O: ?Sized> {
     obs: &'a mut O,
 }
 
-impl<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Search<'_, E, Q, O> {
+impl<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, S: Scans> Search<'_, E, Q, O, S> {
     /// Records cell `j` at `(jx, jy)` reached at cost `g` by a move in
     /// direction `dir` from the jump that started at padded cell `parent`,
     /// and opens it, if that improves on what it has.
@@ -321,28 +534,27 @@ impl<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Search<'_, E, Q, O> {
     /// on instead of queueing it. Otherwise it is queued and the jump ends.
     /// The jump also ends at the goal and at a blocked step. Monomorphised
     /// per direction: this is the innermost loop in open terrain.
-    #[inline(never)]
+    #[inline(always)]
     fn diagonal<const DX: isize, const DY: isize>(&mut self, x: usize, y: usize, g: u64) {
-        // Copies of the grid references, so `self` can be borrowed mutably
-        // inside the loop.
-        let cells: &[bool] = self.jumper.free;
-        let free = |i: usize| cells.get(i).copied().unwrap_or(false);
         let (stride, t) = (self.jumper.stride, self.jumper.t);
-        let step_y = DY * stride as isize;
+        let goal = (self.jumper.gx, self.jumper.gy);
+        let step = DY * stride as isize + DX;
         let (mut x, mut y, mut n) = (x, y, 0u64);
         let from = y * stride + x;
         let mut i = from;
         loop {
-            let side_x = i.wrapping_add_signed(DX);
-            let next = side_x.wrapping_add_signed(step_y);
-            if !(free(side_x) && free(i.wrapping_add_signed(step_y)) && free(next)) {
-                self.diagonal_event(from, i, false);
-                return;
-            }
-            i = next;
-            x = x.wrapping_add_signed(DX);
-            y = y.wrapping_add_signed(DY);
-            n += 1;
+            let k = match self.jumper.scans.diagonal_run::<DX, DY>(i, x, y, goal) {
+                Ok(k) => k,
+                Err(k) => {
+                    let last = i.wrapping_add_signed(step * k as isize);
+                    self.diagonal_event(from, last, false);
+                    return;
+                }
+            };
+            i = i.wrapping_add_signed(step * k as isize);
+            x = x.wrapping_add_signed(DX * k as isize);
+            y = y.wrapping_add_signed(DY * k as isize);
+            n += k as u64;
             if i == t {
                 break;
             }
@@ -367,7 +579,7 @@ impl<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Search<'_, E, Q, O> {
     /// past it, or queues it and returns `false` (see [`Search::diagonal`]).
     /// `from`: where the diagonal jump started. Kept out of line so the
     /// sweep stays tight.
-    #[inline(never)]
+    #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn diagonal_hit<const DX: isize, const DY: isize>(
         &mut self,
@@ -487,13 +699,13 @@ impl<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Search<'_, E, Q, O> {
     }
 }
 
-fn run<E: Estimate, O: SearchObserver + ?Sized>(
+fn run<E: Estimate, O: SearchObserver + ?Sized, S: Scans>(
     grid: &PlanGrid,
-    start: GridPos,
-    goal: GridPos,
+    (start, goal): (GridPos, GridPos),
     space: &mut SearchSpace,
     obs: &mut O,
     est: E,
+    scans: S,
 ) -> Result<Path, PlanError> {
     // A jump raises f by up to twice its cost: a window of ~9 cells' moves
     // holds most of random512's jumps (4 × A*'s span measured fewest
@@ -507,33 +719,55 @@ fn run<E: Estimate, O: SearchObserver + ?Sized>(
         binary,
         ..
     } = &mut *space;
+    let q = Query {
+        grid,
+        s,
+        t,
+        words,
+        tag,
+        est,
+    };
     let (reached, expanded) = if E::MONOTONE {
-        search(grid, s, t, words, buckets, tag, est, obs)
+        search(q, buckets, obs, scans)
     } else {
-        search(grid, s, t, words, binary, tag, est, obs)
+        search(q, binary, obs, scans)
     };
     finish(grid, space, (s, t), reached, expanded)
 }
 
-/// The JPS loop: whether `t` was reached, and how many jump points were
-/// expanded.
-#[allow(clippy::too_many_arguments)]
-fn search<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized>(
-    grid: &PlanGrid,
+/// One query's grid, padded start and goal, search words and their open
+/// tag, and estimate.
+struct Query<'a, E> {
+    grid: &'a PlanGrid,
     s: usize,
     t: usize,
-    words: &mut [u64],
-    open: &mut Q,
+    words: &'a mut [u64],
     tag: u64,
     est: E,
+}
+
+/// The JPS loop: whether `t` was reached, and how many jump points were
+/// expanded.
+fn search<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, S: Scans>(
+    q: Query<'_, E>,
+    open: &mut Q,
     obs: &mut O,
+    scans: S,
 ) -> (bool, usize) {
+    let Query {
+        grid,
+        s,
+        t,
+        words,
+        tag,
+        est,
+    } = q;
     let stride = grid.stride();
     let (gx, gy) = xy(t, stride);
     let mut search = Search {
         jumper: Jumper {
             free: grid.padded(),
-            lines: grid.lines(),
+            scans,
             stride,
             t,
             gx,
@@ -685,6 +919,193 @@ mod tests {
             }
         }
         assert!(solved > 500, "only {solved} queries had paths");
+    }
+
+    /// A random grid of `width × height` with `density` % blocked cells.
+    fn random_grid(width: usize, height: usize, density: u64, seed: u64) -> PlanGrid {
+        let mut state = seed | 1;
+        PlanGrid::from_fn(width, height, |_, _| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % 100 >= density
+        })
+    }
+
+    /// Follows the online diagonal from padded cell `i` = `(x, y)` one step
+    /// at a time to its first stop (a cell where a straight scan finds a jump
+    /// point, or the goal's row or column) and checks that the table's run
+    /// ends at the same step.
+    fn check_diagonal<const DX: isize, const DY: isize>(
+        online: &LineScans,
+        table: &TableScans,
+        (i, x, y): (usize, usize, usize),
+        goal: (usize, usize),
+    ) {
+        let (mut j, mut cx, mut cy, mut k) = (i, x, y, 0usize);
+        let expected = loop {
+            if online.diagonal_run::<DX, DY>(j, cx, cy, goal).is_err() {
+                break Err(k);
+            }
+            j = j.wrapping_add_signed(DY * online.stride as isize + DX);
+            cx = cx.wrapping_add_signed(DX);
+            cy = cy.wrapping_add_signed(DY);
+            k += 1;
+            if cx == goal.0
+                || cy == goal.1
+                || online.horizontal(cx, cy, DX, usize::MAX).is_some()
+                || online.vertical(cx, cy, DY, usize::MAX).is_some()
+            {
+                break Ok(k);
+            }
+        };
+        assert_eq!(
+            table.diagonal_run::<DX, DY>(i, x, y, goal),
+            expected,
+            "diagonal ({DX}, {DY}) from ({x}, {y}) goal {goal:?}"
+        );
+    }
+
+    /// Every straight scan and diagonal run read from the JPS+ table stops
+    /// where the online scans over the bit-packed lines stop, from every
+    /// free cell, in every direction, with the goal on the line ahead,
+    /// behind or elsewhere.
+    #[test]
+    fn jump_table_stops_where_the_line_scans_stop() {
+        for (width, height, density) in [(62, 9, 10), (63, 7, 30), (130, 6, 5), (7, 66, 20)] {
+            let grid = random_grid(width, height, density, width as u64 * 31 + density);
+            let stride = grid.stride();
+            let online = LineScans {
+                lines: grid.lines(),
+                free: grid.padded(),
+                stride,
+            };
+            let table = TableScans {
+                table: &JumpTable::new(grid.padded(), stride),
+                stride,
+            };
+            for (i, _) in grid.padded().iter().enumerate().filter(|(_, &f)| f) {
+                let (x, y) = xy(i, stride);
+                for target in [
+                    usize::MAX,
+                    0,
+                    x.saturating_sub(3),
+                    x + 2,
+                    y + 1,
+                    y.saturating_sub(2),
+                ] {
+                    for d in [-1isize, 1] {
+                        let what = format!("{width}x{height} ({x}, {y}) d {d} target {target}");
+                        assert_eq!(
+                            online.horizontal(x, y, d, target),
+                            table.horizontal(x, y, d, target),
+                            "horizontal {what}"
+                        );
+                        assert_eq!(
+                            online.vertical(x, y, d, target),
+                            table.vertical(x, y, d, target),
+                            "vertical {what}"
+                        );
+                    }
+                }
+                for goal in [
+                    (stride + 9, 9999),
+                    (x + 3, y + 5),
+                    (x.saturating_sub(2), y + 2),
+                ] {
+                    let pos = (i, x, y);
+                    check_diagonal::<1, 1>(&online, &table, pos, goal);
+                    check_diagonal::<1, -1>(&online, &table, pos, goal);
+                    check_diagonal::<-1, 1>(&online, &table, pos, goal);
+                    check_diagonal::<-1, -1>(&online, &table, pos, goal);
+                }
+            }
+        }
+    }
+
+    /// JPS+ expands the same jump points and returns the same paths as
+    /// online JPS, on grids straddling the scans' 64-cell words, from open
+    /// to cluttered, including after edits (which drop the table).
+    #[test]
+    fn jps_plus_finds_the_same_paths_and_expansions_as_jps_before_and_after_edits() {
+        let plus = Jps::new(JpsConfig {
+            preprocess: true,
+            ..JpsConfig::default()
+        })
+        .unwrap();
+        let mut compared = 0;
+        for (width, height) in [(62, 9), (65, 6), (129, 8), (5, 70), (40, 40)] {
+            for density in [0u64, 10, 25, 40] {
+                let mut grid = random_grid(width, height, density, (width + 7 * height) as u64);
+                let mut state = 0x2545_f491_4f6c_dd1du64;
+                let mut rnd = move || {
+                    state ^= state << 13;
+                    state ^= state >> 7;
+                    state ^= state << 17;
+                    state
+                };
+                for q in 0..60 {
+                    if q % 10 == 9 {
+                        // An edit, so the next queries need a rebuilt table.
+                        let (c, r) = (rnd() as usize % width, rnd() as usize % height);
+                        let free = grid.is_free(c as i64, r as i64);
+                        grid.set_free(c, r, !free);
+                    }
+                    let cell = |k: u64| {
+                        GridPos::new((k % width as u64) as u32, (k / 7 % height as u64) as u32)
+                    };
+                    let (a, b) = (cell(rnd()), cell(rnd()));
+                    let what =
+                        format!("{width}x{height} density {density} query {q}: {a:?} -> {b:?}");
+                    match (Jps::default().plan(&grid, a, b), plus.plan(&grid, a, b)) {
+                        (Ok(x), Ok(y)) => {
+                            assert_eq!(x.cells, y.cells, "{what}");
+                            assert_eq!(x.expanded, y.expanded, "{what}");
+                            assert!((x.cost - y.cost).abs() < 1e-12, "{what}");
+                            compared += 1;
+                        }
+                        (Err(x), Err(y)) => assert_eq!(x.to_string(), y.to_string(), "{what}"),
+                        (x, y) => panic!("{what}: JPS {x:?}, JPS+ {y:?}"),
+                    }
+                }
+            }
+        }
+        assert!(compared > 400, "only {compared} queries had paths");
+    }
+
+    #[test]
+    fn jps_plus_refuses_grids_too_large_for_its_table_and_other_move_rules() {
+        let grid = PlanGrid::from_fn(2100, 2100, |_, _| true);
+        let plus = Jps::new(JpsConfig {
+            preprocess: true,
+            ..JpsConfig::default()
+        })
+        .unwrap();
+        let err = plus
+            .plan(&grid, GridPos::new(0, 0), GridPos::new(2099, 2099))
+            .unwrap_err();
+        assert!(
+            matches!(&err, PlanError::InvalidConfig(m) if m.contains("too large for the JPS+")),
+            "{err}"
+        );
+        // Online JPS needs no table.
+        assert!(Jps::default()
+            .plan(&grid, GridPos::new(0, 0), GridPos::new(2099, 2099))
+            .is_ok());
+        let err = Jps::new(JpsConfig {
+            preprocess: true,
+            diagonal: Diagonal::Never,
+            ..JpsConfig::default()
+        })
+        .unwrap_err();
+        assert!(matches!(err, PlanError::InvalidConfig(m) if m.contains("no_corner_cutting")));
+        let err = Jps::new(JpsConfig {
+            preprocess: true,
+            heuristic: Heuristic::Euclidean,
+            ..JpsConfig::default()
+        })
+        .unwrap_err();
+        assert!(matches!(err, PlanError::InvalidConfig(m) if m.contains("octile")));
     }
 
     #[test]

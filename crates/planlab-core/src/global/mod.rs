@@ -13,6 +13,7 @@ pub mod dstar_lite;
 pub mod events;
 pub mod explain;
 pub mod jps;
+mod jump_table;
 pub mod keypoints;
 pub mod plan;
 pub mod posthoc;
@@ -302,6 +303,9 @@ pub struct PlanGrid {
     /// then kept in step with `free`, so an expansion reads one byte
     /// instead of eight.
     neighbours: std::sync::OnceLock<Vec<u8>>,
+    /// JPS+'s jump distances, built on its first query; an edit drops them
+    /// (the next query rebuilds them).
+    jump_table: std::sync::OnceLock<jump_table::JumpTable>,
     /// Traversal weight per padded cell (1..=9; the border 1), or `None` on
     /// a unit-cost grid: a move costs its length times the weight of the
     /// cell it enters (docs/algorithms.md §weights; `weights.rs`).
@@ -335,6 +339,7 @@ impl PlanGrid {
             free,
             lines: std::sync::OnceLock::new(),
             neighbours: std::sync::OnceLock::new(),
+            jump_table: std::sync::OnceLock::new(),
             weights: None,
         }
     }
@@ -351,6 +356,24 @@ impl PlanGrid {
     pub(crate) fn neighbours(&self) -> &[u8] {
         self.neighbours
             .get_or_init(|| search::neighbour_bits(&self.free, self.stride))
+    }
+
+    /// JPS+'s jump distances (see the field); callers check the size first
+    /// ([`jump_table::JumpTable::check`]).
+    #[inline]
+    pub(crate) fn jump_table(&self) -> &jump_table::JumpTable {
+        self.jump_table
+            .get_or_init(|| jump_table::JumpTable::new(&self.free, self.stride))
+    }
+
+    /// Builds JPS+'s jump table now, if it is not built yet (otherwise the
+    /// first JPS+ query builds it): to time it apart from the queries, or to
+    /// pay for it before an interactive session's first query. Fails on a
+    /// grid too large for the table.
+    pub fn build_jps_plus_table(&self) -> Result<(), PlanError> {
+        jump_table::JumpTable::check(self)?;
+        self.jump_table();
+        Ok(())
     }
 
     /// Width in cells.
@@ -385,6 +408,7 @@ impl PlanGrid {
             if let Some(bits) = self.neighbours.get_mut() {
                 search::set_neighbour_bit(bits, i, self.stride, free);
             }
+            self.jump_table.take();
         }
     }
 
