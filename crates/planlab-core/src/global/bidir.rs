@@ -41,7 +41,7 @@ use super::search::{
     cells, check_size, improves, path_of, trivial_path, with_pair_space, xy, Estimate,
     FixedHeuristic, OctileEstimate, OpenList, PairSpace, ZeroEstimate, DIRS, G_MASK, G_SHIFT, OPEN,
 };
-use super::search::{diagonal_moves, straight_free, straight_moves};
+use super::search::{diagonal_moves, dir_index, straight_free, straight_moves};
 use super::{Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent, SearchObserver};
 
 /// Bidirectional A* from `start` to `goal` under `diagonal`, with `heuristic`
@@ -196,8 +196,15 @@ struct Bidir<'a, E, Q, O: ?Sized> {
     /// Cheapest start–goal cost seen, and the cell it runs through.
     mu: u64,
     meet: Option<usize>,
-    /// The corner rule (`NEVER` … `ALWAYS` of [`super::astar`]).
-    rule: u8,
+    /// The stop rule's bound on min key_f + min key_b: 2(μ + off), or
+    /// `u64::MAX` while no path is known.
+    stop: u64,
+    /// Cells each direction has reached but not yet expanded (its frontier;
+    /// cells left out of the open list by the pruning count too).
+    frontier: [usize; 2],
+    /// Diagonal moves the corner rule allows, by neighbour bits
+    /// ([`moves_allowed`]).
+    allowed: &'static [u8; 256],
     /// Whether moves cost by the weight of a cell (`global::weights`).
     weighted: bool,
 }
@@ -232,7 +239,9 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             off: span + 1,
             mu: u64::MAX,
             meet: None,
-            rule,
+            stop: u64::MAX,
+            frontier: [1, 1],
+            allowed: &MOVES_ALLOWED[rule as usize & 3],
             weighted: grid.is_weighted(),
         }
     }
@@ -242,18 +251,6 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
     fn h_to(&self, k: usize, x: usize, y: usize) -> u64 {
         let (ex, ey) = self.ends[k];
         self.est.h(x.abs_diff(ex), y.abs_diff(ey))
-    }
-
-    /// Whether `word` (of either direction) belongs to this search.
-    #[inline(always)]
-    fn current(&self, word: u64) -> bool {
-        PairSpace::current(self.tag, word)
-    }
-
-    /// Lowers μ through cell `idx` (see [`meet_at`]).
-    #[inline(always)]
-    fn meet_at(&mut self, idx: usize, g: u64, other: u64) {
-        meet_at(self.tag, (&mut self.mu, &mut self.meet), idx, g, other);
     }
 
     /// The search: the meeting cell (`None`: no path) and the cells
@@ -277,16 +274,13 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             });
         }
         let mut expanded = 0usize;
-        let mut side;
-        let mut counts = [0usize; 2];
         // Until one direction has reached every cell it can (μ is then the
         // optimum, or there is no path) or the stop rule holds.
         while let (Some(kf), Some(kb)) = (self.open[0].min_key(), self.open[1].min_key()) {
-            if self.mu != u64::MAX && kf + kb >= 2 * (self.mu + self.off) {
+            if kf + kb >= self.stop {
                 break;
             }
-            side = usize::from(counts[1] < counts[0]);
-            let _ = (kf, kb);
+            let side = usize::from(self.frontier[1] < self.frontier[0]);
             let Some(i) = self.open[side].pop() else {
                 break;
             };
@@ -296,7 +290,6 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
                 self.expand::<1>(i)
             };
             expanded += usize::from(done);
-            counts[side] += 1;
         }
         (self.meet, expanded)
     }
@@ -315,28 +308,35 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         }
         pair[SIDE] = w & !OPEN;
         let other = pair[1 - SIDE];
+        self.frontier[SIDE] -= 1;
         let g = (w >> G_SHIFT) & G_MASK;
-        self.meet_at(i, g, other);
+        // No meeting test here: g_f + g_b of a cell was tested whenever
+        // either word last changed (see `relax`), and expanding changes
+        // neither cost.
         let grid = self.grid;
         emit(self.obs, || SearchEvent::Close {
             cell: grid.pos_of(i),
         });
-        let stride = self.stride;
-        let (x, y) = xy(i, stride);
-        // Pruning (both keep the stopping rule's argument: every path through
-        // `i` costs at least μ). Closed from the other side as well: g and
-        // the other g are final and their sum is in μ already. Or
-        // g + h(i, other end) ≥ μ.
-        // The cell still counts as closed, like A*'s goal, whose
-        // neighbours are not generated either.
-        if (self.current(other) && other & OPEN == 0) || g + self.h_to(1 - SIDE, x, y) >= self.mu {
+        // Pruning: closed from the other side as well, both costs are final
+        // and their sum is in μ already, and a path through a neighbour
+        // that is cheaper than through `i` reaches that neighbour from the
+        // other side too. The cell still counts as closed, like A*'s goal,
+        // whose neighbours are not generated either. (A test of
+        // g + h(i, other end) ≥ μ here would be redundant: by consistency
+        // every neighbour then fails the same test at its push.)
+        if PairSpace::current(self.tag, other) && other & OPEN == 0 {
             return true;
         }
+        let stride = self.stride;
+        let (x, y) = xy(i, stride);
         // Free cells are interior, so these never wrap; a wrapped index
         // would simply read as blocked.
         let up = i.wrapping_sub(stride);
         let down = i + stride;
-        let nb = self.neighbours.get(i).copied().unwrap_or(0);
+        // The corner rule folded into the neighbour bits: one table load,
+        // no branch on the rule a diagonal.
+        let raw = self.neighbours.get(i).copied().unwrap_or(0);
+        let nb = self.allowed[raw as usize];
         let [n, so, we, e] = straight_free(nb);
         let weights = self.weights;
         let weight = |j: usize| weights.get(j).map_or(1, |&w| u64::from(w));
@@ -345,9 +345,10 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         let here_weight = if weighted && SIDE == 1 { weight(i) } else { 1 };
         // Everything the relaxations touch in locals: stores through the
         // words slice would otherwise make the compiler reload fields.
-        let (tag, off, est, rule) = (self.tag, self.off, self.est, self.rule);
+        let (tag, off, est) = (self.tag, self.off, self.est);
         let ((ox, oy), (mx, my)) = (self.ends[1 - SIDE], self.ends[SIDE]);
         let (mut mu, mut meet) = (self.mu, self.meet);
+        let mut reached = 0usize;
         let words = &mut *self.words;
         let open = &mut self.open[SIDE];
         let obs = &mut *self.obs;
@@ -363,7 +364,9 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
                 };
                 let new = tag | ng << G_SHIFT | $dir;
                 if let Some(pair) = words.get_mut(j) {
-                    if improves(pair[SIDE], new) {
+                    let old = pair[SIDE];
+                    if improves(old, new) {
+                        reached += usize::from(!PairSpace::current(tag, old));
                         pair[SIDE] = new;
                         let other = pair[1 - SIDE];
                         meet_at(tag, (&mut mu, &mut meet), j, ng, other);
@@ -387,7 +390,8 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             }};
         }
 
-        let ok = |a: bool, b: bool, target: bool| diagonal_rule_ok(rule, a, b, target);
+        // `nb` already holds only the diagonal moves the rule allows.
+        let ok = |_: bool, _: bool, target: bool| target;
         macro_rules! straight {
             () => {
                 straight_moves!(relax, i, (up, down), (x, y), [n, so, we, e])
@@ -395,7 +399,7 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         }
         macro_rules! diagonal {
             () => {
-                if rule != NEVER {
+                if nb >> 4 != 0 {
                     diagonal_moves!(relax, ok, nb, (up, down), (x, y), [n, so, we, e]);
                 }
             };
@@ -413,8 +417,12 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             diagonal!();
             straight!();
         }
-        self.mu = mu;
+        if mu != self.mu {
+            self.mu = mu;
+            self.stop = 2 * (mu + off);
+        }
         self.meet = meet;
+        self.frontier[SIDE] += reached;
         true
     }
 }
@@ -433,16 +441,47 @@ fn meet_at(tag: u64, (mu, meet): (&mut u64, &mut Option<usize>), idx: usize, g: 
     }
 }
 
-/// Whether a diagonal move is legal under the corner `rule` (`NEVER` …
-/// `ALWAYS`), given its side cells and its target cell.
-#[inline(always)]
-fn diagonal_rule_ok(rule: u8, side_a: bool, side_b: bool, target: bool) -> bool {
-    match rule {
-        NO_CORNER_CUTTING => diagonal_ok::<NO_CORNER_CUTTING>(side_a, side_b, target),
-        ONE_SIDE_FREE => diagonal_ok::<ONE_SIDE_FREE>(side_a, side_b, target),
-        ALWAYS => diagonal_ok::<ALWAYS>(side_a, side_b, target),
-        _ => false,
+/// [`moves_allowed`] for each corner rule, indexed by `NEVER` … `ALWAYS`.
+static MOVES_ALLOWED: [[u8; 256]; 4] = [
+    moves_allowed(NEVER),
+    moves_allowed(NO_CORNER_CUTTING),
+    moves_allowed(ONE_SIDE_FREE),
+    moves_allowed(ALWAYS),
+];
+
+/// For every byte of neighbour bits ([`PlanGrid::neighbours`]), the same
+/// bits with the diagonal moves the corner `rule` forbids cleared: the
+/// relaxation then tests one bit a move whatever the rule, and the loop is
+/// not copied per rule (code size, see [`by_rule`]).
+const fn moves_allowed(rule: u8) -> [u8; 256] {
+    const fn bit(nb: usize, dx: isize, dy: isize) -> bool {
+        nb & 1 << dir_index(dx, dy) != 0
     }
+    let mut out = [0u8; 256];
+    let mut nb = 0;
+    while nb < 256 {
+        let mut allowed = nb as u8 & 0x0F;
+        let diagonals = [(1, 1), (1, -1), (-1, 1), (-1, -1)];
+        let mut k = 0;
+        while k < diagonals.len() {
+            let (dx, dy) = diagonals[k];
+            // As `astar::diagonal_ok` (tested against it).
+            let (a, b) = (bit(nb, dx, 0), bit(nb, 0, dy));
+            let sides = match rule {
+                NO_CORNER_CUTTING => a && b,
+                ONE_SIDE_FREE => a || b,
+                ALWAYS => true,
+                _ => false,
+            };
+            if sides && bit(nb, dx, dy) {
+                allowed |= 1 << dir_index(dx, dy);
+            }
+            k += 1;
+        }
+        out[nb] = allowed;
+        nb += 1;
+    }
+    out
 }
 
 #[cfg(test)]
