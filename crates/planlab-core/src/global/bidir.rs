@@ -195,7 +195,7 @@ struct Bidir<'a, E, Q, O: ?Sized> {
     off: u64,
     /// Cheapest start–goal cost seen, and the cell it runs through.
     mu: u64,
-    meet: Option<usize>,
+    meet: usize,
     /// The stop rule's bound on min key_f + min key_b: 2(μ + off), or
     /// `u64::MAX` while no path is known.
     stop: u64,
@@ -238,7 +238,7 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             ends,
             off: span + 1,
             mu: u64::MAX,
-            meet: None,
+            meet: usize::MAX,
             stop: u64::MAX,
             frontier: [1, 1],
             allowed: &MOVES_ALLOWED[rule as usize & 3],
@@ -274,24 +274,28 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             });
         }
         let mut expanded = 0usize;
+        // Each side's least key; expanding one side pushes only onto its
+        // own list, so only that side's needs reading again.
+        let (mut kf, mut kb) = (self.open[0].min_key(), self.open[1].min_key());
         // Until one direction has reached every cell it can (μ is then the
         // optimum, or there is no path) or the stop rule holds.
-        while let (Some(kf), Some(kb)) = (self.open[0].min_key(), self.open[1].min_key()) {
-            if kf + kb >= self.stop {
+        while let (Some(f), Some(b)) = (kf, kb) {
+            if f + b >= self.stop {
                 break;
             }
-            let side = usize::from(self.frontier[1] < self.frontier[0]);
-            let Some(i) = self.open[side].pop() else {
-                break;
-            };
-            let done = if side == 0 {
-                self.expand::<0>(i)
+            if self.frontier[0] <= self.frontier[1] {
+                if let Some(i) = self.open[0].pop() {
+                    expanded += usize::from(self.expand::<0>(i));
+                }
+                kf = self.open[0].min_key();
             } else {
-                self.expand::<1>(i)
-            };
-            expanded += usize::from(done);
+                if let Some(i) = self.open[1].pop() {
+                    expanded += usize::from(self.expand::<1>(i));
+                }
+                kb = self.open[1].min_key();
+            }
         }
-        (self.meet, expanded)
+        ((self.mu != u64::MAX).then_some(self.meet), expanded)
     }
 
     /// Closes cell `i` in direction `SIDE` and, unless pruned, generates
@@ -346,7 +350,12 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         // Everything the relaxations touch in locals: stores through the
         // words slice would otherwise make the compiler reload fields.
         let (tag, off, est) = (self.tag, self.off, self.est);
+        // Coordinates relative to the other end (what the estimate towards
+        // it reads), and that end relative to this side's own end: four
+        // values live across the relaxations instead of six.
         let ((ox, oy), (mx, my)) = (self.ends[1 - SIDE], self.ends[SIDE]);
+        let (rx, ry) = (x as isize - ox as isize, y as isize - oy as isize);
+        let (cx, cy) = (ox as isize - mx as isize, oy as isize - my as isize);
         let (mut mu, mut meet) = (self.mu, self.meet);
         let mut reached = 0usize;
         let words = &mut *self.words;
@@ -369,15 +378,24 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
                         reached += usize::from(!PairSpace::current(tag, old));
                         pair[SIDE] = new;
                         let other = pair[1 - SIDE];
-                        meet_at(tag, (&mut mu, &mut meet), j, ng, other);
-                        let (nx, ny): (usize, usize) = ($nx, $ny);
-                        let towards = est.h(nx.abs_diff(ox), ny.abs_diff(oy));
+                        // The meeting test.
+                        if PairSpace::current(tag, other) {
+                            let through = ng + ((other >> G_SHIFT) & G_MASK);
+                            if through < mu {
+                                mu = through;
+                                meet = j;
+                            }
+                        }
+                        let (nx, ny): (isize, isize) = ($nx, $ny);
+                        let towards = est.h(nx.unsigned_abs(), ny.unsigned_abs());
                         // Left out of the open list when no path through it
                         // can beat μ (its word stays, for the meeting test).
                         if ng + towards < mu {
-                            let back = est.h(nx.abs_diff(mx), ny.abs_diff(my));
+                            let back = est.h((nx + cx).unsigned_abs(), (ny + cy).unsigned_abs());
                             let key = (2 * ng + towards + off).saturating_sub(back);
-                            open.push(key, ng, j);
+                            // The bucket queue breaks ties by push order and
+                            // ignores g: 0 saves packing it.
+                            open.push(key, if E::MONOTONE { 0 } else { ng }, j);
                             emit(obs, || SearchEvent::Open {
                                 cell: grid.pos_of(j),
                                 parent: Some(grid.pos_of(i)),
@@ -394,13 +412,13 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         let ok = |_: bool, _: bool, target: bool| target;
         macro_rules! straight {
             () => {
-                straight_moves!(relax, i, (up, down), (x, y), [n, so, we, e])
+                straight_moves!(relax, i, (up, down), (rx, ry), [n, so, we, e])
             };
         }
         macro_rules! diagonal {
             () => {
                 if nb >> 4 != 0 {
-                    diagonal_moves!(relax, ok, nb, (up, down), (x, y), [n, so, we, e]);
+                    diagonal_moves!(relax, ok, nb, (up, down), (rx, ry), [n, so, we, e]);
                 }
             };
         }
@@ -420,24 +438,10 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         if mu != self.mu {
             self.mu = mu;
             self.stop = 2 * (mu + off);
+            self.meet = meet;
         }
-        self.meet = meet;
         self.frontier[SIDE] += reached;
         true
-    }
-}
-
-/// The meeting test: lowers μ (and its cell) to `g` plus the other
-/// direction's cost in `other` through cell `idx`, if that word is of the
-/// search tagged `tag` and the sum is cheaper.
-#[inline(always)]
-fn meet_at(tag: u64, (mu, meet): (&mut u64, &mut Option<usize>), idx: usize, g: u64, other: u64) {
-    if PairSpace::current(tag, other) {
-        let through = g + ((other >> G_SHIFT) & G_MASK);
-        if through < *mu {
-            *mu = through;
-            *meet = Some(idx);
-        }
     }
 }
 
