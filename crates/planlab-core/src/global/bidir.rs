@@ -35,7 +35,7 @@
 //! lie on a path cheaper than μ are closed without expansion
 //! (docs/algorithms.md §classic).
 
-use super::astar::{diagonal_ok, ALWAYS, NEVER, NO_CORNER_CUTTING, ONE_SIDE_FREE};
+use super::astar::{ALWAYS, NEVER, NO_CORNER_CUTTING, ONE_SIDE_FREE};
 use super::events::emit;
 use super::search::{
     cells, check_size, improves, path_of, trivial_path, with_pair_space, xy, Estimate,
@@ -490,10 +490,108 @@ const fn moves_allowed(rule: u8) -> [u8; 256] {
 
 #[cfg(test)]
 mod tests {
-    use crate::global::astar::{AStar, AStarConfig};
+    use super::{moves_allowed, ALWAYS, NEVER, NO_CORNER_CUTTING, ONE_SIDE_FREE};
+    use crate::global::astar::{diagonal_ok, AStar, AStarConfig};
     use crate::global::classic::BidirectionalAStar;
-    use crate::global::{Diagonal, GridPlanner, GridPos, Heuristic, PlanGrid};
+    use crate::global::search::dir_index;
+    use crate::global::{Diagonal, GridPlanner, GridPos, Heuristic, PlanGrid, SearchEvent};
     use crate::map::OccupancyGrid;
+    use proptest::prelude::*;
+
+    #[test]
+    fn corner_rule_table_allows_what_diagonal_ok_allows_for_every_neighbour_byte() {
+        let check = |rule: u8, ok: fn(bool, bool, bool) -> bool| {
+            let table = moves_allowed(rule);
+            for nb in 0..=255u8 {
+                let bit = |dx: isize, dy: isize| nb & 1 << dir_index(dx, dy) != 0;
+                let mut want = nb & 0x0F;
+                for (dx, dy) in [(1, 1), (1, -1), (-1, 1), (-1, -1)] {
+                    if ok(bit(dx, 0), bit(0, dy), bit(dx, dy)) {
+                        want |= 1 << dir_index(dx, dy);
+                    }
+                }
+                assert_eq!(table[nb as usize], want, "rule {rule} bits {nb:08b}");
+            }
+        };
+        check(NEVER, diagonal_ok::<NEVER>);
+        check(NO_CORNER_CUTTING, diagonal_ok::<NO_CORNER_CUTTING>);
+        check(ONE_SIDE_FREE, diagonal_ok::<ONE_SIDE_FREE>);
+        check(ALWAYS, diagonal_ok::<ALWAYS>);
+    }
+
+    /// Collects the cells closed, in order.
+    #[derive(Default)]
+    struct Closed(Vec<GridPos>);
+
+    impl crate::global::SearchObserver for Closed {
+        fn event(&mut self, e: SearchEvent) {
+            if let SearchEvent::Close { cell } = e {
+                self.0.push(cell);
+            }
+        }
+    }
+
+    #[test]
+    fn bidirectional_expands_the_side_with_the_smaller_frontier() {
+        // An open room (columns 0..=20) and a corridor one cell wide along
+        // row 10 to the goal at its dead end. After the start's first
+        // expansion the forward frontier holds 8 cells, the backward one a
+        // single corridor cell, and it stays at one while the backward
+        // search walks the corridor: all nine corridor cells are closed
+        // next. Alternating by entries popped would interleave room cells.
+        let grid = PlanGrid::from_fn(30, 21, |c, r| c <= 20 || r == 10);
+        let (s, t) = (GridPos::new(5, 10), GridPos::new(29, 10));
+        let mut closed = Closed::default();
+        let b = BidirectionalAStar::default()
+            .search(&grid, s, t, &mut closed)
+            .unwrap();
+        assert!((b.cost - 24.0).abs() < 1e-9);
+        assert_eq!(closed.0.first(), Some(&s));
+        let next: Vec<GridPos> = closed.0.iter().skip(1).take(9).copied().collect();
+        let corridor: Vec<GridPos> = (21..=29).rev().map(|c| GridPos::new(c, 10)).collect();
+        assert_eq!(next, corridor);
+    }
+
+    proptest! {
+        #[test]
+        fn bidirectional_cost_equals_astar_on_random_weighted_grids(
+            w in 2u32..28,
+            h in 2u32..20,
+            density in 0u64..45,
+            seed in any::<u64>(),
+            rule in 0usize..4,
+            heavy in prop::collection::vec((0usize..28, 0usize..20, 2u8..=9), 0..12),
+            ends in (any::<prop::sample::Index>(), any::<prop::sample::Index>()),
+        ) {
+            let mut grid = random_grid(w as usize, h as usize, density, seed);
+            for (c, r, wt) in heavy {
+                grid.set_weight(c % w as usize, r % h as usize, wt);
+            }
+            let free: Vec<GridPos> = (0..h)
+                .flat_map(|y| (0..w).map(move |x| GridPos::new(x, y)))
+                .filter(|&p| grid.is_free(p.col as i64, p.row as i64))
+                .collect();
+            prop_assume!(!free.is_empty());
+            let (s, t) = (ends.0.get(&free), ends.1.get(&free));
+            let diagonal = [
+                Diagonal::Never,
+                Diagonal::NoCornerCutting,
+                Diagonal::OneSideFree,
+                Diagonal::Always,
+            ][rule];
+            let astar = AStar::new(AStarConfig { diagonal, ..AStarConfig::default() }).unwrap();
+            let bidir = BidirectionalAStar { diagonal, heuristic: Heuristic::Octile };
+            match (astar.plan(&grid, *s, *t), bidir.plan(&grid, *s, *t)) {
+                (Ok(a), Ok(b)) => {
+                    prop_assert!((a.cost - b.cost).abs() < 1e-9, "A* {} bidirectional {}", a.cost, b.cost);
+                    prop_assert!(grid.path_is_free(&b.cells, diagonal));
+                    prop_assert_eq!((b.cells.first(), b.cells.last()), (Some(s), Some(t)));
+                }
+                (Err(_), Err(_)) => {}
+                (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
+            }
+        }
+    }
 
     /// A seeded grid of `w × h` cells, about `density` of them blocked.
     fn random_grid(w: usize, h: usize, density: u64, seed: u64) -> PlanGrid {
