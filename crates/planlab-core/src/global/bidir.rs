@@ -35,13 +35,13 @@
 //! lie on a path cheaper than μ are closed without expansion
 //! (docs/algorithms.md §classic).
 
-use super::astar::{diagonal_ok, ALWAYS, NEVER, NO_CORNER_CUTTING, ONE_SIDE_FREE};
+use super::astar::{ALWAYS, NEVER, NO_CORNER_CUTTING, ONE_SIDE_FREE};
 use super::events::emit;
 use super::search::{
     cells, check_size, improves, path_of, trivial_path, with_pair_space, xy, Estimate,
     FixedHeuristic, OctileEstimate, OpenList, PairSpace, ZeroEstimate, DIRS, G_MASK, G_SHIFT, OPEN,
 };
-use super::search::{diagonal_moves, straight_free, straight_moves};
+use super::search::{diagonal_moves, dir_index, straight_free, straight_moves};
 use super::{Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent, SearchObserver};
 
 /// Bidirectional A* from `start` to `goal` under `diagonal`, with `heuristic`
@@ -195,9 +195,16 @@ struct Bidir<'a, E, Q, O: ?Sized> {
     off: u64,
     /// Cheapest start–goal cost seen, and the cell it runs through.
     mu: u64,
-    meet: Option<usize>,
-    /// The corner rule (`NEVER` … `ALWAYS` of [`super::astar`]).
-    rule: u8,
+    meet: usize,
+    /// The stop rule's bound on min key_f + min key_b: 2(μ + off), or
+    /// `u64::MAX` while no path is known.
+    stop: u64,
+    /// Cells each direction has reached but not yet expanded (its frontier;
+    /// cells left out of the open list by the pruning count too).
+    frontier: [usize; 2],
+    /// Diagonal moves the corner rule allows, by neighbour bits
+    /// ([`moves_allowed`]).
+    allowed: &'static [u8; 256],
     /// Whether moves cost by the weight of a cell (`global::weights`).
     weighted: bool,
 }
@@ -231,8 +238,10 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             ends,
             off: span + 1,
             mu: u64::MAX,
-            meet: None,
-            rule,
+            meet: usize::MAX,
+            stop: u64::MAX,
+            frontier: [1, 1],
+            allowed: &MOVES_ALLOWED[rule as usize & 3],
             weighted: grid.is_weighted(),
         }
     }
@@ -242,18 +251,6 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
     fn h_to(&self, k: usize, x: usize, y: usize) -> u64 {
         let (ex, ey) = self.ends[k];
         self.est.h(x.abs_diff(ex), y.abs_diff(ey))
-    }
-
-    /// Whether `word` (of either direction) belongs to this search.
-    #[inline(always)]
-    fn current(&self, word: u64) -> bool {
-        PairSpace::current(self.tag, word)
-    }
-
-    /// Lowers μ through cell `idx` (see [`meet_at`]).
-    #[inline(always)]
-    fn meet_at(&mut self, idx: usize, g: u64, other: u64) {
-        meet_at(self.tag, (&mut self.mu, &mut self.meet), idx, g, other);
     }
 
     /// The search: the meeting cell (`None`: no path) and the cells
@@ -277,28 +274,28 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             });
         }
         let mut expanded = 0usize;
-        let mut side;
-        let mut counts = [0usize; 2];
+        // Each side's least key; expanding one side pushes only onto its
+        // own list, so only that side's needs reading again.
+        let (mut kf, mut kb) = (self.open[0].min_key(), self.open[1].min_key());
         // Until one direction has reached every cell it can (μ is then the
         // optimum, or there is no path) or the stop rule holds.
-        while let (Some(kf), Some(kb)) = (self.open[0].min_key(), self.open[1].min_key()) {
-            if self.mu != u64::MAX && kf + kb >= 2 * (self.mu + self.off) {
+        while let (Some(f), Some(b)) = (kf, kb) {
+            if f + b >= self.stop {
                 break;
             }
-            side = usize::from(counts[1] < counts[0]);
-            let _ = (kf, kb);
-            let Some(i) = self.open[side].pop() else {
-                break;
-            };
-            let done = if side == 0 {
-                self.expand::<0>(i)
+            if self.frontier[0] <= self.frontier[1] {
+                if let Some(i) = self.open[0].pop() {
+                    expanded += usize::from(self.expand::<0>(i));
+                }
+                kf = self.open[0].min_key();
             } else {
-                self.expand::<1>(i)
-            };
-            expanded += usize::from(done);
-            counts[side] += 1;
+                if let Some(i) = self.open[1].pop() {
+                    expanded += usize::from(self.expand::<1>(i));
+                }
+                kb = self.open[1].min_key();
+            }
         }
-        (self.meet, expanded)
+        ((self.mu != u64::MAX).then_some(self.meet), expanded)
     }
 
     /// Closes cell `i` in direction `SIDE` and, unless pruned, generates
@@ -315,28 +312,35 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         }
         pair[SIDE] = w & !OPEN;
         let other = pair[1 - SIDE];
+        self.frontier[SIDE] -= 1;
         let g = (w >> G_SHIFT) & G_MASK;
-        self.meet_at(i, g, other);
+        // No meeting test here: g_f + g_b of a cell was tested whenever
+        // either word last changed (see `relax`), and expanding changes
+        // neither cost.
         let grid = self.grid;
         emit(self.obs, || SearchEvent::Close {
             cell: grid.pos_of(i),
         });
-        let stride = self.stride;
-        let (x, y) = xy(i, stride);
-        // Pruning (both keep the stopping rule's argument: every path through
-        // `i` costs at least μ). Closed from the other side as well: g and
-        // the other g are final and their sum is in μ already. Or
-        // g + h(i, other end) ≥ μ.
-        // The cell still counts as closed, like A*'s goal, whose
-        // neighbours are not generated either.
-        if (self.current(other) && other & OPEN == 0) || g + self.h_to(1 - SIDE, x, y) >= self.mu {
+        // Pruning: closed from the other side as well, both costs are final
+        // and their sum is in μ already, and a path through a neighbour
+        // that is cheaper than through `i` reaches that neighbour from the
+        // other side too. The cell still counts as closed, like A*'s goal,
+        // whose neighbours are not generated either. (A test of
+        // g + h(i, other end) ≥ μ here would be redundant: by consistency
+        // every neighbour then fails the same test at its push.)
+        if PairSpace::current(self.tag, other) && other & OPEN == 0 {
             return true;
         }
+        let stride = self.stride;
+        let (x, y) = xy(i, stride);
         // Free cells are interior, so these never wrap; a wrapped index
         // would simply read as blocked.
         let up = i.wrapping_sub(stride);
         let down = i + stride;
-        let nb = self.neighbours.get(i).copied().unwrap_or(0);
+        // The corner rule folded into the neighbour bits: one table load,
+        // no branch on the rule a diagonal.
+        let raw = self.neighbours.get(i).copied().unwrap_or(0);
+        let nb = self.allowed[raw as usize];
         let [n, so, we, e] = straight_free(nb);
         let weights = self.weights;
         let weight = |j: usize| weights.get(j).map_or(1, |&w| u64::from(w));
@@ -345,9 +349,15 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         let here_weight = if weighted && SIDE == 1 { weight(i) } else { 1 };
         // Everything the relaxations touch in locals: stores through the
         // words slice would otherwise make the compiler reload fields.
-        let (tag, off, est, rule) = (self.tag, self.off, self.est, self.rule);
+        let (tag, off, est) = (self.tag, self.off, self.est);
+        // Coordinates relative to the other end (what the estimate towards
+        // it reads), and that end relative to this side's own end: four
+        // values live across the relaxations instead of six.
         let ((ox, oy), (mx, my)) = (self.ends[1 - SIDE], self.ends[SIDE]);
+        let (rx, ry) = (x as isize - ox as isize, y as isize - oy as isize);
+        let (cx, cy) = (ox as isize - mx as isize, oy as isize - my as isize);
         let (mut mu, mut meet) = (self.mu, self.meet);
+        let mut reached = 0usize;
         let words = &mut *self.words;
         let open = &mut self.open[SIDE];
         let obs = &mut *self.obs;
@@ -363,18 +373,29 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
                 };
                 let new = tag | ng << G_SHIFT | $dir;
                 if let Some(pair) = words.get_mut(j) {
-                    if improves(pair[SIDE], new) {
+                    let old = pair[SIDE];
+                    if improves(old, new) {
+                        reached += usize::from(!PairSpace::current(tag, old));
                         pair[SIDE] = new;
                         let other = pair[1 - SIDE];
-                        meet_at(tag, (&mut mu, &mut meet), j, ng, other);
-                        let (nx, ny): (usize, usize) = ($nx, $ny);
-                        let towards = est.h(nx.abs_diff(ox), ny.abs_diff(oy));
+                        // The meeting test.
+                        if PairSpace::current(tag, other) {
+                            let through = ng + ((other >> G_SHIFT) & G_MASK);
+                            if through < mu {
+                                mu = through;
+                                meet = j;
+                            }
+                        }
+                        let (nx, ny): (isize, isize) = ($nx, $ny);
+                        let towards = est.h(nx.unsigned_abs(), ny.unsigned_abs());
                         // Left out of the open list when no path through it
                         // can beat μ (its word stays, for the meeting test).
                         if ng + towards < mu {
-                            let back = est.h(nx.abs_diff(mx), ny.abs_diff(my));
+                            let back = est.h((nx + cx).unsigned_abs(), (ny + cy).unsigned_abs());
                             let key = (2 * ng + towards + off).saturating_sub(back);
-                            open.push(key, ng, j);
+                            // The bucket queue breaks ties by push order and
+                            // ignores g: 0 saves packing it.
+                            open.push(key, if E::MONOTONE { 0 } else { ng }, j);
                             emit(obs, || SearchEvent::Open {
                                 cell: grid.pos_of(j),
                                 parent: Some(grid.pos_of(i)),
@@ -387,16 +408,17 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             }};
         }
 
-        let ok = |a: bool, b: bool, target: bool| diagonal_rule_ok(rule, a, b, target);
+        // `nb` already holds only the diagonal moves the rule allows.
+        let ok = |_: bool, _: bool, target: bool| target;
         macro_rules! straight {
             () => {
-                straight_moves!(relax, i, (up, down), (x, y), [n, so, we, e])
+                straight_moves!(relax, i, (up, down), (rx, ry), [n, so, we, e])
             };
         }
         macro_rules! diagonal {
             () => {
-                if rule != NEVER {
-                    diagonal_moves!(relax, ok, nb, (up, down), (x, y), [n, so, we, e]);
+                if nb >> 4 != 0 {
+                    diagonal_moves!(relax, ok, nb, (up, down), (rx, ry), [n, so, we, e]);
                 }
             };
         }
@@ -413,44 +435,163 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             diagonal!();
             straight!();
         }
-        self.mu = mu;
-        self.meet = meet;
+        if mu != self.mu {
+            self.mu = mu;
+            self.stop = 2 * (mu + off);
+            self.meet = meet;
+        }
+        self.frontier[SIDE] += reached;
         true
     }
 }
 
-/// The meeting test: lowers μ (and its cell) to `g` plus the other
-/// direction's cost in `other` through cell `idx`, if that word is of the
-/// search tagged `tag` and the sum is cheaper.
-#[inline(always)]
-fn meet_at(tag: u64, (mu, meet): (&mut u64, &mut Option<usize>), idx: usize, g: u64, other: u64) {
-    if PairSpace::current(tag, other) {
-        let through = g + ((other >> G_SHIFT) & G_MASK);
-        if through < *mu {
-            *mu = through;
-            *meet = Some(idx);
-        }
-    }
-}
+/// [`moves_allowed`] for each corner rule, indexed by `NEVER` … `ALWAYS`.
+static MOVES_ALLOWED: [[u8; 256]; 4] = [
+    moves_allowed(NEVER),
+    moves_allowed(NO_CORNER_CUTTING),
+    moves_allowed(ONE_SIDE_FREE),
+    moves_allowed(ALWAYS),
+];
 
-/// Whether a diagonal move is legal under the corner `rule` (`NEVER` …
-/// `ALWAYS`), given its side cells and its target cell.
-#[inline(always)]
-fn diagonal_rule_ok(rule: u8, side_a: bool, side_b: bool, target: bool) -> bool {
-    match rule {
-        NO_CORNER_CUTTING => diagonal_ok::<NO_CORNER_CUTTING>(side_a, side_b, target),
-        ONE_SIDE_FREE => diagonal_ok::<ONE_SIDE_FREE>(side_a, side_b, target),
-        ALWAYS => diagonal_ok::<ALWAYS>(side_a, side_b, target),
-        _ => false,
+/// For every byte of neighbour bits ([`PlanGrid::neighbours`]), the same
+/// bits with the diagonal moves the corner `rule` forbids cleared: the
+/// relaxation then tests one bit a move whatever the rule, and the loop is
+/// not copied per rule (code size, see [`by_rule`]).
+const fn moves_allowed(rule: u8) -> [u8; 256] {
+    const fn bit(nb: usize, dx: isize, dy: isize) -> bool {
+        nb & 1 << dir_index(dx, dy) != 0
     }
+    let mut out = [0u8; 256];
+    let mut nb = 0;
+    while nb < 256 {
+        let mut allowed = nb as u8 & 0x0F;
+        let diagonals = [(1, 1), (1, -1), (-1, 1), (-1, -1)];
+        let mut k = 0;
+        while k < diagonals.len() {
+            let (dx, dy) = diagonals[k];
+            // As `astar::diagonal_ok` (tested against it).
+            let (a, b) = (bit(nb, dx, 0), bit(nb, 0, dy));
+            let sides = match rule {
+                NO_CORNER_CUTTING => a && b,
+                ONE_SIDE_FREE => a || b,
+                ALWAYS => true,
+                _ => false,
+            };
+            if sides && bit(nb, dx, dy) {
+                allowed |= 1 << dir_index(dx, dy);
+            }
+            k += 1;
+        }
+        out[nb] = allowed;
+        nb += 1;
+    }
+    out
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::global::astar::{AStar, AStarConfig};
+    use super::{moves_allowed, ALWAYS, NEVER, NO_CORNER_CUTTING, ONE_SIDE_FREE};
+    use crate::global::astar::{diagonal_ok, AStar, AStarConfig};
     use crate::global::classic::BidirectionalAStar;
-    use crate::global::{Diagonal, GridPlanner, GridPos, Heuristic, PlanGrid};
+    use crate::global::search::dir_index;
+    use crate::global::{Diagonal, GridPlanner, GridPos, Heuristic, PlanGrid, SearchEvent};
     use crate::map::OccupancyGrid;
+    use proptest::prelude::*;
+
+    #[test]
+    fn corner_rule_table_allows_what_diagonal_ok_allows_for_every_neighbour_byte() {
+        let check = |rule: u8, ok: fn(bool, bool, bool) -> bool| {
+            let table = moves_allowed(rule);
+            for nb in 0..=255u8 {
+                let bit = |dx: isize, dy: isize| nb & 1 << dir_index(dx, dy) != 0;
+                let mut want = nb & 0x0F;
+                for (dx, dy) in [(1, 1), (1, -1), (-1, 1), (-1, -1)] {
+                    if ok(bit(dx, 0), bit(0, dy), bit(dx, dy)) {
+                        want |= 1 << dir_index(dx, dy);
+                    }
+                }
+                assert_eq!(table[nb as usize], want, "rule {rule} bits {nb:08b}");
+            }
+        };
+        check(NEVER, diagonal_ok::<NEVER>);
+        check(NO_CORNER_CUTTING, diagonal_ok::<NO_CORNER_CUTTING>);
+        check(ONE_SIDE_FREE, diagonal_ok::<ONE_SIDE_FREE>);
+        check(ALWAYS, diagonal_ok::<ALWAYS>);
+    }
+
+    /// Collects the cells closed, in order.
+    #[derive(Default)]
+    struct Closed(Vec<GridPos>);
+
+    impl crate::global::SearchObserver for Closed {
+        fn event(&mut self, e: SearchEvent) {
+            if let SearchEvent::Close { cell } = e {
+                self.0.push(cell);
+            }
+        }
+    }
+
+    #[test]
+    fn bidirectional_expands_the_side_with_the_smaller_frontier() {
+        // An open room (columns 0..=20) and a corridor one cell wide along
+        // row 10 to the goal at its dead end. After the start's first
+        // expansion the forward frontier holds 8 cells, the backward one a
+        // single corridor cell, and it stays at one while the backward
+        // search walks the corridor: all nine corridor cells are closed
+        // next. Alternating by entries popped would interleave room cells.
+        let grid = PlanGrid::from_fn(30, 21, |c, r| c <= 20 || r == 10);
+        let (s, t) = (GridPos::new(5, 10), GridPos::new(29, 10));
+        let mut closed = Closed::default();
+        let b = BidirectionalAStar::default()
+            .search(&grid, s, t, &mut closed)
+            .unwrap();
+        assert!((b.cost - 24.0).abs() < 1e-9);
+        assert_eq!(closed.0.first(), Some(&s));
+        let next: Vec<GridPos> = closed.0.iter().skip(1).take(9).copied().collect();
+        let corridor: Vec<GridPos> = (21..=29).rev().map(|c| GridPos::new(c, 10)).collect();
+        assert_eq!(next, corridor);
+    }
+
+    proptest! {
+        #[test]
+        fn bidirectional_cost_equals_astar_on_random_weighted_grids(
+            w in 2u32..28,
+            h in 2u32..20,
+            density in 0u64..45,
+            seed in any::<u64>(),
+            rule in 0usize..4,
+            heavy in prop::collection::vec((0usize..28, 0usize..20, 2u8..=9), 0..12),
+            ends in (any::<prop::sample::Index>(), any::<prop::sample::Index>()),
+        ) {
+            let mut grid = random_grid(w as usize, h as usize, density, seed);
+            for (c, r, wt) in heavy {
+                grid.set_weight(c % w as usize, r % h as usize, wt);
+            }
+            let free: Vec<GridPos> = (0..h)
+                .flat_map(|y| (0..w).map(move |x| GridPos::new(x, y)))
+                .filter(|&p| grid.is_free(p.col as i64, p.row as i64))
+                .collect();
+            prop_assume!(!free.is_empty());
+            let (s, t) = (ends.0.get(&free), ends.1.get(&free));
+            let diagonal = [
+                Diagonal::Never,
+                Diagonal::NoCornerCutting,
+                Diagonal::OneSideFree,
+                Diagonal::Always,
+            ][rule];
+            let astar = AStar::new(AStarConfig { diagonal, ..AStarConfig::default() }).unwrap();
+            let bidir = BidirectionalAStar { diagonal, heuristic: Heuristic::Octile };
+            match (astar.plan(&grid, *s, *t), bidir.plan(&grid, *s, *t)) {
+                (Ok(a), Ok(b)) => {
+                    prop_assert!((a.cost - b.cost).abs() < 1e-9, "A* {} bidirectional {}", a.cost, b.cost);
+                    prop_assert!(grid.path_is_free(&b.cells, diagonal));
+                    prop_assert_eq!((b.cells.first(), b.cells.last()), (Some(s), Some(t)));
+                }
+                (Err(_), Err(_)) => {}
+                (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
+            }
+        }
+    }
 
     /// A seeded grid of `w × h` cells, about `density` of them blocked.
     fn random_grid(w: usize, h: usize, density: u64, seed: u64) -> PlanGrid {
