@@ -31,7 +31,7 @@ use super::search::{
     cells, check_size, finish, improves, trivial_path, with_space, xy, Estimate, FixedHeuristic,
     OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DEFAULT_SPAN, G_MASK, G_SHIFT, OPEN,
 };
-use super::search::{diagonal_moves, straight_free, straight_moves};
+use super::search::{diagonal_moves, dir_index, straight_free, straight_moves};
 use super::{
     check_weight, Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent,
     SearchObserver,
@@ -108,6 +108,7 @@ impl AStar {
             return Ok(trivial_path(start));
         }
         let c = self.config;
+        let allowed = allowed_moves(c.diagonal);
         with_space(|space| {
             let q = Query {
                 grid,
@@ -117,9 +118,9 @@ impl AStar {
                 obs,
             };
             match (c.heuristic, c.weight == 1.0) {
-                (Heuristic::Octile, true) => by_rule(q, c.diagonal, OctileEstimate),
-                (Heuristic::Zero, _) => by_rule(q, c.diagonal, ZeroEstimate),
-                _ => by_rule(q, c.diagonal, FixedHeuristic::new(c.heuristic, c.weight)),
+                (Heuristic::Octile, true) => run(q, allowed, OctileEstimate),
+                (Heuristic::Zero, _) => run(q, allowed, ZeroEstimate),
+                _ => run(q, allowed, FixedHeuristic::new(c.heuristic, c.weight)),
             }
         })
     }
@@ -139,34 +140,65 @@ pub(crate) const NO_CORNER_CUTTING: u8 = 1;
 pub(crate) const ONE_SIDE_FREE: u8 = 2;
 pub(crate) const ALWAYS: u8 = 3;
 
-fn by_rule<E: Estimate, O: SearchObserver + ?Sized>(
-    q: Query<'_, O>,
-    diagonal: Diagonal,
-    est: E,
-) -> Result<Path, PlanError> {
-    match diagonal {
-        Diagonal::Never => run::<E, NEVER, O>(q, est),
-        Diagonal::NoCornerCutting => run::<E, NO_CORNER_CUTTING, O>(q, est),
-        Diagonal::OneSideFree => run::<E, ONE_SIDE_FREE, O>(q, est),
-        Diagonal::Always => run::<E, ALWAYS, O>(q, est),
+/// The neighbour bits the corner rule `diagonal` leaves ([`moves_allowed`]).
+pub(crate) fn allowed_moves(diagonal: Diagonal) -> &'static [u8; 256] {
+    let rule = match diagonal {
+        Diagonal::Never => NEVER,
+        Diagonal::NoCornerCutting => NO_CORNER_CUTTING,
+        Diagonal::OneSideFree => ONE_SIDE_FREE,
+        Diagonal::Always => ALWAYS,
+    };
+    &MOVES_ALLOWED[rule as usize]
+}
+
+/// [`moves_allowed`] for each corner rule, indexed by `NEVER` … `ALWAYS`.
+pub(crate) static MOVES_ALLOWED: [[u8; 256]; 4] = [
+    moves_allowed(NEVER),
+    moves_allowed(NO_CORNER_CUTTING),
+    moves_allowed(ONE_SIDE_FREE),
+    moves_allowed(ALWAYS),
+];
+
+/// For every byte of neighbour bits ([`PlanGrid::neighbours`]), the same
+/// bits with the diagonal moves the corner `rule` forbids cleared: the
+/// relaxation then tests one bit a move whatever the rule, and the loop is
+/// not copied per rule (code size: a copy of A*'s loop per rule took
+/// 50 kB of every wasm module that plans on grids).
+pub(crate) const fn moves_allowed(rule: u8) -> [u8; 256] {
+    const fn bit(nb: usize, dx: isize, dy: isize) -> bool {
+        nb & 1 << dir_index(dx, dy) != 0
     }
-}
-
-/// Whether a diagonal move is legal under `RULE`, given its side cells and
-/// its target cell.
-#[inline(always)]
-pub(crate) fn diagonal_ok<const RULE: u8>(side_a: bool, side_b: bool, target: bool) -> bool {
-    target
-        && match RULE {
-            NO_CORNER_CUTTING => side_a && side_b,
-            ONE_SIDE_FREE => side_a || side_b,
-            ALWAYS => true,
-            _ => false,
+    let mut out = [0u8; 256];
+    let mut nb = 0;
+    while nb < 256 {
+        let mut allowed = nb as u8 & 0x0F;
+        let diagonals = [(1, 1), (1, -1), (-1, 1), (-1, -1)];
+        let mut k = 0;
+        while k < diagonals.len() {
+            let (dx, dy) = diagonals[k];
+            // The rules of docs/algorithms.md §grid (tested against a plain
+            // statement of them).
+            let (a, b) = (bit(nb, dx, 0), bit(nb, 0, dy));
+            let sides = match rule {
+                NO_CORNER_CUTTING => a && b,
+                ONE_SIDE_FREE => a || b,
+                ALWAYS => true,
+                _ => false,
+            };
+            if sides && bit(nb, dx, dy) {
+                allowed |= 1 << dir_index(dx, dy);
+            }
+            k += 1;
         }
+        out[nb] = allowed;
+        nb += 1;
+    }
+    out
 }
 
-fn run<E: Estimate, const RULE: u8, O: SearchObserver + ?Sized>(
+fn run<E: Estimate, O: SearchObserver + ?Sized>(
     q: Query<'_, O>,
+    allowed: &[u8; 256],
     est: E,
 ) -> Result<Path, PlanError> {
     let Query {
@@ -196,10 +228,18 @@ fn run<E: Estimate, const RULE: u8, O: SearchObserver + ?Sized>(
     // Weighted cells get their own copy of the loop, so unit grids pay
     // nothing for them.
     let (reached, expanded) = match (E::MONOTONE, grid.is_weighted()) {
-        (true, false) => search::<E, RULE, _, O, false>(grid, s, t, words, buckets, tag, est, obs),
-        (true, true) => search::<E, RULE, _, O, true>(grid, s, t, words, buckets, tag, est, obs),
-        (false, false) => search::<E, RULE, _, O, false>(grid, s, t, words, binary, tag, est, obs),
-        (false, true) => search::<E, RULE, _, O, true>(grid, s, t, words, binary, tag, est, obs),
+        (true, false) => {
+            search::<E, _, O, false>(grid, (s, t), allowed, words, buckets, tag, est, obs)
+        }
+        (true, true) => {
+            search::<E, _, O, true>(grid, (s, t), allowed, words, buckets, tag, est, obs)
+        }
+        (false, false) => {
+            search::<E, _, O, false>(grid, (s, t), allowed, words, binary, tag, est, obs)
+        }
+        (false, true) => {
+            search::<E, _, O, true>(grid, (s, t), allowed, words, binary, tag, est, obs)
+        }
     };
     finish(grid, space, (s, t), reached, expanded)
 }
@@ -209,16 +249,10 @@ fn run<E: Estimate, const RULE: u8, O: SearchObserver + ?Sized>(
 /// `WEIGHTED`: a move costs its length times the weight of the cell it
 /// enters (`global::weights`).
 #[allow(clippy::too_many_arguments)]
-fn search<
-    E: Estimate,
-    const RULE: u8,
-    Q: OpenList,
-    O: SearchObserver + ?Sized,
-    const WEIGHTED: bool,
->(
+fn search<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, const WEIGHTED: bool>(
     grid: &PlanGrid,
-    s: usize,
-    t: usize,
+    (s, t): (usize, usize),
+    allowed: &[u8; 256],
     words: &mut [u64],
     open: &mut Q,
     tag: u64,
@@ -264,7 +298,9 @@ fn search<
         // would simply read as blocked.
         let up = i.wrapping_sub(stride);
         let down = i + stride;
-        let nb = neighbours.get(i).copied().unwrap_or(0);
+        // The corner rule folded into the neighbour bits: a diagonal move
+        // is one bit like a straight one.
+        let nb = allowed[usize::from(neighbours.get(i).copied().unwrap_or(0))];
         let [n, so, we, e] = straight_free(nb);
 
         macro_rules! relax {
@@ -293,15 +329,9 @@ fn search<
         }
 
         straight_moves!(relax, i, (up, down), (x, y), [n, so, we, e]);
-        if RULE != NEVER {
-            diagonal_moves!(
-                relax,
-                diagonal_ok::<RULE>,
-                nb,
-                (up, down),
-                (x, y),
-                [n, so, we, e]
-            );
+        if nb >> 4 != 0 {
+            let ok = |_: bool, _: bool, target: bool| target;
+            diagonal_moves!(relax, ok, nb, (up, down), (x, y), [n, so, we, e]);
         }
     }
     (false, expanded)
@@ -312,6 +342,39 @@ mod tests {
     use super::*;
     use crate::global::GridPlanner;
     use crate::map::OccupancyGrid;
+
+    /// Whether a diagonal move is legal under `RULE`, given its side cells
+    /// and its target cell: the rules as docs/algorithms.md states them.
+    fn diagonal_ok<const RULE: u8>(side_a: bool, side_b: bool, target: bool) -> bool {
+        target
+            && match RULE {
+                NO_CORNER_CUTTING => side_a && side_b,
+                ONE_SIDE_FREE => side_a || side_b,
+                ALWAYS => true,
+                _ => false,
+            }
+    }
+
+    #[test]
+    fn corner_rule_table_allows_what_diagonal_ok_allows_for_every_neighbour_byte() {
+        let check = |rule: u8, ok: fn(bool, bool, bool) -> bool| {
+            let table = moves_allowed(rule);
+            for nb in 0..=255u8 {
+                let bit = |dx: isize, dy: isize| nb & 1 << dir_index(dx, dy) != 0;
+                let mut want = nb & 0x0F;
+                for (dx, dy) in [(1, 1), (1, -1), (-1, 1), (-1, -1)] {
+                    if ok(bit(dx, 0), bit(0, dy), bit(dx, dy)) {
+                        want |= 1 << dir_index(dx, dy);
+                    }
+                }
+                assert_eq!(table[nb as usize], want, "rule {rule} bits {nb:08b}");
+            }
+        };
+        check(NEVER, diagonal_ok::<NEVER>);
+        check(NO_CORNER_CUTTING, diagonal_ok::<NO_CORNER_CUTTING>);
+        check(ONE_SIDE_FREE, diagonal_ok::<ONE_SIDE_FREE>);
+        check(ALWAYS, diagonal_ok::<ALWAYS>);
+    }
 
     fn grid(text: &str) -> PlanGrid {
         PlanGrid::new(&OccupancyGrid::from_ascii(text).unwrap(), false)

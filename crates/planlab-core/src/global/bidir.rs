@@ -35,13 +35,13 @@
 //! lie on a path cheaper than μ are closed without expansion
 //! (docs/algorithms.md §classic).
 
-use super::astar::{ALWAYS, NEVER, NO_CORNER_CUTTING, ONE_SIDE_FREE};
+use super::astar::allowed_moves;
 use super::events::emit;
 use super::search::{
     cells, check_size, improves, path_of, trivial_path, with_pair_space, xy, Estimate,
     FixedHeuristic, OctileEstimate, OpenList, PairSpace, ZeroEstimate, DIRS, G_MASK, G_SHIFT, OPEN,
 };
-use super::search::{diagonal_moves, dir_index, straight_free, straight_moves};
+use super::search::{diagonal_moves, straight_free, straight_moves};
 use super::{Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent, SearchObserver};
 
 /// Bidirectional A* from `start` to `goal` under `diagonal`, with `heuristic`
@@ -60,6 +60,10 @@ pub(crate) fn search<O: SearchObserver + ?Sized>(
     if start == goal {
         return Ok(trivial_path(start));
     }
+    // The corner rule and the weighting are runtime values: one copy of
+    // the loop per estimate keeps the wasm modules small (a copy per rule
+    // and weighting grew them by 200 kB).
+    let allowed = allowed_moves(diagonal);
     with_pair_space(|space| {
         let q = Query {
             grid,
@@ -69,9 +73,9 @@ pub(crate) fn search<O: SearchObserver + ?Sized>(
             obs,
         };
         match heuristic {
-            Heuristic::Octile => by_rule(q, diagonal, OctileEstimate),
-            Heuristic::Zero => by_rule(q, diagonal, ZeroEstimate),
-            h => by_rule(q, diagonal, FixedHeuristic::new(h, 1.0)),
+            Heuristic::Octile => run(q, allowed, OctileEstimate),
+            Heuristic::Zero => run(q, allowed, ZeroEstimate),
+            h => run(q, allowed, FixedHeuristic::new(h, 1.0)),
         }
     })
 }
@@ -85,28 +89,10 @@ struct Query<'a, O: ?Sized> {
     obs: &'a mut O,
 }
 
-fn by_rule<E: Estimate, O: SearchObserver + ?Sized>(
-    q: Query<'_, O>,
-    diagonal: Diagonal,
-    est: E,
-) -> Result<Path, PlanError> {
-    // The corner rule and the weighting are runtime values, not const
-    // generics as in A*: one copy of the loop per estimate keeps the wasm
-    // modules small (a copy per rule and weighting grew them by 200 kB), at
-    // the price of two well-predicted branches in the relaxations.
-    let rule = match diagonal {
-        Diagonal::Never => NEVER,
-        Diagonal::NoCornerCutting => NO_CORNER_CUTTING,
-        Diagonal::OneSideFree => ONE_SIDE_FREE,
-        Diagonal::Always => ALWAYS,
-    };
-    run(q, est, rule)
-}
-
 fn run<E: Estimate, O: SearchObserver + ?Sized>(
     q: Query<'_, O>,
+    allowed: &'static [u8; 256],
     est: E,
-    rule: u8,
 ) -> Result<Path, PlanError> {
     let Query {
         grid,
@@ -125,9 +111,9 @@ fn run<E: Estimate, O: SearchObserver + ?Sized>(
     } = &mut *space;
     let ends = (s, t);
     let (meet, expanded) = if E::MONOTONE {
-        Bidir::new(grid, ends, words, buckets, tag, est, obs, rule).run()
+        Bidir::new(grid, ends, words, buckets, tag, est, obs, allowed).run()
     } else {
-        Bidir::new(grid, ends, words, binary, tag, est, obs, rule).run()
+        Bidir::new(grid, ends, words, binary, tag, est, obs, allowed).run()
     };
     let Some(m) = meet else {
         return Err(PlanError::Unreachable { expanded });
@@ -203,7 +189,7 @@ struct Bidir<'a, E, Q, O: ?Sized> {
     /// cells left out of the open list by the pruning count too).
     frontier: [usize; 2],
     /// Diagonal moves the corner rule allows, by neighbour bits
-    /// ([`moves_allowed`]).
+    /// ([`super::astar::moves_allowed`]).
     allowed: &'static [u8; 256],
     /// Whether moves cost by the weight of a cell (`global::weights`).
     weighted: bool,
@@ -219,7 +205,7 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         tag: u64,
         est: E,
         obs: &'a mut O,
-        rule: u8,
+        allowed: &'static [u8; 256],
     ) -> Self {
         let stride = grid.stride();
         let ends = [xy(s, stride), xy(t, stride)];
@@ -241,7 +227,7 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
             meet: usize::MAX,
             stop: u64::MAX,
             frontier: [1, 1],
-            allowed: &MOVES_ALLOWED[rule as usize & 3],
+            allowed,
             weighted: grid.is_weighted(),
         }
     }
@@ -445,79 +431,13 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
     }
 }
 
-/// [`moves_allowed`] for each corner rule, indexed by `NEVER` … `ALWAYS`.
-static MOVES_ALLOWED: [[u8; 256]; 4] = [
-    moves_allowed(NEVER),
-    moves_allowed(NO_CORNER_CUTTING),
-    moves_allowed(ONE_SIDE_FREE),
-    moves_allowed(ALWAYS),
-];
-
-/// For every byte of neighbour bits ([`PlanGrid::neighbours`]), the same
-/// bits with the diagonal moves the corner `rule` forbids cleared: the
-/// relaxation then tests one bit a move whatever the rule, and the loop is
-/// not copied per rule (code size, see [`by_rule`]).
-const fn moves_allowed(rule: u8) -> [u8; 256] {
-    const fn bit(nb: usize, dx: isize, dy: isize) -> bool {
-        nb & 1 << dir_index(dx, dy) != 0
-    }
-    let mut out = [0u8; 256];
-    let mut nb = 0;
-    while nb < 256 {
-        let mut allowed = nb as u8 & 0x0F;
-        let diagonals = [(1, 1), (1, -1), (-1, 1), (-1, -1)];
-        let mut k = 0;
-        while k < diagonals.len() {
-            let (dx, dy) = diagonals[k];
-            // As `astar::diagonal_ok` (tested against it).
-            let (a, b) = (bit(nb, dx, 0), bit(nb, 0, dy));
-            let sides = match rule {
-                NO_CORNER_CUTTING => a && b,
-                ONE_SIDE_FREE => a || b,
-                ALWAYS => true,
-                _ => false,
-            };
-            if sides && bit(nb, dx, dy) {
-                allowed |= 1 << dir_index(dx, dy);
-            }
-            k += 1;
-        }
-        out[nb] = allowed;
-        nb += 1;
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{moves_allowed, ALWAYS, NEVER, NO_CORNER_CUTTING, ONE_SIDE_FREE};
-    use crate::global::astar::{diagonal_ok, AStar, AStarConfig};
+    use crate::global::astar::{AStar, AStarConfig};
     use crate::global::classic::BidirectionalAStar;
-    use crate::global::search::dir_index;
     use crate::global::{Diagonal, GridPlanner, GridPos, Heuristic, PlanGrid, SearchEvent};
     use crate::map::OccupancyGrid;
     use proptest::prelude::*;
-
-    #[test]
-    fn corner_rule_table_allows_what_diagonal_ok_allows_for_every_neighbour_byte() {
-        let check = |rule: u8, ok: fn(bool, bool, bool) -> bool| {
-            let table = moves_allowed(rule);
-            for nb in 0..=255u8 {
-                let bit = |dx: isize, dy: isize| nb & 1 << dir_index(dx, dy) != 0;
-                let mut want = nb & 0x0F;
-                for (dx, dy) in [(1, 1), (1, -1), (-1, 1), (-1, -1)] {
-                    if ok(bit(dx, 0), bit(0, dy), bit(dx, dy)) {
-                        want |= 1 << dir_index(dx, dy);
-                    }
-                }
-                assert_eq!(table[nb as usize], want, "rule {rule} bits {nb:08b}");
-            }
-        };
-        check(NEVER, diagonal_ok::<NEVER>);
-        check(NO_CORNER_CUTTING, diagonal_ok::<NO_CORNER_CUTTING>);
-        check(ONE_SIDE_FREE, diagonal_ok::<ONE_SIDE_FREE>);
-        check(ALWAYS, diagonal_ok::<ALWAYS>);
-    }
 
     /// Collects the cells closed, in order.
     #[derive(Default)]
