@@ -330,20 +330,17 @@ impl Screen {
             };
             let mask = cull.mask();
             if self.no_movers(mask) {
-                for (j, &p) in points[i..end].iter().enumerate() {
-                    let k = i + j;
-                    let c = probe.at(p, len_of(k));
-                    // `f64::min` less its NaN care: `min_c` starts at +∞ and
-                    // only ever takes a smaller (so not NaN) value, and on a
-                    // tie it keeps `min_c` as `min` does.
-                    if c < min_c {
-                        min_c = c;
-                    }
-                    if c <= limit {
-                        collided = true;
-                        shown = k + 1;
-                        break 'walk;
-                    }
+                // A loop of its own for a constant step length (the
+                // constant-speed rollouts, most of them).
+                let part = &points[i..end];
+                let hit = match const_len {
+                    Some(len) => walk_static(&mut probe, part, |_| len, limit, &mut min_c),
+                    None => walk_static(&mut probe, part, |j| step_len(i + j), limit, &mut min_c),
+                };
+                if let Some(j) = hit {
+                    collided = true;
+                    shown = i + j + 1;
+                    break 'walk;
                 }
             } else {
                 for (j, &p) in points[i..end].iter().enumerate() {
@@ -823,7 +820,10 @@ impl Screen {
     fn closer(&self, best: f64, p: [f64; 2], r: f64, x: f64, y: f64, horizon: f64) -> f64 {
         let (dx, dy) = (p[0] - x, p[1] - y);
         let d2 = dx * dx + dy * dy;
-        let lim = best.min(horizon) + r + self.r_eff;
+        // `best.min(horizon)` as one comparison (the horizon is never NaN:
+        // dist_cap is validated); `f64::min`'s NaN handling took five more
+        // instructions in the screen's innermost loop.
+        let lim = (if best < horizon { best } else { horizon }) + r + self.r_eff;
         // Only a closer mover needs the square root.
         if lim <= 0.0 || d2 < lim * lim {
             best.min(d2.sqrt() - r - self.r_eff)
@@ -899,12 +899,14 @@ impl Screen {
             let j = bits.trailing_zeros() as usize;
             bits &= bits - 1;
             let (pa, pb, r) = (&a[j], &b[j], self.mover_rad[j]);
-            let gx = (pa[0].min(pb[0]) - c[0])
-                .max(c[0] - pa[0].max(pb[0]))
-                .max(0.0);
-            let gy = (pa[1].min(pb[1]) - c[1])
-                .max(c[1] - pa[1].max(pb[1]))
-                .max(0.0);
+            // The gap between `c` and the box, with `f64::max`/`min` written
+            // as comparisons (one instruction each, not six): the table holds
+            // no NaN, a NaN centre still gives a gap of 0 (kept), and where a
+            // ±0 tie could pick either zero, the square below is +0 anyway.
+            let lo = |a: f64, b: f64| if a < b { a } else { b };
+            let hi = |a: f64, b: f64| if a > b { a } else { b };
+            let gx = hi(hi(lo(pa[0], pb[0]) - c[0], c[0] - hi(pa[0], pb[0])), 0.0);
+            let gy = hi(hi(lo(pa[1], pb[1]) - c[1], c[1] - hi(pa[1], pb[1])), 0.0);
             let reach = base + r;
             // Kept on NaN: only a mover surely out of reach is left out.
             if (gx * gx + gy * gy).partial_cmp(&(reach * reach))
@@ -977,6 +979,33 @@ impl Screen {
             cull.end = end;
         }
     }
+}
+
+/// [`Screen::check`]'s walk over `points` where no mover is near: the
+/// clearance is the static part alone. Lowers `min_c` to each point's
+/// clearance (point `j` reached after a step of at most `len(j)` m) and
+/// returns the first point at or below `limit`.
+#[inline(always)]
+fn walk_static(
+    probe: &mut Probe<'_>,
+    points: &[[f64; 2]],
+    len: impl Fn(usize) -> f64,
+    limit: f64,
+    min_c: &mut f64,
+) -> Option<usize> {
+    for (j, &p) in points.iter().enumerate() {
+        let c = probe.at(p, len(j));
+        // `f64::min` less its NaN care: `min_c` starts at +∞ and only ever
+        // takes a smaller (so not NaN) value, and on a tie it keeps `min_c`
+        // as `min` does.
+        if c < *min_c {
+            *min_c = c;
+        }
+        if c <= limit {
+            return Some(j);
+        }
+    }
+    None
 }
 
 /// Most rows [`BrakeTurns`] keeps (a cycle asks one per turn rate).
