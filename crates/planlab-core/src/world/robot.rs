@@ -209,7 +209,18 @@ impl RobotSpec {
 /// y += (v sinθ + v_y cosθ)Δt, θ += ωΔt. The command becomes the new velocity.
 #[inline]
 pub fn integrate(state: &RobotState, cmd: Command, dt: f64) -> RobotState {
-    let (s, c) = sin_cos(state.theta);
+    integrate_turned(state, cmd, dt, sin_cos(state.theta))
+}
+
+/// [`integrate`] given `(sin θ, cos θ)` of the state's heading (computed
+/// once for many steps from the same heading).
+#[inline(always)]
+pub fn integrate_turned(
+    state: &RobotState,
+    cmd: Command,
+    dt: f64,
+    (s, c): (f64, f64),
+) -> RobotState {
     RobotState {
         x: state.x + (cmd.v * c - cmd.vy * s) * dt,
         y: state.y + (cmd.v * s + cmd.vy * c) * dt,

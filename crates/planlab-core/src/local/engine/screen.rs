@@ -29,8 +29,8 @@
 use super::generator::{Sample, Trajectory, Window, MAX_ROLLOUT_STEPS};
 use crate::geom::closest_along;
 use crate::local::{Observation, ObservedMover};
-use crate::num::{atan2, hypot, wrap_angle};
-use crate::world::robot::integrate;
+use crate::num::{atan2, hypot, sin_cos, wrap_angle};
+use crate::world::robot::{integrate, integrate_turned};
 use crate::world::{Command, Footprint, RobotLimits, RobotSpec, RobotState, StaticMap};
 
 /// A braking rollout's rest point must stay out of every mover's predicted
@@ -151,6 +151,8 @@ pub struct Screen {
     dt: f64,
     /// Half a map cell: allowance for the clearance field's error, m.
     slack: f64,
+    /// The braking checks' headings ([`BrakeTurns`]).
+    turns: std::cell::RefCell<BrakeTurns>,
 }
 
 impl Screen {
@@ -178,6 +180,7 @@ impl Screen {
             horizon: 0.0,
             dt: 0.1,
             slack: 0.0,
+            turns: Default::default(),
         }
     }
 
@@ -198,6 +201,7 @@ impl Screen {
         let s = obs.state;
         let l = self.limits;
         let h = self.h;
+        self.turns.get_mut().clear();
         // Beyond this distance clearance changes nothing: the critic is
         // capped, and collisions and V_a only ask whether it reaches the
         // threshold.
@@ -311,16 +315,49 @@ impl Screen {
         let len_of = |i: usize| const_len.unwrap_or_else(|| step_len(i));
         let start = [s.x, s.y];
         let mut cull = MoverCull::new(self);
-        for (i, &p) in traj.points[..traj.horizon].iter().enumerate() {
+        // A chunk at a time ([`MoverCull`]; the rest at once without it):
+        // where its mask asks no mover, the clearance is the static part
+        // alone (what `mover_clearance_in` returns then), in a loop with
+        // nothing else in it — most points of a cycle lie there.
+        let points = &traj.points[..traj.horizon];
+        let mut i = 0;
+        'walk: while i < points.len() {
             self.cull_at(&mut cull, &traj.points, start, i, len_of);
-            let stat = probe.at(p, len_of(i));
-            let c = self.mover_clearance_in(stat, p[0], p[1], i + 1, horizon, cull.mask());
-            min_c = min_c.min(c);
-            if c <= limit {
-                collided = true;
-                shown = i + 1;
-                break;
+            let end = if cull.on {
+                cull.end.min(points.len())
+            } else {
+                points.len()
+            };
+            let mask = cull.mask();
+            if self.no_movers(mask) {
+                // A loop of its own for a constant step length (the
+                // constant-speed rollouts, most of them).
+                let part = &points[i..end];
+                let hit = match const_len {
+                    Some(len) => walk_static(&mut probe, part, |_| len, limit, &mut min_c),
+                    None => walk_static(&mut probe, part, |j| step_len(i + j), limit, &mut min_c),
+                };
+                if let Some(j) = hit {
+                    collided = true;
+                    shown = i + j + 1;
+                    break 'walk;
+                }
+            } else {
+                for (j, &p) in points[i..end].iter().enumerate() {
+                    let k = i + j;
+                    let stat = probe.at(p, len_of(k));
+                    let c = self.mover_clearance_in(stat, p[0], p[1], k + 1, horizon, mask);
+                    if c < min_c {
+                        min_c = c;
+                    }
+                    if c <= limit {
+                        collided = true;
+                        shown = k + 1;
+                        break 'walk;
+                    }
+                }
             }
+            i = end;
         }
         traj.min_clearance = min_c;
         let mut rest = traj.end();
@@ -547,14 +584,13 @@ impl Screen {
     ) -> bool {
         let l = &self.limits;
         let h = self.h;
-        let (mut st, mut v, mut w) = (*s, s.v, s.w);
         let rows = self.mover_rows();
         // From speed, or with a short horizon, the robot is still moving at
         // the horizon's end. (Only the fallback asks past it: for the
         // evade and stranding decisions, movers predicted at constant
         // velocity that far out misled more than they helped — S-fig12's
         // dual-velocity robot then stood beside a mover's turnaround.)
-        let stop = (v.abs() / l.acc_v).max(w.abs() / l.acc_w) / h;
+        let stop = (s.v.abs() / l.acc_v).max(s.w.abs() / l.acc_w) / h;
         let n = if to_rest {
             self.steps
                 .max(stop.ceil().min(MAX_ROLLOUT_STEPS as f64) as usize + 1)
@@ -574,24 +610,24 @@ impl Screen {
             }
         }
         let mut cull = MoverCull::new(self);
-        // `None`: above the threshold, and no mover was near.
-        let mut stat = None;
+        // Braking without a goal to turn to: the headings depend on the
+        // start's heading and turn rate alone, shared by every speed.
+        let mut turns = self.turns.borrow_mut();
+        let turns = &mut *turns;
+        let turn_row = turn_to.is_none().then(|| turns.row(s.theta, s.w));
+        let dw = l.acc_w * h;
+        // The answer is a contact on the way or an unsafe rest point; the
+        // rest point needs the path alone (no look-up, no mover), so it is
+        // asked first, and the path is kept for the contacts.
+        let path = &mut turns.path;
+        path.clear();
+        let (mut st, mut v, mut w) = (*s, s.v, s.w);
         for k in 1..=n {
-            if cull.due(k - 1) {
-                // |v| never grows while braking: the next steps stay
-                // within this of the current position.
-                let steps = CULL_CHUNK.min(n + 1 - k);
-                let rho = (v.abs() * h * (1.0 + 1e-9) + 1e-9) * steps as f64;
-                let (ka, kb) = (row_of(k), row_of(k + steps - 1));
-                cull.mask = self.near_movers([st.x, st.y], rho, ka, kb, u64::MAX);
-                cull.end = k - 1 + steps;
-            }
             v = toward_zero(v, l.acc_v * h);
             w = match turn_to {
                 Some(g) => self.turn_toward(&st, g, h),
-                None => toward_zero(w, l.acc_w * h),
+                None => toward_zero(w, dw),
             };
-            let at = (st.x, st.y);
             st = if v == 0.0 && w == 0.0 && st.x != 0.0 && st.y != 0.0 {
                 // At rest: `integrate` moves it by ±0, which leaves a nonzero
                 // coordinate as it is, and turns it by 0 — without its sine
@@ -604,14 +640,45 @@ impl Screen {
                     ..st
                 }
             } else {
-                integrate(&st, Command { v, vy: 0.0, w }, h)
+                let sc = match turn_row {
+                    Some(r) => turns.rows[r].sin_cos(k, dw, h),
+                    None => sin_cos(st.theta),
+                };
+                integrate_turned(&st, Command { v, vy: 0.0, w }, h, sc)
             };
+            path.push([st.x, st.y, v]);
+            // Turning on the spot moves no part of a round footprint.
+            let still = v == 0.0 && (w == 0.0 || turn_to.is_some());
+            if still && self.mover_rad.is_empty() {
+                break;
+            }
+        }
+        let rest_unsafe = match near {
+            Some(s0) => self.rest_unsafe_near(s0, st.x, st.y),
+            None => self.rest_unsafe(st.x, st.y),
+        };
+        if rest_unsafe {
+            return true;
+        }
+        // `None`: above the threshold, and no mover was near.
+        let mut stat = None;
+        let (mut at, mut v_at) = ([s.x, s.y], s.v);
+        for (i, &[x, y, v]) in path.iter().enumerate() {
+            let k = i + 1;
+            if cull.due(k - 1) {
+                // |v| never grows while braking: the next steps stay
+                // within this of the current position.
+                let steps = CULL_CHUNK.min(n + 1 - k);
+                let rho = (v_at.abs() * h * (1.0 + 1e-9) + 1e-9) * steps as f64;
+                let (ka, kb) = (row_of(k), row_of(k + steps - 1));
+                cull.mask = self.near_movers(at, rho, ka, kb, u64::MAX);
+                cull.end = k - 1 + steps;
+            }
             // Standing where the last step ended: the same static part (the
             // probe's value stands for it either way, and only `≤ limit` is
             // asked), without a look-up; no distance driven, so the probe
             // need not advance.
-            let moved =
-                k == 1 || st.x.to_bits() != at.0.to_bits() || st.y.to_bits() != at.1.to_bits();
+            let moved = k == 1 || x.to_bits() != at[0].to_bits() || y.to_bits() != at[1].to_bits();
             let mask = cull.mask();
             if moved || stat.is_none() {
                 let len = if moved {
@@ -619,24 +686,18 @@ impl Screen {
                 } else {
                     0.0
                 };
-                stat = probe.above([st.x, st.y], len, self.limit, self.no_movers(mask));
+                stat = probe.above([x, y], len, self.limit, self.no_movers(mask));
             }
             let row = row_of(k);
             if stat.is_some_and(|c| {
-                self.mover_clearance_in(c, st.x, st.y, row, self.horizon, mask) <= self.limit
+                self.mover_clearance_in(c, x, y, row, self.horizon, mask) <= self.limit
             }) {
                 return true;
             }
-            // Turning on the spot moves no part of a round footprint.
-            let still = v == 0.0 && (w == 0.0 || turn_to.is_some());
-            if still && self.mover_rad.is_empty() {
-                break;
-            }
+            (at, v_at) = ([x, y], v);
         }
-        match near {
-            Some(s0) => self.rest_unsafe_near(s0, st.x, st.y),
-            None => self.rest_unsafe(st.x, st.y),
-        }
+        // The rest point was asked first.
+        false
     }
 
     /// The fallback's turn rate toward `goal`: the rate that closes the
@@ -759,7 +820,10 @@ impl Screen {
     fn closer(&self, best: f64, p: [f64; 2], r: f64, x: f64, y: f64, horizon: f64) -> f64 {
         let (dx, dy) = (p[0] - x, p[1] - y);
         let d2 = dx * dx + dy * dy;
-        let lim = best.min(horizon) + r + self.r_eff;
+        // `best.min(horizon)` as one comparison (the horizon is never NaN:
+        // dist_cap is validated); `f64::min`'s NaN handling took five more
+        // instructions in the screen's innermost loop.
+        let lim = (if best < horizon { best } else { horizon }) + r + self.r_eff;
         // Only a closer mover needs the square root.
         if lim <= 0.0 || d2 < lim * lim {
             best.min(d2.sqrt() - r - self.r_eff)
@@ -835,12 +899,14 @@ impl Screen {
             let j = bits.trailing_zeros() as usize;
             bits &= bits - 1;
             let (pa, pb, r) = (&a[j], &b[j], self.mover_rad[j]);
-            let gx = (pa[0].min(pb[0]) - c[0])
-                .max(c[0] - pa[0].max(pb[0]))
-                .max(0.0);
-            let gy = (pa[1].min(pb[1]) - c[1])
-                .max(c[1] - pa[1].max(pb[1]))
-                .max(0.0);
+            // The gap between `c` and the box, with `f64::max`/`min` written
+            // as comparisons (one instruction each, not six): the table holds
+            // no NaN, a NaN centre still gives a gap of 0 (kept), and where a
+            // ±0 tie could pick either zero, the square below is +0 anyway.
+            let lo = |a: f64, b: f64| if a < b { a } else { b };
+            let hi = |a: f64, b: f64| if a > b { a } else { b };
+            let gx = hi(hi(lo(pa[0], pb[0]) - c[0], c[0] - hi(pa[0], pb[0])), 0.0);
+            let gy = hi(hi(lo(pa[1], pb[1]) - c[1], c[1] - hi(pa[1], pb[1])), 0.0);
             let reach = base + r;
             // Kept on NaN: only a mover surely out of reach is left out.
             if (gx * gx + gy * gy).partial_cmp(&(reach * reach))
@@ -912,6 +978,113 @@ impl Screen {
             cull.mask = self.near_movers(c, rho, i + 1, end, cands);
             cull.end = end;
         }
+    }
+}
+
+/// [`Screen::check`]'s walk over `points` where no mover is near: the
+/// clearance is the static part alone. Lowers `min_c` to each point's
+/// clearance (point `j` reached after a step of at most `len(j)` m) and
+/// returns the first point at or below `limit`.
+#[inline(always)]
+fn walk_static(
+    probe: &mut Probe<'_>,
+    points: &[[f64; 2]],
+    len: impl Fn(usize) -> f64,
+    limit: f64,
+    min_c: &mut f64,
+) -> Option<usize> {
+    for (j, &p) in points.iter().enumerate() {
+        let c = probe.at(p, len(j));
+        // `f64::min` less its NaN care: `min_c` starts at +∞ and only ever
+        // takes a smaller (so not NaN) value, and on a tie it keeps `min_c`
+        // as `min` does.
+        if c < *min_c {
+            *min_c = c;
+        }
+        if c <= limit {
+            return Some(j);
+        }
+    }
+    None
+}
+
+/// Most rows [`BrakeTurns`] keeps (a cycle asks one per turn rate).
+const MAX_BRAKE_TURNS: usize = 1024;
+
+/// (sin θ, cos θ) of braking checks' headings, per start heading and turn
+/// rate: braking turns ω toward 0 by `acc_w·h` a step whatever the speed,
+/// so the headings of every sample of one turn rate are the same, and one
+/// sine and cosine a step serves them all (each the value `integrate`
+/// computes). Cleared every cycle.
+#[derive(Debug, Clone, Default)]
+struct BrakeTurns {
+    /// Rows in use: `rows[..used]` (the others keep their allocations).
+    rows: Vec<BrakeTurn>,
+    used: usize,
+    /// Row of the last look-up (the next is usually it or the one after).
+    last: usize,
+    /// A braking check's path: (x, y, v) after each step.
+    path: Vec<[f64; 3]>,
+}
+
+/// One start's headings.
+#[derive(Debug, Clone, Default)]
+struct BrakeTurn {
+    /// Bits of the start heading and turn rate.
+    key: (u64, u64),
+    /// Heading and turn rate after `sc.len()` steps.
+    theta: f64,
+    w: f64,
+    /// `sc[k]`: (sin, cos) of the heading after k steps.
+    sc: Vec<(f64, f64)>,
+}
+
+impl BrakeTurns {
+    fn clear(&mut self) {
+        self.used = 0;
+        self.last = 0;
+    }
+
+    /// The row of a braking check from heading `theta` at turn rate `w`.
+    fn row(&mut self, theta: f64, w: f64) -> usize {
+        let key = (theta.to_bits(), w.to_bits());
+        let near = [self.last, self.last + 1];
+        let found = near
+            .into_iter()
+            .filter(|&i| i < self.used)
+            .chain(0..self.used)
+            .find(|&i| self.rows[i].key == key);
+        if let Some(i) = found {
+            self.last = i;
+            return i;
+        }
+        if self.used == MAX_BRAKE_TURNS {
+            self.clear();
+        }
+        if self.used == self.rows.len() {
+            self.rows.push(BrakeTurn::default());
+        }
+        let r = &mut self.rows[self.used];
+        r.key = key;
+        (r.theta, r.w) = (theta, w);
+        r.sc.clear();
+        self.used += 1;
+        self.last = self.used - 1;
+        self.last
+    }
+}
+
+impl BrakeTurn {
+    /// (sin, cos) of the heading before braking step `k` (1-based), the
+    /// turn rate going toward 0 by `dw` a step of `h` s.
+    #[inline(always)]
+    fn sin_cos(&mut self, k: usize, dw: f64, h: f64) -> (f64, f64) {
+        while self.sc.len() < k {
+            self.sc.push(sin_cos(self.theta));
+            self.w = toward_zero(self.w, dw);
+            self.theta = wrap_angle(self.theta + self.w * h);
+        }
+        self.sc[k - 1]
     }
 }
 
@@ -1126,6 +1299,127 @@ mod tests {
             }
         }
         assert!(kept_out > 100, "{kept_out}");
+    }
+
+    /// The rollout walk of [`Screen::check`] (chunks without movers walked
+    /// on the static part alone, map look-ups skipped by [`Probe`], movers
+    /// culled) against a look-up and every kept mover at every point: the
+    /// same collision, at the same point, and the same smallest clearance
+    /// below the horizon, bit for bit.
+    #[test]
+    fn the_rollout_walk_matches_every_point_looked_up() {
+        let map = walled();
+        let robot = RobotSpec::default();
+        let cfg = ScreenConfig {
+            dist_cap: 1.0,
+            safety_margin: 0.05,
+            predict_movers: true,
+            admissible_window: true,
+            rotate_in_place: true,
+            emergency: None,
+        };
+        let mut rng = Rng::new(41);
+        let (mut hits, mut below) = (0u32, 0u32);
+        for scene in 0..60 {
+            let movers: Vec<ObservedMover> = (0..scene % 12)
+                .map(|id| ObservedMover {
+                    id,
+                    pos: [rng.range(0.3, 5.7), rng.range(0.3, 3.7)],
+                    vel: [rng.range(-0.8, 0.8), rng.range(-0.8, 0.8)],
+                    radius: rng.range(0.05, 0.4),
+                })
+                .collect();
+            let s = RobotState {
+                x: rng.range(0.5, 5.5),
+                y: rng.range(0.5, 3.5),
+                theta: rng.range(-3.1, 3.1),
+                v: rng.range(0.0, 1.0),
+                w: rng.range(-0.5, 0.5),
+                ..Default::default()
+            };
+            let mut gen =
+                DynamicWindow::new(robot.limits, (0.05, 0.05), (7, 11), (3.0, 0.1), false);
+            let mut obs = testkit::observation(&s, [5.5, 2.0], &map);
+            obs.movers = &movers;
+            let req = WindowRequest {
+                dt: 0.1,
+                hold_v: None,
+                braking: scene % 2 == 0,
+            };
+            let mut samples = Vec::new();
+            let window = gen.samples(&obs, &req, &mut samples);
+            let mut screen = Screen::new(cfg, &robot, gen.horizon());
+            screen.prepare(&obs, &window, 0.1);
+            let mut traj = Trajectory::default();
+            for sample in samples {
+                gen.rollout(&obs, sample, screen.steps_for(&sample), &mut traj);
+                let v = screen.check(&obs, &mut traj);
+                let (mut min_c, mut hit) = (f64::INFINITY, None);
+                for (i, p) in traj.points[..traj.horizon].iter().enumerate() {
+                    let stat = map.clearance(p[0], p[1]) - screen.r_eff - screen.slack;
+                    let c = screen.mover_clearance(stat, p[0], p[1], i + 1, screen.horizon);
+                    min_c = min_c.min(c);
+                    if c <= screen.limit {
+                        hit = Some(i + 1);
+                        break;
+                    }
+                }
+                let within = |c: f64| c.min(screen.horizon).to_bits();
+                assert_eq!(within(traj.min_clearance), within(min_c), "scene {scene}");
+                if let Some(shown) = hit {
+                    assert!(v.collided && v.shown == shown, "scene {scene}: {v:?}");
+                    hits += 1;
+                } else if sample.decel == 0.0 {
+                    assert!(!v.collided, "scene {scene}: {v:?}");
+                }
+                below += u32::from(min_c < screen.horizon);
+            }
+        }
+        assert!(hits > 100 && below > 1000, "{hits} {below}");
+    }
+
+    /// Braking checks share one row of headings per start heading and turn
+    /// rate ([`BrakeTurns`]): each speed's braking gets the very states
+    /// its own sines and cosines give.
+    #[test]
+    fn braking_headings_shared_across_speeds_are_each_speed_s_own() {
+        let l = RobotSpec::default().limits;
+        let h = 0.1;
+        let dw = l.acc_w * h;
+        let mut rng = Rng::new(5);
+        let mut turns = BrakeTurns::default();
+        for _ in 0..200 {
+            let (theta, w) = (rng.range(-4.0, 4.0), rng.range(-1.5, 1.5));
+            for _ in 0..5 {
+                let start = RobotState {
+                    x: rng.range(-2.0, 2.0),
+                    y: rng.range(-2.0, 2.0),
+                    theta,
+                    v: rng.range(0.0, 1.0),
+                    w,
+                    ..Default::default()
+                };
+                let r = turns.row(theta, w);
+                let (mut own, mut shared) = (start, start);
+                let (mut v, mut wk) = (start.v, start.w);
+                for k in 1..40 {
+                    v = toward_zero(v, l.acc_v * h);
+                    wk = toward_zero(wk, dw);
+                    let cmd = Command { v, vy: 0.0, w: wk };
+                    own = integrate(&own, cmd, h);
+                    let sc = turns.rows[r].sin_cos(k, dw, h);
+                    shared = integrate_turned(&shared, cmd, h, sc);
+                    for (a, b) in [
+                        (own.x, shared.x),
+                        (own.y, shared.y),
+                        (own.theta, shared.theta),
+                    ] {
+                        assert_eq!(a.to_bits(), b.to_bits(), "step {k}");
+                    }
+                }
+            }
+        }
+        assert!(turns.used <= 200);
     }
 
     /// [`Probe`]'s bound: the static clearance at a point is above its
