@@ -1252,22 +1252,7 @@ mod tests {
         let mut rng = Rng::new(29);
         let mut kept_out = 0u32;
         for scene in 0..60 {
-            let movers: Vec<ObservedMover> = (0..2 + scene % 30)
-                .map(|id| ObservedMover {
-                    id,
-                    pos: [rng.range(0.3, 5.7), rng.range(0.3, 3.7)],
-                    vel: [rng.range(-0.8, 0.8), rng.range(-0.8, 0.8)],
-                    radius: rng.range(0.05, 0.4),
-                })
-                .collect();
-            let s = RobotState {
-                x: rng.range(1.0, 5.0),
-                y: rng.range(0.5, 3.5),
-                theta: rng.range(-3.1, 3.1),
-                v: rng.range(0.0, 1.0),
-                w: rng.range(-0.5, 0.5),
-                ..Default::default()
-            };
+            let (movers, s) = random_scene(&mut rng, 2 + scene % 30, (1.0, 5.0));
             let mut gen =
                 DynamicWindow::new(robot.limits, (0.05, 0.05), (7, 11), (3.0, 0.1), false);
             let mut obs = testkit::observation(&s, [5.5, 2.0], &map);
@@ -1301,6 +1286,28 @@ mod tests {
         assert!(kept_out > 100, "{kept_out}");
     }
 
+    /// `n` movers at random in the 6 × 4 m walled room and a robot state
+    /// with x in `xs` (drawn in that order from `rng`).
+    fn random_scene(rng: &mut Rng, n: u32, xs: (f64, f64)) -> (Vec<ObservedMover>, RobotState) {
+        let movers = (0..n)
+            .map(|id| ObservedMover {
+                id,
+                pos: [rng.range(0.3, 5.7), rng.range(0.3, 3.7)],
+                vel: [rng.range(-0.8, 0.8), rng.range(-0.8, 0.8)],
+                radius: rng.range(0.05, 0.4),
+            })
+            .collect();
+        let s = RobotState {
+            x: rng.range(xs.0, xs.1),
+            y: rng.range(0.5, 3.5),
+            theta: rng.range(-3.1, 3.1),
+            v: rng.range(0.0, 1.0),
+            w: rng.range(-0.5, 0.5),
+            ..Default::default()
+        };
+        (movers, s)
+    }
+
     /// The rollout walk of [`Screen::check`] (chunks without movers walked
     /// on the static part alone, map look-ups skipped by [`Probe`], movers
     /// culled) against a look-up and every kept mover at every point: the
@@ -1321,22 +1328,7 @@ mod tests {
         let mut rng = Rng::new(41);
         let (mut hits, mut below) = (0u32, 0u32);
         for scene in 0..60 {
-            let movers: Vec<ObservedMover> = (0..scene % 12)
-                .map(|id| ObservedMover {
-                    id,
-                    pos: [rng.range(0.3, 5.7), rng.range(0.3, 3.7)],
-                    vel: [rng.range(-0.8, 0.8), rng.range(-0.8, 0.8)],
-                    radius: rng.range(0.05, 0.4),
-                })
-                .collect();
-            let s = RobotState {
-                x: rng.range(0.5, 5.5),
-                y: rng.range(0.5, 3.5),
-                theta: rng.range(-3.1, 3.1),
-                v: rng.range(0.0, 1.0),
-                w: rng.range(-0.5, 0.5),
-                ..Default::default()
-            };
+            let (movers, s) = random_scene(&mut rng, scene % 12, (0.5, 5.5));
             let mut gen =
                 DynamicWindow::new(robot.limits, (0.05, 0.05), (7, 11), (3.0, 0.1), false);
             let mut obs = testkit::observation(&s, [5.5, 2.0], &map);
