@@ -1253,19 +1253,9 @@ mod tests {
         let mut kept_out = 0u32;
         for scene in 0..60 {
             let (movers, s) = random_scene(&mut rng, 2 + scene % 30, (1.0, 5.0));
-            let mut gen =
-                DynamicWindow::new(robot.limits, (0.05, 0.05), (7, 11), (3.0, 0.1), false);
             let mut obs = testkit::observation(&s, [5.5, 2.0], &map);
             obs.movers = &movers;
-            let req = WindowRequest {
-                dt: 0.1,
-                hold_v: None,
-                braking: scene % 2 == 0,
-            };
-            let mut samples = Vec::new();
-            let window = gen.samples(&obs, &req, &mut samples);
-            let mut screen = Screen::new(cfg, &robot, gen.horizon());
-            screen.prepare(&obs, &window, 0.1);
+            let (gen, samples, screen) = windowed(&robot, cfg, &obs, scene % 2 == 0);
             let mut all = screen.clone();
             all.cands.clear();
             let n = screen.kept_movers();
@@ -1308,6 +1298,27 @@ mod tests {
         (movers, s)
     }
 
+    /// A dynamic window's samples for `obs` (braking ones if `braking`) and
+    /// a screen prepared for them.
+    fn windowed(
+        robot: &RobotSpec,
+        cfg: ScreenConfig,
+        obs: &Observation,
+        braking: bool,
+    ) -> (DynamicWindow, Vec<Sample>, Screen) {
+        let mut gen = DynamicWindow::new(robot.limits, (0.05, 0.05), (7, 11), (3.0, 0.1), false);
+        let req = WindowRequest {
+            dt: 0.1,
+            hold_v: None,
+            braking,
+        };
+        let mut samples = Vec::new();
+        let window = gen.samples(obs, &req, &mut samples);
+        let mut screen = Screen::new(cfg, robot, gen.horizon());
+        screen.prepare(obs, &window, 0.1);
+        (gen, samples, screen)
+    }
+
     /// The rollout walk of [`Screen::check`] (chunks without movers walked
     /// on the static part alone, map look-ups skipped by [`Probe`], movers
     /// culled) against a look-up and every kept mover at every point: the
@@ -1329,19 +1340,9 @@ mod tests {
         let (mut hits, mut below) = (0u32, 0u32);
         for scene in 0..60 {
             let (movers, s) = random_scene(&mut rng, scene % 12, (0.5, 5.5));
-            let mut gen =
-                DynamicWindow::new(robot.limits, (0.05, 0.05), (7, 11), (3.0, 0.1), false);
             let mut obs = testkit::observation(&s, [5.5, 2.0], &map);
             obs.movers = &movers;
-            let req = WindowRequest {
-                dt: 0.1,
-                hold_v: None,
-                braking: scene % 2 == 0,
-            };
-            let mut samples = Vec::new();
-            let window = gen.samples(&obs, &req, &mut samples);
-            let mut screen = Screen::new(cfg, &robot, gen.horizon());
-            screen.prepare(&obs, &window, 0.1);
+            let (gen, samples, screen) = windowed(&robot, cfg, &obs, scene % 2 == 0);
             let mut traj = Trajectory::default();
             for sample in samples {
                 gen.rollout(&obs, sample, screen.steps_for(&sample), &mut traj);
