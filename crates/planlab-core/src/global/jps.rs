@@ -53,7 +53,7 @@ pub struct JpsConfig {
     pub diagonal: Diagonal,
     /// JPS+: read jump distances from a table built on the grid's first
     /// such query and kept with it (dropped by an edit), instead of scanning
-    /// (see [`super::jump_table`]). The same jump points and paths; faster
+    /// (see `global/jump_table.rs`). The same jump points and paths; faster
     /// where many queries share a map. Only with
     /// [`Diagonal::NoCornerCutting`] and the octile heuristic (exact on an
     /// open 8-connected grid; one compiled search keeps the web modules
