@@ -164,31 +164,6 @@ impl Jps {
 const CORNERS: bool = true;
 const MARK_EVERY: usize = 8;
 
-/// How a search finds where jumps stop: by scanning the bit-packed lines
-/// (online JPS, [`LineScans`]) or by reading the precomputed distances of
-/// JPS+ ([`TableScans`]). Both stop at the same cells, so the two searches
-/// expand the same jump points and return the same paths.
-trait Scans {
-    /// Straight jump along row `y` from column `x` (towards `dx`): the
-    /// column of the first jump point, or of `target` if it comes first;
-    /// `None` when the jump runs into an obstacle.
-    fn horizontal(&self, x: usize, y: usize, dx: isize, target: usize) -> Option<usize>;
-    /// As [`Scans::horizontal`], along column `x` from row `y`.
-    fn vertical(&self, x: usize, y: usize, dy: isize, target: usize) -> Option<usize>;
-    /// Diagonal jump from padded cell `i` = `(x, y)` along `(DX, DY)`: `Ok(k)`
-    /// when the `k`-th step (k ≥ 1) is a cell where the straight scans must
-    /// run (it may be a jump point, or in the goal's row or column), `Err(k)`
-    /// when the move after `k` free steps is illegal and nothing before it
-    /// needs a look. One step at a time online; whole runs with the table.
-    fn diagonal_run<const DX: isize, const DY: isize>(
-        &self,
-        i: usize,
-        x: usize,
-        y: usize,
-        goal: (usize, usize),
-    ) -> Result<usize, usize>;
-}
-
 /// Online JPS: scans over [`LineBits`], 64 cells a word.
 struct LineScans<'a> {
     lines: &'a LineBits,
@@ -196,7 +171,7 @@ struct LineScans<'a> {
     stride: usize,
 }
 
-impl Scans for LineScans<'_> {
+impl LineScans<'_> {
     #[inline(always)]
     fn horizontal(&self, x: usize, y: usize, dx: isize, target: usize) -> Option<usize> {
         if dx > 0 {
@@ -259,9 +234,7 @@ impl TableScans<'_> {
             None
         }
     }
-}
 
-impl Scans for TableScans<'_> {
     #[inline(always)]
     fn horizontal(&self, x: usize, y: usize, dx: isize, target: usize) -> Option<usize> {
         let e = self.table.get(y * self.stride + x, (dx < 0) as usize);
@@ -309,16 +282,22 @@ impl Scans for TableScans<'_> {
     }
 }
 
-/// Either way of scanning, chosen per query. One search instantiation
-/// serves both (the branch is the same every call, so it predicts
-/// perfectly): a second copy of the search for JPS+ added 20 kB to every
-/// wasm module that links the grid planners.
+/// How a search finds where jumps stop: by scanning the bit-packed lines
+/// (online JPS, [`LineScans`]) or by reading the precomputed distances of
+/// JPS+ ([`TableScans`]), chosen per query. Both stop at the same cells, so
+/// the two searches expand the same jump points and return the same paths.
+/// One search serves both (the branch is the same every call, so it
+/// predicts perfectly): a second copy of the search for JPS+ added 20 kB to
+/// every wasm module that links the grid planners.
 enum AnyScans<'a> {
     Lines(LineScans<'a>),
     Table(TableScans<'a>),
 }
 
-impl Scans for AnyScans<'_> {
+impl AnyScans<'_> {
+    /// Straight jump along row `y` from column `x` (towards `dx`): the
+    /// column of the first jump point, or of `target` if it comes first;
+    /// `None` when the jump runs into an obstacle.
     #[inline(always)]
     fn horizontal(&self, x: usize, y: usize, dx: isize, target: usize) -> Option<usize> {
         match self {
@@ -327,6 +306,7 @@ impl Scans for AnyScans<'_> {
         }
     }
 
+    /// As [`AnyScans::horizontal`], along column `x` from row `y`.
     #[inline(always)]
     fn vertical(&self, x: usize, y: usize, dy: isize, target: usize) -> Option<usize> {
         match self {
@@ -335,6 +315,12 @@ impl Scans for AnyScans<'_> {
         }
     }
 
+    /// Diagonal jump from padded cell `i` = `(x, y)` along `(DX, DY)`:
+    /// `Ok(k)` when the `k`-th step (k ≥ 1) is a cell where the straight
+    /// scans must run (it may be a jump point, or in the goal's row or
+    /// column), `Err(k)` when the move after `k` free steps is illegal and
+    /// nothing before it needs a look. One step at a time online; whole runs
+    /// with the table.
     #[inline(always)]
     fn diagonal_run<const DX: isize, const DY: isize>(
         &self,
@@ -351,9 +337,9 @@ impl Scans for AnyScans<'_> {
 }
 
 /// Read-only view of the grid for jumping.
-struct Jumper<'a, S> {
+struct Jumper<'a> {
     free: &'a [bool],
-    scans: S,
+    scans: AnyScans<'a>,
     stride: usize,
     /// Goal, padded index and coordinates.
     t: usize,
@@ -361,7 +347,7 @@ struct Jumper<'a, S> {
     gy: usize,
 }
 
-impl<S: Scans> Jumper<'_, S> {
+impl Jumper<'_> {
     #[inline(always)]
     fn free(&self, i: usize) -> bool {
         self.free.get(i).copied().unwrap_or(false)
@@ -390,8 +376,8 @@ fn padded_pos(i: usize, stride: usize) -> GridPos {
 }
 
 /// One search's mutable state.
-struct Search<'a, E, Q, O: ?Sized, S> {
-    jumper: Jumper<'a, S>,
+struct Search<'a, E, Q, O: ?Sized> {
+    jumper: Jumper<'a>,
     words: &'a mut [u64],
     open: &'a mut Q,
     /// Open word of cost 0 (see [`SearchSpace::open_word`]).
@@ -402,7 +388,7 @@ struct Search<'a, E, Q, O: ?Sized, S> {
     obs: &'a mut O,
 }
 
-impl<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, S: Scans> Search<'_, E, Q, O, S> {
+impl<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Search<'_, E, Q, O> {
     /// Records cell `j` at `(jx, jy)` reached at cost `g` by a move in
     /// direction `dir` from the jump that started at padded cell `parent`,
     /// and opens it, if that improves on what it has.
@@ -699,13 +685,13 @@ impl<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, S: Scans> Search<'_, 
     }
 }
 
-fn run<E: Estimate, O: SearchObserver + ?Sized, S: Scans>(
+fn run<E: Estimate, O: SearchObserver + ?Sized>(
     grid: &PlanGrid,
     (start, goal): (GridPos, GridPos),
     space: &mut SearchSpace,
     obs: &mut O,
     est: E,
-    scans: S,
+    scans: AnyScans<'_>,
 ) -> Result<Path, PlanError> {
     // A jump raises f by up to twice its cost: a window of ~9 cells' moves
     // holds most of random512's jumps (4 × A*'s span measured fewest
@@ -748,11 +734,11 @@ struct Query<'a, E> {
 
 /// The JPS loop: whether `t` was reached, and how many jump points were
 /// expanded.
-fn search<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, S: Scans>(
+fn search<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized>(
     q: Query<'_, E>,
     open: &mut Q,
     obs: &mut O,
-    scans: S,
+    scans: AnyScans<'_>,
 ) -> (bool, usize) {
     let Query {
         grid,
