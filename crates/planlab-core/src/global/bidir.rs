@@ -349,7 +349,7 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         let obs = &mut *self.obs;
 
         macro_rules! relax {
-            ($j:expr, $nx:expr, $ny:expr, $cost:expr, $dir:expr) => {{
+            ($j:expr, $dx:expr, $dy:expr, $cost:expr, $dir:expr) => {{
                 let j: usize = $j;
                 let ng = if weighted {
                     let w = if SIDE == 0 { weight(j) } else { here_weight };
@@ -372,7 +372,7 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
                                 meet = j;
                             }
                         }
-                        let (nx, ny): (isize, isize) = ($nx, $ny);
+                        let (nx, ny): (isize, isize) = (rx + $dx, ry + $dy);
                         let towards = est.h(nx.unsigned_abs(), ny.unsigned_abs());
                         // Left out of the open list when no path through it
                         // can beat μ (its word stays, for the meeting test).
@@ -395,16 +395,15 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized> Bidir<'a, E, Q, O
         }
 
         // `nb` already holds only the diagonal moves the rule allows.
-        let ok = |_: bool, _: bool, target: bool| target;
         macro_rules! straight {
             () => {
-                straight_moves!(relax, i, (up, down), (rx, ry), [n, so, we, e])
+                straight_moves!(relax, i, (up, down), [n, so, we, e])
             };
         }
         macro_rules! diagonal {
             () => {
                 if nb >> 4 != 0 {
-                    diagonal_moves!(relax, ok, nb, (up, down), (rx, ry), [n, so, we, e]);
+                    diagonal_moves!(relax, nb, (up, down));
                 }
             };
         }

@@ -204,18 +204,27 @@ const RING: usize = 256;
 pub(crate) struct BucketQueue {
     /// `f` of the last entry taken out of the buckets.
     last: u64,
-    /// Bucket width, log2 (fixed-point units).
+    /// Bucket width, log2 (fixed-point units, at most 32).
     shift: u32,
     /// Entries with `f == last` (or, were the heuristic inconsistent,
-    /// below it), `(f, cell)`, the next one last.
-    top: Vec<(u64, u64)>,
+    /// below it), packed by [`pack`], the next one last.
+    top: Vec<u64>,
     /// Bucket `(f >> shift) mod RING` holds the entries of `f` above `last`
-    /// with `(f >> shift) − (last >> shift) < RING`, in push order.
-    ring: Box<[Vec<(u64, u64)>; RING]>,
+    /// with `(f >> shift) − (last >> shift) < RING`, in push order, packed
+    /// by [`pack`]: a bucket's entries share every bit of `f` from `shift`
+    /// up, so the low 32 bits order them and the bucket's place restores
+    /// the rest (one `u64` an entry instead of two).
+    ring: Box<[Vec<u64>; RING]>,
     /// Entries beyond the ring's window: `(f, push number, cell)`.
     far: BinaryHeap<Reverse<(u64, u64, u64)>>,
     /// Pushes to `far` so far, which orders equal `f` there.
     far_pushes: u64,
+}
+
+/// A ring or top entry of [`BucketQueue`]: `f`'s low 32 bits above the cell.
+#[inline(always)]
+fn pack(f: u64, idx: u64) -> u64 {
+    f << 32 | idx & 0xFFFF_FFFF
 }
 
 impl Default for BucketQueue {
@@ -237,10 +246,12 @@ pub(crate) const DEFAULT_SPAN: u64 = 2 * DIAG;
 
 impl BucketQueue {
     /// The smallest bucket width (log2) whose ring covers `span` units;
-    /// never below 2¹⁰ units, which keeps the ring walk short.
+    /// never below 2¹⁰ units, which keeps the ring walk short, nor above
+    /// 2³² (a packed entry keeps 32 bits of `f`; a larger span would only
+    /// send more entries through the overflow heap).
     fn shift_for(span: u64) -> u32 {
         let per_bucket = span / RING as u64 + 1;
-        (64 - (per_bucket - 1).leading_zeros()).max(10)
+        (64 - (per_bucket - 1).leading_zeros()).clamp(10, 32)
     }
 
     /// Empties the list for a search whose `f` grows by at most `span` a
@@ -259,27 +270,26 @@ impl BucketQueue {
 
     /// Appends to ring bucket `slot`.
     #[inline(always)]
-    fn put(&mut self, slot: usize, entry: (u64, u64)) {
+    fn put(&mut self, slot: usize, entry: u64) {
         self.ring[slot & (RING - 1)].push(entry);
     }
 
-    /// The first occupied ring bucket at or after `last`'s, circularly.
-    /// Walking the buckets' lengths (no occupancy bitmap) keeps a push to
-    /// an append: pushes outnumber bucket changes ~100 to 1 on A*'s maps.
-    fn next_occupied(&self) -> Option<usize> {
+    /// How many buckets past `last`'s the first occupied one lies,
+    /// circularly. Walking the buckets' lengths (no occupancy bitmap) keeps
+    /// a push to an append: pushes outnumber bucket changes ~100 to 1 on
+    /// A*'s maps.
+    fn next_occupied(&self) -> Option<u64> {
         let start = (self.last >> self.shift) as usize;
-        (0..RING)
-            .map(|k| (start + k) & (RING - 1))
-            .find(|&slot| !self.ring[slot].is_empty())
+        (0..RING as u64).find(|&k| !self.ring[(start + k as usize) & (RING - 1)].is_empty())
     }
 
     /// Moves the overflow entries the window now reaches into the ring, in
     /// `(f, push)` order.
     fn admit_far(&mut self) {
-        while let Some(&Reverse((f, _, p))) = self.far.peek() {
+        while let Some(&Reverse((f, _, idx))) = self.far.peek() {
             let Some(slot) = self.slot(f) else { break };
             self.far.pop();
-            self.put(slot, (f, p));
+            self.put(slot, pack(f, idx));
         }
     }
 
@@ -287,12 +297,14 @@ impl BucketQueue {
     /// (making it `last`). `false` when the queue is empty.
     fn refill(&mut self) -> bool {
         loop {
-            if let Some(slot) = self.next_occupied() {
-                let bucket = &mut self.ring[slot & (RING - 1)];
-                let (mut min, mut max) = (u64::MAX, 0);
-                for &(f, _) in bucket.iter() {
-                    min = min.min(f);
-                    max = max.max(f);
+            if let Some(k) = self.next_occupied() {
+                let bucket_f = ((self.last >> self.shift) + k) << self.shift;
+                let bucket = &mut self.ring[(bucket_f >> self.shift) as usize & (RING - 1)];
+                let (mut min, mut max) = (u32::MAX, 0);
+                for &e in bucket.iter() {
+                    let low = (e >> 32) as u32;
+                    min = min.min(low);
+                    max = max.max(low);
                 }
                 if min == max {
                     // The usual case: one `f`, handed over whole.
@@ -300,15 +312,17 @@ impl BucketQueue {
                 } else {
                     let top = &mut self.top;
                     bucket.retain(|&e| {
-                        let keep = e.0 != min;
+                        let keep = (e >> 32) as u32 != min;
                         if !keep {
                             top.push(e);
                         }
                         keep
                     });
                 }
-                let moved = min >> self.shift != self.last >> self.shift;
-                self.last = min;
+                // The bucket's bits of `f` with the entries' own below.
+                let low_mask = (1u64 << self.shift) - 1;
+                let moved = k != 0;
+                self.last = bucket_f | u64::from(min) & low_mask;
                 if moved && !self.far.is_empty() {
                     self.admit_far();
                 }
@@ -325,30 +339,32 @@ impl BucketQueue {
 }
 
 impl OpenList for BucketQueue {
+    /// `g` is not used: equal `f` pop in reverse push order.
     #[inline(always)]
-    fn push(&mut self, f: u64, g: u64, idx: usize) {
-        let p = payload(g, idx);
+    fn push(&mut self, f: u64, _g: u64, idx: usize) {
+        // Cell indices fit 32 bits (`check_size`).
+        let idx = idx as u64;
         if f <= self.last {
             // `f < last` cannot happen with a consistent heuristic; were it
             // to, the entry is still better than every bucketed one.
-            self.top.push((f, p));
+            self.top.push(pack(f, idx));
         } else if let Some(slot) = self.slot(f) {
-            self.put(slot, (f, p));
+            self.put(slot, pack(f, idx));
         } else {
-            self.far.push(Reverse((f, self.far_pushes, p)));
+            self.far.push(Reverse((f, self.far_pushes, idx)));
             self.far_pushes += 1;
         }
     }
 
     #[inline(always)]
     fn pop(&mut self) -> Option<usize> {
-        if let Some((_, p)) = self.top.pop() {
-            return Some((p as u32) as usize);
+        if let Some(e) = self.top.pop() {
+            return Some((e as u32) as usize);
         }
         if !self.refill() {
             return None;
         }
-        self.top.pop().map(|(_, p)| (p as u32) as usize)
+        self.top.pop().map(|e| (e as u32) as usize)
     }
 
     #[inline(always)]
@@ -479,7 +495,9 @@ impl PairSpace {
 /// higher cost. Directions are ignored.
 #[inline(always)]
 pub(crate) fn improves(old: u64, new: u64) -> bool {
-    old | DIR_MASK > new | DIR_MASK
+    // `old`'s bits above the direction exceed `new`'s exactly when `old`
+    // exceeds `new` with its direction bits all set.
+    old > new | DIR_MASK
 }
 
 /// The path through `cells` with its cost on `grid` (in `f64` from the
@@ -943,108 +961,45 @@ impl LineBits {
     }
 }
 
-/// The four straight moves out of padded cell `$i` at `($x, $y)`:
-/// `$relax!(j, nx, ny, cost, dir)` for each whose cell is free (`$n`, `$s`,
-/// `$w`, `$e`: north at `$up`, south at `$down`, west, east). Shared by A*
-/// and bidirectional A*, which differ in what a relaxation does.
+/// The four straight moves out of padded cell `$i`: `$relax!(j, dx, dy,
+/// cost, dir)` for each whose cell is free (`$n`, `$s`, `$w`, `$e`: north
+/// at `$up`, south at `$down`, west, east), `dx` and `dy` literal −1, 0 or
+/// 1. Shared by A* and bidirectional A*, which differ in what a relaxation
+/// does.
 macro_rules! straight_moves {
-    ($relax:ident, $i:expr, ($up:expr, $down:expr), ($x:expr, $y:expr), [$n:expr, $s:expr, $w:expr, $e:expr]) => {
+    ($relax:ident, $i:expr, ($up:expr, $down:expr), [$n:expr, $s:expr, $w:expr, $e:expr]) => {
         if $n {
-            $relax!(
-                $up,
-                $x,
-                $y - 1,
-                $crate::global::search::STRAIGHT,
-                $crate::global::search::dir_index(0, -1)
-            );
+            $relax!($up, 0, -1, $crate::global::search::STRAIGHT, 3);
         }
         if $s {
-            $relax!(
-                $down,
-                $x,
-                $y + 1,
-                $crate::global::search::STRAIGHT,
-                $crate::global::search::dir_index(0, 1)
-            );
+            $relax!($down, 0, 1, $crate::global::search::STRAIGHT, 2);
         }
         if $w {
-            $relax!(
-                $i - 1,
-                $x - 1,
-                $y,
-                $crate::global::search::STRAIGHT,
-                $crate::global::search::dir_index(-1, 0)
-            );
+            $relax!($i - 1, -1, 0, $crate::global::search::STRAIGHT, 1);
         }
         if $e {
-            $relax!(
-                $i + 1,
-                $x + 1,
-                $y,
-                $crate::global::search::STRAIGHT,
-                $crate::global::search::dir_index(1, 0)
-            );
+            $relax!($i + 1, 1, 0, $crate::global::search::STRAIGHT, 0);
         }
     };
 }
 pub(crate) use straight_moves;
 
-/// The four diagonal moves, each relaxed when `$ok(side, side, target)`
-/// allows it under the corner rule (`$nb`: the cell's neighbour bits, see
-/// [`neighbour_bits`]); the rest as in [`straight_moves`].
+/// The four diagonal moves whose bit is set in `$nb` (neighbour bits with
+/// the corner rule already applied, see [`neighbour_bits`] and
+/// `astar::moves_allowed`); the rest as in [`straight_moves`].
 macro_rules! diagonal_moves {
-    ($relax:ident, $ok:expr, $nb:expr, ($up:expr, $down:expr), ($x:expr, $y:expr), [$n:expr, $s:expr, $w:expr, $e:expr]) => {
-        if $ok(
-            $n,
-            $w,
-            $nb & 1 << $crate::global::search::dir_index(-1, -1) != 0,
-        ) {
-            $relax!(
-                $up - 1,
-                $x - 1,
-                $y - 1,
-                $crate::global::search::DIAG,
-                $crate::global::search::dir_index(-1, -1)
-            );
+    ($relax:ident, $nb:expr, ($up:expr, $down:expr)) => {
+        if $nb & 1 << 7 != 0 {
+            $relax!($up - 1, -1, -1, $crate::global::search::DIAG, 7);
         }
-        if $ok(
-            $n,
-            $e,
-            $nb & 1 << $crate::global::search::dir_index(1, -1) != 0,
-        ) {
-            $relax!(
-                $up + 1,
-                $x + 1,
-                $y - 1,
-                $crate::global::search::DIAG,
-                $crate::global::search::dir_index(1, -1)
-            );
+        if $nb & 1 << 5 != 0 {
+            $relax!($up + 1, 1, -1, $crate::global::search::DIAG, 5);
         }
-        if $ok(
-            $s,
-            $w,
-            $nb & 1 << $crate::global::search::dir_index(-1, 1) != 0,
-        ) {
-            $relax!(
-                $down - 1,
-                $x - 1,
-                $y + 1,
-                $crate::global::search::DIAG,
-                $crate::global::search::dir_index(-1, 1)
-            );
+        if $nb & 1 << 6 != 0 {
+            $relax!($down - 1, -1, 1, $crate::global::search::DIAG, 6);
         }
-        if $ok(
-            $s,
-            $e,
-            $nb & 1 << $crate::global::search::dir_index(1, 1) != 0,
-        ) {
-            $relax!(
-                $down + 1,
-                $x + 1,
-                $y + 1,
-                $crate::global::search::DIAG,
-                $crate::global::search::dir_index(1, 1)
-            );
+        if $nb & 1 << 4 != 0 {
+            $relax!($down + 1, 1, 1, $crate::global::search::DIAG, 4);
         }
     };
 }
@@ -1054,6 +1009,29 @@ pub(crate) use diagonal_moves;
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn move_macros_pass_each_moves_own_direction_index_and_offset() {
+        let stride = 10usize;
+        let i = 55usize;
+        let (up, down) = (i - stride, i + stride);
+        let mut seen = Vec::new();
+        macro_rules! record {
+            ($j:expr, $dx:expr, $dy:expr, $cost:expr, $dir:expr) => {{
+                let (dx, dy): (isize, isize) = ($dx, $dy);
+                seen.push(($j, dx, dy, $cost, $dir));
+            }};
+        }
+        straight_moves!(record, i, (up, down), [true, true, true, true]);
+        diagonal_moves!(record, 0xF0u8, (up, down));
+        assert_eq!(seen.len(), 8);
+        for (j, dx, dy, cost, dir) in seen {
+            assert_eq!(dir, dir_index(dx, dy), "({dx}, {dy})");
+            assert_eq!(j as isize, i as isize + dy * stride as isize + dx);
+            assert_eq!(DIRS[dir as usize], (dx, dy));
+            assert_eq!(cost, if dx != 0 && dy != 0 { DIAG } else { STRAIGHT });
+        }
+    }
 
     /// Replays `ops` (`Some(step)`: push at `f = last popped + step`;
     /// `None`: pop) on a [`BucketQueue`] of span `span` and on the order it
