@@ -278,9 +278,11 @@ impl BucketQueue {
     /// circularly. Walking the buckets' lengths (no occupancy bitmap) keeps
     /// a push to an append: pushes outnumber bucket changes ~100 to 1 on
     /// A*'s maps.
-    fn next_occupied(&self) -> Option<u64> {
+    fn next_occupied(&self) -> Option<usize> {
+        // `usize` steps: on wasm32 a `u64` counter costs 64-bit arithmetic
+        // in the walk.
         let start = (self.last >> self.shift) as usize;
-        (0..RING as u64).find(|&k| !self.ring[(start + k as usize) & (RING - 1)].is_empty())
+        (0..RING).find(|&k| !self.ring[start.wrapping_add(k) & (RING - 1)].is_empty())
     }
 
     /// Moves the overflow entries the window now reaches into the ring, in
@@ -298,7 +300,7 @@ impl BucketQueue {
     fn refill(&mut self) -> bool {
         loop {
             if let Some(k) = self.next_occupied() {
-                let bucket_f = ((self.last >> self.shift) + k) << self.shift;
+                let bucket_f = ((self.last >> self.shift) + k as u64) << self.shift;
                 let bucket = &mut self.ring[(bucket_f >> self.shift) as usize & (RING - 1)];
                 let (mut min, mut max) = (u32::MAX, 0);
                 for &e in bucket.iter() {
@@ -963,9 +965,9 @@ impl LineBits {
 
 /// The four straight moves out of padded cell `$i`: `$relax!(j, dx, dy,
 /// cost, dir)` for each whose cell is free (`$n`, `$s`, `$w`, `$e`: north
-/// at `$up`, south at `$down`, west, east), `dx` and `dy` literal −1, 0 or
-/// 1. Shared by A* and bidirectional A*, which differ in what a relaxation
-/// does.
+/// at `$up`, south at `$down`, west, east), with `dx` and `dy` the literals
+/// −1, 0 or +1. Shared by A* and bidirectional A*, which differ in what a
+/// relaxation does.
 macro_rules! straight_moves {
     ($relax:ident, $i:expr, ($up:expr, $down:expr), [$n:expr, $s:expr, $w:expr, $e:expr]) => {
         if $n {
