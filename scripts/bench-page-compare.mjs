@@ -17,9 +17,8 @@
 
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
-import net from 'node:net';
 import path from 'node:path';
-import { CHROME_ARGS, REPO } from '../tests/e2e/harness.mjs';
+import { CHROME_ARGS, REPO, freePort, waitForHttp } from '../tests/e2e/harness.mjs';
 import { createRequire } from 'node:module';
 
 const require = createRequire(path.join(REPO, 'web/package.json'));
@@ -50,31 +49,17 @@ if (builds.length < 1 || !Number.isInteger(ROUNDS) || ROUNDS < 1) {
 const CLI = path.join(REPO, 'target/release/planlab');
 if (!fs.existsSync(CLI)) throw new Error('target/release/planlab is missing: cargo build --release -p planlab-cli');
 
-function freePort() {
-  return new Promise((resolve, reject) => {
-    const s = net.createServer();
-    s.once('error', reject);
-    s.listen(0, '127.0.0.1', () => {
-      const { port } = s.address();
-      s.close(() => resolve(port));
-    });
-  });
-}
-
 async function serve(dir) {
   const port = await freePort();
   const child = spawn(CLI, ['serve', '--dir', dir, '--port', String(port), '--host', '127.0.0.1'], { stdio: 'ignore' });
   const base = `http://127.0.0.1:${port}/`;
-  for (let i = 0; i < 100; i++) {
-    try {
-      if ((await fetch(base + 'bench.html')).ok) return { base, child };
-    } catch {
-      // not up yet
-    }
-    await new Promise((r) => setTimeout(r, 100));
+  try {
+    await waitForHttp(base + 'bench.html', child);
+  } catch (e) {
+    child.kill();
+    throw new Error(`planlab serve --dir ${dir}: ${e.message}`);
   }
-  child.kill();
-  throw new Error(`planlab serve --dir ${dir} did not answer`);
+  return { base, child };
 }
 
 /** One run of the bench page: per map { us, exp, pf, rows } and the DWA ms a step. */

@@ -39,7 +39,8 @@ export const CHROME_ARGS = [
   '--no-first-run',
 ];
 
-async function freePort() {
+/** A free TCP port on 127.0.0.1. */
+export async function freePort() {
   return new Promise((resolve, reject) => {
     const srv = net.createServer();
     srv.unref();
@@ -73,7 +74,8 @@ function serveCommand(port) {
   };
 }
 
-async function waitForHttp(url, child, timeoutMs = 30_000) {
+/** Waits until `url` answers 200, failing if `child` (the server) exits. */
+export async function waitForHttp(url, child, timeoutMs = 30_000) {
   const deadline = Date.now() + timeoutMs;
   let last = '';
   while (Date.now() < deadline) {

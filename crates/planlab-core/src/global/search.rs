@@ -300,8 +300,9 @@ impl BucketQueue {
     fn refill(&mut self) -> bool {
         loop {
             if let Some(k) = self.next_occupied() {
-                let bucket_f = ((self.last >> self.shift) + k as u64) << self.shift;
-                let bucket = &mut self.ring[(bucket_f >> self.shift) as usize & (RING - 1)];
+                // The bucket's number, `f >> shift` of every entry in it.
+                let number = (self.last >> self.shift) + k as u64;
+                let bucket = &mut self.ring[number as usize & (RING - 1)];
                 let (mut min, mut max) = (u32::MAX, 0);
                 for &e in bucket.iter() {
                     let low = (e >> 32) as u32;
@@ -323,9 +324,8 @@ impl BucketQueue {
                 }
                 // The bucket's bits of `f` with the entries' own below.
                 let low_mask = (1u64 << self.shift) - 1;
-                let moved = k != 0;
-                self.last = bucket_f | u64::from(min) & low_mask;
-                if moved && !self.far.is_empty() {
+                self.last = number << self.shift | u64::from(min) & low_mask;
+                if k != 0 && !self.far.is_empty() {
                     self.admit_far();
                 }
                 return true;
