@@ -480,7 +480,16 @@ impl PairSpace {
     /// Whether `word` was written by the current search.
     #[inline(always)]
     pub fn current(tag: u64, word: u64) -> bool {
-        word >> TAG_SHIFT == tag >> TAG_SHIFT
+        word < Self::fresh_below(tag)
+    }
+
+    /// The bound under which every word of the search tagged `tag` lies and
+    /// no other does: tags count down from search to search (and a wrap
+    /// refills every word with `u64::MAX`), so words of earlier searches
+    /// compare above it. One comparison per test instead of two shifts.
+    #[inline(always)]
+    pub fn fresh_below(tag: u64) -> u64 {
+        ((tag >> TAG_SHIFT) + 1) << TAG_SHIFT
     }
 
     /// Cost and arrival direction of a cell reached in direction `side`
@@ -687,6 +696,11 @@ pub(crate) trait Estimate: Copy {
     /// (consistent, weight 1), so the bucket queue applies.
     const MONOTONE: bool;
 
+    /// Whether searches get a copy of their loop without the weighted-cost
+    /// branch for unit grids: only the default octile estimate, so the
+    /// other estimates do not grow the wasm modules.
+    const UNIT_COPY: bool = false;
+
     /// Estimate for absolute offsets `dx`, `dy` in cells.
     fn h(&self, dx: usize, dy: usize) -> u64;
 
@@ -710,6 +724,7 @@ pub(crate) struct OctileEstimate;
 
 impl Estimate for OctileEstimate {
     const MONOTONE: bool = true;
+    const UNIT_COPY: bool = true;
     #[inline(always)]
     fn h(&self, dx: usize, dy: usize) -> u64 {
         let (lo, hi) = if dx < dy { (dx, dy) } else { (dy, dx) };
@@ -1011,6 +1026,42 @@ pub(crate) use diagonal_moves;
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn pair_space_counts_only_this_searchs_words_as_current_across_a_tag_wrap() {
+        // Words of every cost, direction and open bit, written by the search
+        // tagged `tag`.
+        let written = |tag: u64| {
+            [0, 1, G_MASK]
+                .into_iter()
+                .flat_map(move |g| [0, OPEN].map(move |open| tag | open | g << G_SHIFT | DIR_MASK))
+        };
+        let mut space = PairSpace::default();
+        space.reset(4);
+        let mut previous = space.tag;
+        let mut wraps = 0;
+        // Past the wrap, where every word is forgotten and tags restart.
+        for _ in 0..MAX_TAG + 2 {
+            space.reset(4);
+            let tag = space.tag;
+            assert!(written(tag).all(|w| PairSpace::current(tag, w)));
+            // Tags count down; at the wrap the words are forgotten instead
+            // (the next line), so no word of the previous search is left.
+            if tag < previous {
+                assert!(written(previous).all(|w| !PairSpace::current(tag, w)));
+            } else {
+                wraps += 1;
+            }
+            assert!(space
+                .words
+                .iter()
+                .flatten()
+                .all(|&w| !PairSpace::current(tag, w)));
+            space.words[0] = [tag | OPEN, tag | G_MASK << G_SHIFT];
+            previous = tag;
+        }
+        assert_eq!(wraps, 1);
+    }
 
     #[test]
     fn move_macros_pass_each_moves_own_direction_index_and_offset() {
