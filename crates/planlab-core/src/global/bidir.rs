@@ -166,7 +166,7 @@ fn chain(
 /// The state of one bidirectional search. Direction 0 searches forwards
 /// from the start, 1 backwards from the goal.
 /// `WEIGHTED`: whether the loop keeps the weighted-cost branch at all
-/// (unit grids on the bucket queue run a copy without it).
+/// (the octile estimate on a unit grid runs a copy without it).
 struct Bidir<'a, E, Q, O: ?Sized, const WEIGHTED: bool> {
     grid: &'a PlanGrid,
     /// Neighbour bits per padded cell (`PlanGrid::neighbours`).

@@ -696,9 +696,10 @@ pub(crate) trait Estimate: Copy {
     /// (consistent, weight 1), so the bucket queue applies.
     const MONOTONE: bool;
 
-    /// Whether searches get a copy of their loop without the weighted-cost
-    /// branch for unit grids: only the default octile estimate, so the
-    /// other estimates do not grow the wasm modules.
+    /// Whether bidirectional A* gets a copy of its loop without the
+    /// weighted-cost branch for unit grids: only the default octile
+    /// estimate, so the other estimates do not grow the wasm modules (A*
+    /// has such a copy for every estimate).
     const UNIT_COPY: bool = false;
 
     /// Estimate for absolute offsets `dx`, `dy` in cells.
