@@ -29,7 +29,8 @@
 use super::events::emit;
 use super::search::{
     cells, check_size, finish, improves, trivial_path, with_space, xy, Estimate, FixedHeuristic,
-    OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DEFAULT_SPAN, G_MASK, G_SHIFT, OPEN,
+    OctileEstimate, OpenList, SearchSpace, ZeroEstimate, AHEAD, DEFAULT_SPAN, DIR_MASK, G_MASK,
+    G_SHIFT, OPEN,
 };
 use super::search::{diagonal_moves, dir_index, straight_free, straight_moves};
 use super::{
@@ -102,6 +103,19 @@ impl AStar {
         goal: GridPos,
         obs: &mut O,
     ) -> Result<Path, PlanError> {
+        self.search_with::<O, true>(grid, start, goal, obs)
+    }
+
+    /// [`AStar::search`]; `AHEAD_ONLY` false (tests only) relaxes all eight
+    /// moves of every expansion instead of leaving out those that cannot
+    /// improve a neighbour ([`AHEAD`]).
+    fn search_with<O: SearchObserver + ?Sized, const AHEAD_ONLY: bool>(
+        &self,
+        grid: &PlanGrid,
+        start: GridPos,
+        goal: GridPos,
+        obs: &mut O,
+    ) -> Result<Path, PlanError> {
         grid.check_endpoints(start, goal)?;
         check_size(grid)?;
         if start == goal {
@@ -118,9 +132,12 @@ impl AStar {
                 obs,
             };
             match (c.heuristic, c.weight == 1.0) {
-                (Heuristic::Octile, true) => run(q, allowed, OctileEstimate),
-                (Heuristic::Zero, _) => run(q, allowed, ZeroEstimate),
-                _ => run(q, allowed, FixedHeuristic::new(c.heuristic, c.weight)),
+                (Heuristic::Octile, true) => run::<_, _, AHEAD_ONLY>(q, allowed, OctileEstimate),
+                (Heuristic::Zero, _) => run::<_, _, AHEAD_ONLY>(q, allowed, ZeroEstimate),
+                _ => {
+                    let est = FixedHeuristic::new(c.heuristic, c.weight);
+                    run::<_, _, AHEAD_ONLY>(q, allowed, est)
+                }
             }
         })
     }
@@ -196,7 +213,7 @@ pub(crate) const fn moves_allowed(rule: u8) -> [u8; 256] {
     out
 }
 
-fn run<E: Estimate, O: SearchObserver + ?Sized>(
+fn run<E: Estimate, O: SearchObserver + ?Sized, const AHEAD_ONLY: bool>(
     q: Query<'_, O>,
     allowed: &[u8; 256],
     est: E,
@@ -228,17 +245,38 @@ fn run<E: Estimate, O: SearchObserver + ?Sized>(
     // Weighted cells get their own copy of the loop, so unit grids pay
     // nothing for them.
     let (reached, expanded) = match (E::MONOTONE, grid.is_weighted()) {
-        (true, false) => {
-            search::<E, _, O, false>(grid, (s, t), allowed, words, buckets, tag, est, obs)
-        }
-        (true, true) => {
-            search::<E, _, O, true>(grid, (s, t), allowed, words, buckets, tag, est, obs)
-        }
-        (false, false) => {
-            search::<E, _, O, false>(grid, (s, t), allowed, words, binary, tag, est, obs)
-        }
+        (true, false) => search::<E, _, O, false, AHEAD_ONLY>(
+            grid,
+            (s, t),
+            allowed,
+            words,
+            buckets,
+            tag,
+            est,
+            obs,
+        ),
+        (true, true) => search::<E, _, O, true, AHEAD_ONLY>(
+            grid,
+            (s, t),
+            allowed,
+            words,
+            buckets,
+            tag,
+            est,
+            obs,
+        ),
+        (false, false) => search::<E, _, O, false, AHEAD_ONLY>(
+            grid,
+            (s, t),
+            allowed,
+            words,
+            binary,
+            tag,
+            est,
+            obs,
+        ),
         (false, true) => {
-            search::<E, _, O, true>(grid, (s, t), allowed, words, binary, tag, est, obs)
+            search::<E, _, O, true, AHEAD_ONLY>(grid, (s, t), allowed, words, binary, tag, est, obs)
         }
     };
     finish(grid, space, (s, t), reached, expanded)
@@ -249,7 +287,13 @@ fn run<E: Estimate, O: SearchObserver + ?Sized>(
 /// `WEIGHTED`: a move costs its length times the weight of the cell it
 /// enters (`global::weights`).
 #[allow(clippy::too_many_arguments)]
-fn search<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, const WEIGHTED: bool>(
+fn search<
+    E: Estimate,
+    Q: OpenList,
+    O: SearchObserver + ?Sized,
+    const WEIGHTED: bool,
+    const AHEAD_ONLY: bool,
+>(
     grid: &PlanGrid,
     (s, t): (usize, usize),
     allowed: &[u8; 256],
@@ -306,6 +350,13 @@ fn search<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, const WEIGHTED: 
         // The corner rule folded into the neighbour bits: a diagonal move
         // is one bit like a straight one.
         let nb = allowed[usize::from(neighbours.get(i).copied().unwrap_or(0))];
+        // Only the moves that can improve a neighbour (`AHEAD`; the other
+        // copy, tests only, relaxes all eight to show it changes nothing).
+        let nb = if AHEAD_ONLY && i != s {
+            nb & AHEAD[(*w & DIR_MASK) as usize]
+        } else {
+            nb
+        };
         let [n, so, we, e] = straight_free(nb);
 
         macro_rules! relax {
@@ -346,6 +397,7 @@ fn search<E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, const WEIGHTED: 
 mod tests {
     use super::*;
     use crate::global::GridPlanner;
+    use crate::global::SearchLog;
     use crate::map::OccupancyGrid;
 
     /// Whether a diagonal move is legal under `RULE`, given its side cells
@@ -440,5 +492,60 @@ mod tests {
         // Octile is exact on an empty grid and ties go to the deepest node,
         // so A* expands only the path.
         assert_eq!(astar.expanded, astar.cells.len());
+    }
+
+    proptest::proptest! {
+        /// Leaving out the relaxations `AHEAD` rules out changes nothing:
+        /// the same events in the same order and the same path, for every
+        /// corner rule and estimate, weighted A*, and weighted cells.
+        #[test]
+        fn relaxing_only_the_moves_ahead_gives_the_same_search_event_for_event(
+            w in 1usize..24,
+            h in 1usize..20,
+            density in 0u64..45,
+            seed in proptest::prelude::any::<u64>(),
+            rule in 0usize..4,
+            heuristic in 0usize..5,
+            weighted_astar in proptest::prelude::any::<bool>(),
+            heavy in proptest::collection::vec((0usize..24, 0usize..20, 2u8..=9), 0..10),
+            ends in (0usize..480, 0usize..480),
+        ) {
+            let mut state = seed | 1;
+            let mut grid = PlanGrid::from_fn(w, h, |_, _| {
+                state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                (state >> 33) % 100 >= density
+            });
+            for (c, r, wt) in heavy {
+                grid.set_weight(c % w, r % h, wt);
+            }
+            let free: Vec<GridPos> = (0..h)
+                .flat_map(|y| (0..w).map(move |x| GridPos::new(x as u32, y as u32)))
+                .filter(|p| grid.is_free(p.col as i64, p.row as i64))
+                .collect();
+            proptest::prop_assume!(!free.is_empty());
+            let (s, t) = (free[ends.0 % free.len()], free[ends.1 % free.len()]);
+            let astar = AStar::new(AStarConfig {
+                diagonal: [
+                    Diagonal::Never,
+                    Diagonal::NoCornerCutting,
+                    Diagonal::OneSideFree,
+                    Diagonal::Always,
+                ][rule],
+                heuristic: [
+                    Heuristic::Octile,
+                    Heuristic::Zero,
+                    Heuristic::Euclidean,
+                    Heuristic::Manhattan,
+                    Heuristic::Chebyshev,
+                ][heuristic],
+                weight: if weighted_astar { 1.5 } else { 1.0 },
+            })
+            .unwrap();
+            let (mut ahead, mut all) = (SearchLog::with_limit(usize::MAX), SearchLog::with_limit(usize::MAX));
+            let a = astar.search_with::<_, true>(&grid, s, t, &mut ahead);
+            let b = astar.search_with::<_, false>(&grid, s, t, &mut all);
+            proptest::prop_assert_eq!(a, b);
+            proptest::prop_assert_eq!(ahead, all);
+        }
     }
 }
