@@ -244,40 +244,25 @@ fn run<E: Estimate, O: SearchObserver + ?Sized, const AHEAD_ONLY: bool>(
     } = &mut *space;
     // Weighted cells get their own copy of the loop, so unit grids pay
     // nothing for them.
+    macro_rules! search {
+        ($weighted:literal, $open:expr) => {
+            search::<E, _, O, $weighted, AHEAD_ONLY>(
+                grid,
+                (s, t),
+                allowed,
+                words,
+                $open,
+                tag,
+                est,
+                obs,
+            )
+        };
+    }
     let (reached, expanded) = match (E::MONOTONE, grid.is_weighted()) {
-        (true, false) => search::<E, _, O, false, AHEAD_ONLY>(
-            grid,
-            (s, t),
-            allowed,
-            words,
-            buckets,
-            tag,
-            est,
-            obs,
-        ),
-        (true, true) => search::<E, _, O, true, AHEAD_ONLY>(
-            grid,
-            (s, t),
-            allowed,
-            words,
-            buckets,
-            tag,
-            est,
-            obs,
-        ),
-        (false, false) => search::<E, _, O, false, AHEAD_ONLY>(
-            grid,
-            (s, t),
-            allowed,
-            words,
-            binary,
-            tag,
-            est,
-            obs,
-        ),
-        (false, true) => {
-            search::<E, _, O, true, AHEAD_ONLY>(grid, (s, t), allowed, words, binary, tag, est, obs)
-        }
+        (true, false) => search!(false, buckets),
+        (true, true) => search!(true, buckets),
+        (false, false) => search!(false, binary),
+        (false, true) => search!(true, binary),
     };
     finish(grid, space, (s, t), reached, expanded)
 }
