@@ -526,7 +526,8 @@ mod tests {
                 weight: if weighted_astar { 1.5 } else { 1.0 },
             })
             .unwrap();
-            let (mut ahead, mut all) = (SearchLog::with_limit(usize::MAX), SearchLog::with_limit(usize::MAX));
+            let mut ahead = SearchLog::with_limit(usize::MAX);
+            let mut all = SearchLog::with_limit(usize::MAX);
             let a = astar.search_with::<_, true>(&grid, s, t, &mut ahead);
             let b = astar.search_with::<_, false>(&grid, s, t, &mut all);
             proptest::prop_assert_eq!(a, b);

@@ -333,8 +333,7 @@ impl BucketQueue {
             if let Some(k) = self.next_occupied() {
                 // The bucket's number, `f >> shift` of every entry in it.
                 let number = (self.last >> self.shift) + k as u64;
-                let slot = number as usize & (RING - 1);
-                let bucket = &mut self.ring[slot];
+                let bucket = &mut self.ring[number as usize & (RING - 1)];
                 let first = bucket.first().map_or(0, |&e| (e >> 32) as u32);
                 let min = if bucket.iter().all(|&e| (e >> 32) as u32 == first) {
                     // The usual case: one `f`, handed over whole.
