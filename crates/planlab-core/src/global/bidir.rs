@@ -39,7 +39,8 @@ use super::astar::allowed_moves;
 use super::events::emit;
 use super::search::{
     cells, check_size, improves, path_of, trivial_path, with_pair_space, xy, Estimate,
-    FixedHeuristic, OctileEstimate, OpenList, PairSpace, ZeroEstimate, DIRS, G_MASK, G_SHIFT, OPEN,
+    FixedHeuristic, OctileEstimate, OpenList, PairSpace, AHEAD, DIRS, DIR_MASK, G_MASK, G_SHIFT,
+    OPEN,
 };
 use super::search::{diagonal_moves, straight_free, straight_moves};
 use super::{Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent, SearchObserver};
@@ -48,6 +49,20 @@ use super::{Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent
 /// towards the goal forwards and towards the start backwards, reporting its
 /// events to `obs` (the backward search's parents point towards the goal).
 pub(crate) fn search<O: SearchObserver + ?Sized>(
+    grid: &PlanGrid,
+    start: GridPos,
+    goal: GridPos,
+    diagonal: Diagonal,
+    heuristic: Heuristic,
+    obs: &mut O,
+) -> Result<Path, PlanError> {
+    search_with::<O, true>(grid, start, goal, diagonal, heuristic, obs)
+}
+
+/// [`search`]; `AHEAD_ONLY` false (tests only) relaxes all eight moves of
+/// every expansion instead of leaving out those that cannot improve a
+/// neighbour ([`AHEAD`]).
+fn search_with<O: SearchObserver + ?Sized, const AHEAD_ONLY: bool>(
     grid: &PlanGrid,
     start: GridPos,
     goal: GridPos,
@@ -75,9 +90,10 @@ pub(crate) fn search<O: SearchObserver + ?Sized>(
             obs,
         };
         match heuristic {
-            Heuristic::Octile => run(q, allowed, OctileEstimate),
-            Heuristic::Zero => run(q, allowed, ZeroEstimate),
-            h => run(q, allowed, FixedHeuristic::new(h, 1.0)),
+            Heuristic::Octile => run::<_, _, AHEAD_ONLY>(q, allowed, OctileEstimate),
+            // One general copy for the other estimates, zero included (as
+            // in JPS: a copy per estimate costs kilobytes of wasm).
+            h => run::<_, _, AHEAD_ONLY>(q, allowed, FixedHeuristic::new(h, 1.0)),
         }
     })
 }
@@ -91,7 +107,7 @@ struct Query<'a, O: ?Sized> {
     obs: &'a mut O,
 }
 
-fn run<E: Estimate, O: SearchObserver + ?Sized>(
+fn run<E: Estimate, O: SearchObserver + ?Sized, const AHEAD_ONLY: bool>(
     q: Query<'_, O>,
     allowed: &'static [u8; 256],
     est: E,
@@ -114,12 +130,19 @@ fn run<E: Estimate, O: SearchObserver + ?Sized>(
     let ends = (s, t);
     let (meet, expanded) = if E::MONOTONE {
         if E::UNIT_COPY && !grid.is_weighted() {
-            Bidir::<_, _, _, false>::new(grid, ends, words, buckets, tag, est, obs, allowed).run()
+            Bidir::<_, _, _, false, AHEAD_ONLY>::new(
+                grid, ends, words, buckets, tag, est, obs, allowed,
+            )
+            .run()
         } else {
-            Bidir::<_, _, _, true>::new(grid, ends, words, buckets, tag, est, obs, allowed).run()
+            Bidir::<_, _, _, true, AHEAD_ONLY>::new(
+                grid, ends, words, buckets, tag, est, obs, allowed,
+            )
+            .run()
         }
     } else {
-        Bidir::<_, _, _, true>::new(grid, ends, words, binary, tag, est, obs, allowed).run()
+        Bidir::<_, _, _, true, AHEAD_ONLY>::new(grid, ends, words, binary, tag, est, obs, allowed)
+            .run()
     };
     let Some(m) = meet else {
         return Err(PlanError::Unreachable { expanded });
@@ -167,7 +190,9 @@ fn chain(
 /// from the start, 1 backwards from the goal.
 /// `WEIGHTED`: whether the loop keeps the weighted-cost branch at all
 /// (the octile estimate on a unit grid runs a copy without it).
-struct Bidir<'a, E, Q, O: ?Sized, const WEIGHTED: bool> {
+/// `AHEAD_ONLY`: whether an expansion leaves out the moves [`AHEAD`] rules
+/// out (false only in a test copy).
+struct Bidir<'a, E, Q, O: ?Sized, const WEIGHTED: bool, const AHEAD_ONLY: bool> {
     grid: &'a PlanGrid,
     /// Neighbour bits per padded cell (`PlanGrid::neighbours`).
     neighbours: &'a [u8],
@@ -205,8 +230,14 @@ struct Bidir<'a, E, Q, O: ?Sized, const WEIGHTED: bool> {
     weighted: bool,
 }
 
-impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, const WEIGHTED: bool>
-    Bidir<'a, E, Q, O, WEIGHTED>
+impl<
+        'a,
+        E: Estimate,
+        Q: OpenList,
+        O: SearchObserver + ?Sized,
+        const WEIGHTED: bool,
+        const AHEAD_ONLY: bool,
+    > Bidir<'a, E, Q, O, WEIGHTED, AHEAD_ONLY>
 {
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -340,6 +371,17 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, const WEIGHTED: b
         // no branch on the rule a diagonal.
         let raw = self.neighbours.get(i).copied().unwrap_or(0);
         let nb = self.allowed[raw as usize];
+        // Only the moves that can improve a neighbour, as in A*: the
+        // backward words keep the move's direction the same way (the
+        // parent is `i` minus it), and the argument holds backwards too (a
+        // move pays the weight of the cell it runs into, here the parent's
+        // for the side cells' straight moves). Not at an end, which has no
+        // parent.
+        let nb = if AHEAD_ONLY && i != self.roots[SIDE] {
+            nb & AHEAD[(w & DIR_MASK) as usize]
+        } else {
+            nb
+        };
         let [n, so, we, e] = straight_free(nb);
         let weights = self.weights;
         let weight = |j: usize| weights.get(j).map_or(1, |&w| u64::from(w));
@@ -445,8 +487,10 @@ impl<'a, E: Estimate, Q: OpenList, O: SearchObserver + ?Sized, const WEIGHTED: b
 
 #[cfg(test)]
 mod tests {
+    use super::search_with;
     use crate::global::astar::{AStar, AStarConfig};
     use crate::global::classic::BidirectionalAStar;
+    use crate::global::SearchLog;
     use crate::global::{Diagonal, GridPlanner, GridPos, Heuristic, PlanGrid, SearchEvent};
     use crate::map::OccupancyGrid;
     use proptest::prelude::*;
@@ -522,6 +566,53 @@ mod tests {
                 (Err(_), Err(_)) => {}
                 (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
             }
+        }
+    }
+
+    proptest! {
+        /// Leaving out the relaxations `AHEAD` rules out changes nothing,
+        /// in either direction: the same events in the same order and the
+        /// same path, for every corner rule and consistent estimate, on
+        /// weighted cells too.
+        #[test]
+        fn relaxing_only_the_moves_ahead_gives_the_same_bidirectional_search_event_for_event(
+            w in 2u32..26,
+            h in 2u32..20,
+            density in 0u64..45,
+            seed in any::<u64>(),
+            rule in 0usize..4,
+            heuristic in 0usize..4,
+            heavy in prop::collection::vec((0usize..26, 0usize..20, 2u8..=9), 0..12),
+            ends in (any::<prop::sample::Index>(), any::<prop::sample::Index>()),
+        ) {
+            let mut grid = random_grid(w as usize, h as usize, density, seed);
+            for (c, r, wt) in heavy {
+                grid.set_weight(c % w as usize, r % h as usize, wt);
+            }
+            let free: Vec<GridPos> = (0..h)
+                .flat_map(|y| (0..w).map(move |x| GridPos::new(x, y)))
+                .filter(|&p| grid.is_free(p.col as i64, p.row as i64))
+                .collect();
+            prop_assume!(!free.is_empty());
+            let (s, t) = (*ends.0.get(&free), *ends.1.get(&free));
+            let diagonal = [
+                Diagonal::Never,
+                Diagonal::NoCornerCutting,
+                Diagonal::OneSideFree,
+                Diagonal::Always,
+            ][rule];
+            // Manhattan is consistent only without diagonal moves.
+            let heuristic = if diagonal == Diagonal::Never && heuristic == 3 {
+                Heuristic::Manhattan
+            } else {
+                [Heuristic::Octile, Heuristic::Zero, Heuristic::Euclidean, Heuristic::Chebyshev][heuristic]
+            };
+            let mut ahead = SearchLog::with_limit(usize::MAX);
+            let mut all = SearchLog::with_limit(usize::MAX);
+            let a = search_with::<_, true>(&grid, s, t, diagonal, heuristic, &mut ahead);
+            let b = search_with::<_, false>(&grid, s, t, diagonal, heuristic, &mut all);
+            prop_assert_eq!(a, b);
+            prop_assert_eq!(ahead, all);
         }
     }
 

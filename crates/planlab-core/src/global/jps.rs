@@ -36,8 +36,8 @@ use super::events::emit;
 use super::jump_table::JumpTable;
 use super::search::{
     cells, check_size, dir_index, finish, improves, trivial_path, with_space, xy, Estimate,
-    FixedHeuristic, LineBits, OctileEstimate, OpenList, SearchSpace, ZeroEstimate, DEFAULT_SPAN,
-    DIAG, DIRS, DIR_MASK, G_MASK, G_SHIFT, OPEN, STRAIGHT,
+    FixedHeuristic, LineBits, OctileEstimate, OpenList, SearchSpace, DEFAULT_SPAN, DIAG, DIRS,
+    DIR_MASK, G_MASK, G_SHIFT, OPEN, STRAIGHT,
 };
 use super::{Diagonal, GridPos, Heuristic, Path, PlanError, PlanGrid, SearchEvent, SearchObserver};
 use serde::{Deserialize, Serialize};
@@ -153,9 +153,13 @@ impl Jps {
             free: grid.padded(),
             stride,
         });
+        // The octile estimate gets its own copy of the search (with the
+        // bucket queue); every other one, the zero estimate included, shares
+        // the general copy: a copy costs ~35 kB of every wasm module that
+        // links the grid planners, and those estimates are for teaching, not
+        // speed.
         with_space(|space| match self.config.heuristic {
             Heuristic::Octile => run(grid, ends, space, obs, OctileEstimate, scans),
-            Heuristic::Zero => run(grid, ends, space, obs, ZeroEstimate, scans),
             h => run(grid, ends, space, obs, FixedHeuristic::new(h, 1.0), scans),
         })
     }
