@@ -243,6 +243,11 @@ pub(crate) struct BucketQueue {
     /// up, so the low 32 bits order them and the bucket's place restores
     /// the rest (one `u64` an entry instead of two).
     ring: Box<[Vec<u64>; RING]>,
+    /// Bit `k` set when ring bucket `k` is not empty: the walk to the next
+    /// occupied bucket and [`BucketQueue::clear`] read four words instead
+    /// of 256 bucket lengths (small searches, such as JPS's few jump points
+    /// or a query across a 49 × 49 map, spent a fifth of their time there).
+    occupied: [u64; RING / 64],
     /// Entries beyond the ring's window: `(f, push number, cell)`.
     far: BinaryHeap<Reverse<(u64, u64, u64)>>,
     /// Pushes to `far` so far, which orders equal `f` there.
@@ -262,6 +267,7 @@ impl Default for BucketQueue {
             shift: Self::shift_for(DEFAULT_SPAN),
             top: Vec::new(),
             ring: Box::new(std::array::from_fn(|_| Vec::new())),
+            occupied: [0; RING / 64],
             far: BinaryHeap::new(),
             far_pushes: 0,
         }
@@ -299,21 +305,38 @@ impl BucketQueue {
     /// Appends to ring bucket `slot`.
     #[inline(always)]
     fn put(&mut self, slot: usize, entry: u64) {
-        self.ring[slot & (RING - 1)].push(entry);
+        let slot = slot & (RING - 1);
+        let bucket = &mut self.ring[slot];
+        // The length is loaded for the push anyway; the bit is only written
+        // when a bucket fills, about once in a hundred pushes on A*'s maps.
+        if bucket.is_empty() {
+            self.occupied[slot / 64] |= 1 << (slot % 64);
+        }
+        bucket.push(entry);
     }
 
     /// How many buckets past `last`'s the first occupied one lies,
-    /// circularly. Walking the buckets' lengths keeps a push to an append:
-    /// pushes outnumber bucket changes ~100 to 1 on A*'s maps. (Occupancy
-    /// bits, set by a push that fills an empty bucket, made the walk and
-    /// `clear` a few word reads and queries on arena's 49 × 49 map 12–30 %
-    /// faster, but the push is inlined at every relaxation of every search
-    /// and the bit took 7 kB of each wasm module.)
+    /// circularly. (The bits cost ~7 kB of each wasm module, the push being
+    /// inlined at every relaxation; walking the 256 bucket lengths instead
+    /// made queries on arena's 49 × 49 map 12–30 % slower.)
     fn next_occupied(&self) -> Option<usize> {
-        // `usize` steps: on wasm32 a `u64` counter costs 64-bit arithmetic
-        // in the walk.
-        let start = (self.last >> self.shift) as usize;
-        (0..RING).find(|&k| !self.ring[start.wrapping_add(k) & (RING - 1)].is_empty())
+        // `usize` arithmetic: on wasm32 `u64` costs more.
+        let start = (self.last >> self.shift) as usize & (RING - 1);
+        let (w0, b0) = (start / 64, start % 64);
+        let words = self.occupied.len();
+        // The first word from `start`'s bit up, the others whole, and the
+        // first word again below `start`'s bit.
+        (0..=words).find_map(|k| {
+            let w = (w0 + k) % words;
+            let mask = match k {
+                0 => u64::MAX << b0,
+                k if k == words => !(u64::MAX << b0),
+                _ => u64::MAX,
+            };
+            let bits = self.occupied[w] & mask;
+            (bits != 0)
+                .then(|| (w * 64 + bits.trailing_zeros() as usize).wrapping_sub(start) & (RING - 1))
+        })
     }
 
     /// Moves the overflow entries the window now reaches into the ring, in
@@ -333,11 +356,13 @@ impl BucketQueue {
             if let Some(k) = self.next_occupied() {
                 // The bucket's number, `f >> shift` of every entry in it.
                 let number = (self.last >> self.shift) + k as u64;
-                let bucket = &mut self.ring[number as usize & (RING - 1)];
+                let slot = number as usize & (RING - 1);
+                let bucket = &mut self.ring[slot];
                 let first = bucket.first().map_or(0, |&e| (e >> 32) as u32);
                 let min = if bucket.iter().all(|&e| (e >> 32) as u32 == first) {
                     // The usual case: one `f`, handed over whole.
                     std::mem::swap(bucket, &mut self.top);
+                    self.occupied[slot / 64] &= !(1 << (slot % 64));
                     first
                 } else {
                     let min = bucket.iter().map(|&e| (e >> 32) as u32).min();
@@ -407,7 +432,13 @@ impl OpenList for BucketQueue {
     fn clear(&mut self) {
         self.last = 0;
         self.top.clear();
-        self.ring.iter_mut().for_each(Vec::clear);
+        for (w, bits) in self.occupied.iter_mut().enumerate() {
+            let mut b = std::mem::take(bits);
+            while b != 0 {
+                self.ring[w * 64 + b.trailing_zeros() as usize].clear();
+                b &= b - 1;
+            }
+        }
         self.far.clear();
         self.far_pushes = 0;
     }
