@@ -959,10 +959,21 @@ mod tests {
     /// Every straight scan and diagonal run read from the JPS+ table stops
     /// where the online scans over the bit-packed lines stop, from every
     /// free cell, in every direction, with the goal on the line ahead,
-    /// behind or elsewhere.
+    /// behind or elsewhere; the open and sparse grids have jumps longer
+    /// than one table step (127 cells), which chain.
     #[test]
     fn jump_table_stops_where_the_line_scans_stop() {
-        for (width, height, density) in [(62, 9, 10), (63, 7, 30), (130, 6, 5), (7, 66, 20)] {
+        for (width, height, density) in [
+            (62, 9, 10),
+            (63, 7, 30),
+            (130, 6, 5),
+            (7, 66, 20),
+            (300, 5, 0),
+            (300, 6, 1),
+            (5, 300, 1),
+            (140, 140, 0),
+            (140, 140, 1),
+        ] {
             let grid = random_grid(width, height, density, width as u64 * 31 + density);
             let stride = grid.stride();
             let online = LineScans {
