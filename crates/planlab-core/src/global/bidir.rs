@@ -544,22 +544,10 @@ mod tests {
             heavy in prop::collection::vec((0usize..28, 0usize..20, 2u8..=9), 0..12),
             ends in (any::<prop::sample::Index>(), any::<prop::sample::Index>()),
         ) {
-            let mut grid = random_grid(w as usize, h as usize, density, seed);
-            for (c, r, wt) in heavy {
-                grid.set_weight(c % w as usize, r % h as usize, wt);
-            }
-            let free: Vec<GridPos> = (0..h)
-                .flat_map(|y| (0..w).map(move |x| GridPos::new(x, y)))
-                .filter(|&p| grid.is_free(p.col as i64, p.row as i64))
-                .collect();
-            prop_assume!(!free.is_empty());
-            let (s, t) = (ends.0.get(&free), ends.1.get(&free));
-            let diagonal = [
-                Diagonal::Never,
-                Diagonal::NoCornerCutting,
-                Diagonal::OneSideFree,
-                Diagonal::Always,
-            ][rule];
+            let query = weighted_query((w, h, density, seed), &heavy, ends);
+            let Some((grid, s, t)) = query else { return Err(TestCaseError::reject("no free cell")) };
+            let (s, t) = (&s, &t);
+            let diagonal = RULES[rule];
             let astar = AStar::new(AStarConfig { diagonal, ..AStarConfig::default() }).unwrap();
             let bidir = BidirectionalAStar { diagonal, heuristic: Heuristic::Octile };
             match (astar.plan(&grid, *s, *t), bidir.plan(&grid, *s, *t)) {
@@ -590,22 +578,9 @@ mod tests {
             heavy in prop::collection::vec((0usize..26, 0usize..20, 2u8..=9), 0..12),
             ends in (any::<prop::sample::Index>(), any::<prop::sample::Index>()),
         ) {
-            let mut grid = random_grid(w as usize, h as usize, density, seed);
-            for (c, r, wt) in heavy {
-                grid.set_weight(c % w as usize, r % h as usize, wt);
-            }
-            let free: Vec<GridPos> = (0..h)
-                .flat_map(|y| (0..w).map(move |x| GridPos::new(x, y)))
-                .filter(|&p| grid.is_free(p.col as i64, p.row as i64))
-                .collect();
-            prop_assume!(!free.is_empty());
-            let (s, t) = (*ends.0.get(&free), *ends.1.get(&free));
-            let diagonal = [
-                Diagonal::Never,
-                Diagonal::NoCornerCutting,
-                Diagonal::OneSideFree,
-                Diagonal::Always,
-            ][rule];
+            let query = weighted_query((w, h, density, seed), &heavy, ends);
+            let Some((grid, s, t)) = query else { return Err(TestCaseError::reject("no free cell")) };
+            let diagonal = RULES[rule];
             // Manhattan is consistent only without diagonal moves.
             let heuristic = if diagonal == Diagonal::Never && heuristic == 3 {
                 Heuristic::Manhattan
@@ -619,6 +594,36 @@ mod tests {
             prop_assert_eq!(a, b);
             prop_assert_eq!(ahead, all);
         }
+    }
+
+    const RULES: [Diagonal; 4] = [
+        Diagonal::Never,
+        Diagonal::NoCornerCutting,
+        Diagonal::OneSideFree,
+        Diagonal::Always,
+    ];
+
+    /// A seeded `w × h` grid (`random_grid`) with the `heavy` cells'
+    /// weights set (coordinates wrapped into the grid), and two of its free
+    /// cells picked by `ends`; `None` without a free cell.
+    fn weighted_query(
+        (w, h, density, seed): (u32, u32, u64, u64),
+        heavy: &[(usize, usize, u8)],
+        ends: (prop::sample::Index, prop::sample::Index),
+    ) -> Option<(PlanGrid, GridPos, GridPos)> {
+        let mut grid = random_grid(w as usize, h as usize, density, seed);
+        for &(c, r, wt) in heavy {
+            grid.set_weight(c % w as usize, r % h as usize, wt);
+        }
+        let free: Vec<GridPos> = (0..h)
+            .flat_map(|y| (0..w).map(move |x| GridPos::new(x, y)))
+            .filter(|&p| grid.is_free(p.col as i64, p.row as i64))
+            .collect();
+        if free.is_empty() {
+            return None;
+        }
+        let (s, t) = (*ends.0.get(&free), *ends.1.get(&free));
+        Some((grid, s, t))
     }
 
     /// A seeded grid of `w × h` cells, about `density` of them blocked.
