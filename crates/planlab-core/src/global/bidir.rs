@@ -536,25 +536,18 @@ mod tests {
     proptest! {
         #[test]
         fn bidirectional_cost_equals_astar_on_random_weighted_grids(
-            w in 2u32..28,
-            h in 2u32..20,
-            density in 0u64..45,
-            seed in any::<u64>(),
+            query in weighted_queries(28),
             rule in 0usize..4,
-            heavy in prop::collection::vec((0usize..28, 0usize..20, 2u8..=9), 0..12),
-            ends in (any::<prop::sample::Index>(), any::<prop::sample::Index>()),
         ) {
-            let query = weighted_query((w, h, density, seed), &heavy, ends);
             let Some((grid, s, t)) = query else { return Err(TestCaseError::reject("no free cell")) };
-            let (s, t) = (&s, &t);
             let diagonal = RULES[rule];
             let astar = AStar::new(AStarConfig { diagonal, ..AStarConfig::default() }).unwrap();
             let bidir = BidirectionalAStar { diagonal, heuristic: Heuristic::Octile };
-            match (astar.plan(&grid, *s, *t), bidir.plan(&grid, *s, *t)) {
+            match (astar.plan(&grid, s, t), bidir.plan(&grid, s, t)) {
                 (Ok(a), Ok(b)) => {
                     prop_assert!((a.cost - b.cost).abs() < 1e-9, "A* {} bidirectional {}", a.cost, b.cost);
                     prop_assert!(grid.path_is_free(&b.cells, diagonal));
-                    prop_assert_eq!((b.cells.first(), b.cells.last()), (Some(s), Some(t)));
+                    prop_assert_eq!((b.cells.first(), b.cells.last()), (Some(&s), Some(&t)));
                 }
                 (Err(_), Err(_)) => {}
                 (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
@@ -569,16 +562,10 @@ mod tests {
         /// weighted cells too.
         #[test]
         fn relaxing_only_the_moves_ahead_gives_the_same_bidirectional_search_event_for_event(
-            w in 2u32..26,
-            h in 2u32..20,
-            density in 0u64..45,
-            seed in any::<u64>(),
+            query in weighted_queries(26),
             rule in 0usize..4,
             heuristic in 0usize..4,
-            heavy in prop::collection::vec((0usize..26, 0usize..20, 2u8..=9), 0..12),
-            ends in (any::<prop::sample::Index>(), any::<prop::sample::Index>()),
         ) {
-            let query = weighted_query((w, h, density, seed), &heavy, ends);
             let Some((grid, s, t)) = query else { return Err(TestCaseError::reject("no free cell")) };
             let diagonal = RULES[rule];
             // Manhattan is consistent only without diagonal moves.
@@ -603,27 +590,29 @@ mod tests {
         Diagonal::Always,
     ];
 
-    /// A seeded `w × h` grid (`random_grid`) with the `heavy` cells'
-    /// weights set (coordinates wrapped into the grid), and two of its free
-    /// cells picked by `ends`; `None` without a free cell.
-    fn weighted_query(
-        (w, h, density, seed): (u32, u32, u64, u64),
-        heavy: &[(usize, usize, u8)],
-        ends: (prop::sample::Index, prop::sample::Index),
-    ) -> Option<(PlanGrid, GridPos, GridPos)> {
-        let mut grid = random_grid(w as usize, h as usize, density, seed);
-        for &(c, r, wt) in heavy {
-            grid.set_weight(c % w as usize, r % h as usize, wt);
-        }
-        let free: Vec<GridPos> = (0..h)
-            .flat_map(|y| (0..w).map(move |x| GridPos::new(x, y)))
-            .filter(|&p| grid.is_free(p.col as i64, p.row as i64))
-            .collect();
-        if free.is_empty() {
-            return None;
-        }
-        let (s, t) = (*ends.0.get(&free), *ends.1.get(&free));
-        Some((grid, s, t))
+    /// Seeded grids of 2 to `max_w − 1` columns and 2 to 19 rows (up to
+    /// 45 % blocked, `random_grid`) with up to 12 cells weighted 2–9, and
+    /// two of their free cells; `None` for a grid without a free cell.
+    fn weighted_queries(max_w: u32) -> impl Strategy<Value = Option<(PlanGrid, GridPos, GridPos)>> {
+        (
+            (2..max_w, 2u32..20, 0u64..45, any::<u64>()),
+            prop::collection::vec((0..max_w as usize, 0usize..20, 2u8..=9), 0..12),
+            (any::<prop::sample::Index>(), any::<prop::sample::Index>()),
+        )
+            .prop_map(|((w, h, density, seed), heavy, ends)| {
+                let mut grid = random_grid(w as usize, h as usize, density, seed);
+                for (c, r, wt) in heavy {
+                    grid.set_weight(c % w as usize, r % h as usize, wt);
+                }
+                let free: Vec<GridPos> = (0..h)
+                    .flat_map(|y| (0..w).map(move |x| GridPos::new(x, y)))
+                    .filter(|&p| grid.is_free(p.col as i64, p.row as i64))
+                    .collect();
+                if free.is_empty() {
+                    return None;
+                }
+                Some((grid, *ends.0.get(&free), *ends.1.get(&free)))
+            })
     }
 
     /// A seeded grid of `w × h` cells, about `density` of them blocked.

@@ -316,9 +316,9 @@ impl BucketQueue {
     }
 
     /// How many buckets past `last`'s the first occupied one lies,
-    /// circularly. (The bits cost ~7 kB of each wasm module, the push being
-    /// inlined at every relaxation; walking the 256 bucket lengths instead
-    /// made queries on arena's 49 × 49 map 12–30 % slower.)
+    /// circularly. (The bits cost 4.5–7 kB of each wasm module, the push
+    /// being inlined at every relaxation; walking the 256 bucket lengths
+    /// instead made queries on arena's 49 × 49 map 12–30 % slower.)
     fn next_occupied(&self) -> Option<usize> {
         // `usize` arithmetic: on wasm32 `u64` costs more.
         let start = (self.last >> self.shift) as usize & (RING - 1);
